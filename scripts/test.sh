@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Runs the whole test suite on a fresh machine: installs the Rerun viewer
+# (rerun-sdk==0.36.3, whose `rerun` binary the .rrd tests use) into a
+# virtual environment under target/, then runs `cargo test --release`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+venv="target/rerun-venv"
+if [ ! -x "$venv/bin/rerun" ]; then
+  mkdir -p target
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install --quiet --disable-pip-version-check "rerun-sdk==0.36.3"
+fi
+"$venv/bin/rerun" analytics disable >/dev/null 2>&1 || true
+export PATH="$PWD/$venv/bin:$PATH"
+export SCEN_RERUN="$PWD/$venv/bin/rerun"
+
+cargo test --release "$@"

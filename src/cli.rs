@@ -1,0 +1,362 @@
+//! The command line: `run`, `check`, `test`, `import`.
+
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use rayon::prelude::*;
+
+use crate::diagnostics::{Diag, SourceMap};
+use crate::report;
+use crate::run::{run_scenario, RunReport};
+use crate::scenario::loader::LoadFailure;
+use crate::viz::rerun_sink::{self, ViewerTarget};
+
+/// Exit codes (SPEC 4).
+pub const EXIT_OK: i32 = 0;
+pub const EXIT_CHECK_FAILED: i32 = 1;
+pub const EXIT_BAD_INPUT: i32 = 2;
+
+#[derive(Parser, Debug)]
+#[command(name = "scen", version, about = "Run 2D motion-planning scenarios and check their results")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Run scenarios: plan, check, report.
+    Run(RunArgs),
+    /// Parse and analyse only; no planner runs.
+    Check(CheckArgs),
+    /// Run every *.scen under the given paths as a regression suite.
+    Test(TestArgs),
+    /// Convert another format into a scenario.
+    Import {
+        /// The format (`roadmap`: a SEEDS §D input.txt).
+        format: String,
+        file: PathBuf,
+    },
+}
+
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Run only this plan (repeatable).
+    #[arg(long = "plan", value_name = "NAME")]
+    pub plans: Vec<String>,
+    /// Print one JSON document per file instead of the report.
+    #[arg(long)]
+    pub json: bool,
+    /// Write a Rerun recording.
+    #[arg(long, value_name = "OUT.rrd", conflicts_with_all = ["spawn", "connect"])]
+    pub save: Option<PathBuf>,
+    /// Start the Rerun viewer (`rerun` from PATH) and stream to it.
+    #[arg(long, conflicts_with = "connect")]
+    pub spawn: bool,
+    /// Stream to a running Rerun viewer (default address of Rerun 0.36).
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "")]
+    pub connect: Option<String>,
+    /// Write an SVG picture of the world and the paths.
+    #[arg(long, value_name = "OUT.svg")]
+    pub svg: Option<PathBuf>,
+    /// Print only the summary and failures.
+    #[arg(short, long, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Print timings too.
+    #[arg(short, long)]
+    pub verbose: bool,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum Format {
+    Human,
+    Json,
+}
+
+#[derive(Args, Debug)]
+pub struct CheckArgs {
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// `json`: one JSON object per diagnostic, one per line.
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: Format,
+}
+
+#[derive(Args, Debug)]
+pub struct TestArgs {
+    /// Files or folders (default: the current folder).
+    pub paths: Vec<PathBuf>,
+}
+
+/// Runs the CLI; returns the exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { EXIT_BAD_INPUT } else { EXIT_OK };
+            let _ = e.print();
+            return code;
+        }
+    };
+    let _ = miette::set_hook(Box::new(|_| {
+        Box::new(
+            miette::MietteHandlerOpts::new()
+                .terminal_links(false)
+                .color(std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none())
+                .build(),
+        )
+    }));
+    match cli.command {
+        Command::Run(args) => cmd_run(&args),
+        Command::Check(args) => cmd_check(&args),
+        Command::Test(args) => cmd_test(&args),
+        Command::Import { format, file } => {
+            eprintln!(
+                "error: `scen import {format}` is not implemented yet in this version of scen (file `{}`)",
+                file.display()
+            );
+            EXIT_BAD_INPUT
+        }
+    }
+}
+
+/// Renders diagnostics with their sources (miette), one after another.
+pub fn render_diags(diags: &[Diag], sources: &SourceMap) -> String {
+    let mut s = String::new();
+    for d in diags {
+        s.push_str(&format!("{:?}\n", d.to_report(sources)));
+    }
+    s
+}
+
+fn print_failure(f: &LoadFailure) {
+    eprint!("{}", render_diags(&f.diags, &f.sources));
+    let errors = f.diags.iter().filter(|d| d.is_error()).count();
+    eprintln!("{errors} error(s): the scenario was not run");
+}
+
+fn cmd_run(args: &RunArgs) -> i32 {
+    if args.files.len() > 1 && (args.save.is_some() || args.svg.is_some()) {
+        eprintln!("error: `--save` and `--svg` take one scenario file; run the files one at a time");
+        return EXIT_BAD_INPUT;
+    }
+    let mut code = EXIT_OK;
+    let mut viewer_warned = false;
+    for file in &args.files {
+        let scenario = match crate::load(file) {
+            Ok(s) => s,
+            Err(f) => {
+                print_failure(&f);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+        };
+        if let Some(unknown) = args.plans.iter().find(|p| !scenario.plans.iter().any(|q| &q.name == *p)) {
+            let names: Vec<&str> = scenario.plans.iter().map(|p| p.name.as_str()).collect();
+            eprintln!(
+                "error: `{}` has no plan `{unknown}` (plans: {})",
+                file.display(),
+                names.join(", ")
+            );
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
+        let spinner = progress(args, file);
+        let report = run_scenario(scenario, &args.plans);
+        if let Some(p) = spinner {
+            p.finish_and_clear();
+        }
+        if args.json {
+            let doc = report::json::to_json(&report);
+            println!("{}", serde_json::to_string(&doc).unwrap_or_default());
+        } else {
+            print_text(&report, args);
+        }
+        if let Some(svg) = &args.svg
+            && let Err(e) = std::fs::write(svg, report::svg::to_svg(&report))
+        {
+            eprintln!("error: cannot write `{}`: {e}", svg.display());
+            code = code.max(EXIT_BAD_INPUT);
+        }
+        let target = if let Some(path) = &args.save {
+            Some(ViewerTarget::Save(path.clone()))
+        } else if args.spawn {
+            Some(ViewerTarget::Spawn)
+        } else {
+            args.connect
+                .as_ref()
+                .map(|a| ViewerTarget::Connect(Some(a.clone()).filter(|a| !a.is_empty())))
+        };
+        if let Some(target) = target
+            && let Err(e) = rerun_sink::stream(&report, &target)
+        {
+            if let ViewerTarget::Save(_) = target {
+                eprintln!("error: {e}");
+                code = code.max(EXIT_BAD_INPUT);
+            } else if !viewer_warned {
+                eprintln!("warning: viewer: {e}; the report above is complete");
+                viewer_warned = true;
+            }
+        }
+        if report.failed() > 0 || report.plans.iter().any(|p| p.validation.is_some()) {
+            code = code.max(EXIT_CHECK_FAILED);
+        }
+    }
+    code
+}
+
+fn progress(args: &RunArgs, file: &Path) -> Option<indicatif::ProgressBar> {
+    if args.quiet || args.json || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let p = indicatif::ProgressBar::new_spinner();
+    p.set_message(format!("planning {}", file.display()));
+    p.enable_steady_tick(std::time::Duration::from_millis(120));
+    Some(p)
+}
+
+fn print_text(report: &RunReport, args: &RunArgs) {
+    let mut out = std::io::stdout().lock();
+    if args.quiet {
+        for c in report.checks.iter().filter(|c| !c.passed) {
+            let _ = writeln!(out, "{}", report::text::check_line(report, c));
+        }
+        let _ = writeln!(out, "{} passed, {} failed", report.passed(), report.failed());
+    } else {
+        let _ = write!(out, "{}", report::text::render(report, args.verbose));
+    }
+    let failed: Vec<Diag> = report
+        .checks
+        .iter()
+        .filter(|c| !c.passed)
+        .map(|c| report::text::failed_check_diag(report, c))
+        .collect();
+    if !failed.is_empty() {
+        let _ = out.flush();
+        eprint!("{}", render_diags(&failed, &report.scenario.sources));
+    }
+}
+
+fn cmd_check(args: &CheckArgs) -> i32 {
+    let mut code = EXIT_OK;
+    for file in &args.files {
+        match crate::load(file) {
+            Ok(s) => {
+                if args.format == Format::Human {
+                    println!(
+                        "{}: ok ({} robot(s), {} plan(s), {} check(s))",
+                        file.display(),
+                        s.robots.len(),
+                        s.plans.len(),
+                        s.checks.len()
+                    );
+                }
+            }
+            Err(f) => {
+                code = EXIT_BAD_INPUT;
+                match args.format {
+                    Format::Human => print_failure(&f),
+                    Format::Json => {
+                        for d in &f.diags {
+                            let mut j = d.to_json(&f.sources);
+                            if j.get("file").is_none() {
+                                j["file"] = serde_json::json!(file.display().to_string());
+                            }
+                            println!("{}", serde_json::to_string(&j).unwrap_or_default());
+                        }
+                    }
+                }
+            }
+        }
+    }
+    code
+}
+
+/// Collects `*.scen` files under `path`, sorted; files whose name starts
+/// with `_` are include-only fragments and are skipped.
+fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
+    if path.is_dir() {
+        let Ok(entries) = std::fs::read_dir(path) else { return };
+        let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+        entries.sort();
+        for e in entries {
+            if e.is_dir() {
+                collect_scen(&e, out);
+            } else if e.extension().is_some_and(|x| x == "scen")
+                && !e.file_name().is_some_and(|n| n.to_string_lossy().starts_with('_'))
+            {
+                out.push(e);
+            }
+        }
+    } else {
+        out.push(path.to_path_buf());
+    }
+}
+
+fn cmd_test(args: &TestArgs) -> i32 {
+    let roots = if args.paths.is_empty() { vec![PathBuf::from(".")] } else { args.paths.clone() };
+    let mut files = Vec::new();
+    for r in &roots {
+        if !r.exists() {
+            eprintln!("error: `{}` does not exist", r.display());
+            return EXIT_BAD_INPUT;
+        }
+        collect_scen(r, &mut files);
+    }
+    if files.is_empty() {
+        eprintln!("error: no *.scen files under {}", roots.iter().map(|r| r.display().to_string()).collect::<Vec<_>>().join(", "));
+        return EXIT_BAD_INPUT;
+    }
+    // Each file: (line, diagnostics text, passed, failed).
+    let results: Vec<(String, String, usize, usize)> = files
+        .par_iter()
+        .map(|f| match crate::load(f) {
+            Err(fail) => (
+                format!("FAILED  {}  (does not load)", f.display()),
+                render_diags(&fail.diags, &fail.sources),
+                0,
+                1,
+            ),
+            Ok(s) => {
+                let report = run_scenario(s, &[]);
+                let invalid: Vec<String> = report
+                    .plans
+                    .iter()
+                    .filter(|p| p.validation.is_some())
+                    .map(|p| report.plan(p).name.clone())
+                    .collect();
+                let (passed, failed) = (report.passed(), report.failed() + invalid.len());
+                let diags: Vec<Diag> = report
+                    .checks
+                    .iter()
+                    .filter(|c| !c.passed)
+                    .map(|c| report::text::failed_check_diag(&report, c))
+                    .collect();
+                let mut text = render_diags(&diags, &report.scenario.sources);
+                for name in invalid {
+                    text.push_str(&format!("plan `{name}` returned a path that fails the validator\n"));
+                }
+                let line = if failed == 0 {
+                    format!("ok      {}  ({passed} checks)", f.display())
+                } else {
+                    format!("FAILED  {}  ({failed} of {} checks failed)", f.display(), passed + failed)
+                };
+                (line, text, passed, failed)
+            }
+        })
+        .collect();
+    let (mut passed, mut failed) = (0, 0);
+    for (line, diags, p, f) in &results {
+        println!("{line}");
+        if !diags.is_empty() {
+            eprint!("{diags}");
+        }
+        passed += p;
+        failed += f;
+    }
+    println!("{passed} passed, {failed} failed");
+    if failed > 0 { EXIT_CHECK_FAILED } else { EXIT_OK }
+}

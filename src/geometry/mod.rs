@@ -1,0 +1,225 @@
+//! Geometry core: world shapes, polygons and their convex pieces, the
+//! planners' collision queries and the independent validator (SPEC 3.0).
+//!
+//! Everything is in f64 world units; angles are radians, counter-clockwise.
+
+pub mod collide;
+pub mod polygon;
+pub mod validator;
+
+pub use nalgebra::{Point2, Vector2};
+
+pub type Point = Point2<f64>;
+pub type Vector = Vector2<f64>;
+
+/// Tolerance for "touching is allowed": overlaps up to this depth are contact.
+pub const TOUCH_EPS: f64 = 1e-9;
+
+/// A configuration: the robot frame's origin at (x, y), rotated by `theta`
+/// radians counter-clockwise.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    pub x: f64,
+    pub y: f64,
+    pub theta: f64,
+}
+
+impl Config {
+    pub fn new(x: f64, y: f64, theta: f64) -> Self {
+        Config { x, y, theta }
+    }
+
+    pub fn xy(&self) -> Point {
+        Point::new(self.x, self.y)
+    }
+}
+
+/// An axis-aligned box (closed).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: Point,
+    pub max: Point,
+}
+
+impl Aabb {
+    /// The box spanned by two opposite corners, in any order.
+    pub fn from_corners(a: Point, b: Point) -> Self {
+        Aabb {
+            min: Point::new(a.x.min(b.x), a.y.min(b.y)),
+            max: Point::new(a.x.max(b.x), a.y.max(b.y)),
+        }
+    }
+
+    pub fn contains(&self, p: Point) -> bool {
+        p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
+    }
+
+    pub fn width(&self) -> f64 {
+        self.max.x - self.min.x
+    }
+
+    pub fn height(&self) -> f64 {
+        self.max.y - self.min.y
+    }
+
+    /// Counter-clockwise corners starting at `min`.
+    pub fn corners(&self) -> [Point; 4] {
+        [
+            self.min,
+            Point::new(self.max.x, self.min.y),
+            self.max,
+            Point::new(self.min.x, self.max.y),
+        ]
+    }
+}
+
+/// A convex polygon with counter-clockwise vertices, no duplicate or
+/// collinear vertices, and non-zero area.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvexPolygon {
+    pub vertices: Vec<Point>,
+}
+
+/// A raster of square cells (SPEC 2.3). Row 0 is the top row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Grid {
+    pub cell: f64,
+    /// Bottom-left corner of the raster.
+    pub origin: Point,
+    pub width: usize,
+    pub height: usize,
+    /// Row-major, row 0 first: 0 = blocked, 1..=9 = free with that weight.
+    pub cells: Vec<u8>,
+}
+
+impl Grid {
+    pub fn weight(&self, col: usize, row: usize) -> u8 {
+        self.cells[row * self.width + col]
+    }
+
+    pub fn is_blocked(&self, col: usize, row: usize) -> bool {
+        self.weight(col, row) == 0
+    }
+
+    /// The square covered by cell (col, row).
+    pub fn cell_box(&self, col: usize, row: usize) -> Aabb {
+        let x0 = self.origin.x + col as f64 * self.cell;
+        let y0 = self.origin.y + (self.height - 1 - row) as f64 * self.cell;
+        Aabb {
+            min: Point::new(x0, y0),
+            max: Point::new(x0 + self.cell, y0 + self.cell),
+        }
+    }
+
+    /// The whole raster's extent.
+    pub fn extent(&self) -> Aabb {
+        Aabb {
+            min: self.origin,
+            max: Point::new(
+                self.origin.x + self.width as f64 * self.cell,
+                self.origin.y + self.height as f64 * self.cell,
+            ),
+        }
+    }
+
+    /// Inclusive column and row ranges of the cells whose closed squares
+    /// meet `b` (empty ranges when `b` misses the grid).
+    pub fn cells_overlapping(&self, b: &Aabb) -> (std::ops::Range<usize>, std::ops::Range<usize>) {
+        let cx0 = ((b.min.x - self.origin.x) / self.cell).floor();
+        let cx1 = ((b.max.x - self.origin.x) / self.cell).floor();
+        // y grows upwards, rows downwards: row = H-1 - floor((y - oy)/cell)
+        let ry0 = ((b.min.y - self.origin.y) / self.cell).floor();
+        let ry1 = ((b.max.y - self.origin.y) / self.cell).floor();
+        let clampc = |v: f64| v.clamp(0.0, self.width as f64) as usize;
+        let clampr = |v: f64| v.clamp(0.0, self.height as f64) as usize;
+        let cols = clampc(cx0)..clampc(cx1 + 1.0);
+        // ybin k (from the bottom) is row H-1-k
+        let k0 = clampr(ry0);
+        let k1 = clampr(ry1 + 1.0);
+        let rows = (self.height - k1)..(self.height - k0);
+        (cols, rows)
+    }
+}
+
+/// The shape of a world obstacle, normalised by the analyzer.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A simple polygon (counter-clockwise, no collinear or duplicate
+    /// vertices) and its convex decomposition.
+    Polygon {
+        outline: Vec<Point>,
+        pieces: Vec<ConvexPolygon>,
+    },
+    Rect(Aabb),
+    /// A zero-thickness wall: no interior, but nothing may cross it.
+    Segment(Point, Point),
+    Disk { center: Point, radius: f64 },
+    Grid(Grid),
+}
+
+/// The shape of a robot in its own frame.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RobotShape {
+    Point,
+    Disk(f64),
+    /// Convex, counter-clockwise.
+    Polygon(ConvexPolygon),
+}
+
+impl RobotShape {
+    /// R: the largest distance from the frame origin to a point of the body.
+    pub fn radius(&self) -> f64 {
+        match self {
+            RobotShape::Point => 0.0,
+            RobotShape::Disk(r) => *r,
+            RobotShape::Polygon(p) => p
+                .vertices
+                .iter()
+                .map(|v| v.coords.norm())
+                .fold(0.0, f64::max),
+        }
+    }
+
+    /// Whether the body changes with θ (polygons do; points and disks don't).
+    pub fn rotates(&self) -> bool {
+        matches!(self, RobotShape::Polygon(_))
+    }
+
+    /// The body's vertices placed at `c` (empty for point and disk robots).
+    pub fn placed_vertices(&self, c: Config) -> Vec<Point> {
+        match self {
+            RobotShape::Polygon(p) => {
+                let (s, co) = c.theta.sin_cos();
+                p.vertices
+                    .iter()
+                    .map(|v| Point::new(c.x + co * v.x - s * v.y, c.y + s * v.x + co * v.y))
+                    .collect()
+            }
+            _ => Vec::new(),
+        }
+    }
+}
+
+/// A named obstacle of the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Obstacle {
+    pub name: String,
+    pub shape: Shape,
+}
+
+/// The world: bounds for the robot's reference point, and obstacles.
+#[derive(Clone, Debug, PartialEq)]
+pub struct World {
+    pub bounds: Aabb,
+    pub obstacles: Vec<Obstacle>,
+}
+
+/// Shortest signed angular difference `b - a`, in (-π, π].
+pub fn angle_diff(a: f64, b: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let mut d = (b - a).rem_euclid(tau);
+    if d > std::f64::consts::PI {
+        d -= tau;
+    }
+    d
+}

@@ -1,0 +1,20 @@
+//! `scen`: a declarative scenario language for 2D robot motion planning.
+//!
+//! The pipeline: source text ─parse→ [`syntax::ast`] ─analyze→
+//! [`scenario::Scenario`] ─plan→ [`run::RunReport`] ─check→ report sinks
+//! ([`report`] for text, JSON and SVG; [`viz`] for the Rerun viewer).
+
+pub mod checks;
+pub mod cli;
+pub mod diagnostics;
+pub mod geometry;
+pub mod planners;
+pub mod report;
+pub mod run;
+pub mod scenario;
+pub mod syntax;
+pub mod viz;
+
+pub use diagnostics::{Diag, SourceMap, Span};
+pub use run::{run_scenario, RunReport};
+pub use scenario::{load, Scenario};

@@ -1,0 +1,458 @@
+//! `astar` (SPEC 3.1) for point and disk robots: A* on the (x, y) lattice.
+//!
+//! A lattice point is free when the robot placed there overlaps no obstacle
+//! interior. An edge joins two free neighbours and is used only if the
+//! robot's straight motion along it is collision-free (checked lazily, once
+//! per edge, by [`ObstacleIndex::sweep_free`]); diagonal moves also need
+//! both orthogonally adjacent points free (no corner cutting, the MovingAI
+//! rule). Start and goal are snapped to the nearest lattice points and
+//! joined to them by straight motions that must be collision-free too.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::time::Instant;
+
+use crate::geometry::collide::ObstacleIndex;
+use crate::geometry::{polygon, Config, Point, RobotShape, Shape, World};
+use crate::scenario::{Limits, Params};
+
+use super::lattice::LatticeSpec;
+use super::{MetricValue, PlanOutcome, Trace};
+
+/// Edge cost metric (SPEC 3.1 `cost`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CostMetric {
+    Euclid,
+    L1,
+}
+
+impl CostMetric {
+    pub fn between(self, a: Point, b: Point) -> f64 {
+        let (dx, dy) = ((b.x - a.x).abs(), (b.y - a.y).abs());
+        match self {
+            CostMetric::Euclid => dx.hypot(dy),
+            CostMetric::L1 => dx + dy,
+        }
+    }
+}
+
+/// Search settings for the (x, y) lattice.
+#[derive(Clone, Copy, Debug)]
+pub struct SearchConfig {
+    /// 4 or 8.
+    pub connect: u8,
+    pub cost: CostMetric,
+    /// Heuristic inflation w ≥ 1 (f = g + w·h).
+    pub weight: f64,
+    /// `false`: h = 0 (Dijkstra).
+    pub heuristic: bool,
+    pub limits: Limits,
+}
+
+impl SearchConfig {
+    pub fn from_params(params: &Params) -> Self {
+        SearchConfig {
+            connect: params.num("connect").map(|c| c as u8).unwrap_or(8),
+            cost: match params.word("cost") {
+                Some("l1") => CostMetric::L1,
+                _ => CostMetric::Euclid,
+            },
+            weight: params.num("weight").unwrap_or(1.0),
+            heuristic: params.word("heuristic") != Some("zero"),
+            limits: params.limits,
+        }
+    }
+}
+
+/// Neighbour offsets: the 4 axis moves first, then the diagonals.
+const DIRS: [(i64, i64); 8] = [(1, 0), (0, 1), (-1, 0), (0, -1), (1, 1), (-1, 1), (-1, -1), (1, -1)];
+
+fn opposite(d: usize) -> usize {
+    if d < 4 { (d + 2) % 4 } else { 4 + (d - 4 + 2) % 4 }
+}
+
+/// The (x, y) lattice of one plan: which points are free, and a cache of
+/// which edges passed the collision check.
+pub struct GridLattice {
+    pub spec: LatticeSpec,
+    /// Robot radius (0 for a point robot).
+    pub radius: f64,
+    pub free: Vec<bool>,
+    /// Per node, bit d: the edge in direction d was checked / is free.
+    edge_checked: Vec<u8>,
+    edge_ok: Vec<u8>,
+}
+
+impl GridLattice {
+    /// Classifies every lattice point. The caller has checked the size cap.
+    pub fn build(spec: LatticeSpec, index: &ObstacleIndex, radius: f64) -> Self {
+        let n = spec.layer_len();
+        let mut free = Vec::with_capacity(n);
+        for j in 0..spec.ny {
+            for i in 0..spec.nx {
+                free.push(index.disk_free(spec.point(i, j), radius));
+            }
+        }
+        GridLattice {
+            spec,
+            radius,
+            free,
+            edge_checked: vec![0; n],
+            edge_ok: vec![0; n],
+        }
+    }
+
+    pub fn free_count(&self) -> usize {
+        self.free.iter().filter(|f| **f).count()
+    }
+
+    /// The neighbour of `node` in direction `d`, if inside the lattice.
+    fn neighbour(&self, node: usize, d: usize) -> Option<usize> {
+        let (i, j) = self.spec.coords(node);
+        let (dx, dy) = DIRS[d];
+        let (ni, nj) = (i as i64 + dx, j as i64 + dy);
+        if ni < 0 || nj < 0 || ni >= self.spec.nx as i64 || nj >= self.spec.ny as i64 {
+            return None;
+        }
+        Some(self.spec.index(ni as usize, nj as usize))
+    }
+
+    /// Whether the motion along edge (node, d) is collision-free; `to` is
+    /// the neighbour. Checked once per edge and cached for both directions.
+    fn edge_free(&mut self, index: &ObstacleIndex, node: usize, d: usize, to: usize) -> bool {
+        let bit = 1u8 << d;
+        if self.edge_checked[node] & bit == 0 {
+            let (i, j) = self.spec.coords(node);
+            let (ti, tj) = self.spec.coords(to);
+            let ok = index.sweep_free(self.spec.point(i, j), self.spec.point(ti, tj), self.radius);
+            let back = 1u8 << opposite(d);
+            self.edge_checked[node] |= bit;
+            self.edge_checked[to] |= back;
+            if ok {
+                self.edge_ok[node] |= bit;
+                self.edge_ok[to] |= back;
+            }
+        }
+        self.edge_ok[node] & bit != 0
+    }
+}
+
+/// An open-list entry: lowest f first, then highest g (deeper nodes first),
+/// then lowest index, so that searches are deterministic.
+#[derive(Clone, Copy, Debug)]
+struct Open {
+    f: f64,
+    g: f64,
+    node: u32,
+}
+
+impl PartialEq for Open {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Open {}
+impl PartialOrd for Open {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Open {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // BinaryHeap is a max-heap: "greater" pops first.
+        other
+            .f
+            .total_cmp(&self.f)
+            .then(self.g.total_cmp(&other.g))
+            .then(other.node.cmp(&self.node))
+    }
+}
+
+/// Reusable buffers, so that many queries on one lattice allocate once.
+#[derive(Default)]
+pub struct SearchBuffers {
+    g: Vec<f64>,
+    parent: Vec<u32>,
+    /// `stamp` marks nodes seen in this query; `closed` nodes expanded.
+    seen: Vec<u32>,
+    closed: Vec<u32>,
+    stamp: u32,
+    heap: BinaryHeap<Open>,
+}
+
+impl SearchBuffers {
+    fn reset(&mut self, n: usize) {
+        if self.g.len() != n {
+            self.g = vec![f64::INFINITY; n];
+            self.parent = vec![u32::MAX; n];
+            self.seen = vec![0; n];
+            self.closed = vec![0; n];
+            self.stamp = 0;
+        }
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.seen.fill(0);
+            self.closed.fill(0);
+            self.stamp = 1;
+        }
+        self.heap.clear();
+    }
+}
+
+/// What one lattice search found.
+#[derive(Clone, Debug, Default)]
+pub struct SearchResult {
+    /// Lattice nodes from start to goal.
+    pub nodes: Option<Vec<usize>>,
+    /// g of the goal (lattice part only).
+    pub cost: f64,
+    pub expanded: u64,
+    pub generated: u64,
+    pub gave_up: bool,
+    /// Expanded nodes in order (when asked for).
+    pub expansion_order: Vec<usize>,
+}
+
+/// A* from `start` to `goal` on the lattice. With w = 1 and the metric
+/// heuristic (admissible and consistent for both cost metrics on this
+/// lattice) the path is optimal; nodes are never reopened.
+pub fn search(
+    lat: &mut GridLattice,
+    index: &ObstacleIndex,
+    start: usize,
+    goal: usize,
+    cfg: &SearchConfig,
+    record: bool,
+    buf: &mut SearchBuffers,
+) -> SearchResult {
+    let began = Instant::now();
+    let n = lat.spec.layer_len();
+    buf.reset(n);
+    let stamp = buf.stamp;
+    let goal_pt = {
+        let (i, j) = lat.spec.coords(goal);
+        lat.spec.point(i, j)
+    };
+    let h = |lat: &GridLattice, node: usize| -> f64 {
+        if !cfg.heuristic {
+            return 0.0;
+        }
+        let (i, j) = lat.spec.coords(node);
+        cfg.weight * cfg.cost.between(lat.spec.point(i, j), goal_pt)
+    };
+    let mut out = SearchResult::default();
+    if !lat.free[start] || !lat.free[goal] {
+        return out;
+    }
+    buf.g[start] = 0.0;
+    buf.parent[start] = u32::MAX;
+    buf.seen[start] = stamp;
+    buf.heap.push(Open {
+        f: h(lat, start),
+        g: 0.0,
+        node: start as u32,
+    });
+    out.generated = 1;
+    let dirs = if cfg.connect == 4 { 4 } else { 8 };
+    let step_cost: Vec<f64> = DIRS
+        .iter()
+        .map(|&(dx, dy)| {
+            cfg.cost
+                .between(Point::origin(), Point::new(dx as f64 * lat.spec.cell, dy as f64 * lat.spec.cell))
+        })
+        .collect();
+    while let Some(Open { g, node, .. }) = buf.heap.pop() {
+        let node = node as usize;
+        if buf.closed[node] == stamp || g > buf.g[node] {
+            continue; // a stale entry
+        }
+        if let Some(max) = cfg.limits.expansions
+            && out.expanded >= max
+        {
+            out.gave_up = true;
+            return out;
+        }
+        if let Some(t) = cfg.limits.time
+            && out.expanded % 256 == 0
+            && began.elapsed().as_secs_f64() > t
+        {
+            out.gave_up = true;
+            return out;
+        }
+        buf.closed[node] = stamp;
+        out.expanded += 1;
+        if record {
+            out.expansion_order.push(node);
+        }
+        if node == goal {
+            let mut nodes = vec![goal];
+            let mut cur = goal;
+            while buf.parent[cur] != u32::MAX {
+                cur = buf.parent[cur] as usize;
+                nodes.push(cur);
+            }
+            nodes.reverse();
+            out.cost = g;
+            out.nodes = Some(nodes);
+            return out;
+        }
+        for d in 0..dirs {
+            let Some(to) = lat.neighbour(node, d) else { continue };
+            if !lat.free[to] || buf.closed[to] == stamp {
+                continue;
+            }
+            if d >= 4 {
+                // No corner cutting: both orthogonal neighbours must be free.
+                let (dx, dy) = DIRS[d];
+                let ox = lat.neighbour(node, if dx > 0 { 0 } else { 2 });
+                let oy = lat.neighbour(node, if dy > 0 { 1 } else { 3 });
+                match (ox, oy) {
+                    (Some(a), Some(b)) if lat.free[a] && lat.free[b] => {}
+                    _ => continue,
+                }
+            }
+            let ng = g + step_cost[d];
+            if buf.seen[to] == stamp && ng >= buf.g[to] {
+                continue;
+            }
+            if !lat.edge_free(index, node, d, to) {
+                continue;
+            }
+            if buf.seen[to] != stamp {
+                out.generated += 1;
+                buf.seen[to] = stamp;
+            }
+            buf.g[to] = ng;
+            buf.parent[to] = node as u32;
+            buf.heap.push(Open {
+                f: ng + h(lat, to),
+                g: ng,
+                node: to as u32,
+            });
+        }
+    }
+    out
+}
+
+/// Runs an `astar` plan for a point or disk robot.
+pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
+    let radius = match robot {
+        RobotShape::Point => 0.0,
+        RobotShape::Disk(r) => *r,
+        RobotShape::Polygon(_) => {
+            return PlanOutcome {
+                notes: vec!["`astar` for polygon robots is not implemented yet".into()],
+                ..PlanOutcome::default()
+            };
+        }
+    };
+    let spec = LatticeSpec::from_params(world, robot, params);
+    let cfg = SearchConfig::from_params(params);
+    let index = ObstacleIndex::new(world);
+    let mut lat = GridLattice::build(spec, &index, radius);
+    let mut out = PlanOutcome::default();
+    out.extra.insert("cells".into(), MetricValue::Num(spec.cells_f64()));
+    out.extra.insert("free_cells".into(), MetricValue::Num(lat.free_count() as f64));
+    out.extra.insert("layers".into(), MetricValue::Num(spec.layers as f64));
+    out.trace = Trace {
+        expansions: Vec::new(),
+        grown_obstacles: grown_obstacles(world, radius),
+    };
+    let start = params.start;
+    let goal = params.goal.unwrap_or(start);
+    let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
+        out.notes.push("the lattice is empty: `cell` is larger than the bounds".into());
+        out.extra.insert("generated".into(), MetricValue::Num(0.0));
+        return out;
+    };
+    let (s_node, g_node) = (spec.index(s.0, s.1), spec.index(g.0, g.1));
+    let (s_pt, g_pt) = (spec.point(s.0, s.1), spec.point(g.0, g.1));
+    let mut blocked_end = None;
+    if !lat.free[s_node] || !index.sweep_free(start.xy(), s_pt, radius) {
+        blocked_end = Some("start");
+    } else if !lat.free[g_node] || !index.sweep_free(g_pt, goal.xy(), radius) {
+        blocked_end = Some("goal");
+    }
+    if let Some(end) = blocked_end {
+        out.notes.push(format!(
+            "the {end} could not be connected to its nearest lattice point: make `cell` smaller or move the {end}"
+        ));
+        out.extra.insert("generated".into(), MetricValue::Num(0.0));
+        return out;
+    }
+    let mut buf = SearchBuffers::default();
+    let r = search(&mut lat, &index, s_node, g_node, &cfg, true, &mut buf);
+    out.expanded = r.expanded;
+    out.gave_up = r.gave_up;
+    out.extra.insert("generated".into(), MetricValue::Num(r.generated as f64));
+    out.trace.expansions = r
+        .expansion_order
+        .iter()
+        .map(|&n| {
+            let (i, j) = spec.coords(n);
+            let p = spec.point(i, j);
+            Config::new(p.x, p.y, 0.0)
+        })
+        .collect();
+    if let Some(nodes) = r.nodes {
+        let mut path = vec![start];
+        for n in nodes {
+            let (i, j) = spec.coords(n);
+            let p = spec.point(i, j);
+            path.push(Config::new(p.x, p.y, start.theta));
+        }
+        path.push(Config::new(goal.x, goal.y, start.theta));
+        path.dedup_by(|a, b| a.x == b.x && a.y == b.y);
+        // The goal pose itself ends the path (its θ as given).
+        if let Some(last) = path.last_mut() {
+            *last = goal;
+        }
+        let cost = cfg.cost.between(start.xy(), s_pt) + r.cost + cfg.cost.between(g_pt, goal.xy());
+        out.cost = Some(cost);
+        out.path = Some(path);
+    } else if r.gave_up {
+        out.notes.push("a limit was reached before the goal".into());
+    }
+    out
+}
+
+/// Obstacles grown by a disk robot's radius, for drawing (grids excluded:
+/// their cells are drawn as they are).
+fn grown_obstacles(world: &World, radius: f64) -> Vec<Vec<Point>> {
+    if radius <= 0.0 {
+        return Vec::new();
+    }
+    let circle: Vec<Point> = (0..32)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / 32.0;
+            Point::new(radius * a.cos(), radius * a.sin())
+        })
+        .collect();
+    let grow = |pts: &[Point]| -> Vec<Point> {
+        let all: Vec<Point> = pts
+            .iter()
+            .flat_map(|p| circle.iter().map(move |c| Point::new(p.x + c.x, p.y + c.y)))
+            .collect();
+        polygon::convex_hull(&all)
+    };
+    let mut out = Vec::new();
+    for o in &world.obstacles {
+        match &o.shape {
+            Shape::Polygon { pieces, .. } => {
+                for p in pieces {
+                    out.push(grow(&p.vertices));
+                }
+            }
+            Shape::Rect(r) => out.push(grow(&r.corners())),
+            Shape::Segment(a, b) => out.push(grow(&[*a, *b])),
+            Shape::Disk { center, radius: r } => out.push(grow(&[
+                Point::new(center.x + r, center.y),
+                Point::new(center.x, center.y + r),
+                Point::new(center.x - r, center.y),
+                Point::new(center.x, center.y - r),
+            ])),
+            Shape::Grid(_) => {}
+        }
+    }
+    out
+}

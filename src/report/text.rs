@@ -1,0 +1,115 @@
+//! The human report of `scen run`: per plan its kind, robot, found or not
+//! and key metrics; then each check PASS/FAIL with its line; then a summary.
+
+use std::fmt::Write;
+
+use crate::checks::{format_num, format_value};
+use crate::diagnostics::Diag;
+use crate::planners::MetricValue;
+use crate::run::{CheckOutcome, RunReport};
+
+/// Metrics shown first, in this order; the rest follow alphabetically.
+const KEY_METRICS: &[&str] = &["cost", "length", "turn", "nodes", "expanded", "generated"];
+/// Metrics not repeated in the metric line (shown elsewhere or noise).
+const HIDDEN: &[&str] = &["found", "gave_up", "collision_free", "reaches_goal", "time_ms"];
+
+/// The report as text. `diagnostics` renders a failed check as a miette
+/// diagnostic (pointing at the expression) under its FAIL line.
+pub fn render(report: &RunReport, verbose: bool) -> String {
+    let mut s = String::new();
+    let sc = &report.scenario;
+    match &sc.title {
+        Some(t) => {
+            let _ = writeln!(s, "{} — {}", sc.file.display(), t);
+        }
+        None => {
+            let _ = writeln!(s, "{}", sc.file.display());
+        }
+    }
+    for run in &report.plans {
+        let plan = report.plan(run);
+        let robot = &sc.robots[plan.robot];
+        let m = &run.metrics;
+        let status = if m.get("found") == Some(&MetricValue::Bool(true)) {
+            let valid = if m.get("collision_free") == Some(&MetricValue::Bool(true)) {
+                "collision-free"
+            } else {
+                "NOT collision-free"
+            };
+            format!("found, {valid}")
+        } else if m.get("gave_up") == Some(&MetricValue::Bool(true)) {
+            "not found (gave up: a limit was reached)".to_string()
+        } else {
+            "not found".to_string()
+        };
+        let _ = writeln!(s, "\nplan {} ({}, robot {}): {}", plan.name, plan.kind, robot.name, status);
+        let mut parts = Vec::new();
+        for k in KEY_METRICS {
+            if let Some(v) = m.get(*k) {
+                parts.push(format!("{k} {}", format_value(*v)));
+            }
+        }
+        for (k, v) in m {
+            if !KEY_METRICS.contains(&k.as_str()) && !HIDDEN.contains(&k.as_str()) {
+                parts.push(format!("{k} {}", format_value(*v)));
+            }
+        }
+        if verbose && let Some(t) = m.get("time_ms") {
+            parts.push(format!("time {} ms", format_value(*t)));
+        }
+        let _ = writeln!(s, "  {}", parts.join("  "));
+        for note in &run.outcome.notes {
+            let _ = writeln!(s, "  note: {note}");
+        }
+        if let Some(v) = &run.validation {
+            let what = v.obstacle.as_deref().map(|o| format!("obstacle `{o}`")).unwrap_or_else(|| "the bounds".into());
+            let _ = writeln!(
+                s,
+                "  validator: segment {} hits {} at ({}, {}): {}",
+                v.segment,
+                what,
+                format_num(v.at.x),
+                format_num(v.at.y),
+                v.reason
+            );
+        }
+    }
+    if !report.checks.is_empty() {
+        let _ = writeln!(s, "\nchecks");
+        for c in &report.checks {
+            let _ = writeln!(s, "  {}", check_line(report, c));
+        }
+    }
+    let _ = writeln!(s, "\n{} passed, {} failed", report.passed(), report.failed());
+    s
+}
+
+/// `PASS  line 23  offline.cost <= 90   (offline.cost = 79.1)`
+pub fn check_line(report: &RunReport, c: &CheckOutcome) -> String {
+    let check = &report.scenario.checks[c.check];
+    let values = values_text(c);
+    format!(
+        "{}  line {}  {}{}",
+        if c.passed { "PASS" } else { "FAIL" },
+        check.line,
+        check.text,
+        if values.is_empty() { String::new() } else { format!("   ({values})") }
+    )
+}
+
+pub fn values_text(c: &CheckOutcome) -> String {
+    c.values
+        .iter()
+        .map(|(k, v)| format!("{k} = {}", format_value(*v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A failed check as a diagnostic pointing at its expression.
+pub fn failed_check_diag(report: &RunReport, c: &CheckOutcome) -> Diag {
+    let check = &report.scenario.checks[c.check];
+    let values = values_text(c);
+    Diag::error("scen::check::failed", format!("check failed: `{}`", check.text))
+        .at(check.span, if values.is_empty() { "false".to_string() } else { values })
+        .help("the expectation does not hold for this run; see the plan's metrics above")
+}

@@ -1,0 +1,163 @@
+//! Running a scenario: every plan, the common metrics of SPEC 3 (computed
+//! here from the path, the same way for every planner), the validator, and
+//! the checks.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use crate::checks;
+use crate::geometry::validator::{self, ValidationError, DEFAULT_TOLERANCE};
+use crate::geometry::{angle_diff, Config, RobotShape};
+use crate::planners::{self, MetricValue, Metrics, PlanOutcome};
+use crate::scenario::{Plan, Scenario};
+
+/// The result of one plan.
+#[derive(Clone, Debug)]
+pub struct PlanRun {
+    /// Index into `Scenario::plans`.
+    pub plan: usize,
+    pub outcome: PlanOutcome,
+    /// All metrics: the planner's own and the common ones of SPEC 3.
+    pub metrics: Metrics,
+    /// Why the path failed the validator, if it did.
+    pub validation: Option<ValidationError>,
+}
+
+/// The result of one `expect`.
+#[derive(Clone, Debug)]
+pub struct CheckOutcome {
+    /// Index into `Scenario::checks`.
+    pub check: usize,
+    pub passed: bool,
+    /// The value of every metric the expression used, by `plan.metric`.
+    pub values: BTreeMap<String, MetricValue>,
+}
+
+/// Everything a run produced, for the sinks.
+#[derive(Clone, Debug)]
+pub struct RunReport {
+    pub scenario: Scenario,
+    pub plans: Vec<PlanRun>,
+    pub checks: Vec<CheckOutcome>,
+}
+
+impl RunReport {
+    pub fn passed(&self) -> usize {
+        self.checks.iter().filter(|c| c.passed).count()
+    }
+
+    pub fn failed(&self) -> usize {
+        self.checks.len() - self.passed()
+    }
+
+    pub fn plan(&self, run: &PlanRun) -> &Plan {
+        &self.scenario.plans[run.plan]
+    }
+}
+
+/// Runs every plan (or only those named in `only`, when it is not empty)
+/// and evaluates the checks whose plans all ran.
+pub fn run_scenario(scenario: Scenario, only: &[String]) -> RunReport {
+    let selected: Vec<usize> = (0..scenario.plans.len())
+        .filter(|&i| only.is_empty() || only.contains(&scenario.plans[i].name))
+        .collect();
+    let plans: Vec<PlanRun> = selected
+        .par_iter()
+        .map(|&i| run_plan(&scenario, i))
+        .collect();
+    let outcomes = evaluate_checks(&scenario, &plans);
+    RunReport {
+        scenario,
+        plans,
+        checks: outcomes,
+    }
+}
+
+/// Evaluates the checks whose plans all ran.
+fn evaluate_checks(scenario: &Scenario, plans: &[PlanRun]) -> Vec<CheckOutcome> {
+    let by_name: BTreeMap<&str, &Metrics> = plans
+        .iter()
+        .map(|r| (scenario.plans[r.plan].name.as_str(), &r.metrics))
+        .collect();
+    let lookup = |name: &str| by_name.get(name).copied();
+    let mut outcomes = Vec::new();
+    for (i, check) in scenario.checks.iter().enumerate() {
+        let mut needed = Vec::new();
+        checks::plans_used(&check.expr, &mut needed);
+        if !needed.iter().all(|p| by_name.contains_key(p.as_str())) {
+            continue; // a plan it needs was not selected with --plan
+        }
+        let mut values = BTreeMap::new();
+        let v = checks::eval(&check.expr, &lookup, &mut values);
+        outcomes.push(CheckOutcome {
+            check: i,
+            passed: v == MetricValue::Bool(true),
+            values,
+        });
+    }
+    outcomes
+}
+
+fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
+    let plan = &scenario.plans[index];
+    let robot = &scenario.robots[plan.robot].shape;
+    let began = Instant::now();
+    let outcome = match plan.kind {
+        "astar" => planners::astar::plan(&scenario.world, robot, &plan.params),
+        other => PlanOutcome {
+            notes: vec![format!("planner `{other}` is not implemented yet")],
+            ..PlanOutcome::default()
+        },
+    };
+    let time_ms = began.elapsed().as_secs_f64() * 1e3;
+    let validation = outcome
+        .path
+        .as_ref()
+        .and_then(|p| validator::validate_path(&scenario.world, robot, p, DEFAULT_TOLERANCE).err());
+    let metrics = common_metrics(&outcome, robot, plan, time_ms, validation.is_none());
+    PlanRun {
+        plan: index,
+        outcome,
+        metrics,
+        validation,
+    }
+}
+
+/// The metrics of SPEC 3 that every planner has, plus the planner's own.
+fn common_metrics(out: &PlanOutcome, robot: &RobotShape, plan: &Plan, time_ms: f64, valid: bool) -> Metrics {
+    use MetricValue::{Bool, Num};
+    let mut m = out.extra.clone();
+    let found = out.path.is_some();
+    let path = out.path.as_deref().unwrap_or(&[]);
+    m.insert("found".into(), Bool(found));
+    m.insert("gave_up".into(), Bool(out.gave_up));
+    m.insert("cost".into(), Num(if found { out.cost.unwrap_or(path_length(path)) } else { f64::INFINITY }));
+    m.insert("length".into(), Num(if found { path_length(path) } else { f64::INFINITY }));
+    m.insert("turn".into(), Num(if robot.rotates() { path_turn(path) } else { 0.0 }));
+    m.insert("nodes".into(), Num(path.len() as f64));
+    m.insert("expanded".into(), Num(out.expanded as f64));
+    m.insert("time_ms".into(), Num((time_ms * 1000.0).round() / 1000.0));
+    m.insert("collision_free".into(), Bool(found && valid));
+    let reaches = match (path.last(), plan.params.goal) {
+        (Some(last), Some(goal)) => {
+            let d = (last.x - goal.x).hypot(last.y - goal.y);
+            let dt = if robot.rotates() { angle_diff(last.theta, goal.theta).abs() } else { 0.0 };
+            d <= 1e-9 && dt <= 1e-9
+        }
+        _ => false,
+    };
+    m.insert("reaches_goal".into(), Bool(reaches));
+    m
+}
+
+/// Euclidean length of the (x, y) polyline.
+pub fn path_length(path: &[Config]) -> f64 {
+    path.windows(2).map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y)).sum()
+}
+
+/// Total absolute rotation along the shorter arcs, in radians.
+pub fn path_turn(path: &[Config]) -> f64 {
+    path.windows(2).map(|w| angle_diff(w[0].theta, w[1].theta).abs()).sum()
+}

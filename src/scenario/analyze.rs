@@ -1,0 +1,1384 @@
+//! AST → [`Scenario`]: names resolved, geometry checked and normalised,
+//! plan parameters grouped and validated against their planner's schema,
+//! `expect` expressions typed. Every problem becomes a [`Diag`]; analysis
+//! goes on after an error so that all of them are reported at once.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+use crate::diagnostics::{Diag, SourceMap, Span, Spanned};
+use crate::geometry::polygon::{self, PolygonError};
+use crate::geometry::{Aabb, Config, ConvexPolygon, Grid, Obstacle, Point, RobotShape, Shape, World};
+use crate::syntax::ast::{self, Expr, ExprKind, ParamToken, Value, ValueKind};
+
+use super::loader::{LoadFailure, SourcedStmt, MAX_MAP_BYTES, read_text};
+use super::schema::{self, did_you_mean, MetricType, PlannerSchema, RobotKind, Support, ValueSpec};
+use super::{Check, Limits, Param, ParamValue, Params, Plan, Robot, Scenario, DEFAULT_CELL_CAP};
+
+/// Analyses the statements of a scenario (includes already spliced in).
+pub(crate) fn analyze(
+    path: &Path,
+    statements: Vec<SourcedStmt>,
+    sources: SourceMap,
+) -> Result<Scenario, LoadFailure> {
+    let mut a = Analyzer {
+        sources,
+        diags: Vec::new(),
+    };
+    let title = a.title(&statements);
+    let (world, obstacle_spans) = a.world(&statements);
+    let robots = a.robots(&statements);
+    let world_ok = !a.diags.iter().any(Diag::is_error);
+    let plans = a.plans(&statements, world.as_ref().filter(|_| world_ok), &robots);
+    let checks = a.checks(&statements, &plans);
+    let mut diags = a.diags;
+    let sources = a.sources;
+    match world {
+        Some(world) if !diags.iter().any(Diag::is_error) => Ok(Scenario {
+            file: path.to_path_buf(),
+            title,
+            world,
+            obstacle_spans,
+            robots,
+            plans,
+            checks,
+            sources,
+        }),
+        _ => {
+            crate::diagnostics::sort_diags(&mut diags);
+            Err(LoadFailure { sources, diags })
+        }
+    }
+}
+
+struct Analyzer {
+    sources: SourceMap,
+    diags: Vec<Diag>,
+}
+
+/// A plan kind's name, its schema, and the robot it plans for.
+struct PlanInfo<'s> {
+    name: &'s str,
+    schema: &'static PlannerSchema,
+}
+
+fn robot_kind(shape: &RobotShape) -> RobotKind {
+    match shape {
+        RobotShape::Point => RobotKind::Point,
+        RobotShape::Disk(_) => RobotKind::Disk,
+        RobotShape::Polygon(_) => RobotKind::Polygon,
+    }
+}
+
+impl Analyzer {
+    fn error(&mut self, d: Diag) {
+        self.diags.push(d);
+    }
+
+    // ----------------------------------------------------------------- title
+
+    fn title(&mut self, statements: &[SourcedStmt]) -> Option<String> {
+        let mut title: Option<(String, Span)> = None;
+        for (i, s) in statements.iter().enumerate() {
+            let ast::Stmt::Scenario { title: t, span } = &s.stmt else {
+                continue;
+            };
+            if !s.in_main_file {
+                self.error(
+                    Diag::error("scen::analyze::title_in_include", "an included file has a `scenario` title")
+                        .at(*span, "only the main file may have a title")
+                        .help("remove this line from the included file"),
+                );
+            } else if let Some((_, first)) = &title {
+                self.error(
+                    Diag::error("scen::analyze::duplicate_title", "`scenario` is given twice")
+                        .at(*span, "second title")
+                        .with_related(*first, "first title")
+                        .help("a file has at most one `scenario` title"),
+                );
+            } else {
+                if i != 0 {
+                    self.error(
+                        Diag::error("scen::analyze::title_not_first", "`scenario` must be the first statement")
+                            .at(*span, "not the first statement")
+                            .help("move the `scenario \"...\"` line to the top of the file"),
+                    );
+                }
+                title = Some((t.value.clone(), *span));
+            }
+        }
+        title.map(|(t, _)| t)
+    }
+
+    // ----------------------------------------------------------------- values
+
+    fn expect_number(&mut self, v: &Value, what: &str) -> Option<f64> {
+        match &v.kind {
+            ValueKind::Number(x) => Some(*x),
+            ValueKind::Angle(_) => {
+                self.error(
+                    Diag::error("scen::analyze::wrong_unit", format!("{what} is a length, not an angle"))
+                        .at(v.span, "an angle")
+                        .help("remove the `deg`/`rad` unit"),
+                );
+                None
+            }
+            other => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::wrong_type",
+                        format!("{what} must be a number, found {}", other.describe()),
+                    )
+                    .at(v.span, "expected a number")
+                    .help("write a number such as `1.5`"),
+                );
+                None
+            }
+        }
+    }
+
+    fn expect_positive(&mut self, v: &Value, what: &str) -> Option<f64> {
+        let x = self.expect_number(v, what)?;
+        if x > 0.0 {
+            Some(x)
+        } else {
+            self.error(
+                Diag::error("scen::analyze::out_of_range", format!("{what} must be positive, got {x}"))
+                    .at(v.span, "not > 0")
+                    .help("use a value greater than 0"),
+            );
+            None
+        }
+    }
+
+    fn expect_point(&mut self, v: &Value, what: &str) -> Option<Point> {
+        match &v.kind {
+            ValueKind::Tuple(items) if items.len() == 2 => {
+                let x = self.expect_number(&items[0], "a coordinate");
+                let y = self.expect_number(&items[1], "a coordinate");
+                Some(Point::new(x?, y?))
+            }
+            ValueKind::Tuple(items) => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::wrong_type",
+                        format!("{what} must be a point `(x, y)`, found {} values", items.len()),
+                    )
+                    .at(v.span, "expected `(x, y)`")
+                    .help("a point has two coordinates: `(x, y)`"),
+                );
+                None
+            }
+            other => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::wrong_type",
+                        format!("{what} must be a point `(x, y)`, found {}", other.describe()),
+                    )
+                    .at(v.span, "expected `(x, y)`")
+                    .help("write a point as `(x, y)`"),
+                );
+                None
+            }
+        }
+    }
+
+    fn expect_points(&mut self, v: &Value, what: &str) -> Option<(Vec<Point>, Vec<Span>)> {
+        match &v.kind {
+            ValueKind::List(items) => {
+                let mut pts = Vec::new();
+                let mut spans = Vec::new();
+                let mut ok = true;
+                for it in items {
+                    match self.expect_point(it, "a vertex") {
+                        Some(p) => {
+                            pts.push(p);
+                            spans.push(it.span);
+                        }
+                        None => ok = false,
+                    }
+                }
+                ok.then_some((pts, spans))
+            }
+            other => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::wrong_type",
+                        format!("{what} must be a list of points, found {}", other.describe()),
+                    )
+                    .at(v.span, "expected `[(x, y), ...]`")
+                    .help("write the vertices as `[(0, 0), (1, 0), (0, 1)]`"),
+                );
+                None
+            }
+        }
+    }
+
+    fn expect_pose(&mut self, v: &Value, what: &str) -> Option<Config> {
+        match &v.kind {
+            ValueKind::Tuple(items) if items.len() == 2 || items.len() == 3 => {
+                let x = self.expect_number(&items[0], "a coordinate");
+                let y = self.expect_number(&items[1], "a coordinate");
+                let theta = match items.get(2) {
+                    None => Some(0.0),
+                    Some(t) => match &t.kind {
+                        ValueKind::Angle(a) => Some(*a),
+                        ValueKind::Number(n) => {
+                            self.error(
+                                Diag::error(
+                                    "scen::analyze::angle_unit",
+                                    format!("the angle of {what} needs a unit"),
+                                )
+                                .at(t.span, "a bare number")
+                                .help(format!("write `{n}deg` or `{n}rad`")),
+                            );
+                            None
+                        }
+                        other => {
+                            self.error(
+                                Diag::error(
+                                    "scen::analyze::wrong_type",
+                                    format!("the angle of {what} must be an angle, found {}", other.describe()),
+                                )
+                                .at(t.span, "expected an angle")
+                                .help("write an angle as `90deg` or `1.5708rad`"),
+                            );
+                            None
+                        }
+                    },
+                };
+                Some(Config::new(x?, y?, theta?))
+            }
+            other => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::wrong_type",
+                        format!("{what} must be a pose `(x, y)` or `(x, y, θ)`, found {}", other.describe()),
+                    )
+                    .at(v.span, "expected a pose")
+                    .help("write a pose as `(4, 24)` or `(4, 24, 90deg)`"),
+                );
+                None
+            }
+        }
+    }
+
+    fn polygon_error(&mut self, e: PolygonError, span: Span, vertex_spans: &[Span], what: &str) {
+        let d = match e {
+            PolygonError::TooFewVertices => Diag::error(
+                "scen::analyze::degenerate_polygon",
+                format!("{what} has fewer than 3 distinct, non-collinear vertices"),
+            )
+            .at(span, "not a polygon")
+            .help("a polygon needs at least 3 vertices that are not on one line"),
+            PolygonError::ZeroArea => Diag::error(
+                "scen::analyze::degenerate_polygon",
+                format!("{what} encloses no area"),
+            )
+            .at(span, "zero area")
+            .help("check the vertices: they must not all lie on one line"),
+            PolygonError::SelfIntersecting { edges: (i, j) } => {
+                let n = vertex_spans.len().max(1);
+                let at = vertex_spans.get(i).copied().unwrap_or(span);
+                let mut d = Diag::error(
+                    "scen::analyze::self_intersecting",
+                    format!("{what} is not simple: edge {} crosses edge {}", i + 1, j + 1),
+                )
+                .at(at, format!("edge {} starts here", i + 1))
+                .help("list the vertices in order around the boundary, without crossings");
+                if let Some(s) = vertex_spans.get(j % n) {
+                    d = d.with_related(*s, format!("edge {} starts here", j + 1));
+                }
+                d
+            }
+        };
+        self.error(d);
+    }
+
+    // ----------------------------------------------------------------- world
+
+    fn world(&mut self, statements: &[SourcedStmt]) -> (Option<World>, Vec<Span>) {
+        let mut bounds: Option<(Aabb, Span)> = None;
+        let mut obstacles = Vec::new();
+        let mut spans = Vec::new();
+        let mut names: HashMap<String, Span> = HashMap::new();
+        let mut world_in_file: HashMap<u32, Span> = HashMap::new();
+        let mut any_world = false;
+        let mut index = 0usize;
+        for s in statements {
+            let ast::Stmt::World(w) = &s.stmt else { continue };
+            any_world = true;
+            if let Some(first) = world_in_file.get(&w.keyword.file) {
+                self.error(
+                    Diag::error("scen::analyze::duplicate_world", "a file has two `world` blocks")
+                        .at(w.keyword, "second `world`")
+                        .with_related(*first, "first `world`")
+                        .help("put all obstacles into one `world { ... }` block"),
+                );
+            } else {
+                world_in_file.insert(w.keyword.file, w.keyword);
+            }
+            for item in &w.items {
+                match item {
+                    ast::WorldItem::Bounds { min, max, span } => {
+                        if let Some((_, first)) = &bounds {
+                            self.error(
+                                Diag::error("scen::analyze::duplicate_bounds", "`bounds` is given twice")
+                                    .at(*span, "second `bounds`")
+                                    .with_related(*first, "first `bounds`")
+                                    .help("the world has exactly one `bounds`"),
+                            );
+                            continue;
+                        }
+                        let (a, b) = (self.expect_point(min, "the min corner"), self.expect_point(max, "the max corner"));
+                        if let (Some(a), Some(b)) = (a, b) {
+                            if a.x < b.x && a.y < b.y {
+                                bounds = Some((Aabb { min: a, max: b }, *span));
+                            } else {
+                                self.error(
+                                    Diag::error("scen::analyze::bad_bounds", "`bounds` must go from the min corner to the max corner")
+                                        .at(*span, "empty or reversed box")
+                                        .help("write `bounds (xmin, ymin) (xmax, ymax)` with xmin < xmax and ymin < ymax"),
+                                );
+                            }
+                        }
+                    }
+                    ast::WorldItem::Obstacle(o) => {
+                        index += 1;
+                        let name = match &o.name {
+                            Some(n) => {
+                                if let Some(first) = names.get(&n.value) {
+                                    self.error(
+                                        Diag::error("scen::analyze::duplicate_name", format!("obstacle `{}` is declared twice", n.value))
+                                            .at(n.span, "second declaration")
+                                            .with_related(*first, "first declaration")
+                                            .help("obstacle names must be unique; rename one of them"),
+                                    );
+                                } else {
+                                    names.insert(n.value.clone(), n.span);
+                                }
+                                n.value.clone()
+                            }
+                            None => format!("{}_{}", o.kind.value.keyword(), index),
+                        };
+                        if let Some(shape) = self.obstacle_shape(o) {
+                            obstacles.push(Obstacle { name, shape });
+                            spans.push(o.span);
+                        }
+                    }
+                }
+            }
+        }
+        if !any_world {
+            let span = statements.first().map(|s| stmt_span(&s.stmt)).unwrap_or_default();
+            self.error(
+                Diag::error("scen::analyze::no_world", "the scenario has no `world` block")
+                    .at(Span::new(span.file, 0, 0), "expected a `world { ... }` block")
+                    .help("add `world { bounds (0, 0) (10, 10) }` with the obstacles inside"),
+            );
+            return (None, spans);
+        }
+        let Some((bounds, _)) = bounds else {
+            let span = statements
+                .iter()
+                .find_map(|s| match &s.stmt {
+                    ast::Stmt::World(w) => Some(w.keyword),
+                    _ => None,
+                })
+                .unwrap_or_default();
+            self.error(
+                Diag::error("scen::analyze::no_bounds", "the world has no `bounds`")
+                    .at(span, "this world needs `bounds`")
+                    .help("add `bounds (xmin, ymin) (xmax, ymax)` inside the world block"),
+            );
+            return (None, spans);
+        };
+        (Some(World { bounds, obstacles }), spans)
+    }
+
+    fn obstacle_shape(&mut self, o: &ast::ObstacleDecl) -> Option<Shape> {
+        match &o.shape {
+            ast::ObstacleShape::Rect(a, b) => {
+                let (a, b) = (self.expect_point(a, "a corner"), self.expect_point(b, "a corner"));
+                let r = Aabb::from_corners(a?, b?);
+                if r.width() > 0.0 && r.height() > 0.0 {
+                    Some(Shape::Rect(r))
+                } else {
+                    self.error(
+                        Diag::error("scen::analyze::degenerate_rect", "the rectangle has zero area")
+                            .at(o.span, "zero width or height")
+                            .help("give two opposite corners; for a thin wall use `segment`"),
+                    );
+                    None
+                }
+            }
+            ast::ObstacleShape::Polygon(v) => {
+                let (pts, vspans) = self.expect_points(v, "a polygon")?;
+                match polygon::normalize_simple_polygon(&pts) {
+                    Ok(outline) => {
+                        let pieces = if polygon::is_convex(&outline) {
+                            vec![ConvexPolygon { vertices: outline.clone() }]
+                        } else {
+                            polygon::convex_decomposition(&outline)
+                        };
+                        Some(Shape::Polygon { outline, pieces })
+                    }
+                    Err(e) => {
+                        self.polygon_error(e, v.span, &vspans, "the polygon");
+                        None
+                    }
+                }
+            }
+            ast::ObstacleShape::Segment(a, b) => {
+                let (a, b) = (self.expect_point(a, "an end point"), self.expect_point(b, "an end point"));
+                let (a, b) = (a?, b?);
+                if a == b {
+                    self.error(
+                        Diag::error("scen::analyze::degenerate_segment", "the segment has zero length")
+                            .at(o.span, "both ends are the same point")
+                            .help("give two different end points"),
+                    );
+                    return None;
+                }
+                Some(Shape::Segment(a, b))
+            }
+            ast::ObstacleShape::Disk(c, r) => {
+                let c = self.expect_point(c, "the centre");
+                let r = self.expect_positive(r, "the radius");
+                Some(Shape::Disk { center: c?, radius: r? })
+            }
+            ast::ObstacleShape::Grid(g) => self.grid(g, o.span).map(Shape::Grid),
+        }
+    }
+
+    fn grid(&mut self, g: &ast::GridSpec, span: Span) -> Option<Grid> {
+        let cell = match &g.cell {
+            Some(v) => self.expect_positive(v, "the grid's `cell`")?,
+            None => 1.0,
+        };
+        let origin = match &g.origin {
+            Some(v) => self.expect_point(v, "the grid's `origin`")?,
+            None => Point::origin(),
+        };
+        let (width, height, cells) = match (&g.file, &g.rows) {
+            (Some(f), None) => self.movingai_map(f)?,
+            (None, Some(rows)) => self.inline_rows(rows, span)?,
+            (Some(f), Some(_)) => {
+                self.error(
+                    Diag::error("scen::analyze::grid_source", "a grid has both a map file and inline rows")
+                        .at(f.span, "map file")
+                        .help("use either `grid G \"file.map\" ...` or `grid G ... { \"rows\" }`"),
+                );
+                return None;
+            }
+            (None, None) => {
+                self.error(
+                    Diag::error("scen::analyze::grid_source", "a grid needs a map file or inline rows")
+                        .at(span, "no cells")
+                        .help("write `grid G \"maps/arena.map\" cell 1` or `grid G cell 1 { \"..#.\" }`"),
+                );
+                return None;
+            }
+        };
+        Some(Grid {
+            cell,
+            origin,
+            width,
+            height,
+            cells,
+        })
+    }
+
+    fn inline_rows(&mut self, rows: &[Spanned<String>], span: Span) -> Option<(usize, usize, Vec<u8>)> {
+        let Some(first) = rows.first() else {
+            self.error(
+                Diag::error("scen::analyze::empty_grid", "the grid has no rows")
+                    .at(span, "empty grid")
+                    .help("write the rows top row first, e.g. `{ \"..#\" \"...\" }`"),
+            );
+            return None;
+        };
+        let width = first.value.chars().count();
+        let mut cells = Vec::with_capacity(width * rows.len());
+        let mut ok = true;
+        for row in rows {
+            let n = row.value.chars().count();
+            if n != width || n == 0 {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::ragged_grid",
+                        format!("grid rows must all have the same non-zero length: this row has {n}, the first {width}"),
+                    )
+                    .at(row.span, format!("{n} cells"))
+                    .help("pad the rows so that every row has the same number of cells"),
+                );
+                ok = false;
+                continue;
+            }
+            // Point at the character when the literal has no escapes.
+            let plain = self.sources.snippet(row.span).len() == row.value.len() + 2;
+            for (i, (off, ch)) in row.value.char_indices().enumerate() {
+                match grid_char(ch) {
+                    Some(w) => cells.push(w),
+                    None => {
+                        let at = if plain {
+                            Span::new(row.span.file, row.span.start + 1 + off, row.span.start + 1 + off + ch.len_utf8())
+                        } else {
+                            row.span
+                        };
+                        self.error(
+                            Diag::error("scen::analyze::grid_char", format!("`{ch}` is not a grid cell (column {})", i + 1))
+                                .at(at, "unknown cell character")
+                                .help("free: `.` `G` `S` or a weight `1`-`9`; blocked: `@` `O` `T` `W` `#`"),
+                        );
+                        ok = false;
+                        break;
+                    }
+                }
+            }
+        }
+        ok.then_some((width, rows.len(), cells))
+    }
+
+    fn movingai_map(&mut self, f: &Spanned<String>) -> Option<(usize, usize, Vec<u8>)> {
+        let dir = self
+            .sources
+            .get(f.span.file)
+            .and_then(|s| s.path.parent().map(Path::to_path_buf))
+            .unwrap_or_default();
+        let path = dir.join(&f.value);
+        let id = match read_text(&path, MAX_MAP_BYTES, Some(f.span), "map", &mut self.sources) {
+            Ok(id) => id,
+            Err(d) => {
+                self.error(d);
+                return None;
+            }
+        };
+        let text = self.sources.get(id)?.text.clone();
+        match parse_movingai(&text) {
+            Ok(g) => Some(g),
+            Err((line, msg)) => {
+                self.error(
+                    Diag::error("scen::analyze::bad_map", format!("map file `{}`, line {line}: {msg}", f.value))
+                        .at(f.span, "this map file")
+                        .help("a MovingAI map is `type octile`, `height H`, `width W`, `map`, then H rows of W cells"),
+                );
+                None
+            }
+        }
+    }
+
+    // ----------------------------------------------------------------- robots
+
+    fn robots(&mut self, statements: &[SourcedStmt]) -> Vec<Robot> {
+        let mut robots: Vec<Robot> = Vec::new();
+        let mut seen: HashMap<String, Span> = HashMap::new();
+        for s in statements {
+            let ast::Stmt::Robot(r) = &s.stmt else { continue };
+            if let Some(first) = seen.get(&r.name.value) {
+                self.error(
+                    Diag::error("scen::analyze::duplicate_name", format!("robot `{}` is declared twice", r.name.value))
+                        .at(r.name.span, "second declaration")
+                        .with_related(*first, "first declaration")
+                        .help("robot names must be unique; rename one of them"),
+                );
+                continue;
+            }
+            seen.insert(r.name.value.clone(), r.name.span);
+            let shape = match &r.shape {
+                ast::RobotShape::Point(_) => Some(RobotShape::Point),
+                ast::RobotShape::Disk(v) => self.expect_positive(v, "the robot's radius").map(RobotShape::Disk),
+                ast::RobotShape::Rect(w, h) => {
+                    let (w, h) = (self.expect_positive(w, "the width"), self.expect_positive(h, "the height"));
+                    match (w, h) {
+                        (Some(w), Some(h)) => Some(RobotShape::Polygon(ConvexPolygon {
+                            vertices: vec![
+                                Point::new(0.0, 0.0),
+                                Point::new(w, 0.0),
+                                Point::new(w, h),
+                                Point::new(0.0, h),
+                            ],
+                        })),
+                        _ => None,
+                    }
+                }
+                ast::RobotShape::Polygon(v) => self.robot_polygon(v),
+            };
+            if let Some(shape) = shape {
+                robots.push(Robot {
+                    name: r.name.value.clone(),
+                    shape,
+                    span: r.span,
+                });
+            }
+        }
+        robots
+    }
+
+    fn robot_polygon(&mut self, v: &Value) -> Option<RobotShape> {
+        let (pts, vspans) = self.expect_points(v, "the robot polygon")?;
+        match polygon::normalize_simple_polygon(&pts) {
+            Ok(outline) if polygon::is_convex(&outline) => Some(RobotShape::Polygon(ConvexPolygon { vertices: outline })),
+            Ok(_) => {
+                self.error(
+                    Diag::error("scen::analyze::robot_not_convex", "a robot polygon must be convex")
+                        .at(v.span, "not convex")
+                        .help("planners need convex robots: use the convex hull of this shape, or a smaller convex part"),
+                );
+                None
+            }
+            Err(e) => {
+                self.polygon_error(e, v.span, &vspans, "the robot polygon");
+                None
+            }
+        }
+    }
+
+    // ----------------------------------------------------------------- plans
+
+    fn plans(&mut self, statements: &[SourcedStmt], world: Option<&World>, robots: &[Robot]) -> Vec<Plan> {
+        let mut plans = Vec::new();
+        let mut seen: HashMap<String, Span> = HashMap::new();
+        for s in statements {
+            let ast::Stmt::Plan(p) = &s.stmt else { continue };
+            if let Some(first) = seen.get(&p.name.value) {
+                self.error(
+                    Diag::error("scen::analyze::duplicate_name", format!("plan `{}` is declared twice", p.name.value))
+                        .at(p.name.span, "second declaration")
+                        .with_related(*first, "first declaration")
+                        .help("plan names must be unique; rename one of them"),
+                );
+                continue;
+            }
+            seen.insert(p.name.value.clone(), p.name.span);
+            if let Some(plan) = self.plan(p, world, robots) {
+                plans.push(plan);
+            }
+        }
+        plans
+    }
+
+    fn plan(&mut self, p: &ast::PlanDecl, world: Option<&World>, robots: &[Robot]) -> Option<Plan> {
+        let Some(schema) = schema::planner(&p.kind.value) else {
+            let kinds: Vec<&str> = schema::PLANNERS.iter().map(|s| s.kind).collect();
+            let mut d = Diag::error("scen::analyze::unknown_planner", format!("unknown planner `{}`", p.kind.value))
+                .at(p.kind.span, "not a planner kind");
+            d = match did_you_mean(&p.kind.value, kinds.iter().copied()) {
+                Some(k) => d.help(format!("did you mean `{k}`? planners: {}", schema::backticked(&kinds))),
+                None => d.help(format!("planners: {}", schema::backticked(&kinds))),
+            };
+            self.error(d);
+            return None;
+        };
+        let robot_index = robots.iter().position(|r| r.name == p.robot.value);
+        let Some(robot_index) = robot_index else {
+            let names: Vec<&str> = robots.iter().map(|r| r.name.as_str()).collect();
+            let mut d = Diag::error("scen::analyze::unknown_robot", format!("unknown robot `{}`", p.robot.value))
+                .at(p.robot.span, "no robot of this name");
+            d = match did_you_mean(&p.robot.value, names.iter().copied()) {
+                Some(n) => d.help(format!("did you mean `{n}`?")),
+                None if names.is_empty() => d.help("declare it, e.g. `robot dot disk 0.5`"),
+                None => d.help(format!("robots: {}", schema::backticked(&names))),
+            };
+            self.error(d);
+            // Still check the parameters, so their errors show up too.
+            self.params(p, schema, None, None);
+            return None;
+        };
+        let robot = &robots[robot_index];
+        let kind = robot_kind(&robot.shape);
+        match schema.robots.iter().find(|(k, _)| *k == kind) {
+            None => {
+                let ok: Vec<&str> = schema.robots.iter().map(|(k, _)| k.name()).collect();
+                self.error(
+                    Diag::error(
+                        "scen::analyze::robot_kind",
+                        format!("planner `{}` does not plan for {} robots", schema.kind, kind.name()),
+                    )
+                    .at(p.robot.span, format!("a {} robot", kind.name()))
+                    .help(format!("`{}` plans for {} robots", schema.kind, ok.join(" and "))),
+                );
+            }
+            Some((_, Support::NotYet)) => {
+                let implemented: Vec<&str> = schema::PLANNERS
+                    .iter()
+                    .flat_map(|s| s.robots.iter().filter(|(_, sup)| *sup == Support::Yes).map(move |(k, _)| (s.kind, k.name())))
+                    .map(|(s, k)| if s == "astar" { k } else { s })
+                    .collect();
+                let _ = implemented;
+                self.error(
+                    Diag::error(
+                        "scen::analyze::not_implemented",
+                        format!(
+                            "planner `{}` for {} robots is not implemented yet in this version of scen",
+                            schema.kind,
+                            kind.name()
+                        ),
+                    )
+                    .at(p.kind.span, "not implemented yet")
+                    .help("implemented so far: `astar` for point and disk robots"),
+                );
+            }
+            Some((_, Support::Yes)) => {}
+        }
+        let params = self.params(p, schema, Some(robot), world)?;
+        Some(Plan {
+            name: p.name.value.clone(),
+            kind: schema.kind,
+            robot: robot_index,
+            params,
+            span: p.span,
+        })
+    }
+
+    /// Groups the plan body's tokens into parameters and validates them.
+    fn params(
+        &mut self,
+        p: &ast::PlanDecl,
+        schema: &'static PlannerSchema,
+        robot: Option<&Robot>,
+        world: Option<&World>,
+    ) -> Option<Params> {
+        let tokens = &p.body;
+        let mut values: BTreeMap<&'static str, Param> = BTreeMap::new();
+        let mut limits = Limits::default();
+        let mut limit_spans: HashMap<&'static str, Span> = HashMap::new();
+        let mut ok = true;
+        let mut i = 0;
+        while i < tokens.len() {
+            let tok = &tokens[i];
+            let ParamToken::Word(key) = tok else {
+                self.error(
+                    Diag::error("scen::analyze::expected_key", "expected a parameter name")
+                        .at(tok.span(), "a value without a key")
+                        .help(format!("parameters of `{}`: {}", schema.kind, keys_of(schema))),
+                );
+                ok = false;
+                i += 1;
+                continue;
+            };
+            i += 1;
+            let Some(spec) = schema.param(&key.value) else {
+                let mut d = Diag::error(
+                    "scen::analyze::unknown_key",
+                    format!("unknown parameter `{}` for planner `{}`", key.value, schema.kind),
+                )
+                .at(key.span, "unknown key");
+                d = match did_you_mean(&key.value, schema.all_params().map(|p| p.key)) {
+                    Some(k) => d.help(format!("did you mean `{k}`? accepted: {}", keys_of(schema))),
+                    None => d.help(format!("accepted: {}", keys_of(schema))),
+                };
+                self.error(d);
+                ok = false;
+                // Skip its values: everything up to the next known key.
+                while i < tokens.len() {
+                    if let ParamToken::Word(w) = &tokens[i]
+                        && schema.param(&w.value).is_some()
+                    {
+                        break;
+                    }
+                    i += 1;
+                }
+                continue;
+            };
+            if !spec.repeatable
+                && let Some(first) = values.get(spec.key)
+            {
+                self.error(
+                    Diag::error("scen::analyze::duplicate_key", format!("`{}` is given twice", spec.key))
+                        .at(key.span, "second time")
+                        .with_related(first.span, "first given here")
+                        .help("give each parameter once"),
+                );
+                ok = false;
+            }
+            let missing = |this: &mut Self, at: Span| {
+                this.error(
+                    Diag::error("scen::analyze::missing_value", format!("`{}` needs a value", spec.key))
+                        .at(at, "no value")
+                        .help(format!("`{}` takes {}", spec.key, spec.value.describe())),
+                );
+            };
+            let next = tokens.get(i);
+            let Some(next) = next else {
+                missing(self, key.span);
+                ok = false;
+                break;
+            };
+            // A known key right after a key means the value is missing.
+            if let ParamToken::Word(w) = next
+                && !matches!(spec.value, ValueSpec::Word(_) | ValueSpec::IntOrWord(_) | ValueSpec::ObstacleName | ValueSpec::Limit | ValueSpec::Drive)
+                && schema.param(&w.value).is_some()
+            {
+                missing(self, key.span);
+                ok = false;
+                continue;
+            }
+            i += 1;
+            let value = match spec.value {
+                ValueSpec::Limit => {
+                    let ParamToken::Word(which) = next else {
+                        self.wrong_value(spec, next);
+                        ok = false;
+                        continue;
+                    };
+                    let amount = tokens.get(i);
+                    let kinds = ["expansions", "steps", "time", "cells"];
+                    let Some(k) = kinds.iter().find(|k| **k == which.value) else {
+                        self.error(
+                            Diag::error("scen::analyze::bad_limit", format!("unknown limit `{}`", which.value))
+                                .at(which.span, "not a limit")
+                                .help(format!("`limit` takes {}", spec.value.describe())),
+                        );
+                        ok = false;
+                        continue;
+                    };
+                    let Some(ParamToken::Value(v)) = amount else {
+                        missing(self, which.span);
+                        ok = false;
+                        continue;
+                    };
+                    i += 1;
+                    if let Some(first) = limit_spans.get(k) {
+                        self.error(
+                            Diag::error("scen::analyze::duplicate_key", format!("`limit {k}` is given twice"))
+                                .at(which.span, "second time")
+                                .with_related(*first, "first given here")
+                                .help("give each limit once"),
+                        );
+                        ok = false;
+                    }
+                    limit_spans.insert(k, which.span);
+                    if *k == "time" {
+                        match v.kind {
+                            ValueKind::Duration(s) if s > 0.0 && s.is_finite() => limits.time = Some(s),
+                            _ => {
+                                self.error(
+                                    Diag::error("scen::analyze::bad_limit", "`limit time` needs a positive duration")
+                                        .at(v.span, "expected a duration")
+                                        .help("write `limit time 2s` or `limit time 500ms`"),
+                                );
+                                ok = false;
+                            }
+                        }
+                    } else {
+                        match v.kind {
+                            ValueKind::Number(n) if n >= 1.0 && n.fract() == 0.0 && n <= 1e18 => {
+                                let n = n as u64;
+                                match *k {
+                                    "expansions" => limits.expansions = Some(n),
+                                    "steps" => limits.steps = Some(n),
+                                    _ => limits.cells = Some(n),
+                                }
+                            }
+                            _ => {
+                                self.error(
+                                    Diag::error("scen::analyze::bad_limit", format!("`limit {k}` needs a positive integer"))
+                                        .at(v.span, "expected a positive integer")
+                                        .help(format!("write e.g. `limit {k} 10000`")),
+                                );
+                                ok = false;
+                            }
+                        }
+                    }
+                    continue;
+                }
+                ValueSpec::Drive => {
+                    let ParamToken::Word(w) = next else {
+                        self.wrong_value(spec, next);
+                        ok = false;
+                        continue;
+                    };
+                    if let Some(ParamToken::Block { .. }) = tokens.get(i) {
+                        i += 1;
+                    }
+                    self.error(
+                        Diag::error("scen::analyze::not_implemented", "`drive` is not implemented yet in this version of scen")
+                            .at(key.span.to(w.span), "not implemented yet")
+                            .help("remove the `drive` parameter; plans are checked without driving them"),
+                    );
+                    ok = false;
+                    continue;
+                }
+                _ => match self.param_value(spec, next, robot) {
+                    Some(v) => v,
+                    None => {
+                        ok = false;
+                        continue;
+                    }
+                },
+            };
+            values.insert(
+                spec.key,
+                Param {
+                    value,
+                    span: next.span(),
+                },
+            );
+        }
+        let plan_head = p.name.span.to(p.robot.span);
+        let start = values.remove("start");
+        let goal = values.remove("goal");
+        let (Some(start), goal) = (start, goal) else {
+            self.error(
+                Diag::error("scen::analyze::missing_key", format!("plan `{}` has no `start`", p.name.value))
+                    .at(plan_head, "needs `start`")
+                    .help("add `start (x, y)` to the plan's block"),
+            );
+            return None;
+        };
+        if schema.needs_goal && goal.is_none() {
+            self.error(
+                Diag::error("scen::analyze::missing_key", format!("plan `{}` has no `goal`", p.name.value))
+                    .at(plan_head, "needs `goal`")
+                    .help("add `goal (x, y)` to the plan's block"),
+            );
+            return None;
+        }
+        let ParamValue::Pose(start_c) = start.value else { return None };
+        let goal_c = match &goal {
+            Some(Param { value: ParamValue::Pose(c), .. }) => Some(*c),
+            _ => None,
+        };
+        let seed = values.remove("seed").and_then(|p| match p.value {
+            ParamValue::Num(x) => Some(x as u64),
+            _ => None,
+        });
+        if !ok {
+            return None;
+        }
+        let params = Params {
+            start: start_c,
+            start_span: start.span,
+            goal: goal_c,
+            goal_span: goal.as_ref().map(|g| g.span),
+            limits,
+            seed: seed.unwrap_or(0),
+            values,
+        };
+        if let (Some(world), Some(robot)) = (world, robot) {
+            self.check_pose(world, robot, start_c, start.span, "start");
+            if let (Some(g), Some(gs)) = (goal_c, &goal) {
+                self.check_pose(world, robot, g, gs.span, "goal");
+            }
+            if schema.kind == "astar" {
+                self.check_lattice_size(world, robot, &params, p)?;
+            }
+            if schema.kind == "coverage" {
+                self.check_coverage_grid(world, &params);
+            }
+        }
+        Some(params)
+    }
+
+    fn wrong_value(&mut self, spec: &schema::ParamSpec, tok: &ParamToken) {
+        let found = match tok {
+            ParamToken::Word(w) => format!("the word `{}`", w.value),
+            ParamToken::Value(v) => v.kind.describe().to_string(),
+            ParamToken::Block { .. } => "a `{ }` block".to_string(),
+        };
+        self.error(
+            Diag::error(
+                "scen::analyze::wrong_type",
+                format!("`{}` takes {}, found {found}", spec.key, spec.value.describe()),
+            )
+            .at(tok.span(), "unexpected value")
+            .help(format!("`{}`: {} (default {})", spec.key, spec.help, if spec.default.is_empty() { "none" } else { spec.default })),
+        );
+    }
+
+    fn param_value(&mut self, spec: &schema::ParamSpec, tok: &ParamToken, robot: Option<&Robot>) -> Option<ParamValue> {
+        match (spec.value, tok) {
+            (ValueSpec::Pose, ParamToken::Value(v)) => self.expect_pose(v, &format!("`{}`", spec.key)).map(ParamValue::Pose),
+            (ValueSpec::Number { min, min_open, max, integer }, ParamToken::Value(v)) => {
+                let x = match v.kind {
+                    ValueKind::Number(x) => x,
+                    _ => {
+                        self.wrong_value(spec, tok);
+                        return None;
+                    }
+                };
+                let below = if min_open { x <= min } else { x < min };
+                if below || x > max || (integer && x.fract() != 0.0) {
+                    self.error(
+                        Diag::error(
+                            "scen::analyze::out_of_range",
+                            format!("`{}` must be {}, got {x}", spec.key, spec.value.describe()),
+                        )
+                        .at(v.span, "out of range")
+                        .help(format!("`{}`: {}", spec.key, spec.help)),
+                    );
+                    return None;
+                }
+                Some(ParamValue::Num(x))
+            }
+            (ValueSpec::IntChoice(choices), ParamToken::Value(v)) => {
+                let ValueKind::Number(x) = v.kind else {
+                    self.wrong_value(spec, tok);
+                    return None;
+                };
+                // `connect` depends on the lattice: (x, y) or (x, y, θ).
+                let rotating = robot.is_some_and(|r| r.shape.rotates());
+                let allowed: Vec<i64> = if spec.key == "connect" {
+                    if rotating { vec![6, 26] } else { vec![4, 8] }
+                } else {
+                    choices.to_vec()
+                };
+                if x.fract() == 0.0 && allowed.contains(&(x as i64)) {
+                    Some(ParamValue::Num(x))
+                } else {
+                    let list = allowed.iter().map(|c| format!("`{c}`")).collect::<Vec<_>>().join(" or ");
+                    let why = if spec.key == "connect" {
+                        if rotating { " for a rotating robot's (x, y, θ) lattice" } else { " for an (x, y) lattice" }
+                    } else {
+                        ""
+                    };
+                    self.error(
+                        Diag::error("scen::analyze::out_of_range", format!("`{}` must be {list}{why}, got {x}", spec.key))
+                            .at(v.span, "not accepted")
+                            .help(format!("`{}`: {}", spec.key, spec.help)),
+                    );
+                    None
+                }
+            }
+            (ValueSpec::Word(words), ParamToken::Word(w)) => {
+                if words.contains(&w.value.as_str()) {
+                    Some(ParamValue::Word(w.value.clone()))
+                } else {
+                    self.bad_word(spec, w, words);
+                    None
+                }
+            }
+            (ValueSpec::IntOrWord(words), ParamToken::Word(w)) => {
+                if words.contains(&w.value.as_str()) {
+                    Some(ParamValue::Word(w.value.clone()))
+                } else {
+                    self.bad_word(spec, w, words);
+                    None
+                }
+            }
+            (ValueSpec::IntOrWord(_), ParamToken::Value(v)) => match v.kind {
+                ValueKind::Number(x) if x >= 1.0 && x.fract() == 0.0 && x <= 1e9 => Some(ParamValue::Num(x)),
+                ValueKind::Number(x) => {
+                    self.error(
+                        Diag::error("scen::analyze::out_of_range", format!("`{}` must be {}, got {x}", spec.key, spec.value.describe()))
+                            .at(v.span, "out of range")
+                            .help(format!("`{}`: {}", spec.key, spec.help)),
+                    );
+                    None
+                }
+                _ => {
+                    self.wrong_value(spec, tok);
+                    None
+                }
+            },
+            (ValueSpec::ObstacleName, ParamToken::Word(w)) => Some(ParamValue::Word(w.value.clone())),
+            _ => {
+                self.wrong_value(spec, tok);
+                None
+            }
+        }
+    }
+
+    fn bad_word(&mut self, spec: &schema::ParamSpec, w: &Spanned<String>, words: &[&str]) {
+        let mut d = Diag::error(
+            "scen::analyze::out_of_range",
+            format!("`{}` does not accept `{}`", spec.key, w.value),
+        )
+        .at(w.span, "not accepted");
+        d = match did_you_mean(&w.value, words.iter().copied()) {
+            Some(s) => d.help(format!("did you mean `{s}`? `{}` takes {}", spec.key, spec.value.describe())),
+            None => d.help(format!("`{}` takes {}", spec.key, spec.value.describe())),
+        };
+        self.error(d);
+    }
+
+    fn check_pose(&mut self, world: &World, robot: &Robot, c: Config, span: Span, which: &str) {
+        if !world.bounds.contains(c.xy()) {
+            let b = world.bounds;
+            self.error(
+                Diag::error("scen::analyze::pose_outside", format!("the {which} lies outside the world's bounds"))
+                    .at(span, "outside `bounds`")
+                    .help(format!(
+                        "the bounds are ({}, {}) to ({}, {})",
+                        b.min.x, b.min.y, b.max.x, b.max.y
+                    )),
+            );
+            return;
+        }
+        if let Some(i) = crate::geometry::validator::config_collision(world, &robot.shape, c) {
+            self.error(
+                Diag::error(
+                    "scen::analyze::pose_in_collision",
+                    format!("the {which} is in collision with obstacle `{}`", world.obstacles[i].name),
+                )
+                .at(span, format!("robot `{}` overlaps `{}` here", robot.name, world.obstacles[i].name))
+                .help(format!("move the {which} so that the robot's body is clear of every obstacle")),
+            );
+        }
+    }
+
+    fn check_lattice_size(&mut self, world: &World, robot: &Robot, params: &Params, p: &ast::PlanDecl) -> Option<()> {
+        let size = crate::planners::lattice::LatticeSpec::from_params(world, &robot.shape, params);
+        let cap = params.limits.cells.unwrap_or(DEFAULT_CELL_CAP);
+        let cells = size.cells_f64();
+        if cells > cap as f64 {
+            let at = params.values.get("cell").map(|c| c.span).unwrap_or(p.name.span.to(p.robot.span));
+            self.error(
+                Diag::error(
+                    "scen::analyze::lattice_too_large",
+                    format!(
+                        "the lattice of plan `{}` would have {cells:.3e} cells, over the cap of {cap}",
+                        p.name.value
+                    ),
+                )
+                .at(at, format!("{} × {} × {} layers", size.nx, size.ny, size.layers))
+                .help("use a larger `cell` (or fewer `layers`), or raise the cap with `limit cells N`"),
+            );
+            return None;
+        }
+        Some(())
+    }
+
+    fn check_coverage_grid(&mut self, world: &World, params: &Params) {
+        if let Some(Param { value: ParamValue::Word(name), span }) = params.values.get("on") {
+            let found = world.obstacles.iter().find(|o| &o.name == name);
+            match found {
+                Some(Obstacle { shape: Shape::Grid(_), .. }) => {}
+                Some(_) => self.error(
+                    Diag::error("scen::analyze::not_a_grid", format!("obstacle `{name}` is not a `grid`"))
+                        .at(*span, "not a grid")
+                        .help("`coverage` covers the free cells of a `grid` obstacle"),
+                ),
+                None => self.error(
+                    Diag::error("scen::analyze::unknown_obstacle", format!("unknown obstacle `{name}`"))
+                        .at(*span, "no obstacle of this name")
+                        .help("name a `grid` obstacle of the world"),
+                ),
+            }
+        }
+    }
+
+    // ----------------------------------------------------------------- checks
+
+    fn checks(&mut self, statements: &[SourcedStmt], plans: &[Plan]) -> Vec<Check> {
+        // Plans that failed analysis are still known by name, so that their
+        // checks do not add "unknown plan" noise.
+        let mut known: HashMap<String, Option<PlanInfo<'_>>> = HashMap::new();
+        for s in statements {
+            if let ast::Stmt::Plan(p) = &s.stmt {
+                let info = schema::planner(&p.kind.value).map(|schema| PlanInfo {
+                    name: &p.name.value,
+                    schema,
+                });
+                known.entry(p.name.value.clone()).or_insert(info);
+            }
+        }
+        let _ = plans;
+        let mut checks = Vec::new();
+        for s in statements {
+            let ast::Stmt::Expect(e) = &s.stmt else { continue };
+            let ty = self.type_expr(e, &known);
+            if ty.is_some_and(|t| t != MetricType::Bool) {
+                self.error(
+                    Diag::error("scen::analyze::not_a_condition", "an `expect` must be a condition, not a number")
+                        .at(e.span, "a number")
+                        .help("compare it: `plan.cost <= 90`, or approximately: `plan.length ~ 27.3 +- 0.01`"),
+                );
+            }
+            checks.push(Check {
+                expr: e.clone(),
+                text: self.sources.snippet(e.span).to_string(),
+                line: self.sources.line_of(e.span),
+                span: e.span,
+            });
+        }
+        checks
+    }
+
+    fn type_expr(&mut self, e: &Expr, plans: &HashMap<String, Option<PlanInfo<'_>>>) -> Option<MetricType> {
+        use MetricType::{Bool, Num};
+        let want = |this: &mut Self, ty: Option<MetricType>, want: MetricType, e: &Expr, ctx: &str| {
+            if let Some(t) = ty
+                && t != want
+            {
+                let (what, help) = match want {
+                    Num => ("a number", "metrics such as `found` are true/false; compare numbers like `p.cost`"),
+                    Bool => ("a condition", "write a comparison such as `p.cost <= 90`"),
+                };
+                this.error(
+                    Diag::error("scen::analyze::type_mismatch", format!("{ctx} needs {what}"))
+                        .at(e.span, format!("not {what}"))
+                        .help(help),
+                );
+            }
+        };
+        match &e.kind {
+            ExprKind::Number(_) | ExprKind::Percent(_) => Some(Num),
+            ExprKind::Bool(_) => Some(Bool),
+            ExprKind::Metric { plan, metric } => {
+                let Some(info) = plans.get(&plan.value) else {
+                    let names: Vec<&str> = plans.keys().map(String::as_str).collect();
+                    let mut d = Diag::error("scen::analyze::unknown_plan", format!("unknown plan `{}`", plan.value))
+                        .at(plan.span, "no plan of this name");
+                    d = match did_you_mean(&plan.value, names.iter().copied()) {
+                        Some(n) => d.help(format!("did you mean `{n}`?")),
+                        None => d.help("`expect` refers to metrics as `PLAN.METRIC`, e.g. `offline.found`"),
+                    };
+                    self.error(d);
+                    return None;
+                };
+                let info = info.as_ref()?;
+                match info.schema.metric(&metric.value) {
+                    Some(t) => Some(t),
+                    None => {
+                        let names: Vec<&str> = info.schema.all_metrics().map(|(m, _)| *m).collect();
+                        let mut d = Diag::error(
+                            "scen::analyze::unknown_metric",
+                            format!("plan `{}` ({}) has no metric `{}`", info.name, info.schema.kind, metric.value),
+                        )
+                        .at(metric.span, "unknown metric");
+                        d = match did_you_mean(&metric.value, names.iter().copied()) {
+                            Some(n) => d.help(format!("did you mean `{n}`? metrics of `{}`: {}", info.schema.kind, schema::backticked(&names))),
+                            None => d.help(format!("metrics of `{}`: {}", info.schema.kind, schema::backticked(&names))),
+                        };
+                        self.error(d);
+                        None
+                    }
+                }
+            }
+            ExprKind::Neg(x) => {
+                let t = self.type_expr(x, plans);
+                want(self, t, Num, x, "`-`");
+                Some(Num)
+            }
+            ExprKind::Not(x) => {
+                let t = self.type_expr(x, plans);
+                want(self, t, Bool, x, "`not`");
+                Some(Bool)
+            }
+            ExprKind::Arith { op, lhs, rhs } => {
+                let (l, r) = (self.type_expr(lhs, plans), self.type_expr(rhs, plans));
+                want(self, l, Num, lhs, &format!("`{}`", op.symbol()));
+                want(self, r, Num, rhs, &format!("`{}`", op.symbol()));
+                Some(Num)
+            }
+            ExprKind::Compare { op, lhs, rhs } => {
+                let (l, r) = (self.type_expr(lhs, plans), self.type_expr(rhs, plans));
+                if matches!(op, ast::CompareOp::Eq | ast::CompareOp::Ne) {
+                    if let (Some(a), Some(b)) = (l, r)
+                        && a != b
+                    {
+                        self.error(
+                            Diag::error("scen::analyze::type_mismatch", format!("`{}` compares a condition with a number", op.symbol()))
+                                .at(e.span, "different types")
+                                .help("compare numbers with numbers, conditions with conditions"),
+                        );
+                    }
+                } else {
+                    want(self, l, Num, lhs, &format!("`{}`", op.symbol()));
+                    want(self, r, Num, rhs, &format!("`{}`", op.symbol()));
+                }
+                Some(Bool)
+            }
+            ExprKind::Approx { lhs, rhs, tol } => {
+                let (l, r, t) = (self.type_expr(lhs, plans), self.type_expr(rhs, plans), self.type_expr(tol, plans));
+                want(self, l, Num, lhs, "`~`");
+                want(self, r, Num, rhs, "`~`");
+                want(self, t, Num, tol, "`+-`");
+                Some(Bool)
+            }
+            ExprKind::And(a, b) | ExprKind::Or(a, b) => {
+                let (l, r) = (self.type_expr(a, plans), self.type_expr(b, plans));
+                let op = if matches!(e.kind, ExprKind::And(..)) { "`and`" } else { "`or`" };
+                want(self, l, Bool, a, op);
+                want(self, r, Bool, b, op);
+                Some(Bool)
+            }
+        }
+    }
+}
+
+fn keys_of(schema: &PlannerSchema) -> String {
+    let keys: Vec<&str> = schema.all_params().map(|p| p.key).collect();
+    schema::backticked(&keys)
+}
+
+fn stmt_span(s: &ast::Stmt) -> Span {
+    match s {
+        ast::Stmt::Scenario { span, .. } | ast::Stmt::Include { span, .. } => *span,
+        ast::Stmt::World(w) => w.span,
+        ast::Stmt::Robot(r) => r.span,
+        ast::Stmt::Plan(p) => p.span,
+        ast::Stmt::Expect(e) => e.span,
+    }
+}
+
+/// The weight of a grid character: 0 blocked, 1..=9 free (SPEC 2.3).
+pub fn grid_char(c: char) -> Option<u8> {
+    match c {
+        '.' | 'G' | 'S' => Some(1),
+        '1'..='9' => Some(c as u8 - b'0'),
+        '@' | 'O' | 'T' | 'W' | '#' => Some(0),
+        _ => None,
+    }
+}
+
+/// The largest grid accepted from a map file (cells).
+const MAX_MAP_CELLS: usize = 50_000_000;
+
+/// Parses a MovingAI `.map` file: `(width, height, cells)`, or the 1-based
+/// line of the first problem and a message.
+pub fn parse_movingai(text: &str) -> Result<(usize, usize, Vec<u8>), (usize, String)> {
+    let mut lines = text.lines().map(|l| l.trim_end_matches('\r')).enumerate();
+    let mut height = None;
+    let mut width = None;
+    loop {
+        let Some((n, line)) = lines.next() else {
+            return Err((n_lines(text), "missing `map` line before the rows".into()));
+        };
+        let mut words = line.split_whitespace();
+        match (words.next(), words.next()) {
+            (Some("type"), _) => {}
+            (Some("height"), Some(h)) => {
+                height = Some(h.parse::<usize>().map_err(|_| (n + 1, format!("bad height `{h}`")))?)
+            }
+            (Some("width"), Some(w)) => {
+                width = Some(w.parse::<usize>().map_err(|_| (n + 1, format!("bad width `{w}`")))?)
+            }
+            (Some("map"), None) => break,
+            (None, _) => {}
+            _ => return Err((n + 1, format!("unexpected header line `{}`", truncate(line)))),
+        }
+    }
+    let (Some(h), Some(w)) = (height, width) else {
+        return Err((1, "the header must give `height` and `width`".into()));
+    };
+    if h == 0 || w == 0 || h.saturating_mul(w) > MAX_MAP_CELLS {
+        return Err((1, format!("a {w} × {h} map is empty or too large (limit {MAX_MAP_CELLS} cells)")));
+    }
+    let mut cells = Vec::with_capacity(w * h);
+    for r in 0..h {
+        let Some((n, line)) = lines.next() else {
+            return Err((n_lines(text), format!("the map has {r} rows, the header says {h}")));
+        };
+        if line.chars().count() != w {
+            return Err((n + 1, format!("row {} has {} cells, the header says {w}", r + 1, line.chars().count())));
+        }
+        for (c, ch) in line.chars().enumerate() {
+            match grid_char(ch) {
+                Some(x) => cells.push(x),
+                None => return Err((n + 1, format!("`{ch}` in column {} is not a map cell", c + 1))),
+            }
+        }
+    }
+    Ok((w, h, cells))
+}
+
+fn n_lines(text: &str) -> usize {
+    text.lines().count().max(1)
+}
+
+fn truncate(s: &str) -> String {
+    s.chars().take(40).collect()
+}

@@ -1,0 +1,125 @@
+//! Analysis: an AST (with includes resolved) becomes a [`Scenario`]: names
+//! resolved, geometry checked and normalised, plan parameters validated
+//! against their planner's schema, expressions typed.
+
+mod analyze;
+pub mod loader;
+pub mod schema;
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use crate::diagnostics::{SourceMap, Span};
+use crate::geometry::{Config, Point, RobotShape, World};
+use crate::syntax::ast::Expr;
+
+pub(crate) use analyze::analyze;
+pub use loader::load;
+
+/// A fully analysed scenario, ready to run.
+#[derive(Clone, Debug)]
+pub struct Scenario {
+    /// The main file, as given by the user.
+    pub file: PathBuf,
+    pub title: Option<String>,
+    pub world: World,
+    /// Span of each obstacle's declaration, parallel to `world.obstacles`.
+    pub obstacle_spans: Vec<Span>,
+    pub robots: Vec<Robot>,
+    pub plans: Vec<Plan>,
+    pub checks: Vec<Check>,
+    pub sources: SourceMap,
+}
+
+#[derive(Clone, Debug)]
+pub struct Robot {
+    pub name: String,
+    pub shape: RobotShape,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub name: String,
+    /// The planner kind (`astar`, `online`, ...), as in the schema registry.
+    pub kind: &'static str,
+    /// Index into `Scenario::robots`.
+    pub robot: usize,
+    pub params: Params,
+    pub span: Span,
+}
+
+/// Validated parameters of a plan. Planner-specific values are looked up by
+/// key; keys not given by the user are absent (the planner applies the
+/// schema's default).
+#[derive(Clone, Debug)]
+pub struct Params {
+    pub start: Config,
+    pub start_span: Span,
+    pub goal: Option<Config>,
+    pub goal_span: Option<Span>,
+    pub limits: Limits,
+    pub seed: u64,
+    pub values: BTreeMap<&'static str, Param>,
+}
+
+impl Params {
+    pub fn get(&self, key: &str) -> Option<&ParamValue> {
+        self.values.get(key).map(|p| &p.value)
+    }
+
+    pub fn num(&self, key: &str) -> Option<f64> {
+        match self.get(key) {
+            Some(ParamValue::Num(x)) => Some(*x),
+            _ => None,
+        }
+    }
+
+    pub fn word(&self, key: &str) -> Option<&str> {
+        match self.get(key) {
+            Some(ParamValue::Word(w)) => Some(w.as_str()),
+            _ => None,
+        }
+    }
+}
+
+/// Limits of SPEC 2.5 (`limit expansions N`, `limit time 2s`, ...).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Limits {
+    pub expansions: Option<u64>,
+    pub steps: Option<u64>,
+    /// Seconds.
+    pub time: Option<f64>,
+    /// Lattice-size cap (default [`DEFAULT_CELL_CAP`]).
+    pub cells: Option<u64>,
+}
+
+/// The default cap on lattice sizes (SPEC 3.1).
+pub const DEFAULT_CELL_CAP: u64 = 200_000_000;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Param {
+    pub value: ParamValue,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamValue {
+    Num(f64),
+    Word(String),
+    Str(String),
+    Point(Point),
+    Pose(Config),
+    /// A word with nested parameters (`drive unicycle { dt 0.02 }`).
+    Block(String, BTreeMap<&'static str, Param>),
+}
+
+/// One `expect` statement.
+#[derive(Clone, Debug)]
+pub struct Check {
+    pub expr: Expr,
+    /// The expression's source text.
+    pub text: String,
+    pub line: usize,
+    pub span: Span,
+}

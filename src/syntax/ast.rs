@@ -1,0 +1,257 @@
+//! The typed syntax tree of a `.scen` file. Every node carries a [`Span`].
+//! Values keep their units resolved (angles in radians, durations in
+//! seconds, percentages as fractions) but not their meaning: the analyzer
+//! decides whether a tuple is a point or a pose, and which words are keys.
+
+use crate::diagnostics::{Span, Spanned};
+
+pub type Ident = Spanned<String>;
+
+/// A parsed file: its statements in source order.
+#[derive(Clone, Debug, Default)]
+pub struct File {
+    pub statements: Vec<Stmt>,
+}
+
+#[derive(Clone, Debug)]
+pub enum Stmt {
+    /// `scenario "title"`
+    Scenario { title: Spanned<String>, span: Span },
+    /// `include "other.scen"`
+    Include { path: Spanned<String>, span: Span },
+    World(WorldBlock),
+    Robot(RobotDecl),
+    Plan(PlanDecl),
+    Expect(Expr),
+}
+
+#[derive(Clone, Debug)]
+pub struct WorldBlock {
+    pub items: Vec<WorldItem>,
+    /// The `world` keyword (used to point at duplicate world blocks).
+    pub keyword: Span,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug)]
+pub enum WorldItem {
+    /// `bounds (x0, y0) (x1, y1)`
+    Bounds { min: Value, max: Value, span: Span },
+    Obstacle(ObstacleDecl),
+}
+
+#[derive(Clone, Debug)]
+pub struct ObstacleDecl {
+    /// `rect`, `polygon`, `segment`, `disk` or `grid`, with the keyword's span.
+    pub kind: Spanned<ObstacleKind>,
+    pub name: Option<Ident>,
+    pub shape: ObstacleShape,
+    pub span: Span,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ObstacleKind {
+    Rect,
+    Polygon,
+    Segment,
+    Disk,
+    Grid,
+}
+
+impl ObstacleKind {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            ObstacleKind::Rect => "rect",
+            ObstacleKind::Polygon => "polygon",
+            ObstacleKind::Segment => "segment",
+            ObstacleKind::Disk => "disk",
+            ObstacleKind::Grid => "grid",
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub enum ObstacleShape {
+    /// Two opposite corners.
+    Rect(Value, Value),
+    /// A list of points (the `[...]` value).
+    Polygon(Value),
+    Segment(Value, Value),
+    /// Centre and radius.
+    Disk(Value, Value),
+    Grid(GridSpec),
+}
+
+/// `grid NAME? "file.map"? (cell N | origin P)* { "row" ... }?`
+#[derive(Clone, Debug)]
+pub struct GridSpec {
+    pub file: Option<Spanned<String>>,
+    pub cell: Option<Value>,
+    pub origin: Option<Value>,
+    /// Inline rows, top row first; `None` when there is no `{ }` block.
+    pub rows: Option<Vec<Spanned<String>>>,
+    /// Options given more than once, or unknown words, reported by the parser
+    /// as they are met; kept here only for completeness.
+    pub span: Span,
+}
+
+/// `robot NAME SHAPE`
+#[derive(Clone, Debug)]
+pub struct RobotDecl {
+    pub name: Ident,
+    pub shape: RobotShape,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug)]
+pub enum RobotShape {
+    /// `point`
+    Point(Span),
+    /// `disk RADIUS`
+    Disk(Value),
+    /// `rect W H`
+    Rect(Value, Value),
+    /// `polygon [(x, y), ...]`
+    Polygon(Value),
+}
+
+/// `plan NAME KIND ROBOT { tokens }`
+#[derive(Clone, Debug)]
+pub struct PlanDecl {
+    pub name: Ident,
+    pub kind: Ident,
+    pub robot: Ident,
+    /// The block's contents as a flat token list; the analyzer groups them
+    /// into `key value...` parameters using the planner's schema.
+    pub body: Vec<ParamToken>,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug)]
+pub enum ParamToken {
+    /// A bare word: a key, or a word value such as `center`, `auto`, `yes`.
+    Word(Ident),
+    /// Any other value.
+    Value(Value),
+    /// A nested `{ ... }` block.
+    Block { tokens: Vec<ParamToken>, span: Span },
+}
+
+impl ParamToken {
+    pub fn span(&self) -> Span {
+        match self {
+            ParamToken::Word(w) => w.span,
+            ParamToken::Value(v) => v.span,
+            ParamToken::Block { span, .. } => *span,
+        }
+    }
+}
+
+/// A literal value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Value {
+    pub kind: ValueKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ValueKind {
+    /// A plain number.
+    Number(f64),
+    /// An angle, converted to radians (`90deg`, `1.5rad`).
+    Angle(f64),
+    /// A percentage as a fraction (`100%` = 1.0).
+    Percent(f64),
+    /// A duration in seconds (`500ms`, `2s`).
+    Duration(f64),
+    Str(String),
+    /// A bare word used as a value (only inside plan bodies).
+    Word(String),
+    /// `(a, b)` or `(a, b, c)`.
+    Tuple(Vec<Value>),
+    /// `[a, b, c]`.
+    List(Vec<Value>),
+}
+
+impl ValueKind {
+    /// What the value is, for messages: "a number", "an angle", ...
+    pub fn describe(&self) -> &'static str {
+        match self {
+            ValueKind::Number(_) => "a number",
+            ValueKind::Angle(_) => "an angle",
+            ValueKind::Percent(_) => "a percentage",
+            ValueKind::Duration(_) => "a duration",
+            ValueKind::Str(_) => "a string",
+            ValueKind::Word(_) => "a word",
+            ValueKind::Tuple(_) => "a point",
+            ValueKind::List(_) => "a list",
+        }
+    }
+}
+
+/// An `expect` expression.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    Number(f64),
+    /// `100%`, as a fraction.
+    Percent(f64),
+    Bool(bool),
+    /// `PLAN.METRIC`
+    Metric { plan: Ident, metric: Ident },
+    Neg(Box<Expr>),
+    Not(Box<Expr>),
+    Arith { op: ArithOp, lhs: Box<Expr>, rhs: Box<Expr> },
+    Compare { op: CompareOp, lhs: Box<Expr>, rhs: Box<Expr> },
+    /// `lhs ~ rhs +- tol`
+    Approx { lhs: Box<Expr>, rhs: Box<Expr>, tol: Box<Expr> },
+    And(Box<Expr>, Box<Expr>),
+    Or(Box<Expr>, Box<Expr>),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ArithOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CompareOp {
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Eq,
+    Ne,
+}
+
+impl CompareOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CompareOp::Lt => "<",
+            CompareOp::Le => "<=",
+            CompareOp::Gt => ">",
+            CompareOp::Ge => ">=",
+            CompareOp::Eq => "==",
+            CompareOp::Ne => "!=",
+        }
+    }
+}
+
+impl ArithOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            ArithOp::Add => "+",
+            ArithOp::Sub => "-",
+            ArithOp::Mul => "*",
+            ArithOp::Div => "/",
+        }
+    }
+}

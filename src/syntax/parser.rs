@@ -1,0 +1,1027 @@
+//! Source text → [`ast::File`], in two passes.
+//!
+//! 1. A scanner splits the file into top-level statement chunks. It tracks
+//!    strings, comments and bracket depth, so a chunk starts only at a
+//!    statement keyword outside any bracket. It also reports what pest must
+//!    never see: unterminated strings and brackets nested more than
+//!    [`MAX_NESTING`] deep (pest's rules recurse once per bracket).
+//! 2. pest parses each chunk with `statement_chunk` (grammar/scen.pest), and
+//!    the pairs are turned into AST nodes with file-relative spans.
+//!
+//! Because each statement is parsed on its own, an error in one statement
+//! does not hide the errors of the others: [`parse`] returns them all.
+
+use pest::Parser as _;
+use pest::error::{ErrorVariant, InputLocation};
+use pest::iterators::Pair;
+
+use super::ast::{
+    self, ArithOp, CompareOp, Expr, ExprKind, GridSpec, Ident, ObstacleDecl, ObstacleKind,
+    ObstacleShape, ParamToken, PlanDecl, RobotDecl, RobotShape, Stmt, Value, ValueKind,
+    WorldBlock, WorldItem,
+};
+use crate::diagnostics::{Diag, FileId, Span, Spanned, sort_diags};
+
+#[derive(pest_derive::Parser)]
+#[grammar = "grammar/scen.pest"]
+struct ScenParser;
+
+/// The deepest bracket nesting accepted (`(`, `[` and `{` together).
+pub(crate) const MAX_NESTING: usize = 64;
+
+/// The tallest `expect` expression tree accepted. Long operator chains build
+/// left-deep trees, and every later pass walks them recursively.
+const MAX_EXPR_HEIGHT: usize = 256;
+
+const STATEMENT_KEYWORDS: [&str; 6] = ["scenario", "include", "world", "robot", "plan", "expect"];
+
+const EXPECTED_STATEMENT: &str =
+    "expected a statement: `world`, `robot`, `plan`, `expect`, `include` or `scenario`";
+
+/// Words that are units when written right after a number.
+const UNIT_WORDS: [&str; 4] = ["deg", "rad", "ms", "s"];
+
+const UNITS_HELP: &str = "units are `deg` and `rad` for angles, `%` for percentages, `ms` and `s` \
+                          for durations, written right after the number: `90deg`";
+
+/// Parses one file. Returns the statements that parsed and every error found,
+/// sorted by position.
+///
+/// When the diagnostics contain errors the file is incomplete: statements
+/// that failed to parse are missing, and a statement with a bad literal (an
+/// out-of-range number, an unknown unit or escape) is kept with a placeholder
+/// in its place. An empty file parses to no statements and no error.
+pub fn parse(text: &str, file: FileId) -> (ast::File, Vec<Diag>) {
+    let mut diags = Vec::new();
+    let mut statements = Vec::new();
+    for chunk in split_statements(text, file) {
+        if !chunk.is_statement {
+            diags.push(not_a_statement(text, file, chunk.start));
+            continue;
+        }
+        if !chunk.lexical_errors.is_empty() {
+            diags.extend(chunk.lexical_errors);
+            continue;
+        }
+        match ScenParser::parse(Rule::statement_chunk, &text[chunk.start..chunk.end]) {
+            Ok(mut pairs) => {
+                let pair = pairs.next().expect("grammar guarantees a statement pair");
+                let mut builder = Builder {
+                    text,
+                    file,
+                    base: chunk.start,
+                    diags: &mut diags,
+                    expr_too_deep: false,
+                };
+                if let Some(statement) = builder.statement(pair) {
+                    statements.push(statement);
+                }
+            }
+            Err(error) => diags.push(syntax_error(text, file, &chunk, &error)),
+        }
+    }
+    sort_diags(&mut diags);
+    (ast::File { statements }, diags)
+}
+
+// ------------------------------------------------------------------ scanner
+
+/// A top-level piece of the file: one statement, or leading text that is not one.
+#[derive(Debug)]
+struct Chunk {
+    start: usize,
+    /// End of the chunk's last token; trailing blanks and comments are left out.
+    end: usize,
+    /// Starts with a statement keyword (only the leading chunk may not).
+    is_statement: bool,
+    /// Unterminated strings and too-deep nesting found by the scanner; pest
+    /// does not run on a chunk that has any.
+    lexical_errors: Vec<Diag>,
+    /// Offsets of the brackets still open at the chunk's end, outermost first
+    /// (at most `MAX_NESTING + 1`).
+    unclosed: Vec<usize>,
+}
+
+impl Chunk {
+    fn new(start: usize, end: usize, is_statement: bool) -> Self {
+        Chunk { start, end, is_statement, lexical_errors: Vec::new(), unclosed: Vec::new() }
+    }
+}
+
+fn is_ident_byte(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_'
+}
+
+fn is_blank(c: char) -> bool {
+    matches!(c, ' ' | '\t' | '\r' | '\n' | '\u{000C}' | '\u{FEFF}')
+}
+
+/// Splits `text` into statement chunks; see the module docs.
+///
+/// A statement keyword starts a chunk when it stands at a word boundary,
+/// outside brackets, and is not part of a metric reference (`world.found`).
+/// The words right after `plan` (3) and `robot` (1) on the same line are
+/// names, so `plan world astar rod` stays one statement. Inside an unclosed
+/// block, a statement keyword in the first column also starts a chunk, so a
+/// missing `}` is reported at the block rather than swallowing the file.
+fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
+    let bytes = text.as_bytes();
+    let mut chunks: Vec<Chunk> = Vec::new();
+    let mut current: Option<Chunk> = None;
+    let mut depth = 0usize;
+    let mut open: Vec<usize> = Vec::new();
+    let mut names_to_skip = 0u8;
+    let mut prev_byte = 0u8;
+    let mut i = 0;
+    while i < bytes.len() {
+        let b = bytes[i];
+        match b {
+            b'\n' => {
+                names_to_skip = 0;
+                i += 1;
+                continue;
+            }
+            b' ' | b'\t' | b'\r' | 0x0C => {
+                i += 1;
+                continue;
+            }
+            b'#' => {
+                i = bytes[i..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |k| i + k);
+                continue;
+            }
+            _ if bytes[i..].starts_with("\u{FEFF}".as_bytes()) => {
+                i += 3;
+                continue;
+            }
+            _ => {}
+        }
+        let token_start = i;
+        if is_ident_byte(b) {
+            while i < bytes.len() && is_ident_byte(bytes[i]) {
+                i += 1;
+            }
+            let word = &text[token_start..i];
+            let at_line_start = token_start == 0 || bytes[token_start - 1] == b'\n';
+            let starts_statement = !b.is_ascii_digit()
+                && STATEMENT_KEYWORDS.contains(&word)
+                && prev_byte != b'.'
+                && next_nonblank_byte(bytes, i) != Some(b'.')
+                && ((depth == 0 && names_to_skip == 0) || (depth > 0 && at_line_start));
+            if starts_statement {
+                if let Some(mut done) = current.take() {
+                    done.unclosed = std::mem::take(&mut open);
+                    chunks.push(done);
+                }
+                depth = 0;
+                names_to_skip = match word {
+                    "plan" => 3,
+                    "robot" => 1,
+                    _ => 0,
+                };
+                current = Some(Chunk::new(token_start, i, true));
+                prev_byte = bytes[i - 1];
+                continue;
+            }
+            if depth == 0 {
+                names_to_skip = names_to_skip.saturating_sub(1);
+            }
+        } else {
+            names_to_skip = 0;
+        }
+        let chunk = current.get_or_insert_with(|| Chunk::new(token_start, token_start, false));
+        match b {
+            _ if is_ident_byte(b) => {}
+            b'"' => {
+                let (end, closed) = scan_string(bytes, i);
+                i = end;
+                if !closed {
+                    let end = if end > token_start + 1 && bytes[end - 1] == b'\r' { end - 1 } else { end };
+                    chunk.lexical_errors.push(
+                        Diag::error("scen::syntax::unterminated_string", "unterminated string")
+                            .at(Span::new(file, token_start, end), "this string is never closed")
+                            .help("add the closing `\"` on the same line: a string cannot span lines"),
+                    );
+                }
+            }
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                if open.len() <= MAX_NESTING {
+                    open.push(i);
+                }
+                if depth == MAX_NESTING + 1
+                    && !chunk.lexical_errors.iter().any(|d| d.code == "scen::syntax::too_deep")
+                {
+                    chunk.lexical_errors.push(
+                        Diag::error(
+                            "scen::syntax::too_deep",
+                            format!("brackets are nested more than {MAX_NESTING} deep"),
+                        )
+                        .at(Span::new(file, i, i + 1), format!("this `{}` is too deep", b as char))
+                        .help("flatten the value: `scen` accepts at most 64 nested brackets"),
+                    );
+                }
+                i += 1;
+            }
+            b')' | b']' | b'}' => {
+                depth = depth.saturating_sub(1);
+                open.truncate(depth);
+                i += 1;
+            }
+            _ => i += text[i..].chars().next().map_or(1, char::len_utf8),
+        }
+        chunk.end = i;
+        prev_byte = bytes[i - 1];
+    }
+    if let Some(mut done) = current {
+        done.unclosed = open;
+        chunks.push(done);
+    }
+    chunks
+}
+
+/// The end of the string literal opening at `start`, and whether it is closed.
+/// It stops (unclosed) at a newline, like the grammar's `string` rule.
+fn scan_string(bytes: &[u8], start: usize) -> (usize, bool) {
+    let mut j = start + 1;
+    while j < bytes.len() {
+        match bytes[j] {
+            b'"' => return (j + 1, true),
+            b'\n' => return (j, false),
+            b'\\' if bytes.get(j + 1).is_some_and(|&b| b != b'\n') => j += 2,
+            _ => j += 1,
+        }
+    }
+    (bytes.len(), false)
+}
+
+fn next_nonblank_byte(bytes: &[u8], from: usize) -> Option<u8> {
+    bytes[from.min(bytes.len())..]
+        .iter()
+        .copied()
+        .find(|b| !matches!(b, b' ' | b'\t' | b'\r' | b'\n'))
+}
+
+// ---------------------------------------------------------- syntax errors
+
+/// The offset of the next token at or after `from`, skipping blanks and comments.
+fn skip_trivia(text: &str, mut from: usize) -> usize {
+    loop {
+        let rest = &text[from..];
+        let trimmed = rest.trim_start_matches(is_blank);
+        from += rest.len() - trimmed.len();
+        if trimmed.starts_with('#') {
+            from += trimmed.find('\n').unwrap_or(trimmed.len());
+        } else {
+            return from;
+        }
+    }
+}
+
+/// The end of the token starting at `start`, as a person would read it.
+fn token_end(text: &str, start: usize) -> usize {
+    let rest = &text[start..];
+    let bytes = rest.as_bytes();
+    let Some(c) = rest.chars().next() else {
+        return start;
+    };
+    let starts_number =
+        c.is_ascii_digit() || (matches!(c, '.' | '-') && bytes.get(1).is_some_and(u8::is_ascii_digit));
+    let len = if starts_number {
+        1 + bytes[1..]
+            .iter()
+            .take_while(|&&b| is_ident_byte(b) || b == b'.' || b == b'%')
+            .count()
+    } else if is_ident_byte(bytes[0]) {
+        bytes.iter().take_while(|&&b| is_ident_byte(b)).count()
+    } else if c == '"' {
+        match bytes[1..].iter().position(|&b| b == b'"' || b == b'\n') {
+            Some(k) if bytes[1 + k] == b'"' => k + 2,
+            Some(k) => k + 1,
+            None => bytes.len(),
+        }
+    } else if ["<=", ">=", "==", "!=", "+-"].iter().any(|op| rest.starts_with(op)) {
+        2
+    } else {
+        c.len_utf8()
+    };
+    start + len
+}
+
+/// A token for a message: in backticks, control characters escaped, long ones cut.
+fn show(token: &str) -> String {
+    const MAX_CHARS: usize = 24;
+    let mut shown: String = token
+        .chars()
+        .take(MAX_CHARS)
+        .flat_map(|c| {
+            let escaped: Vec<char> =
+                if c.is_control() { c.escape_default().collect() } else { vec![c] };
+            escaped
+        })
+        .collect();
+    if token.chars().count() > MAX_CHARS {
+        shown.push('…');
+    }
+    format!("`{shown}`")
+}
+
+/// The span of the last character before `end` (for errors at the end of input).
+fn last_char_span(text: &str, file: FileId, end: usize) -> Span {
+    let len = text[..end].chars().next_back().map_or(0, char::len_utf8);
+    Span::new(file, end - len, end)
+}
+
+/// A help line for a word that is a statement keyword written with capitals.
+fn keyword_case_help(token: &str) -> Option<String> {
+    let lower = token.to_ascii_lowercase();
+    (lower != token && STATEMENT_KEYWORDS.contains(&lower.as_str()))
+        .then(|| format!("keywords are lowercase: `{lower}`"))
+}
+
+/// Leading text that is not a statement.
+fn not_a_statement(text: &str, file: FileId, start: usize) -> Diag {
+    let end = token_end(text, start);
+    let token = &text[start..end];
+    let diag = Diag::error("scen::syntax::expected", EXPECTED_STATEMENT)
+        .at(Span::new(file, start, end), format!("unexpected {}", show(token)));
+    match keyword_case_help(token) {
+        Some(help) => diag.help(help),
+        None => diag,
+    }
+}
+
+/// What a rule looks like in "expected ..." messages; `None` hides it.
+fn describe(rule: Rule) -> Option<&'static str> {
+    Some(match rule {
+        Rule::EOI => "the end of the statement",
+        Rule::ident => "a name",
+        Rule::plan_kind => "a planner kind (such as `astar`)",
+        Rule::word => "a word",
+        Rule::metric_name => "a metric name",
+        Rule::num_literal | Rule::unsigned_literal | Rule::number | Rule::expr_number => "a number",
+        // Silent rules never reach an error message; the unit is optional.
+        Rule::unit_suffix
+        | Rule::WHITESPACE
+        | Rule::COMMENT
+        | Rule::statement_chunk
+        | Rule::statement
+        | Rule::IDENT_START
+        | Rule::IDENT_CHAR
+        | Rule::IDENT
+        | Rule::DIGITS
+        | Rule::MANTISSA
+        | Rule::EXPONENT
+        | Rule::element
+        | Rule::world_item
+        | Rule::grid_name
+        | Rule::primary
+        | Rule::compare_op => return None,
+        Rule::string => "a string",
+        Rule::lbrace | Rule::param_block | Rule::grid_rows => "`{`",
+        Rule::rbrace => "`}`",
+        Rule::lparen | Rule::paren => "`(`",
+        Rule::rparen => "`)`",
+        Rule::lbracket => "`[`",
+        Rule::rbracket => "`]`",
+        Rule::comma => "`,`",
+        Rule::dot => "`.`",
+        Rule::kw_scenario | Rule::scenario => "`scenario`",
+        Rule::kw_include | Rule::include => "`include`",
+        Rule::kw_world | Rule::world => "`world`",
+        Rule::kw_robot | Rule::robot => "`robot`",
+        Rule::kw_plan | Rule::plan => "`plan`",
+        Rule::kw_expect | Rule::expect => "`expect`",
+        Rule::kw_bounds | Rule::bounds => "`bounds`",
+        Rule::kw_rect | Rule::rect_obstacle | Rule::rect_shape => "`rect`",
+        Rule::kw_polygon | Rule::polygon_obstacle | Rule::polygon_shape => "`polygon`",
+        Rule::kw_segment | Rule::segment_obstacle => "`segment`",
+        Rule::kw_disk | Rule::disk_obstacle | Rule::disk_shape => "`disk`",
+        Rule::kw_grid | Rule::grid_obstacle => "`grid`",
+        Rule::kw_cell | Rule::grid_cell => "`cell`",
+        Rule::kw_origin | Rule::grid_origin => "`origin`",
+        Rule::kw_point | Rule::point_shape => "`point`",
+        Rule::kw_not => "`not`",
+        Rule::kw_true => "`true`",
+        Rule::kw_false => "`false`",
+        Rule::value => "a value",
+        Rule::tuple => "a point `(x, y)`",
+        Rule::list => "a list `[...]`",
+        Rule::disjunction
+        | Rule::conjunction
+        | Rule::negation
+        | Rule::comparison
+        | Rule::sum
+        | Rule::product
+        | Rule::unary => "an expression",
+        Rule::metric => "a metric `PLAN.METRIC`",
+        Rule::kw_and
+        | Rule::kw_or
+        | Rule::le
+        | Rule::ge
+        | Rule::eq
+        | Rule::ne
+        | Rule::lt
+        | Rule::gt
+        | Rule::tilde
+        | Rule::plus
+        | Rule::minus
+        | Rule::star
+        | Rule::slash => "an operator",
+        Rule::plusminus => "`+-`",
+    })
+}
+
+/// "A", "A or B", "A, B or C".
+fn one_of(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => (*one).to_string(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
+/// A pest error in `chunk` → a diagnostic with a readable message and, where
+/// the likely fix is known, a help line.
+fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Error<Rule>) -> Diag {
+    let pos = match error.location {
+        InputLocation::Pos(p) => p,
+        InputLocation::Span((s, _)) => s,
+    };
+    let at = skip_trivia(text, (chunk.start + pos).min(chunk.end));
+    let at_end = at >= chunk.end;
+    let token_start = if at_end { skip_trivia(text, chunk.end) } else { at };
+    let token = &text[token_start..token_end(text, token_start)];
+    let found = if token.is_empty() { "the end of the file".to_string() } else { show(token) };
+
+    let positives: Vec<Rule> = match &error.variant {
+        ErrorVariant::ParsingError { positives, .. } => positives.clone(),
+        ErrorVariant::CustomError { message } => {
+            // pest's own call or stack limit: the depth check should prevent it.
+            return Diag::error("scen::syntax::too_deep", format!("statement too complex to parse ({message})"))
+                .at(Span::new(file, chunk.start, token_end(text, chunk.start)), "in this statement")
+                .help("split the statement or reduce its nesting");
+        }
+    };
+    let mut expected: Vec<&str> = Vec::new();
+    for description in positives.iter().filter_map(|&r| describe(r)) {
+        if !expected.contains(&description) {
+            expected.push(description);
+        }
+    }
+    // "the end of the statement" reads best last.
+    if let Some(k) = expected.iter().position(|d| *d == "the end of the statement") {
+        let end = expected.remove(k);
+        expected.push(end);
+    }
+    let only_end = expected == ["the end of the statement"];
+
+    let span = if at_end {
+        last_char_span(text, file, chunk.end)
+    } else {
+        Span::new(file, at, token_end(text, at).max(at + 1).min(text.len()))
+    };
+    let what = one_of(&expected);
+    let message = if only_end {
+        EXPECTED_STATEMENT.to_string()
+    } else if expected.is_empty() {
+        format!("unexpected {found}")
+    } else {
+        format!("expected {what}, found {found}")
+    };
+    let label = if at_end && !expected.is_empty() {
+        format!("expected {what} after this")
+    } else {
+        format!("unexpected {found}")
+    };
+    let mut diag = Diag::error("scen::syntax::expected", message).at(span, label);
+
+    let has = |rule: Rule| positives.contains(&rule);
+    let compares = ["<", "<=", ">", ">=", "==", "!=", "~"];
+    let help = if compares.contains(&token) && has(Rule::kw_and) && !has(Rule::lt) {
+        diag.message = "comparisons cannot be chained".to_string();
+        Some("join two comparisons with `and`: `a < b and b < c`".to_string())
+    } else if token == "=" {
+        Some("compare with `==`".to_string())
+    } else if has(Rule::plusminus) {
+        Some("approximate equality needs a tolerance: `A ~ B +- TOL`".to_string())
+    } else if has(Rule::dot) {
+        Some("refer to a metric as `PLAN.METRIC`, e.g. `offline.found`".to_string())
+    } else if token == "," && positives == [Rule::rparen] {
+        Some("a point is `(x, y)` and a pose `(x, y, θ)`".to_string())
+    } else if let Some(number) = detached_number(text, token_start, token) {
+        Some(format!("write the unit right after the number: `{number}{token}`"))
+    } else if only_end && token == "}" {
+        Some("this `}` has no matching `{`".to_string())
+    } else if only_end {
+        keyword_case_help(token)
+    } else {
+        None
+    };
+    if let Some(help) = help {
+        diag = diag.help(help);
+    }
+
+    let expects_closer = has(Rule::rbrace) || has(Rule::rparen) || has(Rule::rbracket);
+    if at_end && expects_closer && let Some(&open) = chunk.unclosed.last() {
+        let bracket = &text[open..open + 1];
+        let closer = match bracket {
+            "(" => ")",
+            "[" => "]",
+            _ => "}",
+        };
+        diag = diag.with_related(Span::new(file, open, open + 1), format!("this `{bracket}` is never closed"));
+        if diag.help.is_none() {
+            diag = diag.help(format!("add the missing `{closer}`"));
+        }
+    }
+    diag
+}
+
+/// When `token` is a unit written apart from the number before it (`90 deg`),
+/// that number.
+fn detached_number<'t>(text: &'t str, token_start: usize, token: &str) -> Option<&'t str> {
+    if !(UNIT_WORDS.contains(&token) || token == "%") {
+        return None;
+    }
+    let before = &text[..token_start];
+    let trimmed = before.trim_end_matches([' ', '\t']);
+    if trimmed.len() == before.len() {
+        return None;
+    }
+    let number_start = trimmed
+        .rfind(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | 'e' | 'E' | '+')))
+        .map_or(0, |k| k + 1);
+    let number = &trimmed[number_start..];
+    number.bytes().any(|b| b.is_ascii_digit()).then_some(number)
+}
+
+// ------------------------------------------------------------ pairs → AST
+
+/// Turns the pairs of one chunk into AST nodes. Spans are offset by `base`,
+/// the chunk's offset in the file.
+struct Builder<'t, 'd> {
+    text: &'t str,
+    file: FileId,
+    base: usize,
+    diags: &'d mut Vec<Diag>,
+    /// Whether this statement's "expression too deep" was reported already.
+    expr_too_deep: bool,
+}
+
+type P<'i> = Pair<'i, Rule>;
+
+fn is_punctuation(rule: Rule) -> bool {
+    matches!(
+        rule,
+        Rule::lbrace
+            | Rule::rbrace
+            | Rule::lparen
+            | Rule::rparen
+            | Rule::lbracket
+            | Rule::rbracket
+            | Rule::comma
+            | Rule::dot
+            | Rule::EOI
+    )
+}
+
+/// The children of `pair` that carry meaning (punctuation left out).
+fn children(pair: P<'_>) -> impl Iterator<Item = P<'_>> {
+    pair.into_inner().filter(|p| !is_punctuation(p.as_rule()))
+}
+
+impl Builder<'_, '_> {
+    fn span(&self, pair: &P<'_>) -> Span {
+        let s = pair.as_span();
+        Span::new(self.file, self.base + s.start(), self.base + s.end())
+    }
+
+    fn ident(&self, pair: &P<'_>) -> Ident {
+        Spanned::new(pair.as_str().to_string(), self.span(pair))
+    }
+
+    fn statement(&mut self, pair: P<'_>) -> Option<Stmt> {
+        let span = self.span(&pair);
+        Some(match pair.as_rule() {
+            Rule::scenario => {
+                let title = self.string(&children(pair).nth(1).expect("grammar guarantees a title"));
+                Stmt::Scenario { title, span }
+            }
+            Rule::include => {
+                let path = self.string(&children(pair).nth(1).expect("grammar guarantees a path"));
+                Stmt::Include { path, span }
+            }
+            Rule::world => Stmt::World(self.world(pair)),
+            Rule::robot => Stmt::Robot(self.robot(pair)),
+            Rule::plan => Stmt::Plan(self.plan(pair)),
+            Rule::expect => {
+                let expr = children(pair).nth(1).expect("grammar guarantees an expression");
+                Stmt::Expect(self.expr(expr)?.0)
+            }
+            rule => unreachable!("grammar guarantees a statement, got {rule:?}"),
+        })
+    }
+
+    fn world(&mut self, pair: P<'_>) -> WorldBlock {
+        let span = self.span(&pair);
+        let mut inner = children(pair);
+        let keyword = self.span(&inner.next().expect("grammar guarantees `world`"));
+        let items = inner.map(|item| self.world_item(item)).collect();
+        WorldBlock { items, keyword, span }
+    }
+
+    fn world_item(&mut self, pair: P<'_>) -> WorldItem {
+        let span = self.span(&pair);
+        let rule = pair.as_rule();
+        let mut inner = children(pair).peekable();
+        let keyword = inner.next().expect("grammar guarantees a keyword");
+        if rule == Rule::bounds {
+            let min = self.value(inner.next().expect("grammar guarantees a min corner"));
+            let max = self.value(inner.next().expect("grammar guarantees a max corner"));
+            return WorldItem::Bounds { min, max, span };
+        }
+        let kind = match rule {
+            Rule::rect_obstacle => ObstacleKind::Rect,
+            Rule::polygon_obstacle => ObstacleKind::Polygon,
+            Rule::segment_obstacle => ObstacleKind::Segment,
+            Rule::disk_obstacle => ObstacleKind::Disk,
+            Rule::grid_obstacle => ObstacleKind::Grid,
+            rule => unreachable!("grammar guarantees a world item, got {rule:?}"),
+        };
+        let name = inner.next_if(|p| p.as_rule() == Rule::ident).map(|p| self.ident(&p));
+        let mut next_value = |this: &mut Self| {
+            this.value(inner.next().expect("grammar guarantees the obstacle's values"))
+        };
+        let shape = match kind {
+            ObstacleKind::Rect => ObstacleShape::Rect(next_value(self), next_value(self)),
+            ObstacleKind::Polygon => ObstacleShape::Polygon(next_value(self)),
+            ObstacleKind::Segment => ObstacleShape::Segment(next_value(self), next_value(self)),
+            ObstacleKind::Disk => ObstacleShape::Disk(next_value(self), next_value(self)),
+            ObstacleKind::Grid => ObstacleShape::Grid(self.grid(inner, span)),
+        };
+        WorldItem::Obstacle(ObstacleDecl {
+            kind: Spanned::new(kind, self.span(&keyword)),
+            name,
+            shape,
+            span,
+        })
+    }
+
+    /// The rest of a `grid` item after its name. A repeated `cell` or
+    /// `origin` is an error; the first one is kept.
+    fn grid<'i>(&mut self, options: impl Iterator<Item = P<'i>>, span: Span) -> GridSpec {
+        let mut grid = GridSpec { file: None, cell: None, origin: None, rows: None, span };
+        let mut cell_span: Option<Span> = None;
+        let mut origin_span: Option<Span> = None;
+        for option in options {
+            let option_span = self.span(&option);
+            match option.as_rule() {
+                Rule::string => grid.file = Some(self.string(&option)),
+                Rule::grid_rows => {
+                    grid.rows = Some(children(option).map(|row| self.string(&row)).collect());
+                }
+                rule @ (Rule::grid_cell | Rule::grid_origin) => {
+                    let (first, slot, key) = if rule == Rule::grid_cell {
+                        (&mut cell_span, &mut grid.cell, "cell")
+                    } else {
+                        (&mut origin_span, &mut grid.origin, "origin")
+                    };
+                    let value = children(option).nth(1).expect("grammar guarantees a value");
+                    let value = self.value(value);
+                    match *first {
+                        Some(first) => self.diags.push(
+                            Diag::error(
+                                "scen::syntax::duplicate_option",
+                                format!("`{key}` is given twice for this grid"),
+                            )
+                            .at(option_span, "given again here")
+                            .with_related(first, "first given here")
+                            .help(format!("keep one `{key}`")),
+                        ),
+                        None => {
+                            *first = Some(option_span);
+                            *slot = Some(value);
+                        }
+                    }
+                }
+                rule => unreachable!("grammar guarantees a grid option, got {rule:?}"),
+            }
+        }
+        grid
+    }
+
+    fn robot(&mut self, pair: P<'_>) -> RobotDecl {
+        let span = self.span(&pair);
+        let mut inner = children(pair).skip(1);
+        let name = self.ident(&inner.next().expect("grammar guarantees a robot name"));
+        let shape_pair = inner.next().expect("grammar guarantees a robot shape");
+        let shape_rule = shape_pair.as_rule();
+        let shape_span = self.span(&shape_pair);
+        let mut values = children(shape_pair).skip(1).map(|v| self.value(v));
+        let mut next = || values.next().expect("grammar guarantees the shape's values");
+        let shape = match shape_rule {
+            Rule::point_shape => RobotShape::Point(shape_span),
+            Rule::disk_shape => RobotShape::Disk(next()),
+            Rule::rect_shape => RobotShape::Rect(next(), next()),
+            Rule::polygon_shape => RobotShape::Polygon(next()),
+            rule => unreachable!("grammar guarantees a robot shape, got {rule:?}"),
+        };
+        RobotDecl { name, shape, span }
+    }
+
+    fn plan(&mut self, pair: P<'_>) -> PlanDecl {
+        let span = self.span(&pair);
+        let mut inner = children(pair).skip(1);
+        let mut next = || inner.next().expect("grammar guarantees `plan NAME KIND ROBOT { }`");
+        let name = self.ident(&next());
+        let kind = self.ident(&next());
+        let robot = self.ident(&next());
+        let body = self.param_tokens(next());
+        PlanDecl { name, kind, robot, body, span }
+    }
+
+    /// The tokens of a `{ ... }` block of plan parameters.
+    fn param_tokens(&mut self, block: P<'_>) -> Vec<ParamToken> {
+        let mut tokens = Vec::new();
+        for pair in children(block) {
+            tokens.push(match pair.as_rule() {
+                Rule::param_block => {
+                    let span = self.span(&pair);
+                    ParamToken::Block { tokens: self.param_tokens(pair), span }
+                }
+                Rule::word => ParamToken::Word(self.ident(&pair)),
+                Rule::value => ParamToken::Value(self.value(pair)),
+                rule => unreachable!("grammar guarantees a parameter token, got {rule:?}"),
+            });
+        }
+        self.check_detached_units(&tokens);
+        tokens
+    }
+
+    /// `90 deg` in a plan body parses as a number and a word; say what was meant.
+    fn check_detached_units(&mut self, tokens: &[ParamToken]) {
+        for pair in tokens.windows(2) {
+            let [ParamToken::Value(number), ParamToken::Word(unit)] = pair else {
+                continue;
+            };
+            let between = &self.text[number.span.end..unit.span.start];
+            if matches!(number.kind, ValueKind::Number(_))
+                && UNIT_WORDS.contains(&unit.value.as_str())
+                && between.chars().all(|c| c == ' ' || c == '\t')
+            {
+                let number_text = &self.text[number.span.start..number.span.end];
+                self.diags.push(
+                    Diag::error(
+                        "scen::syntax::detached_unit",
+                        format!("the unit `{}` is separated from its number", unit.value),
+                    )
+                    .at(number.span.to(unit.span), "a number, then a separate word")
+                    .help(format!("write the unit right after the number: `{number_text}{}`", unit.value)),
+                );
+            }
+        }
+    }
+
+    /// A `value` pair, or one of its alternatives, or a `word` in a container.
+    fn value(&mut self, pair: P<'_>) -> Value {
+        let span = self.span(&pair);
+        let kind = match pair.as_rule() {
+            Rule::value => {
+                return self.value(pair.into_inner().next().expect("grammar guarantees a value"));
+            }
+            Rule::number => self.quantity(pair),
+            Rule::string => ValueKind::Str(self.string(&pair).value),
+            Rule::word => ValueKind::Word(pair.as_str().to_string()),
+            Rule::tuple => ValueKind::Tuple(children(pair).map(|p| self.value(p)).collect()),
+            Rule::list => ValueKind::List(children(pair).map(|p| self.value(p)).collect()),
+            rule => unreachable!("grammar guarantees a value, got {rule:?}"),
+        };
+        Value { kind, span }
+    }
+
+    /// A `number` or `expr_number` pair: a number and its unit, converted to
+    /// radians, seconds or a fraction. Errors leave a `Number` placeholder.
+    fn quantity(&mut self, pair: P<'_>) -> ValueKind {
+        let span = self.span(&pair);
+        let mut inner = pair.into_inner();
+        let literal = inner.next().expect("grammar guarantees a literal");
+        let x = match literal.as_str().parse::<f64>() {
+            Ok(x) if x.is_finite() => x,
+            _ => {
+                self.diags.push(
+                    Diag::error("scen::syntax::bad_number", "number out of range")
+                        .at(self.span(&literal), "too large for a 64-bit floating-point number")
+                        .help("numbers must lie within ±1.8e308"),
+                );
+                return ValueKind::Number(0.0);
+            }
+        };
+        let Some(unit) = inner.next() else {
+            return ValueKind::Number(x);
+        };
+        match unit.as_str() {
+            "deg" => ValueKind::Angle(x.to_radians()),
+            "rad" => ValueKind::Angle(x),
+            "%" => ValueKind::Percent(x / 100.0),
+            "ms" => ValueKind::Duration(x / 1000.0),
+            "s" => ValueKind::Duration(x),
+            other => {
+                let help = if other.eq_ignore_ascii_case("e") {
+                    "an exponent needs digits, as in `1e-3`"
+                } else {
+                    UNITS_HELP
+                };
+                self.diags.push(
+                    Diag::error("scen::syntax::bad_unit", format!("unknown unit `{other}`"))
+                        .at(self.span(&unit), "not a unit")
+                        .with_related(span, "in this number")
+                        .help(help),
+                );
+                ValueKind::Number(x)
+            }
+        }
+    }
+
+    /// A string literal without its quotes, with `\"` and `\\` unescaped.
+    fn string(&mut self, pair: &P<'_>) -> Spanned<String> {
+        let span = self.span(pair);
+        let raw = pair.as_str();
+        let body = &raw[1..raw.len() - 1];
+        let mut value = String::with_capacity(body.len());
+        let mut chars = body.char_indices();
+        while let Some((k, c)) = chars.next() {
+            if c != '\\' {
+                value.push(c);
+                continue;
+            }
+            let Some((_, escaped)) = chars.next() else { break };
+            match escaped {
+                '"' | '\\' => value.push(escaped),
+                other => {
+                    let start = span.start + 1 + k;
+                    let end = start + 1 + other.len_utf8();
+                    self.diags.push(
+                        Diag::error(
+                            "scen::syntax::bad_escape",
+                            format!("unknown escape `\\{other}` in a string"),
+                        )
+                        .at(Span::new(self.file, start, end), "not an escape")
+                        .help("the only escapes are `\\\"` and `\\\\`; write paths with `/`"),
+                    );
+                    value.push('\\');
+                    value.push(other);
+                }
+            }
+        }
+        Spanned::new(value, span)
+    }
+
+    // --------------------------------------------------------- expressions
+
+    /// An expression pair and the height of its tree; `None` after reporting
+    /// a tree taller than [`MAX_EXPR_HEIGHT`].
+    fn expr(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
+        let span = self.span(&pair);
+        let leaf = |kind| Some((Expr { kind, span }, 1));
+        match pair.as_rule() {
+            Rule::disjunction | Rule::conjunction | Rule::sum | Rule::product => self.chain(pair),
+            Rule::negation | Rule::unary => self.prefixed(pair),
+            Rule::comparison => self.comparison(pair),
+            Rule::paren => {
+                let inner = children(pair).next().expect("grammar guarantees `( expr )`");
+                // The span includes the parentheses, so an enclosing
+                // expression's span covers them too.
+                let (expr, height) = self.expr(inner)?;
+                Some((Expr { kind: expr.kind, span }, height))
+            }
+            Rule::expr_number => {
+                let kind = match self.quantity(pair) {
+                    ValueKind::Percent(x) => ExprKind::Percent(x),
+                    // Angle metrics (`turn`) are in radians.
+                    ValueKind::Number(x) | ValueKind::Angle(x) => ExprKind::Number(x),
+                    ValueKind::Duration(seconds) => {
+                        self.diags.push(
+                            Diag::error(
+                                "scen::syntax::unit_not_allowed",
+                                "a duration cannot appear in an expectation",
+                            )
+                            .at(span, "a duration")
+                            .help(format!(
+                                "metrics are plain numbers (`time_ms` is in milliseconds): write `{}`",
+                                seconds * 1000.0
+                            )),
+                        );
+                        ExprKind::Number(seconds)
+                    }
+                    other => unreachable!("a number literal is a quantity, got {other:?}"),
+                };
+                leaf(kind)
+            }
+            Rule::kw_true => leaf(ExprKind::Bool(true)),
+            Rule::kw_false => leaf(ExprKind::Bool(false)),
+            Rule::metric => {
+                let mut inner = children(pair);
+                let plan = self.ident(&inner.next().expect("grammar guarantees PLAN"));
+                let metric = self.ident(&inner.next().expect("grammar guarantees METRIC"));
+                leaf(ExprKind::Metric { plan, metric })
+            }
+            rule => unreachable!("grammar guarantees an expression, got {rule:?}"),
+        }
+    }
+
+    /// `a OP b OP c ...`, associating to the left.
+    fn chain(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
+        let mut inner = pair.into_inner();
+        let (mut acc, mut height) = self.expr(inner.next().expect("grammar guarantees an operand"))?;
+        while let Some(op) = inner.next() {
+            let rhs = inner.next().expect("grammar guarantees an operand after an operator");
+            let (rhs, rhs_height) = self.expr(rhs)?;
+            let span = acc.span.to(rhs.span);
+            let (lhs, rhs) = (Box::new(acc), Box::new(rhs));
+            let kind = match op.as_rule() {
+                Rule::kw_or => ExprKind::Or(lhs, rhs),
+                Rule::kw_and => ExprKind::And(lhs, rhs),
+                Rule::plus => ExprKind::Arith { op: ArithOp::Add, lhs, rhs },
+                Rule::minus => ExprKind::Arith { op: ArithOp::Sub, lhs, rhs },
+                Rule::star => ExprKind::Arith { op: ArithOp::Mul, lhs, rhs },
+                Rule::slash => ExprKind::Arith { op: ArithOp::Div, lhs, rhs },
+                rule => unreachable!("grammar guarantees an operator, got {rule:?}"),
+            };
+            acc = Expr { kind, span };
+            height = self.check_height(height.max(rhs_height) + 1, span)?;
+        }
+        Some((acc, height))
+    }
+
+    /// `not* comparison` or `-* primary`.
+    fn prefixed(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
+        let mut inner: Vec<P<'_>> = pair.into_inner().collect();
+        let operand = inner.pop().expect("grammar guarantees an operand");
+        let (mut acc, mut height) = self.expr(operand)?;
+        for op in inner.iter().rev() {
+            let span = self.span(op).to(acc.span);
+            let kind = match op.as_rule() {
+                Rule::kw_not => ExprKind::Not(Box::new(acc)),
+                Rule::minus => ExprKind::Neg(Box::new(acc)),
+                rule => unreachable!("grammar guarantees a prefix operator, got {rule:?}"),
+            };
+            acc = Expr { kind, span };
+            height = self.check_height(height + 1, span)?;
+        }
+        Some((acc, height))
+    }
+
+    /// `a`, `a OP b` or `a ~ b +- tol`.
+    fn comparison(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
+        let mut inner = pair.into_inner().filter(|p| p.as_rule() != Rule::plusminus);
+        let lhs = inner.next().expect("grammar guarantees an operand");
+        let Some(op) = inner.next() else {
+            return self.expr(lhs);
+        };
+        let mut operand = |this: &mut Self| {
+            this.expr(inner.next().expect("grammar guarantees an operand after an operator"))
+        };
+        let (lhs, lhs_height) = self.expr(lhs)?;
+        let (rhs, rhs_height) = operand(self)?;
+        let (kind, span, height) = if op.as_rule() == Rule::tilde {
+            let (tol, tol_height) = operand(self)?;
+            let span = lhs.span.to(tol.span);
+            let height = lhs_height.max(rhs_height).max(tol_height);
+            let kind = ExprKind::Approx { lhs: Box::new(lhs), rhs: Box::new(rhs), tol: Box::new(tol) };
+            (kind, span, height)
+        } else {
+            let op = match op.as_rule() {
+                Rule::lt => CompareOp::Lt,
+                Rule::le => CompareOp::Le,
+                Rule::gt => CompareOp::Gt,
+                Rule::ge => CompareOp::Ge,
+                Rule::eq => CompareOp::Eq,
+                Rule::ne => CompareOp::Ne,
+                rule => unreachable!("grammar guarantees a comparison, got {rule:?}"),
+            };
+            let span = lhs.span.to(rhs.span);
+            let kind = ExprKind::Compare { op, lhs: Box::new(lhs), rhs: Box::new(rhs) };
+            (kind, span, lhs_height.max(rhs_height))
+        };
+        let height = self.check_height(height + 1, span)?;
+        Some((Expr { kind, span }, height))
+    }
+
+    fn check_height(&mut self, height: usize, span: Span) -> Option<usize> {
+        if height <= MAX_EXPR_HEIGHT {
+            return Some(height);
+        }
+        if !self.expr_too_deep {
+            self.expr_too_deep = true;
+            self.diags.push(
+                Diag::error(
+                    "scen::syntax::too_deep",
+                    format!("expression nested more than {MAX_EXPR_HEIGHT} operators deep"),
+                )
+                .at(span, "this expression is too deep")
+                .help("split it into several `expect` statements"),
+            );
+        }
+        None
+    }
+}

@@ -1,0 +1,654 @@
+//! Streams a run to the Rerun viewer (SPEC 6), or saves it as an `.rrd`.
+//!
+//! One recording per scenario: application id `scen`, recording name the
+//! scenario's title (its file stem when it has none). Entities:
+//!
+//! | entity | archetype | timeline |
+//! |---|---|---|
+//! | `world/bounds` | LineStrips2D, closed | static |
+//! | `world/obstacles/NAME` | LineStrips2D (closed; disks as 64-gons), Boxes2D for a grid's blocked cells | static |
+//! | `plans/NAME/grown` | LineStrips2D, closed: the planner's grown obstacles | static |
+//! | `plans/NAME/path` | LineStrips2D: the path in (x, y) | static |
+//! | `plans/NAME/cspace/path` | LineStrips3D: the path in (x, y, θ), θ in radians as z (rotating robots) | static |
+//! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross) | `step` = i |
+//! | `plans/NAME/search` | Points2D: the expansions, in batches | `expansion` |
+//! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
+//!
+//! The search is logged in at most [`SEARCH_BATCHES`] batches; each batch
+//! holds only the configurations expanded since the previous one and is
+//! logged at the `expansion` index of its last node. The viewer shows the
+//! latest batch at the current time (the frontier moving); to see the
+//! whole closed set grow, set the view's visible time range on `expansion`
+//! to start at the beginning (the search is not re-sent cumulatively, which
+//! would multiply its size by the number of batches).
+//!
+//! Colours: obstacles grey, each plan its [`plan_colour`], failed checks red.
+//! The automatic `log_time` timeline is switched off, so a recording only
+//! has the timelines above.
+
+use std::net::{TcpStream, ToSocketAddrs};
+use std::path::PathBuf;
+use std::time::Duration;
+
+use rerun::external::re_uri::RedapUri;
+use rerun::{
+    Boxes2D, Color, EntityPath, EntityPathPart, LineStrips2D, LineStrips3D, Points2D, Radius,
+    RecordingStream, RecordingStreamBuilder, RecordingStreamResult, SpawnError, SpawnOptions,
+    TextLog, TextLogLevel,
+};
+
+use super::{
+    FAIL_RED, OBSTACLE_GREY, blocked_boxes, closed, obstacle_outline, plan_colour, robot_outline,
+};
+use crate::geometry::{Config, Point, Shape};
+use crate::planners::MetricValue;
+use crate::run::{PlanRun, RunReport};
+use crate::scenario::{Plan, Scenario};
+
+/// Where [`stream`] sends a run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ViewerTarget {
+    /// Write an `.rrd` file (`--save`).
+    Save(PathBuf),
+    /// Start the viewer, the `rerun` executable on PATH (`--spawn`). When a
+    /// process already listens on the default port, it is used instead.
+    Spawn,
+    /// Stream to a running viewer (`--connect [ADDR]`). `ADDR` is
+    /// `HOST:PORT` or a full `rerun+http://HOST:PORT/proxy` URL; the default
+    /// is Rerun 0.36's [`rerun::DEFAULT_CONNECT_URL`],
+    /// `rerun+http://127.0.0.1:9876/proxy`.
+    Connect(Option<String>),
+}
+
+/// Why a run could not be streamed. The messages are complete sentences
+/// for a warning: they say what to do.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewerError {
+    #[error("cannot write the Rerun recording `{}`: {message}", path.display())]
+    Save { path: PathBuf, message: String },
+    #[error(
+        "cannot start the Rerun viewer: `rerun` is not on PATH; \
+         install it with `pip install rerun-sdk==0.36.3`"
+    )]
+    ViewerMissing,
+    #[error("cannot start the Rerun viewer: {0}")]
+    Spawn(String),
+    #[error(
+        "`{0}` is not a Rerun viewer address; \
+         use `HOST:PORT` or `rerun+http://HOST:PORT/proxy`"
+    )]
+    BadAddress(String),
+    #[error(
+        "no Rerun viewer is listening at `{url}`; \
+         start one with `rerun`, or use `--spawn` or `--save FILE.rrd`"
+    )]
+    Unreachable { url: String },
+    #[error("streaming to the Rerun viewer failed: {0}")]
+    Stream(String),
+}
+
+/// Batches of the search stream, at most.
+pub(crate) const SEARCH_BATCHES: usize = 100;
+
+/// How long a TCP connection to the viewer may take before it counts as
+/// unreachable.
+const PROBE_TIMEOUT: Duration = Duration::from_secs(1);
+
+/// How long the final flush may wait for a connected viewer to take the data.
+const FLUSH_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// Streams the run to `target` and waits until the data has left (written
+/// to the file, or received by the viewer's server).
+///
+/// Errors are returned, never panics, so the caller can warn once and
+/// continue. An unreachable viewer is detected with a TCP probe before any
+/// data is produced (the SDK itself would silently buffer and retry), so
+/// `Connect` fails within about a second; `Spawn` may wait a few seconds
+/// for a starting viewer to listen.
+pub fn stream(report: &RunReport, target: &ViewerTarget) -> Result<(), ViewerError> {
+    let builder = RecordingStreamBuilder::new("scen")
+        .recording_name(recording_name(&report.scenario))
+        // The user asked for the stream: the `RERUN` variable does not veto it.
+        .enabled(true);
+    let stream_error = |e: rerun::RecordingStreamError| ViewerError::Stream(e.to_string());
+    let rec = match target {
+        ViewerTarget::Save(path) => builder.save(path).map_err(|e| ViewerError::Save {
+            path: path.clone(),
+            message: e.to_string(),
+        })?,
+        ViewerTarget::Spawn => {
+            let url = spawn_viewer()?;
+            builder.connect_grpc_opts(url).map_err(stream_error)?
+        }
+        ViewerTarget::Connect(addr) => {
+            let url = proxy_url(addr.as_deref())?;
+            if !listening(&url) {
+                return Err(ViewerError::Unreachable { url });
+            }
+            builder.connect_grpc_opts(url).map_err(stream_error)?
+        }
+    };
+    rec.set_log_time_enabled(false);
+    log_report(&rec, report).map_err(stream_error)?;
+    rec.flush_with_timeout(FLUSH_TIMEOUT)
+        .map_err(|e| ViewerError::Stream(e.to_string()))?;
+    if let ViewerTarget::Save(_) = target {
+        // Writes the file's footer now rather than when `rec` is dropped.
+        rec.finalize_deferred_sinks();
+    }
+    Ok(())
+}
+
+/// The scenario's title, or its file's stem.
+fn recording_name(scenario: &Scenario) -> String {
+    scenario.title.clone().unwrap_or_else(|| {
+        scenario.file.file_stem().map_or_else(
+            || scenario.file.display().to_string(),
+            |s| s.to_string_lossy().into(),
+        )
+    })
+}
+
+/// Starts the viewer (or finds one on the default port) and returns its
+/// URL once it listens.
+fn spawn_viewer() -> Result<String, ViewerError> {
+    let opts = SpawnOptions {
+        wait_for_bind: true,
+        hide_welcome_screen: true,
+        ..SpawnOptions::default()
+    };
+    let spawned = rerun::spawn(&opts).map_err(|e| match e {
+        SpawnError::ExecutableNotFoundInPath { .. } | SpawnError::ExecutableNotFound { .. } => {
+            ViewerError::ViewerMissing
+        }
+        SpawnError::Io(e) => ViewerError::Spawn(e.to_string()),
+    })?;
+    let url = format!("rerun+http://127.0.0.1:{}/proxy", spawned.port);
+    if listening(&url) {
+        Ok(url)
+    } else {
+        Err(ViewerError::Spawn(format!(
+            "`rerun` was started but does not listen on port {}",
+            spawned.port
+        )))
+    }
+}
+
+/// The proxy URL for a `--connect` address (see [`ViewerTarget::Connect`]).
+fn proxy_url(addr: Option<&str>) -> Result<String, ViewerError> {
+    let Some(addr) = addr.map(str::trim) else {
+        return Ok(rerun::DEFAULT_CONNECT_URL.to_string());
+    };
+    let mut url = if addr.contains("://") {
+        addr.to_string()
+    } else {
+        format!("rerun+http://{addr}")
+    };
+    if !url.ends_with("/proxy") {
+        url = format!("{}/proxy", url.trim_end_matches('/'));
+    }
+    match url.parse::<RedapUri>() {
+        Ok(RedapUri::Proxy(_)) => Ok(url),
+        _ => Err(ViewerError::BadAddress(addr.to_string())),
+    }
+}
+
+/// Whether something accepts TCP connections at the URL's host and port.
+fn listening(url: &str) -> bool {
+    let Ok(RedapUri::Proxy(proxy)) = url.parse::<RedapUri>() else {
+        return false;
+    };
+    let host = proxy.origin.format_host();
+    let Ok(addrs) = format!("{host}:{}", proxy.origin.port).to_socket_addrs() else {
+        return false;
+    };
+    addrs
+        .into_iter()
+        .any(|a| TcpStream::connect_timeout(&a, PROBE_TIMEOUT).is_ok())
+}
+
+fn log_report(rec: &RecordingStream, report: &RunReport) -> RecordingStreamResult<()> {
+    let scenario = &report.scenario;
+    log_world(rec, scenario)?;
+    let mut runs: Vec<(&Plan, &PlanRun)> = report
+        .plans
+        .iter()
+        .filter_map(|run| Some((scenario.plans.get(run.plan)?, run)))
+        .collect();
+    runs.sort_by_key(|(_, run)| run.plan);
+    for (plan, run) in runs {
+        log_plan(rec, scenario, plan, run)?;
+    }
+    log_checks(rec, report)
+}
+
+fn log_world(rec: &RecordingStream, scenario: &Scenario) -> RecordingStreamResult<()> {
+    let grey = rgb(OBSTACLE_GREY);
+    rec.log_static(
+        "world/bounds",
+        &LineStrips2D::new([strip(&closed(scenario.world.bounds.corners().to_vec()))])
+            .with_colors([rgb(OBSTACLE_GREY.map(|c| c / 2))])
+            .with_draw_order(5.0),
+    )?;
+    for obstacle in &scenario.world.obstacles {
+        let entity = entity(&["world", "obstacles", &obstacle.name]);
+        if let Shape::Grid(grid) = &obstacle.shape {
+            let boxes = blocked_boxes(grid);
+            let centres = boxes.iter().map(|b| {
+                [
+                    ((b.min.x + b.max.x) / 2.0) as f32,
+                    ((b.min.y + b.max.y) / 2.0) as f32,
+                ]
+            });
+            let halves = boxes
+                .iter()
+                .map(|b| [(b.width() / 2.0) as f32, (b.height() / 2.0) as f32]);
+            rec.log_static(
+                entity,
+                &Boxes2D::from_centers_and_half_sizes(centres, halves)
+                    .with_colors([grey])
+                    .with_draw_order(10.0),
+            )?;
+        } else {
+            let strips = obstacle_outline(&obstacle.shape);
+            rec.log_static(
+                entity,
+                &LineStrips2D::new(strips.iter().map(|s| strip(s)))
+                    .with_colors([grey])
+                    .with_radii([Radius::new_ui_points(1.5)])
+                    .with_draw_order(10.0),
+            )?;
+        }
+    }
+    Ok(())
+}
+
+fn log_plan(
+    rec: &RecordingStream,
+    scenario: &Scenario,
+    plan: &Plan,
+    run: &PlanRun,
+) -> RecordingStreamResult<()> {
+    let [r, g, b] = plan_colour(run.plan);
+    let colour = rgb([r, g, b]);
+    let faint = Color::from_unmultiplied_rgba(r, g, b, 110);
+    let name = plan.name.as_str();
+
+    let grown = &run.outcome.trace.grown_obstacles;
+    if !grown.is_empty() {
+        rec.log_static(
+            entity(&["plans", name, "grown"]),
+            &LineStrips2D::new(grown.iter().map(|p| strip(&closed(p.clone()))))
+                .with_colors([faint])
+                .with_draw_order(15.0),
+        )?;
+    }
+
+    log_search(rec, name, &run.outcome.trace.expansions, faint)?;
+
+    let Some(path) = run.outcome.path.as_deref().filter(|p| !p.is_empty()) else {
+        return Ok(());
+    };
+    let xy: Vec<Point> = path.iter().map(Config::xy).collect();
+    rec.log_static(
+        entity(&["plans", name, "path"]),
+        &LineStrips2D::new([strip(&xy)])
+            .with_colors([colour])
+            .with_radii([Radius::new_ui_points(2.5)])
+            .with_draw_order(30.0),
+    )?;
+
+    let Some(robot) = scenario.robots.get(plan.robot) else {
+        return Ok(());
+    };
+    if robot.shape.rotates() {
+        rec.log_static(
+            entity(&["plans", name, "cspace", "path"]),
+            &LineStrips3D::new(cspace_strips(path)).with_colors([colour]),
+        )?;
+    }
+    // A point robot is drawn as a cross 1% of the world's size.
+    let bounds = scenario.world.bounds;
+    let mark = 0.01 * bounds.width().max(bounds.height());
+    let body = entity(&["plans", name, "robot"]);
+    for (step, &c) in path.iter().enumerate() {
+        rec.set_time_sequence("step", step as i64);
+        let strips = robot_outline(&robot.shape, c, mark);
+        rec.log(
+            body.clone(),
+            &LineStrips2D::new(strips.iter().map(|s| strip(s)))
+                .with_colors([colour])
+                .with_radii([Radius::new_ui_points(1.5)])
+                .with_draw_order(40.0),
+        )?;
+    }
+    rec.reset_time();
+    Ok(())
+}
+
+/// The expansions in at most [`SEARCH_BATCHES`] batches of new nodes, each
+/// at the `expansion` index of its last node (see the module docs).
+fn log_search(
+    rec: &RecordingStream,
+    plan: &str,
+    expansions: &[Config],
+    colour: Color,
+) -> RecordingStreamResult<()> {
+    if expansions.is_empty() {
+        return Ok(());
+    }
+    let search = entity(&["plans", plan, "search"]);
+    let batch = expansions.len().div_ceil(SEARCH_BATCHES);
+    for (k, nodes) in expansions.chunks(batch).enumerate() {
+        let last = k * batch + nodes.len() - 1;
+        rec.set_time_sequence("expansion", last as i64);
+        rec.log(
+            search.clone(),
+            &Points2D::new(nodes.iter().map(|c| [c.x as f32, c.y as f32]))
+                .with_colors([colour])
+                .with_radii([Radius::new_ui_points(2.0)])
+                .with_draw_order(20.0),
+        )?;
+    }
+    rec.reset_time();
+    Ok(())
+}
+
+/// The path in (x, y, θ), cut where θ wraps around (a jump of more than
+/// π between neighbours), so the strip does not cross the whole θ range.
+fn cspace_strips(path: &[Config]) -> Vec<Vec<[f32; 3]>> {
+    let mut strips: Vec<Vec<[f32; 3]>> = Vec::new();
+    let mut previous: Option<f64> = None;
+    for c in path {
+        let wraps = previous.is_some_and(|t| (c.theta - t).abs() > std::f64::consts::PI);
+        if wraps || strips.is_empty() {
+            strips.push(Vec::new());
+        }
+        if let Some(current) = strips.last_mut() {
+            current.push([c.x as f32, c.y as f32, c.theta as f32]);
+        }
+        previous = Some(c.theta);
+    }
+    strips
+}
+
+/// One TextLog entry per check, on timeline `check` (the check's index):
+/// `PASS line 23: a.cost <= 90  (a.cost = 79.1)`, failures as errors in red.
+fn log_checks(rec: &RecordingStream, report: &RunReport) -> RecordingStreamResult<()> {
+    for (index, outcome) in report.checks.iter().enumerate() {
+        let Some(check) = report.scenario.checks.get(outcome.check) else {
+            continue;
+        };
+        let values: Vec<String> = outcome
+            .values
+            .iter()
+            .map(|(name, value)| match value {
+                MetricValue::Bool(b) => format!("{name} = {b}"),
+                MetricValue::Num(x) => format!("{name} = {x}"),
+            })
+            .collect();
+        let verdict = if outcome.passed { "PASS" } else { "FAIL" };
+        let mut text = format!("{verdict} line {}: {}", check.line, check.text);
+        if !values.is_empty() {
+            text = format!("{text}  ({})", values.join(", "));
+        }
+        let entry = if outcome.passed {
+            TextLog::new(text).with_level(TextLogLevel::INFO)
+        } else {
+            TextLog::new(text)
+                .with_level(TextLogLevel::ERROR)
+                .with_color(rgb(FAIL_RED))
+        };
+        rec.set_time_sequence("check", index as i64);
+        rec.log("checks", &entry)?;
+    }
+    rec.reset_time();
+    Ok(())
+}
+
+/// An entity path from parts taken literally (names need no escaping).
+fn entity(parts: &[&str]) -> EntityPath {
+    EntityPath::new(parts.iter().map(|&p| EntityPathPart::new(p)).collect())
+}
+
+fn strip(points: &[Point]) -> Vec<[f32; 2]> {
+    points.iter().map(|p| [p.x as f32, p.y as f32]).collect()
+}
+
+fn rgb([r, g, b]: [u8; 3]) -> Color {
+    Color::from_rgb(r, g, b)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::diagnostics::{SourceMap, Span};
+    use crate::geometry::{Aabb, ConvexPolygon, Grid, Obstacle, RobotShape, World};
+    use crate::planners::{PlanOutcome, Trace};
+    use crate::run::CheckOutcome;
+    use crate::scenario::{Check, Limits, Params, Robot};
+    use crate::syntax::ast::{Expr, ExprKind};
+
+    fn plan(name: &str, robot: usize) -> Plan {
+        Plan {
+            name: name.into(),
+            kind: "astar",
+            robot,
+            params: Params {
+                start: Config::new(1.0, 1.0, 0.0),
+                start_span: Span::default(),
+                goal: Some(Config::new(9.0, 4.0, 0.0)),
+                goal_span: None,
+                limits: Limits::default(),
+                seed: 0,
+                values: BTreeMap::new(),
+            },
+            span: Span::default(),
+        }
+    }
+
+    /// A rod and a point robot among a rectangle, a disk, a wall and a
+    /// grid; 250 expansions; one check passed and one failed.
+    fn report() -> RunReport {
+        let rod = ConvexPolygon {
+            vertices: vec![
+                Point::new(-1.0, -0.1),
+                Point::new(1.0, -0.1),
+                Point::new(1.0, 0.1),
+                Point::new(-1.0, 0.1),
+            ],
+        };
+        let obstacle = |name: &str, shape| Obstacle {
+            name: name.into(),
+            shape,
+        };
+        let scenario = Scenario {
+            file: PathBuf::from("scenarios/demo.scen"),
+            title: Some("Demo: the rod".into()),
+            world: World {
+                bounds: Aabb::from_corners(Point::new(0.0, 0.0), Point::new(10.0, 5.0)),
+                obstacles: vec![
+                    obstacle(
+                        "box",
+                        Shape::Rect(Aabb::from_corners(
+                            Point::new(4.0, 0.0),
+                            Point::new(5.0, 2.0),
+                        )),
+                    ),
+                    obstacle(
+                        "disk",
+                        Shape::Disk {
+                            center: Point::new(7.0, 3.0),
+                            radius: 0.5,
+                        },
+                    ),
+                    obstacle(
+                        "wall",
+                        Shape::Segment(Point::new(2.0, 3.0), Point::new(3.0, 5.0)),
+                    ),
+                    obstacle(
+                        "map",
+                        Shape::Grid(Grid {
+                            cell: 0.5,
+                            origin: Point::new(8.0, 0.0),
+                            width: 2,
+                            height: 2,
+                            cells: vec![0, 1, 0, 0],
+                        }),
+                    ),
+                ],
+            },
+            obstacle_spans: Vec::new(),
+            robots: vec![
+                Robot {
+                    name: "rod".into(),
+                    shape: RobotShape::Polygon(rod),
+                    span: Span::default(),
+                },
+                Robot {
+                    name: "dot".into(),
+                    shape: RobotShape::Point,
+                    span: Span::default(),
+                },
+            ],
+            plans: vec![plan("offline", 0), plan("dot", 1)],
+            checks: vec![Check {
+                expr: Expr {
+                    kind: ExprKind::Bool(true),
+                    span: Span::default(),
+                },
+                text: "offline.cost <= 90".into(),
+                line: 23,
+                span: Span::default(),
+            }],
+            sources: SourceMap::default(),
+        };
+        let path = vec![
+            Config::new(1.0, 1.0, 0.0),
+            Config::new(3.0, 2.5, 3.0),
+            Config::new(6.0, 2.5, -3.0),
+            Config::new(9.0, 4.0, 0.0),
+        ];
+        let expansions: Vec<Config> = (0..250)
+            .map(|i| Config::new(f64::from(i % 10), f64::from(i / 50), 0.0))
+            .collect();
+        let run = |plan, path| PlanRun {
+            plan,
+            outcome: PlanOutcome {
+                path,
+                trace: Trace {
+                    expansions: expansions.clone(),
+                    grown_obstacles: vec![vec![
+                        Point::new(3.5, 0.0),
+                        Point::new(5.5, 0.0),
+                        Point::new(5.5, 2.5),
+                    ]],
+                },
+                ..PlanOutcome::default()
+            },
+            metrics: BTreeMap::new(),
+            validation: None,
+        };
+        RunReport {
+            scenario,
+            plans: vec![run(1, Some(path.clone())), run(0, Some(path))],
+            checks: vec![
+                CheckOutcome {
+                    check: 0,
+                    passed: true,
+                    values: [("offline.cost".to_string(), MetricValue::Num(79.1))].into(),
+                },
+                CheckOutcome {
+                    check: 0,
+                    passed: false,
+                    values: [("offline.found".to_string(), MetricValue::Bool(false))].into(),
+                },
+            ],
+        }
+    }
+
+    fn temp_rrd(name: &str) -> PathBuf {
+        std::env::temp_dir().join(format!("scen-{}-{name}.rrd", std::process::id()))
+    }
+
+    #[test]
+    fn saves_a_non_empty_rrd() {
+        let path = temp_rrd("save");
+        let result = stream(&report(), &ViewerTarget::Save(path.clone()));
+        assert!(result.is_ok(), "{result:?}");
+        let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        let _ = std::fs::remove_file(&path);
+        assert!(size > 0, "empty recording");
+    }
+
+    #[test]
+    fn unwritable_path_is_an_error() {
+        let path = PathBuf::from("/nonexistent-scen-dir/out.rrd");
+        let result = stream(&report(), &ViewerTarget::Save(path));
+        assert!(
+            matches!(result, Err(ViewerError::Save { .. })),
+            "{result:?}"
+        );
+    }
+
+    #[test]
+    fn unreachable_viewer_fails_fast() {
+        // A port that was free a moment ago: nothing listens there.
+        let port = std::net::TcpListener::bind("127.0.0.1:0")
+            .and_then(|l| l.local_addr())
+            .map(|a| a.port())
+            .unwrap_or(1);
+        let started = std::time::Instant::now();
+        let target = ViewerTarget::Connect(Some(format!("127.0.0.1:{port}")));
+        let result = stream(&report(), &target);
+        assert!(
+            matches!(result, Err(ViewerError::Unreachable { .. })),
+            "{result:?}"
+        );
+        assert!(started.elapsed() < Duration::from_secs(3));
+    }
+
+    #[test]
+    fn connect_addresses_become_proxy_urls() {
+        let url = |a: Option<&str>| proxy_url(a).map_err(|e| e.to_string());
+        assert_eq!(
+            url(None),
+            Ok("rerun+http://127.0.0.1:9876/proxy".to_string())
+        );
+        assert_eq!(
+            url(Some("127.0.0.1:9000")),
+            Ok("rerun+http://127.0.0.1:9000/proxy".into())
+        );
+        assert_eq!(
+            url(Some("rerun+http://localhost:9877/proxy")),
+            Ok("rerun+http://localhost:9877/proxy".into())
+        );
+        assert_eq!(
+            url(Some("rerun+http://localhost:9877/")),
+            Ok("rerun+http://localhost:9877/proxy".into())
+        );
+        assert!(url(Some("ftp://x")).is_err());
+    }
+
+    #[test]
+    fn cspace_path_is_cut_where_theta_wraps() {
+        let path = [
+            Config::new(0.0, 0.0, 0.0),
+            Config::new(1.0, 0.0, 3.0),
+            Config::new(2.0, 0.0, -3.0),
+            Config::new(3.0, 0.0, -2.5),
+        ];
+        let strips = cspace_strips(&path);
+        assert_eq!(strips.iter().map(Vec::len).collect::<Vec<_>>(), [2, 2]);
+    }
+
+    #[test]
+    fn recording_name_falls_back_to_the_file_stem() {
+        let mut scenario = report().scenario;
+        assert_eq!(recording_name(&scenario), "Demo: the rod");
+        scenario.title = None;
+        assert_eq!(recording_name(&scenario), "demo");
+    }
+}
