@@ -1,7 +1,12 @@
 //! Simple polygons: normalisation, convexity, convex decomposition, hulls.
-//! (stub: to be implemented)
+//!
+//! All functions work in world units. Tolerances are relative to the size of
+//! the input (its bounding box), so that a polygon given in millimetres and
+//! the same polygon given in metres are treated alike.
 
-use super::{ConvexPolygon, Point};
+use std::collections::HashMap;
+
+use super::{ConvexPolygon, Point, Vector};
 
 /// Why a vertex list is not a simple polygon.
 #[derive(Clone, Debug, PartialEq)]
@@ -13,6 +18,10 @@ pub enum PolygonError {
     /// Edges `i` and `j` (indices into the input, edge i = v_i → v_{i+1}) cross or overlap.
     SelfIntersecting { edges: (usize, usize) },
 }
+
+/// Relative tolerance: two points closer than `REL_TOL · size` are the same
+/// point, a vertex closer than that to the line of its neighbours is collinear.
+const REL_TOL: f64 = 1e-10;
 
 /// Twice the signed area (positive when counter-clockwise).
 pub fn signed_area2(points: &[Point]) -> f64 {
@@ -26,27 +35,754 @@ pub fn signed_area2(points: &[Point]) -> f64 {
         .sum()
 }
 
+/// 2D cross product of two vectors (z of the 3D cross product).
+fn cross(u: Vector, v: Vector) -> f64 {
+    u.x * v.y - u.y * v.x
+}
+
+/// Orientation of the turn `a → b → c`: positive for a left turn.
+fn orient(a: Point, b: Point, c: Point) -> f64 {
+    cross(b - a, c - b)
+}
+
+/// The largest side of the bounding box of `points` (0 for fewer than 2).
+fn extent(points: &[Point]) -> f64 {
+    let Some(first) = points.first() else {
+        return 0.0;
+    };
+    let (mut lo, mut hi) = (*first, *first);
+    for p in points {
+        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    (hi.x - lo.x).max(hi.y - lo.y)
+}
+
+/// The absolute length tolerance for `points`.
+fn length_tolerance(points: &[Point]) -> f64 {
+    REL_TOL * extent(points)
+}
+
+/// Distance from `p` to the closed segment `ab`.
+fn distance_point_segment(p: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 { ((p - a).dot(&ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    (p - (a + ab * t)).norm()
+}
+
+/// Distance between the closed segments `ab` and `cd` (0 when they meet).
+fn distance_segment_segment(a: Point, b: Point, c: Point, d: Point) -> f64 {
+    let (o1, o2) = (orient(a, b, c), orient(a, b, d));
+    let (o3, o4) = (orient(c, d, a), orient(c, d, b));
+    if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
+        return 0.0;
+    }
+    distance_point_segment(a, c, d)
+        .min(distance_point_segment(b, c, d))
+        .min(distance_point_segment(c, a, b))
+        .min(distance_point_segment(d, a, b))
+}
+
+/// Deviation of the turn `a → b → c` from a straight line: the distance of
+/// the shorter edge's far end from the longer edge's line. Edges must not be
+/// degenerate.
+fn turn_deviation(a: Point, b: Point, c: Point) -> f64 {
+    let (e1, e2) = (b - a, c - b);
+    cross(e1, e2).abs() / e1.norm().max(e2.norm())
+}
+
 /// Removes duplicate and collinear vertices, checks that the polygon is
 /// simple with non-zero area, and returns it counter-clockwise.
+///
+/// # Behaviour
+/// Consecutive duplicates (also the last vertex repeating the first) are
+/// dropped, then vertices lying on the line of their neighbours, between
+/// them, are dropped until none is left. Points count as equal and vertices
+/// as collinear within `1e-10 ×` the larger side of the bounding box.
+///
+/// # Arguments
+/// * `points` — the vertices in order around the boundary, either
+///   orientation; finite coordinates.
+///
+/// # Returns
+/// The cleaned vertex list, counter-clockwise, or:
+/// * [`PolygonError::TooFewVertices`] when fewer than 3 vertices are left;
+/// * [`PolygonError::SelfIntersecting`] when two edges cross or touch (non
+///   adjacent edges) or overlap (adjacent edges folding back); the edge
+///   indices refer to `points` (edge `i` runs from `points[i]` to
+///   `points[i + 1]`), smaller index first;
+/// * [`PolygonError::ZeroArea`] when the remaining polygon is flat.
 pub fn normalize_simple_polygon(points: &[Point]) -> Result<Vec<Point>, PolygonError> {
-    let _ = points;
-    todo!("normalize_simple_polygon")
+    let n0 = points.len();
+    let tol = length_tolerance(points);
+    // Each kept vertex remembers its index in `points`, so that errors can
+    // name the input's edges.
+    let mut ring: Vec<(Point, usize)> = Vec::with_capacity(n0);
+    for (i, &p) in points.iter().enumerate() {
+        if ring.last().is_none_or(|&(q, _)| (p - q).norm() > tol) {
+            ring.push((p, i));
+        }
+    }
+    while ring.len() > 1 && (ring[ring.len() - 1].0 - ring[0].0).norm() <= tol {
+        ring.pop();
+    }
+
+    // Drop collinear vertices until none is left; a vertex where the boundary
+    // folds back onto itself makes its two edges overlap.
+    let mut changed = true;
+    while changed && ring.len() >= 3 {
+        changed = false;
+        let mut i = 0;
+        while i < ring.len() && ring.len() >= 3 {
+            let n = ring.len();
+            let (a, b, c) = (ring[(i + n - 1) % n].0, ring[i].0, ring[(i + 1) % n].0);
+            if turn_deviation(a, b, c) <= tol {
+                if (b - a).dot(&(c - b)) < 0.0 {
+                    let into = last_proper_edge(points, span(&ring, n0, (i + n - 1) % n));
+                    let out = first_proper_edge(points, span(&ring, n0, i));
+                    return Err(self_intersecting(into, out));
+                }
+                ring.remove(i);
+                changed = true;
+            } else {
+                i += 1;
+            }
+        }
+    }
+    if ring.len() < 3 {
+        return Err(PolygonError::TooFewVertices);
+    }
+
+    let n = ring.len();
+    for i in 0..n {
+        // Edges i and i+1 (and n-1 and 0) share a vertex and were checked
+        // above for folding back.
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let (a, b) = (ring[i].0, ring[(i + 1) % n].0);
+            let (c, d) = (ring[j].0, ring[(j + 1) % n].0);
+            if distance_segment_segment(a, b, c, d) <= tol {
+                let (e, f) = closest_input_edges(points, span(&ring, n0, i), span(&ring, n0, j));
+                return Err(self_intersecting(e, f));
+            }
+        }
+    }
+
+    let mut outline: Vec<Point> = ring.iter().map(|&(p, _)| p).collect();
+    let area2 = signed_area2(&outline);
+    if area2.abs() <= tol * extent(&outline) {
+        return Err(PolygonError::ZeroArea);
+    }
+    if area2 < 0.0 {
+        outline.reverse();
+    }
+    Ok(outline)
+}
+
+fn self_intersecting(i: usize, j: usize) -> PolygonError {
+    PolygonError::SelfIntersecting { edges: (i.min(j), i.max(j)) }
+}
+
+/// The input edges that make up edge `k` of the cleaned ring (the ring's
+/// vertex `k` to vertex `k + 1`), in order.
+fn span(ring: &[(Point, usize)], n0: usize, k: usize) -> impl Iterator<Item = usize> + Clone {
+    let from = ring[k].1;
+    let mut to = ring[(k + 1) % ring.len()].1;
+    if to <= from {
+        to += n0;
+    }
+    (from..to).map(move |e| e % n0)
+}
+
+fn edge_length(points: &[Point], e: usize) -> f64 {
+    (points[(e + 1) % points.len()] - points[e]).norm()
+}
+
+fn first_proper_edge(points: &[Point], mut edges: impl Iterator<Item = usize> + Clone) -> usize {
+    let first = edges.clone().next().unwrap_or(0);
+    edges.find(|&e| edge_length(points, e) > 0.0).unwrap_or(first)
+}
+
+fn last_proper_edge(points: &[Point], edges: impl Iterator<Item = usize> + Clone) -> usize {
+    let last = edges.clone().last().unwrap_or(0);
+    edges.filter(|&e| edge_length(points, e) > 0.0).last().unwrap_or(last)
+}
+
+/// The pair of input edges, one from each span, that come closest.
+fn closest_input_edges(
+    points: &[Point],
+    a: impl Iterator<Item = usize> + Clone,
+    b: impl Iterator<Item = usize> + Clone,
+) -> (usize, usize) {
+    let n = points.len();
+    let mut best = (f64::INFINITY, 0, 0);
+    for e in a {
+        for f in b.clone() {
+            let d = distance_segment_segment(points[e], points[(e + 1) % n], points[f], points[(f + 1) % n]);
+            if d < best.0 {
+                best = (d, e, f);
+            }
+        }
+    }
+    (best.1, best.2)
 }
 
 /// Whether a counter-clockwise polygon is convex.
+///
+/// # Arguments
+/// * `ccw` — a simple polygon without duplicate vertices, counter-clockwise
+///   (as returned by [`normalize_simple_polygon`]).
+///
+/// # Returns
+/// `true` when every turn is to the left or straight (within `1e-10 ×` the
+/// polygon's size) and the boundary goes around exactly once; `false` for
+/// fewer than 3 vertices or a clockwise polygon.
 pub fn is_convex(ccw: &[Point]) -> bool {
-    let _ = ccw;
-    todo!("is_convex")
+    let n = ccw.len();
+    if n < 3 {
+        return false;
+    }
+    let tol = length_tolerance(ccw);
+    let mut winding = 0.0;
+    for i in 0..n {
+        let (a, b, c) = (ccw[(i + n - 1) % n], ccw[i], ccw[(i + 1) % n]);
+        let (e1, e2) = (b - a, c - b);
+        if e1.norm() == 0.0 || e2.norm() == 0.0 {
+            return false;
+        }
+        let turn = cross(e1, e2);
+        if turn < 0.0 && turn_deviation(a, b, c) > tol {
+            return false;
+        }
+        winding += turn.atan2(e1.dot(&e2));
+    }
+    // A star polygon turns left everywhere but winds twice.
+    (winding - std::f64::consts::TAU).abs() < 1e-6
 }
 
 /// Convex pieces whose union is the polygon (counter-clockwise input).
+///
+/// # Behaviour
+/// Ear clipping triangulates the polygon, then Hertel–Mehlhorn removes
+/// every diagonal whose removal leaves both of its ends strictly convex.
+/// The result has at most 4 times the minimal number of convex pieces.
+/// Pieces meet along full edges (diagonals between two polygon vertices).
+///
+/// # Arguments
+/// * `ccw` — a simple polygon, counter-clockwise, without duplicate or
+///   collinear vertices (as returned by [`normalize_simple_polygon`]).
+///
+/// # Returns
+/// Convex polygons (counter-clockwise, no collinear vertices, non-zero
+/// area) that tile the polygon: their interiors are disjoint and their union
+/// is the polygon. A convex input is returned as its only piece; fewer than
+/// 3 vertices give no piece.
 pub fn convex_decomposition(ccw: &[Point]) -> Vec<ConvexPolygon> {
-    let _ = ccw;
-    todo!("convex_decomposition")
+    if ccw.len() < 3 {
+        return Vec::new();
+    }
+    if is_convex(ccw) {
+        return vec![ConvexPolygon { vertices: ccw.to_vec() }];
+    }
+    let triangles = ear_clipping(ccw);
+    let pieces = hertel_mehlhorn(ccw, triangles);
+    let tol = length_tolerance(ccw);
+    pieces
+        .into_iter()
+        .filter_map(|idx| {
+            let mut vertices: Vec<Point> = idx.iter().map(|&i| ccw[i]).collect();
+            remove_straight_vertices(&mut vertices, tol);
+            (vertices.len() >= 3 && signed_area2(&vertices) > 0.0).then_some(ConvexPolygon { vertices })
+        })
+        .collect()
+}
+
+/// Triangulates a simple counter-clockwise polygon by clipping ears: a
+/// vertex whose triangle with its two neighbours turns left and contains no
+/// other remaining vertex (not even on its boundary, so that triangles meet
+/// vertex to vertex).
+fn ear_clipping(pts: &[Point]) -> Vec<[usize; 3]> {
+    let n = pts.len();
+    let mut prev: Vec<usize> = (0..n).map(|i| (i + n - 1) % n).collect();
+    let mut next: Vec<usize> = (0..n).map(|i| (i + 1) % n).collect();
+    let mut triangles = Vec::with_capacity(n - 2);
+    let mut remaining = n;
+    let mut i = 0;
+    let mut misses = 0;
+    let is_ear = |i: usize, prev: &[usize], next: &[usize]| {
+        let (a, b, c) = (pts[prev[i]], pts[i], pts[next[i]]);
+        if orient(a, b, c) <= 0.0 {
+            return false;
+        }
+        let mut v = next[next[i]];
+        while v != prev[i] {
+            let p = pts[v];
+            if orient(a, b, p) >= 0.0 && orient(b, c, p) >= 0.0 && orient(c, a, p) >= 0.0 {
+                return false;
+            }
+            v = next[v];
+        }
+        true
+    };
+    while remaining > 3 {
+        let ear = if is_ear(i, &prev, &next) {
+            Some(i)
+        } else if misses > remaining {
+            // No proper ear: only rounding can cause this. Clip the most
+            // convex vertex so that the loop ends.
+            let mut best = (f64::NEG_INFINITY, i);
+            let mut v = i;
+            for _ in 0..remaining {
+                let turn = orient(pts[prev[v]], pts[v], pts[next[v]]);
+                if turn > best.0 {
+                    best = (turn, v);
+                }
+                v = next[v];
+            }
+            Some(best.1)
+        } else {
+            None
+        };
+        match ear {
+            Some(e) => {
+                let (a, c) = (prev[e], next[e]);
+                triangles.push([a, e, c]);
+                next[a] = c;
+                prev[c] = a;
+                remaining -= 1;
+                misses = 0;
+                // The neighbours' angles changed: look at them next.
+                i = a;
+            }
+            None => {
+                i = next[i];
+                misses += 1;
+            }
+        }
+    }
+    triangles.push([prev[i], i, next[i]]);
+    triangles
+}
+
+/// Merges triangles across diagonals while both ends of the diagonal stay
+/// strictly convex. Pieces are vertex index cycles, counter-clockwise.
+fn hertel_mehlhorn(pts: &[Point], triangles: Vec<[usize; 3]>) -> Vec<Vec<usize>> {
+    let mut pieces: Vec<Option<Vec<usize>>> = triangles.into_iter().map(|t| Some(t.to_vec())).collect();
+    // Directed edge → the piece that has it.
+    let mut owner: HashMap<(usize, usize), usize> = HashMap::new();
+    for (k, piece) in pieces.iter().enumerate() {
+        if let Some(p) = piece {
+            for j in 0..p.len() {
+                owner.insert((p[j], p[(j + 1) % p.len()]), k);
+            }
+        }
+    }
+    let mut diagonals: Vec<(usize, usize)> = owner.keys().copied().filter(|&(u, v)| u < v && owner.contains_key(&(v, u))).collect();
+    diagonals.sort_unstable();
+
+    let strictly_convex = |a: usize, b: usize, c: usize| {
+        let (e1, e2) = (pts[b] - pts[a], pts[c] - pts[b]);
+        cross(e1, e2) > 1e-12 * e1.norm() * e2.norm()
+    };
+    for (u, v) in diagonals {
+        let (Some(&ka), Some(&kb)) = (owner.get(&(u, v)), owner.get(&(v, u))) else {
+            continue;
+        };
+        if ka == kb {
+            continue;
+        }
+        let (Some(a), Some(b)) = (pieces[ka].as_ref(), pieces[kb].as_ref()) else {
+            continue;
+        };
+        // a = [v, …, u] (edge u → v closes it), b = [u, …, v].
+        let a = rotate_to(a, v);
+        let b = rotate_to(b, u);
+        let (la, lb) = (a.len(), b.len());
+        if !strictly_convex(a[la - 2], u, b[1]) || !strictly_convex(b[lb - 2], v, a[1]) {
+            continue;
+        }
+        let mut merged = a;
+        merged.extend_from_slice(&b[1..lb - 1]);
+        owner.remove(&(u, v));
+        owner.remove(&(v, u));
+        for j in 0..merged.len() {
+            owner.insert((merged[j], merged[(j + 1) % merged.len()]), ka);
+        }
+        pieces[ka] = Some(merged);
+        pieces[kb] = None;
+    }
+    pieces.into_iter().flatten().collect()
+}
+
+/// The cycle `cycle` rotated to start at vertex `start` (which it contains).
+fn rotate_to(cycle: &[usize], start: usize) -> Vec<usize> {
+    let k = cycle.iter().position(|&x| x == start).unwrap_or(0);
+    cycle[k..].iter().chain(&cycle[..k]).copied().collect()
+}
+
+/// Drops vertices of a cycle that lie on the line of their neighbours.
+fn remove_straight_vertices(vertices: &mut Vec<Point>, tol: f64) {
+    let mut i = 0;
+    while i < vertices.len() && vertices.len() > 3 {
+        let n = vertices.len();
+        let (a, b, c) = (vertices[(i + n - 1) % n], vertices[i], vertices[(i + 1) % n]);
+        if turn_deviation(a, b, c) <= tol {
+            vertices.remove(i);
+            i = i.saturating_sub(1);
+        } else {
+            i += 1;
+        }
+    }
 }
 
 /// Convex hull, counter-clockwise, without collinear points.
+///
+/// # Behaviour
+/// Andrew's monotone chain: O(n log n). Points on the hull's edges are not
+/// vertices. Non-finite points are ignored.
+///
+/// # Returns
+/// * the hull's vertices, counter-clockwise, starting at the lowest-x (then
+///   lowest-y) point, when the points span an area;
+/// * the two extreme points (lexicographically smallest first) when all
+///   points lie on one line;
+/// * the single point when all points coincide; nothing for no input.
 pub fn convex_hull(points: &[Point]) -> Vec<Point> {
-    let _ = points;
-    todo!("convex_hull")
+    let mut pts: Vec<Point> = points.iter().copied().filter(|p| p.x.is_finite() && p.y.is_finite()).collect();
+    pts.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let mut hull: Vec<Point> = Vec::with_capacity(2 * pts.len());
+    // Lower chain left to right, then upper chain right to left; each pops
+    // the points where it would not turn strictly left.
+    for &p in &pts {
+        while hull.len() >= 2 && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+            hull.pop();
+        }
+        hull.push(p);
+    }
+    let lower_len = hull.len() + 1;
+    for &p in pts.iter().rev().skip(1) {
+        while hull.len() >= lower_len && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+            hull.pop();
+        }
+        hull.push(p);
+    }
+    hull.pop(); // the first point again
+    hull
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn pts(v: &[(f64, f64)]) -> Vec<Point> {
+        v.iter().map(|&(x, y)| Point::new(x, y)).collect()
+    }
+
+    /// Point in polygon by crossing number (boundary points are ambiguous;
+    /// callers avoid them).
+    fn contains(poly: &[Point], p: Point) -> bool {
+        let n = poly.len();
+        let mut inside = false;
+        for i in 0..n {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            if (a.y > p.y) != (b.y > p.y) {
+                let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if p.x < x {
+                    inside = !inside;
+                }
+            }
+        }
+        inside
+    }
+
+    fn convex_contains(poly: &ConvexPolygon, p: Point) -> bool {
+        let v = &poly.vertices;
+        (0..v.len()).all(|i| orient(v[i], v[(i + 1) % v.len()], p) >= 0.0)
+    }
+
+    fn near_boundary(poly: &[Point], p: Point, d: f64) -> bool {
+        (0..poly.len()).any(|i| distance_point_segment(p, poly[i], poly[(i + 1) % poly.len()]) < d)
+    }
+
+    fn assert_valid_piece(piece: &ConvexPolygon) {
+        let v = &piece.vertices;
+        assert!(v.len() >= 3, "piece {v:?}");
+        assert!(signed_area2(v) > 0.0, "piece not ccw: {v:?}");
+        for i in 0..v.len() {
+            let turn = orient(v[(i + v.len() - 1) % v.len()], v[i], v[(i + 1) % v.len()]);
+            assert!(turn > 0.0, "piece has a reflex or straight vertex: {v:?}");
+        }
+    }
+
+    /// Area sum and containment sampling: the pieces tile the polygon.
+    fn assert_tiles(poly: &[Point], pieces: &[ConvexPolygon]) {
+        for piece in pieces {
+            assert_valid_piece(piece);
+        }
+        let total: f64 = pieces.iter().map(|p| signed_area2(&p.vertices)).sum();
+        let area = signed_area2(poly);
+        assert!((total - area).abs() <= 1e-9 * area.abs().max(1.0), "areas {total} vs {area}");
+        let (lo, hi) = poly.iter().fold(
+            (Point::new(f64::INFINITY, f64::INFINITY), Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY)),
+            |(lo, hi), p| (Point::new(lo.x.min(p.x), lo.y.min(p.y)), Point::new(hi.x.max(p.x), hi.y.max(p.y))),
+        );
+        let steps = 37;
+        for i in 0..=steps {
+            for j in 0..=steps {
+                let p = Point::new(
+                    lo.x + (hi.x - lo.x) * (i as f64 + 0.31) / (steps as f64 + 1.0),
+                    lo.y + (hi.y - lo.y) * (j as f64 + 0.17) / (steps as f64 + 1.0),
+                );
+                let scale = (hi.x - lo.x).max(hi.y - lo.y);
+                if near_boundary(poly, p, 1e-9 * scale)
+                    || pieces.iter().any(|pc| near_boundary(&pc.vertices, p, 1e-9 * scale))
+                {
+                    continue;
+                }
+                let in_pieces = pieces.iter().filter(|pc| convex_contains(pc, p)).count();
+                assert_eq!(in_pieces, usize::from(contains(poly, p)), "point {p:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn normalize_reverses_clockwise_input() {
+        let out = normalize_simple_polygon(&pts(&[(0.0, 0.0), (0.0, 1.0), (1.0, 1.0), (1.0, 0.0)])).unwrap();
+        assert!(signed_area2(&out) > 0.0);
+        assert_eq!(out.len(), 4);
+    }
+
+    #[test]
+    fn normalize_removes_duplicates_and_collinear_vertices() {
+        let out = normalize_simple_polygon(&pts(&[
+            (0.0, 0.0),
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 2.0),
+            (1.0, 1.0),
+            (0.0, 0.0),
+        ]))
+        .unwrap();
+        assert_eq!(out, pts(&[(0.0, 0.0), (2.0, 0.0), (2.0, 2.0)]));
+    }
+
+    #[test]
+    fn normalize_removes_a_collinear_first_vertex() {
+        let out = normalize_simple_polygon(&pts(&[(1.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0), (0.0, 0.0)])).unwrap();
+        assert_eq!(out.len(), 4);
+        assert!(!out.contains(&Point::new(1.0, 0.0)));
+    }
+
+    #[test]
+    fn normalize_rejects_too_few_vertices() {
+        assert_eq!(normalize_simple_polygon(&[]), Err(PolygonError::TooFewVertices));
+        assert_eq!(
+            normalize_simple_polygon(&pts(&[(0.0, 0.0), (1.0, 1.0), (0.0, 0.0)])),
+            Err(PolygonError::TooFewVertices)
+        );
+        assert_eq!(
+            normalize_simple_polygon(&pts(&[(0.0, 0.0), (1.0, 1.0), (2.0, 2.0)])),
+            Err(PolygonError::TooFewVertices)
+        );
+    }
+
+    #[test]
+    fn normalize_reports_crossing_edges_by_input_index() {
+        // A bow tie: edge 0 (0,0)→(2,2) crosses edge 2 (2,0)→(0,2).
+        let e = normalize_simple_polygon(&pts(&[(0.0, 0.0), (2.0, 2.0), (2.0, 0.0), (0.0, 2.0)]));
+        assert_eq!(e, Err(PolygonError::SelfIntersecting { edges: (0, 2) }));
+    }
+
+    #[test]
+    fn normalize_maps_crossing_edges_through_removed_vertices() {
+        // Vertices 1 and 2 duplicate, vertices 1 to 3 are collinear: the
+        // cleaned bottom edge (0,0)→(4,0) is input edges 0 to 3, and input
+        // edge 5, (3,3)→(3,-1), crosses it within input edge 3.
+        let input = pts(&[
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (4.0, 0.0),
+            (3.0, 3.0),
+            (3.0, -1.0),
+            (0.0, -1.0),
+        ]);
+        let e = normalize_simple_polygon(&input);
+        assert_eq!(e, Err(PolygonError::SelfIntersecting { edges: (3, 5) }));
+    }
+
+    #[test]
+    fn normalize_reports_a_fold_back_as_overlapping_adjacent_edges() {
+        // (0,0) → (3,0) → (1,0): edges 0 and 1 overlap.
+        let e = normalize_simple_polygon(&pts(&[(0.0, 0.0), (3.0, 0.0), (1.0, 0.0), (1.0, 1.0)]));
+        assert_eq!(e, Err(PolygonError::SelfIntersecting { edges: (0, 1) }));
+    }
+
+    #[test]
+    fn normalize_rejects_a_vertex_touching_another_edge() {
+        // Vertex 3, (1,0), lies on edge 0, (0,0)→(2,0).
+        let e = normalize_simple_polygon(&pts(&[(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (1.0, 0.0), (0.0, 2.0)]));
+        assert!(matches!(e, Err(PolygonError::SelfIntersecting { .. })), "{e:?}");
+    }
+
+    #[test]
+    fn normalize_rejects_flat_polygons() {
+        // A sliver far thinner than the tolerance relative to its size.
+        let e = normalize_simple_polygon(&pts(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1e-11)]));
+        assert!(matches!(e, Err(PolygonError::TooFewVertices | PolygonError::ZeroArea)), "{e:?}");
+    }
+
+    #[test]
+    fn convexity() {
+        let square = pts(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]);
+        assert!(is_convex(&square));
+        let mut cw = square.clone();
+        cw.reverse();
+        assert!(!is_convex(&cw));
+        let l = pts(&[(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)]);
+        assert!(!is_convex(&l));
+        // Exactly straight vertices are allowed.
+        let with_straight = pts(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 1.0)]);
+        assert!(is_convex(&with_straight));
+        // A pentagram turns left everywhere but winds twice.
+        let star: Vec<Point> = (0..5)
+            .map(|k| {
+                let a = k as f64 * 2.0 * std::f64::consts::TAU / 5.0;
+                Point::new(a.cos(), a.sin())
+            })
+            .collect();
+        assert!(!is_convex(&star));
+    }
+
+    #[test]
+    fn decomposition_of_a_convex_polygon_is_itself() {
+        let square = pts(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]);
+        assert_eq!(convex_decomposition(&square), vec![ConvexPolygon { vertices: square }]);
+    }
+
+    #[test]
+    fn decomposition_of_an_l_shape_has_two_pieces() {
+        let l = pts(&[(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)]);
+        let pieces = convex_decomposition(&l);
+        assert_eq!(pieces.len(), 2);
+        assert_tiles(&l, &pieces);
+    }
+
+    #[test]
+    fn decomposition_of_a_comb() {
+        let comb = pts(&[
+            (0.0, 0.0),
+            (7.0, 0.0),
+            (7.0, 3.0),
+            (6.0, 3.0),
+            (6.0, 1.0),
+            (5.0, 1.0),
+            (5.0, 3.0),
+            (4.0, 3.0),
+            (4.0, 1.0),
+            (3.0, 1.0),
+            (3.0, 3.0),
+            (2.0, 3.0),
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 3.0),
+            (0.0, 3.0),
+        ]);
+        let pieces = convex_decomposition(&comb);
+        assert_tiles(&comb, &pieces);
+        assert!(pieces.len() <= 4 * 5, "{} pieces", pieces.len());
+    }
+
+    #[test]
+    fn decomposition_with_a_vertex_on_a_would_be_diagonal() {
+        // (2,1) lies on the segment (0,0)–(4,2) between two other vertices.
+        let poly = pts(&[(0.0, 0.0), (4.0, 0.0), (4.0, 2.0), (2.0, 1.0), (0.0, 3.0)]);
+        let outline = normalize_simple_polygon(&poly).unwrap();
+        assert_tiles(&outline, &convex_decomposition(&outline));
+    }
+
+    #[test]
+    fn hull_of_a_square_with_inner_and_edge_points() {
+        let h = convex_hull(&pts(&[(0.0, 0.0), (1.0, 0.0), (0.5, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)]));
+        assert_eq!(h, pts(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]));
+    }
+
+    #[test]
+    fn hull_of_degenerate_inputs() {
+        assert!(convex_hull(&[]).is_empty());
+        assert_eq!(convex_hull(&pts(&[(1.0, 1.0), (1.0, 1.0)])), pts(&[(1.0, 1.0)]));
+        assert_eq!(
+            convex_hull(&pts(&[(2.0, 2.0), (0.0, 0.0), (1.0, 1.0), (3.0, 3.0)])),
+            pts(&[(0.0, 0.0), (3.0, 3.0)])
+        );
+    }
+
+    fn star_polygon() -> impl Strategy<Value = Vec<Point>> {
+        // Star-shaped around the origin: sorted angles, random radii. Always
+        // simple; usually not convex.
+        prop::collection::vec((0.0..1.0f64, 0.2..3.0f64), 3..14).prop_map(|mut v| {
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            v.iter()
+                .enumerate()
+                .map(|(k, &(jitter, r))| {
+                    let a = (k as f64 + 0.8 * jitter) * std::f64::consts::TAU / v.len() as f64;
+                    Point::new(r * a.cos(), r * a.sin())
+                })
+                .collect()
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+
+        #[test]
+        fn decomposition_tiles_random_polygons(poly in star_polygon()) {
+            let outline = normalize_simple_polygon(&poly).unwrap();
+            assert_tiles(&outline, &convex_decomposition(&outline));
+        }
+
+        #[test]
+        fn normalize_keeps_area_and_is_idempotent(poly in star_polygon(), reverse in any::<bool>()) {
+            let mut input = poly.clone();
+            if reverse {
+                input.reverse();
+            }
+            let out = normalize_simple_polygon(&input).unwrap();
+            prop_assert!((signed_area2(&out) - signed_area2(&poly).abs()).abs() < 1e-9);
+            prop_assert_eq!(normalize_simple_polygon(&out).unwrap(), out);
+        }
+
+        #[test]
+        fn hull_contains_all_points_and_is_strictly_convex(
+            v in prop::collection::vec((-5.0..5.0f64, -5.0..5.0f64), 0..40)
+        ) {
+            let points = pts(&v);
+            let hull = convex_hull(&points);
+            if hull.len() >= 3 {
+                for i in 0..hull.len() {
+                    let n = hull.len();
+                    prop_assert!(orient(hull[(i + n - 1) % n], hull[i], hull[(i + 1) % n]) > 0.0);
+                }
+                for &p in &points {
+                    for i in 0..hull.len() {
+                        prop_assert!(orient(hull[i], hull[(i + 1) % hull.len()], p) >= -1e-12);
+                    }
+                }
+                prop_assert!(is_convex(&hull));
+            }
+            for h in &hull {
+                prop_assert!(points.contains(h));
+            }
+        }
+    }
 }

@@ -17,8 +17,8 @@ use pest::iterators::Pair;
 
 use super::ast::{
     self, ArithOp, CompareOp, Expr, ExprKind, GridSpec, Ident, ObstacleDecl, ObstacleKind,
-    ObstacleShape, ParamToken, PlanDecl, RobotDecl, RobotShape, Stmt, Value, ValueKind,
-    WorldBlock, WorldItem,
+    ObstacleShape, ParamToken, PlanDecl, RobotDecl, RobotShape, Stmt, Value, ValueKind, WorldBlock,
+    WorldItem,
 };
 use crate::diagnostics::{Diag, FileId, Span, Spanned, sort_diags};
 
@@ -104,7 +104,13 @@ struct Chunk {
 
 impl Chunk {
     fn new(start: usize, end: usize, is_statement: bool) -> Self {
-        Chunk { start, end, is_statement, lexical_errors: Vec::new(), unclosed: Vec::new() }
+        Chunk {
+            start,
+            end,
+            is_statement,
+            lexical_errors: Vec::new(),
+            unclosed: Vec::new(),
+        }
     }
 }
 
@@ -112,8 +118,9 @@ fn is_ident_byte(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_'
 }
 
+/// The blanks of the grammar's `WHITESPACE`.
 fn is_blank(c: char) -> bool {
-    matches!(c, ' ' | '\t' | '\r' | '\n' | '\u{000C}' | '\u{FEFF}')
+    matches!(c, ' ' | '\t'..='\r' | '\u{FEFF}')
 }
 
 /// Splits `text` into statement chunks; see the module docs.
@@ -141,12 +148,15 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                 i += 1;
                 continue;
             }
-            b' ' | b'\t' | b'\r' | 0x0C => {
+            b' ' | b'\t' | b'\r' | 0x0B | 0x0C => {
                 i += 1;
                 continue;
             }
             b'#' => {
-                i = bytes[i..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |k| i + k);
+                i = bytes[i..]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                    .map_or(bytes.len(), |k| i + k);
                 continue;
             }
             _ if bytes[i..].starts_with("\u{FEFF}".as_bytes()) => {
@@ -195,11 +205,20 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                 let (end, closed) = scan_string(bytes, i);
                 i = end;
                 if !closed {
-                    let end = if end > token_start + 1 && bytes[end - 1] == b'\r' { end - 1 } else { end };
+                    let end = if end > token_start + 1 && bytes[end - 1] == b'\r' {
+                        end - 1
+                    } else {
+                        end
+                    };
                     chunk.lexical_errors.push(
                         Diag::error("scen::syntax::unterminated_string", "unterminated string")
-                            .at(Span::new(file, token_start, end), "this string is never closed")
-                            .help("add the closing `\"` on the same line: a string cannot span lines"),
+                            .at(
+                                Span::new(file, token_start, end),
+                                "this string is never closed",
+                            )
+                            .help(
+                                "add the closing `\"` on the same line: a string cannot span lines",
+                            ),
                     );
                 }
             }
@@ -209,14 +228,20 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                     open.push(i);
                 }
                 if depth == MAX_NESTING + 1
-                    && !chunk.lexical_errors.iter().any(|d| d.code == "scen::syntax::too_deep")
+                    && !chunk
+                        .lexical_errors
+                        .iter()
+                        .any(|d| d.code == "scen::syntax::too_deep")
                 {
                     chunk.lexical_errors.push(
                         Diag::error(
                             "scen::syntax::too_deep",
                             format!("brackets are nested more than {MAX_NESTING} deep"),
                         )
-                        .at(Span::new(file, i, i + 1), format!("this `{}` is too deep", b as char))
+                        .at(
+                            Span::new(file, i, i + 1),
+                            format!("this `{}` is too deep", b as char),
+                        )
                         .help("flatten the value: `scen` accepts at most 64 nested brackets"),
                     );
                 }
@@ -284,8 +309,8 @@ fn token_end(text: &str, start: usize) -> usize {
     let Some(c) = rest.chars().next() else {
         return start;
     };
-    let starts_number =
-        c.is_ascii_digit() || (matches!(c, '.' | '-') && bytes.get(1).is_some_and(u8::is_ascii_digit));
+    let starts_number = c.is_ascii_digit()
+        || (matches!(c, '.' | '-') && bytes.get(1).is_some_and(u8::is_ascii_digit));
     let len = if starts_number {
         1 + bytes[1..]
             .iter()
@@ -299,7 +324,10 @@ fn token_end(text: &str, start: usize) -> usize {
             Some(k) => k + 1,
             None => bytes.len(),
         }
-    } else if ["<=", ">=", "==", "!=", "+-"].iter().any(|op| rest.starts_with(op)) {
+    } else if ["<=", ">=", "==", "!=", "+-"]
+        .iter()
+        .any(|op| rest.starts_with(op))
+    {
         2
     } else {
         c.len_utf8()
@@ -314,8 +342,11 @@ fn show(token: &str) -> String {
         .chars()
         .take(MAX_CHARS)
         .flat_map(|c| {
-            let escaped: Vec<char> =
-                if c.is_control() { c.escape_default().collect() } else { vec![c] };
+            let escaped: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
             escaped
         })
         .collect();
@@ -342,8 +373,10 @@ fn keyword_case_help(token: &str) -> Option<String> {
 fn not_a_statement(text: &str, file: FileId, start: usize) -> Diag {
     let end = token_end(text, start);
     let token = &text[start..end];
-    let diag = Diag::error("scen::syntax::expected", EXPECTED_STATEMENT)
-        .at(Span::new(file, start, end), format!("unexpected {}", show(token)));
+    let diag = Diag::error("scen::syntax::expected", EXPECTED_STATEMENT).at(
+        Span::new(file, start, end),
+        format!("unexpected {}", show(token)),
+    );
     match keyword_case_help(token) {
         Some(help) => diag.help(help),
         None => diag,
@@ -358,19 +391,15 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::plan_kind => "a planner kind (such as `astar`)",
         Rule::word => "a word",
         Rule::metric_name => "a metric name",
-        Rule::num_literal | Rule::unsigned_literal | Rule::number | Rule::expr_number => "a number",
+        Rule::number | Rule::expr_number => "a number",
         // Silent rules never reach an error message; the unit is optional.
-        Rule::unit_suffix
-        | Rule::WHITESPACE
-        | Rule::COMMENT
+        Rule::WHITESPACE
         | Rule::statement_chunk
         | Rule::statement
         | Rule::IDENT_START
         | Rule::IDENT_CHAR
         | Rule::IDENT
-        | Rule::DIGITS
-        | Rule::MANTISSA
-        | Rule::EXPONENT
+        | Rule::NUMBER_TAIL
         | Rule::element
         | Rule::world_item
         | Rule::grid_name
@@ -449,17 +478,31 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     };
     let at = skip_trivia(text, (chunk.start + pos).min(chunk.end));
     let at_end = at >= chunk.end;
-    let token_start = if at_end { skip_trivia(text, chunk.end) } else { at };
+    let token_start = if at_end {
+        skip_trivia(text, chunk.end)
+    } else {
+        at
+    };
     let token = &text[token_start..token_end(text, token_start)];
-    let found = if token.is_empty() { "the end of the file".to_string() } else { show(token) };
+    let found = if token.is_empty() {
+        "the end of the file".to_string()
+    } else {
+        show(token)
+    };
 
     let positives: Vec<Rule> = match &error.variant {
         ErrorVariant::ParsingError { positives, .. } => positives.clone(),
         ErrorVariant::CustomError { message } => {
             // pest's own call or stack limit: the depth check should prevent it.
-            return Diag::error("scen::syntax::too_deep", format!("statement too complex to parse ({message})"))
-                .at(Span::new(file, chunk.start, token_end(text, chunk.start)), "in this statement")
-                .help("split the statement or reduce its nesting");
+            return Diag::error(
+                "scen::syntax::too_deep",
+                format!("statement too complex to parse ({message})"),
+            )
+            .at(
+                Span::new(file, chunk.start, token_end(text, chunk.start)),
+                "in this statement",
+            )
+            .help("split the statement or reduce its nesting");
         }
     };
     let mut expected: Vec<&str> = Vec::new();
@@ -468,11 +511,10 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
             expected.push(description);
         }
     }
-    // "the end of the statement" reads best last.
-    if let Some(k) = expected.iter().position(|d| *d == "the end of the statement") {
-        let end = expected.remove(k);
-        expected.push(end);
-    }
+    // pest lists rules in grammar order; closing brackets and the end of the
+    // statement read best last.
+    let closing = ["`)`", "`]`", "`}`", "the end of the statement"];
+    expected.sort_by_key(|d| closing.iter().position(|c| c == d));
     let only_end = expected == ["the end of the statement"];
 
     let span = if at_end {
@@ -506,10 +548,12 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
         Some("approximate equality needs a tolerance: `A ~ B +- TOL`".to_string())
     } else if has(Rule::dot) {
         Some("refer to a metric as `PLAN.METRIC`, e.g. `offline.found`".to_string())
-    } else if token == "," && positives == [Rule::rparen] {
+    } else if token == "," && expected == ["`)`"] {
         Some("a point is `(x, y)` and a pose `(x, y, θ)`".to_string())
     } else if let Some(number) = detached_number(text, token_start, token) {
-        Some(format!("write the unit right after the number: `{number}{token}`"))
+        Some(format!(
+            "write the unit right after the number: `{number}{token}`"
+        ))
     } else if only_end && token == "}" {
         Some("this `}` has no matching `{`".to_string())
     } else if only_end {
@@ -522,14 +566,20 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     }
 
     let expects_closer = has(Rule::rbrace) || has(Rule::rparen) || has(Rule::rbracket);
-    if at_end && expects_closer && let Some(&open) = chunk.unclosed.last() {
+    if at_end
+        && expects_closer
+        && let Some(&open) = chunk.unclosed.last()
+    {
         let bracket = &text[open..open + 1];
         let closer = match bracket {
             "(" => ")",
             "[" => "]",
             _ => "}",
         };
-        diag = diag.with_related(Span::new(file, open, open + 1), format!("this `{bracket}` is never closed"));
+        diag = diag.with_related(
+            Span::new(file, open, open + 1),
+            format!("this `{bracket}` is never closed"),
+        );
         if diag.help.is_none() {
             diag = diag.help(format!("add the missing `{closer}`"));
         }
@@ -553,6 +603,31 @@ fn detached_number<'t>(text: &'t str, token_start: usize, token: &str) -> Option
         .map_or(0, |k| k + 1);
     let number = &trimmed[number_start..];
     number.bytes().any(|b| b.is_ascii_digit()).then_some(number)
+}
+
+/// Splits a number token (grammar rule `number`) into its literal, as Rust's
+/// `f64` parser reads it (`-`? digits, `.` digits, exponent), and the rest,
+/// which should be a unit.
+fn split_number(token: &str) -> (&str, &str) {
+    let b = token.as_bytes();
+    let digits_from = |mut i: usize| {
+        while b.get(i).is_some_and(u8::is_ascii_digit) {
+            i += 1;
+        }
+        i
+    };
+    let mut end = digits_from(usize::from(b.first() == Some(&b'-')));
+    if b.get(end) == Some(&b'.') && b.get(end + 1).is_some_and(u8::is_ascii_digit) {
+        end = digits_from(end + 1);
+    }
+    if matches!(b.get(end), Some(b'e' | b'E')) {
+        let sign = usize::from(matches!(b.get(end + 1), Some(b'+' | b'-')));
+        let exponent_end = digits_from(end + 1 + sign);
+        if exponent_end > end + 1 + sign {
+            end = exponent_end;
+        }
+    }
+    token.split_at(end)
 }
 
 // ------------------------------------------------------------ pairs → AST
@@ -604,7 +679,8 @@ impl Builder<'_, '_> {
         let span = self.span(&pair);
         Some(match pair.as_rule() {
             Rule::scenario => {
-                let title = self.string(&children(pair).nth(1).expect("grammar guarantees a title"));
+                let title =
+                    self.string(&children(pair).nth(1).expect("grammar guarantees a title"));
                 Stmt::Scenario { title, span }
             }
             Rule::include => {
@@ -615,7 +691,9 @@ impl Builder<'_, '_> {
             Rule::robot => Stmt::Robot(self.robot(pair)),
             Rule::plan => Stmt::Plan(self.plan(pair)),
             Rule::expect => {
-                let expr = children(pair).nth(1).expect("grammar guarantees an expression");
+                let expr = children(pair)
+                    .nth(1)
+                    .expect("grammar guarantees an expression");
                 Stmt::Expect(self.expr(expr)?.0)
             }
             rule => unreachable!("grammar guarantees a statement, got {rule:?}"),
@@ -627,7 +705,11 @@ impl Builder<'_, '_> {
         let mut inner = children(pair);
         let keyword = self.span(&inner.next().expect("grammar guarantees `world`"));
         let items = inner.map(|item| self.world_item(item)).collect();
-        WorldBlock { items, keyword, span }
+        WorldBlock {
+            items,
+            keyword,
+            span,
+        }
     }
 
     fn world_item(&mut self, pair: P<'_>) -> WorldItem {
@@ -648,9 +730,15 @@ impl Builder<'_, '_> {
             Rule::grid_obstacle => ObstacleKind::Grid,
             rule => unreachable!("grammar guarantees a world item, got {rule:?}"),
         };
-        let name = inner.next_if(|p| p.as_rule() == Rule::ident).map(|p| self.ident(&p));
+        let name = inner
+            .next_if(|p| p.as_rule() == Rule::ident)
+            .map(|p| self.ident(&p));
         let mut next_value = |this: &mut Self| {
-            this.value(inner.next().expect("grammar guarantees the obstacle's values"))
+            this.value(
+                inner
+                    .next()
+                    .expect("grammar guarantees the obstacle's values"),
+            )
         };
         let shape = match kind {
             ObstacleKind::Rect => ObstacleShape::Rect(next_value(self), next_value(self)),
@@ -670,7 +758,13 @@ impl Builder<'_, '_> {
     /// The rest of a `grid` item after its name. A repeated `cell` or
     /// `origin` is an error; the first one is kept.
     fn grid<'i>(&mut self, options: impl Iterator<Item = P<'i>>, span: Span) -> GridSpec {
-        let mut grid = GridSpec { file: None, cell: None, origin: None, rows: None, span };
+        let mut grid = GridSpec {
+            file: None,
+            cell: None,
+            origin: None,
+            rows: None,
+            span,
+        };
         let mut cell_span: Option<Span> = None;
         let mut origin_span: Option<Span> = None;
         for option in options {
@@ -718,7 +812,11 @@ impl Builder<'_, '_> {
         let shape_rule = shape_pair.as_rule();
         let shape_span = self.span(&shape_pair);
         let mut values = children(shape_pair).skip(1).map(|v| self.value(v));
-        let mut next = || values.next().expect("grammar guarantees the shape's values");
+        let mut next = || {
+            values
+                .next()
+                .expect("grammar guarantees the shape's values")
+        };
         let shape = match shape_rule {
             Rule::point_shape => RobotShape::Point(shape_span),
             Rule::disk_shape => RobotShape::Disk(next()),
@@ -732,12 +830,22 @@ impl Builder<'_, '_> {
     fn plan(&mut self, pair: P<'_>) -> PlanDecl {
         let span = self.span(&pair);
         let mut inner = children(pair).skip(1);
-        let mut next = || inner.next().expect("grammar guarantees `plan NAME KIND ROBOT { }`");
+        let mut next = || {
+            inner
+                .next()
+                .expect("grammar guarantees `plan NAME KIND ROBOT { }`")
+        };
         let name = self.ident(&next());
         let kind = self.ident(&next());
         let robot = self.ident(&next());
         let body = self.param_tokens(next());
-        PlanDecl { name, kind, robot, body, span }
+        PlanDecl {
+            name,
+            kind,
+            robot,
+            body,
+            span,
+        }
     }
 
     /// The tokens of a `{ ... }` block of plan parameters.
@@ -747,7 +855,10 @@ impl Builder<'_, '_> {
             tokens.push(match pair.as_rule() {
                 Rule::param_block => {
                     let span = self.span(&pair);
-                    ParamToken::Block { tokens: self.param_tokens(pair), span }
+                    ParamToken::Block {
+                        tokens: self.param_tokens(pair),
+                        span,
+                    }
                 }
                 Rule::word => ParamToken::Word(self.ident(&pair)),
                 Rule::value => ParamToken::Value(self.value(pair)),
@@ -776,7 +887,10 @@ impl Builder<'_, '_> {
                         format!("the unit `{}` is separated from its number", unit.value),
                     )
                     .at(number.span.to(unit.span), "a number, then a separate word")
-                    .help(format!("write the unit right after the number: `{number_text}{}`", unit.value)),
+                    .help(format!(
+                        "write the unit right after the number: `{number_text}{}`",
+                        unit.value
+                    )),
                 );
             }
         }
@@ -787,7 +901,11 @@ impl Builder<'_, '_> {
         let span = self.span(&pair);
         let kind = match pair.as_rule() {
             Rule::value => {
-                return self.value(pair.into_inner().next().expect("grammar guarantees a value"));
+                return self.value(
+                    pair.into_inner()
+                        .next()
+                        .expect("grammar guarantees a value"),
+                );
             }
             Rule::number => self.quantity(pair),
             Rule::string => ValueKind::Str(self.string(&pair).value),
@@ -803,23 +921,40 @@ impl Builder<'_, '_> {
     /// radians, seconds or a fraction. Errors leave a `Number` placeholder.
     fn quantity(&mut self, pair: P<'_>) -> ValueKind {
         let span = self.span(&pair);
-        let mut inner = pair.into_inner();
-        let literal = inner.next().expect("grammar guarantees a literal");
-        let x = match literal.as_str().parse::<f64>() {
+        let token = pair.as_str();
+        let (literal, unit) = split_number(token);
+        let unit_span = Span::new(self.file, span.start + literal.len(), span.end);
+        let unit_is_word = unit.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+            && unit.bytes().all(is_ident_byte);
+        if !(unit.is_empty() || unit == "%" || unit_is_word) {
+            let help = if unit.starts_with(['e', 'E']) {
+                "an exponent needs digits, as in `1e-3`"
+            } else {
+                "write numbers as `12`, `-3.5`, `1e-3` or `.5`"
+            };
+            self.diags.push(
+                Diag::error("scen::syntax::bad_number", format!("malformed number `{token}`"))
+                    .at(span, "not a number")
+                    .help(help),
+            );
+            return ValueKind::Number(0.0);
+        }
+        let x = match literal.parse::<f64>() {
             Ok(x) if x.is_finite() => x,
             _ => {
                 self.diags.push(
                     Diag::error("scen::syntax::bad_number", "number out of range")
-                        .at(self.span(&literal), "too large for a 64-bit floating-point number")
+                        .at(
+                            Span::new(self.file, span.start, span.start + literal.len()),
+                            "too large for a 64-bit floating-point number",
+                        )
                         .help("numbers must lie within ±1.8e308"),
                 );
                 return ValueKind::Number(0.0);
             }
         };
-        let Some(unit) = inner.next() else {
-            return ValueKind::Number(x);
-        };
-        match unit.as_str() {
+        match unit {
+            "" => ValueKind::Number(x),
             "deg" => ValueKind::Angle(x.to_radians()),
             "rad" => ValueKind::Angle(x),
             "%" => ValueKind::Percent(x / 100.0),
@@ -833,7 +968,7 @@ impl Builder<'_, '_> {
                 };
                 self.diags.push(
                     Diag::error("scen::syntax::bad_unit", format!("unknown unit `{other}`"))
-                        .at(self.span(&unit), "not a unit")
+                        .at(unit_span, "not a unit")
                         .with_related(span, "in this number")
                         .help(help),
                 );
@@ -854,7 +989,9 @@ impl Builder<'_, '_> {
                 value.push(c);
                 continue;
             }
-            let Some((_, escaped)) = chars.next() else { break };
+            let Some((_, escaped)) = chars.next() else {
+                break;
+            };
             match escaped {
                 '"' | '\\' => value.push(escaped),
                 other => {
@@ -888,11 +1025,19 @@ impl Builder<'_, '_> {
             Rule::negation | Rule::unary => self.prefixed(pair),
             Rule::comparison => self.comparison(pair),
             Rule::paren => {
-                let inner = children(pair).next().expect("grammar guarantees `( expr )`");
+                let inner = children(pair)
+                    .next()
+                    .expect("grammar guarantees `( expr )`");
                 // The span includes the parentheses, so an enclosing
                 // expression's span covers them too.
                 let (expr, height) = self.expr(inner)?;
-                Some((Expr { kind: expr.kind, span }, height))
+                Some((
+                    Expr {
+                        kind: expr.kind,
+                        span,
+                    },
+                    height,
+                ))
             }
             Rule::expr_number => {
                 let kind = match self.quantity(pair) {
@@ -932,19 +1077,38 @@ impl Builder<'_, '_> {
     /// `a OP b OP c ...`, associating to the left.
     fn chain(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
         let mut inner = pair.into_inner();
-        let (mut acc, mut height) = self.expr(inner.next().expect("grammar guarantees an operand"))?;
+        let (mut acc, mut height) =
+            self.expr(inner.next().expect("grammar guarantees an operand"))?;
         while let Some(op) = inner.next() {
-            let rhs = inner.next().expect("grammar guarantees an operand after an operator");
+            let rhs = inner
+                .next()
+                .expect("grammar guarantees an operand after an operator");
             let (rhs, rhs_height) = self.expr(rhs)?;
             let span = acc.span.to(rhs.span);
             let (lhs, rhs) = (Box::new(acc), Box::new(rhs));
             let kind = match op.as_rule() {
                 Rule::kw_or => ExprKind::Or(lhs, rhs),
                 Rule::kw_and => ExprKind::And(lhs, rhs),
-                Rule::plus => ExprKind::Arith { op: ArithOp::Add, lhs, rhs },
-                Rule::minus => ExprKind::Arith { op: ArithOp::Sub, lhs, rhs },
-                Rule::star => ExprKind::Arith { op: ArithOp::Mul, lhs, rhs },
-                Rule::slash => ExprKind::Arith { op: ArithOp::Div, lhs, rhs },
+                Rule::plus => ExprKind::Arith {
+                    op: ArithOp::Add,
+                    lhs,
+                    rhs,
+                },
+                Rule::minus => ExprKind::Arith {
+                    op: ArithOp::Sub,
+                    lhs,
+                    rhs,
+                },
+                Rule::star => ExprKind::Arith {
+                    op: ArithOp::Mul,
+                    lhs,
+                    rhs,
+                },
+                Rule::slash => ExprKind::Arith {
+                    op: ArithOp::Div,
+                    lhs,
+                    rhs,
+                },
                 rule => unreachable!("grammar guarantees an operator, got {rule:?}"),
             };
             acc = Expr { kind, span };
@@ -979,7 +1143,11 @@ impl Builder<'_, '_> {
             return self.expr(lhs);
         };
         let mut operand = |this: &mut Self| {
-            this.expr(inner.next().expect("grammar guarantees an operand after an operator"))
+            this.expr(
+                inner
+                    .next()
+                    .expect("grammar guarantees an operand after an operator"),
+            )
         };
         let (lhs, lhs_height) = self.expr(lhs)?;
         let (rhs, rhs_height) = operand(self)?;
@@ -987,7 +1155,11 @@ impl Builder<'_, '_> {
             let (tol, tol_height) = operand(self)?;
             let span = lhs.span.to(tol.span);
             let height = lhs_height.max(rhs_height).max(tol_height);
-            let kind = ExprKind::Approx { lhs: Box::new(lhs), rhs: Box::new(rhs), tol: Box::new(tol) };
+            let kind = ExprKind::Approx {
+                lhs: Box::new(lhs),
+                rhs: Box::new(rhs),
+                tol: Box::new(tol),
+            };
             (kind, span, height)
         } else {
             let op = match op.as_rule() {
@@ -1000,7 +1172,11 @@ impl Builder<'_, '_> {
                 rule => unreachable!("grammar guarantees a comparison, got {rule:?}"),
             };
             let span = lhs.span.to(rhs.span);
-            let kind = ExprKind::Compare { op, lhs: Box::new(lhs), rhs: Box::new(rhs) };
+            let kind = ExprKind::Compare {
+                op,
+                lhs: Box::new(lhs),
+                rhs: Box::new(rhs),
+            };
             (kind, span, lhs_height.max(rhs_height))
         };
         let height = self.check_height(height + 1, span)?;
@@ -1023,5 +1199,897 @@ impl Builder<'_, '_> {
             );
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse_ok(text: &str) -> Vec<Stmt> {
+        let (file, diags) = parse(text, 0);
+        assert!(
+            diags.is_empty(),
+            "unexpected diagnostics for {text:?}: {diags:#?}"
+        );
+        file.statements
+    }
+
+    fn errors(text: &str) -> Vec<Diag> {
+        let (_, diags) = parse(text, 0);
+        assert!(!diags.is_empty(), "expected an error for {text:?}");
+        diags
+    }
+
+    fn line_of(text: &str, span: Span) -> usize {
+        text[..span.start].matches('\n').count() + 1
+    }
+
+    fn expr(text: &str) -> Expr {
+        match parse_ok(&format!("expect {text}")).pop() {
+            Some(Stmt::Expect(e)) => e,
+            other => panic!("not an expect: {other:?}"),
+        }
+    }
+
+    /// An expression tree in prefix form, for compact assertions.
+    fn sexp(e: &Expr) -> String {
+        match &e.kind {
+            ExprKind::Number(x) => format!("{x}"),
+            ExprKind::Percent(x) => format!("{x}%"),
+            ExprKind::Bool(b) => format!("{b}"),
+            ExprKind::Metric { plan, metric } => format!("{}.{}", plan.value, metric.value),
+            ExprKind::Neg(a) => format!("(neg {})", sexp(a)),
+            ExprKind::Not(a) => format!("(not {})", sexp(a)),
+            ExprKind::Arith { op, lhs, rhs } => {
+                format!("({} {} {})", op.symbol(), sexp(lhs), sexp(rhs))
+            }
+            ExprKind::Compare { op, lhs, rhs } => {
+                format!("({} {} {})", op.symbol(), sexp(lhs), sexp(rhs))
+            }
+            ExprKind::Approx { lhs, rhs, tol } => {
+                format!("(~ {} {} {})", sexp(lhs), sexp(rhs), sexp(tol))
+            }
+            ExprKind::And(a, b) => format!("(and {} {})", sexp(a), sexp(b)),
+            ExprKind::Or(a, b) => format!("(or {} {})", sexp(a), sexp(b)),
+        }
+    }
+
+    fn snippet(text: &str, span: Span) -> &str {
+        &text[span.start..span.end]
+    }
+
+    fn number(v: &Value) -> f64 {
+        match v.kind {
+            ValueKind::Number(x) => x,
+            ref other => panic!("not a number: {other:?}"),
+        }
+    }
+
+    fn world_items(text: &str) -> Vec<WorldItem> {
+        match parse_ok(text).pop() {
+            Some(Stmt::World(w)) => w.items,
+            other => panic!("not a world: {other:?}"),
+        }
+    }
+
+    fn plan_body(text: &str) -> Vec<ParamToken> {
+        match parse_ok(text).pop() {
+            Some(Stmt::Plan(p)) => p.body,
+            other => panic!("not a plan: {other:?}"),
+        }
+    }
+
+    const APARTMENT: &str = r#"scenario "Apartment: the 8x1 rod"   # title
+include "common.scen"
+
+world {
+  bounds (0, 0) (32, 30)                  # min corner, max corner (required)
+  rect    B1 (0, 18) (10, 19)             # two opposite corners
+  polygon P1 [(1,1), (3,1), (2,4)]        # simple polygon, either orientation
+  segment W1 (26, 10) (26, 22)            # zero-thickness wall
+  disk    C1 (5, 5) 1.5                   # centre, radius
+  grid    G  "maps/arena.map" cell 1 origin (0, 0)      # MovingAI .map file
+  grid    F  cell 0.5 origin (0, 0) {                   # inline rows, top row first
+    "....##...."
+    "..3......."
+  }
+}
+
+robot rod  polygon [(0,0), (8,0), (8,1), (0,1)]   # convex, in the robot frame
+robot box  rect 2 1
+robot dot  disk 0.5
+robot p    point
+
+plan offline astar rod {
+  start (4, 24, 0deg)  goal (28, 4, 90deg)
+  cell 1 layers auto
+  limit expansions 100000 time 2s
+  drive unicycle { dt 0.02 max_speed 1.5 }
+}
+
+expect offline.found
+expect offline.collision_free
+expect offline.cost <= 90
+expect offline.expanded < 6000 and offline.nodes >= 10
+expect not tight.found
+expect live.traveled <= 50 * offline.length
+expect vg.length ~ 27.3137 +- 0.001
+expect cover.coverage == 100%
+"#;
+
+    #[test]
+    fn parses_every_construct_of_the_spec() {
+        let statements = parse_ok(APARTMENT);
+        assert_eq!(statements.len(), 16);
+        let Stmt::Scenario { title, span } = &statements[0] else {
+            panic!()
+        };
+        assert_eq!(title.value, "Apartment: the 8x1 rod");
+        assert_eq!(
+            snippet(APARTMENT, *span),
+            r#"scenario "Apartment: the 8x1 rod""#
+        );
+        let Stmt::Include { path, .. } = &statements[1] else {
+            panic!()
+        };
+        assert_eq!(path.value, "common.scen");
+        assert_eq!(snippet(APARTMENT, path.span), r#""common.scen""#);
+
+        let Stmt::World(world) = &statements[2] else {
+            panic!()
+        };
+        assert_eq!(snippet(APARTMENT, world.keyword), "world");
+        assert!(snippet(APARTMENT, world.span).starts_with("world {"));
+        assert!(snippet(APARTMENT, world.span).ends_with('}'));
+        assert_eq!(world.items.len(), 7);
+        let WorldItem::Bounds { min, max, span } = &world.items[0] else {
+            panic!()
+        };
+        assert_eq!(snippet(APARTMENT, *span), "bounds (0, 0) (32, 30)");
+        assert_eq!(snippet(APARTMENT, min.span), "(0, 0)");
+        let ValueKind::Tuple(xy) = &max.kind else {
+            panic!()
+        };
+        assert_eq!((number(&xy[0]), number(&xy[1])), (32.0, 30.0));
+
+        let names: Vec<_> = world.items[1..]
+            .iter()
+            .map(|item| match item {
+                WorldItem::Obstacle(o) => (o.kind.value, o.name.as_ref().map(|n| n.value.clone())),
+                _ => panic!(),
+            })
+            .collect();
+        use ObstacleKind::*;
+        let expected = [
+            (Rect, "B1"),
+            (Polygon, "P1"),
+            (Segment, "W1"),
+            (Disk, "C1"),
+            (Grid, "G"),
+            (Grid, "F"),
+        ];
+        assert_eq!(names, expected.map(|(k, n)| (k, Some(n.to_string()))));
+
+        let WorldItem::Obstacle(disk) = &world.items[4] else {
+            panic!()
+        };
+        assert_eq!(snippet(APARTMENT, disk.span), "disk    C1 (5, 5) 1.5");
+        assert_eq!(snippet(APARTMENT, disk.kind.span), "disk");
+        let ObstacleShape::Disk(_, radius) = &disk.shape else {
+            panic!()
+        };
+        assert_eq!(number(radius), 1.5);
+        let WorldItem::Obstacle(polygon) = &world.items[2] else {
+            panic!()
+        };
+        let ObstacleShape::Polygon(Value {
+            kind: ValueKind::List(points),
+            ..
+        }) = &polygon.shape
+        else {
+            panic!()
+        };
+        assert_eq!(points.len(), 3);
+
+        let WorldItem::Obstacle(g) = &world.items[5] else {
+            panic!()
+        };
+        let ObstacleShape::Grid(g) = &g.shape else {
+            panic!()
+        };
+        assert_eq!(
+            g.file.as_ref().map(|f| f.value.as_str()),
+            Some("maps/arena.map")
+        );
+        assert_eq!(g.cell.as_ref().map(number), Some(1.0));
+        assert!(matches!(
+            g.origin,
+            Some(Value {
+                kind: ValueKind::Tuple(_),
+                ..
+            })
+        ));
+        assert!(g.rows.is_none());
+        let WorldItem::Obstacle(f) = &world.items[6] else {
+            panic!()
+        };
+        let ObstacleShape::Grid(f) = &f.shape else {
+            panic!()
+        };
+        assert!(f.file.is_none());
+        assert_eq!(f.cell.as_ref().map(number), Some(0.5));
+        let rows: Vec<_> = f
+            .rows
+            .as_ref()
+            .unwrap()
+            .iter()
+            .map(|r| r.value.as_str())
+            .collect();
+        assert_eq!(rows, ["....##....", "..3......."]);
+
+        let robots: Vec<_> = statements[3..7]
+            .iter()
+            .map(|s| match s {
+                Stmt::Robot(r) => r,
+                _ => panic!(),
+            })
+            .collect();
+        assert_eq!(robots[0].name.value, "rod");
+        assert!(matches!(
+            robots[0].shape,
+            RobotShape::Polygon(Value {
+                kind: ValueKind::List(_),
+                ..
+            })
+        ));
+        let RobotShape::Rect(w, h) = &robots[1].shape else {
+            panic!()
+        };
+        assert_eq!((number(w), number(h)), (2.0, 1.0));
+        let RobotShape::Disk(r) = &robots[2].shape else {
+            panic!()
+        };
+        assert_eq!(number(r), 0.5);
+        let RobotShape::Point(span) = robots[3].shape else {
+            panic!()
+        };
+        assert_eq!(snippet(APARTMENT, span), "point");
+        assert_eq!(snippet(APARTMENT, robots[3].span), "robot p    point");
+
+        let Stmt::Plan(plan) = &statements[7] else {
+            panic!()
+        };
+        assert_eq!(
+            (plan.name.value.as_str(), plan.kind.value.as_str()),
+            ("offline", "astar")
+        );
+        assert_eq!(plan.robot.value, "rod");
+        assert!(snippet(APARTMENT, plan.span).starts_with("plan offline"));
+        assert!(snippet(APARTMENT, plan.span).ends_with('}'));
+        let words: Vec<String> = plan
+            .body
+            .iter()
+            .map(|t| match t {
+                ParamToken::Word(w) => w.value.clone(),
+                ParamToken::Value(v) => format!("<{}>", v.kind.describe()),
+                ParamToken::Block { tokens, .. } => format!("{{{}}}", tokens.len()),
+            })
+            .collect();
+        assert_eq!(
+            words.join(" "),
+            "start <a point> goal <a point> cell <a number> layers auto limit expansions <a number> \
+             time <a duration> drive unicycle {4}"
+        );
+
+        let checks: Vec<String> = statements[8..]
+            .iter()
+            .map(|s| match s {
+                Stmt::Expect(e) => sexp(e),
+                _ => panic!(),
+            })
+            .collect();
+        assert_eq!(
+            checks,
+            [
+                "offline.found",
+                "offline.collision_free",
+                "(<= offline.cost 90)",
+                "(and (< offline.expanded 6000) (>= offline.nodes 10))",
+                "(not tight.found)",
+                "(<= live.traveled (* 50 offline.length))",
+                "(~ vg.length 27.3137 0.001)",
+                "(== cover.coverage 1%)",
+            ]
+        );
+        let Stmt::Expect(e) = &statements[14] else {
+            panic!()
+        };
+        assert_eq!(snippet(APARTMENT, e.span), "vg.length ~ 27.3137 +- 0.001");
+    }
+
+    #[test]
+    fn empty_and_comment_only_files_have_no_statements_and_no_errors() {
+        assert!(parse_ok("").is_empty());
+        assert!(parse_ok("  \n\t\r\n").is_empty());
+        assert!(parse_ok("# just a comment\n   # another one").is_empty());
+    }
+
+    #[test]
+    fn unnamed_obstacles_and_grid_names() {
+        let items = world_items(
+            "world { rect (0,0) (1,1) disk (2, 2) 0.5 polygon [(0,0),(1,0),(0,1)] segment (0,0) (1,1) }",
+        );
+        for item in &items {
+            let WorldItem::Obstacle(o) = item else {
+                panic!()
+            };
+            assert!(o.name.is_none(), "{o:?}");
+        }
+        let grid = |text: &str| match &world_items(text)[0] {
+            WorldItem::Obstacle(ObstacleDecl {
+                name,
+                shape: ObstacleShape::Grid(g),
+                ..
+            }) => (name.as_ref().map(|n| n.value.clone()), g.clone()),
+            other => panic!("{other:?}"),
+        };
+        let (name, g) = grid("world { grid cell 1 origin (0, 0) { \"..\" } }");
+        assert_eq!(name, None);
+        assert_eq!(g.cell.as_ref().map(number), Some(1.0));
+        let (name, g) = grid("world { grid cell cell 2 }");
+        assert_eq!(name.as_deref(), Some("cell"));
+        assert_eq!(g.cell.as_ref().map(number), Some(2.0));
+        let (name, g) = grid("world { grid \"a.map\" }");
+        assert_eq!(name, None);
+        assert_eq!(g.file.unwrap().value, "a.map");
+        let (name, g) = grid("world { grid origin (1, 2) cell 0.5 {} }");
+        assert_eq!(name, None);
+        assert_eq!(g.rows, Some(vec![]));
+    }
+
+    #[test]
+    fn a_repeated_grid_option_is_an_error_at_the_repetition() {
+        let text = "world {\n  grid G cell 1 origin (0,0)\n  cell 2\n}";
+        let diags = errors(text);
+        assert_eq!(diags.len(), 1);
+        assert_eq!(diags[0].code, "scen::syntax::duplicate_option");
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "cell 2");
+        assert_eq!(snippet(text, diags[0].related[0].0), "cell 1");
+    }
+
+    #[test]
+    fn keywords_are_names_where_unambiguous() {
+        let s = parse_ok(
+            "robot disk1 disk 1\nrobot pointy point\nrobot point point\nrobot plan rect 1 2\n\
+             plan world astar disk1 { start (0, 0) }\nplan offline roadmap pointy {}\n\
+             world { rect rect1 (0,0) (1,1) disk world (0,0) 1 }\n",
+        );
+        assert_eq!(s.len(), 7, "{s:#?}");
+        let Stmt::Robot(r) = &s[0] else { panic!() };
+        assert_eq!(r.name.value, "disk1");
+        let Stmt::Robot(r) = &s[1] else { panic!() };
+        assert_eq!(r.name.value, "pointy");
+        assert!(matches!(r.shape, RobotShape::Point(_)));
+        let Stmt::Robot(r) = &s[3] else { panic!() };
+        assert_eq!(r.name.value, "plan");
+        let Stmt::Plan(p) = &s[4] else { panic!() };
+        assert_eq!(
+            (p.name.value.as_str(), p.robot.value.as_str()),
+            ("world", "disk1")
+        );
+        assert_eq!(
+            sexp(&expr("world.found and not.found or and.x")),
+            "(or (and world.found not.found) and.x)"
+        );
+        assert_eq!(sexp(&expr("not not.found")), "(not not.found)");
+        assert_eq!(sexp(&expr("true or false")), "(or true false)");
+    }
+
+    #[test]
+    fn a_grid_name_that_is_a_keyword_is_an_error_in_the_world() {
+        // `grid1` is not `grid 1`: it is an unknown world item.
+        let diags = errors("world { rect rect1 (0,0) (1,1) grid1 }");
+        assert_eq!(diags.len(), 1);
+        assert!(
+            diags[0].message.contains("found `grid1`"),
+            "{}",
+            diags[0].message
+        );
+    }
+
+    #[test]
+    fn plan_bodies_are_flat_token_lists() {
+        let body = plan_body(
+            "plan p astar r {\n  start (0, -1.5, 90deg) goal (1e-3, .5)\n  weights [1, 2, 3,] \
+             names [center, corner] empty []\n  file \"a \\\"b\\\" \\\\c\"\n  drive unicycle { dt 20ms gain { x 1 } }\n  coverage 100%\n}",
+        );
+        let ParamToken::Value(start) = &body[1] else {
+            panic!()
+        };
+        let ValueKind::Tuple(xs) = &start.kind else {
+            panic!()
+        };
+        assert_eq!(number(&xs[0]), 0.0);
+        assert_eq!(number(&xs[1]), -1.5);
+        assert_eq!(xs[2].kind, ValueKind::Angle(std::f64::consts::FRAC_PI_2));
+        let ParamToken::Value(goal) = &body[3] else {
+            panic!()
+        };
+        let ValueKind::Tuple(xs) = &goal.kind else {
+            panic!()
+        };
+        assert_eq!((number(&xs[0]), number(&xs[1])), (1e-3, 0.5));
+        let ParamToken::Value(Value {
+            kind: ValueKind::List(ws),
+            span,
+        }) = &body[5]
+        else {
+            panic!()
+        };
+        assert_eq!(ws.len(), 3);
+        assert_eq!(span.len(), "[1, 2, 3,]".len());
+        let ParamToken::Value(Value {
+            kind: ValueKind::List(names),
+            ..
+        }) = &body[7]
+        else {
+            panic!()
+        };
+        assert_eq!(names[1].kind, ValueKind::Word("corner".into()));
+        let ParamToken::Value(Value {
+            kind: ValueKind::List(empty),
+            ..
+        }) = &body[9]
+        else {
+            panic!()
+        };
+        assert!(empty.is_empty());
+        let ParamToken::Value(Value {
+            kind: ValueKind::Str(s),
+            ..
+        }) = &body[11]
+        else {
+            panic!()
+        };
+        assert_eq!(s, r#"a "b" \c"#);
+        let ParamToken::Block { tokens, .. } = &body[14] else {
+            panic!()
+        };
+        assert_eq!(tokens.len(), 4);
+        assert!(
+            matches!(&tokens[1], ParamToken::Value(Value { kind: ValueKind::Duration(d), .. }) if (*d - 0.02).abs() < 1e-15)
+        );
+        assert!(matches!(&tokens[3], ParamToken::Block { tokens, .. } if tokens.len() == 2));
+        let ParamToken::Value(Value {
+            kind: ValueKind::Percent(p),
+            ..
+        }) = &body[16]
+        else {
+            panic!()
+        };
+        assert_eq!(*p, 1.0);
+    }
+
+    #[test]
+    fn units_are_converted() {
+        let value = |text: &str| match &plan_body(&format!("plan p k r {{ {text} }}"))[0] {
+            ParamToken::Value(v) => v.kind.clone(),
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(value("180deg"), ValueKind::Angle(std::f64::consts::PI));
+        assert_eq!(
+            value("-90deg"),
+            ValueKind::Angle(-std::f64::consts::FRAC_PI_2)
+        );
+        assert_eq!(value("1.5rad"), ValueKind::Angle(1.5));
+        assert_eq!(value("50%"), ValueKind::Percent(0.5));
+        assert_eq!(value("500ms"), ValueKind::Duration(0.5));
+        assert_eq!(value("2s"), ValueKind::Duration(2.0));
+        assert_eq!(value("12"), ValueKind::Number(12.0));
+        assert_eq!(value("-3.5"), ValueKind::Number(-3.5));
+        assert_eq!(value("1e-3"), ValueKind::Number(1e-3));
+        assert_eq!(value("2E+2"), ValueKind::Number(200.0));
+        assert_eq!(value(".5"), ValueKind::Number(0.5));
+        assert_eq!(value("\"\""), ValueKind::Str(String::new()));
+        assert_eq!(
+            sexp(&expr("a.turn < 90deg")),
+            format!("(< a.turn {})", std::f64::consts::FRAC_PI_2)
+        );
+        assert_eq!(sexp(&expr("a.coverage >= 50%")), "(>= a.coverage 0.5%)");
+    }
+
+    #[test]
+    fn precedence_and_associativity() {
+        let cases = [
+            ("a.x - b.y - c.z", "(- (- a.x b.y) c.z)"),
+            ("a.x / b.y / 2", "(/ (/ a.x b.y) 2)"),
+            ("1 + 2 * 3", "(+ 1 (* 2 3))"),
+            ("(1 + 2) * 3", "(* (+ 1 2) 3)"),
+            ("-a.x * 2", "(* (neg a.x) 2)"),
+            ("- -a.x", "(neg (neg a.x))"),
+            ("a.x - -3", "(- a.x (neg 3))"),
+            ("a.x -3", "(- a.x 3)"),
+            ("a.f or b.f and c.f", "(or a.f (and b.f c.f))"),
+            ("a.f and b.f or c.f", "(or (and a.f b.f) c.f)"),
+            ("a.f or b.f or c.f", "(or (or a.f b.f) c.f)"),
+            ("not a.f and b.f", "(and (not a.f) b.f)"),
+            ("not a.x < 3", "(not (< a.x 3))"),
+            ("not not a.f", "(not (not a.f))"),
+            ("a.x + 1 < b.y * 2", "(< (+ a.x 1) (* b.y 2))"),
+            ("a.x ~ b.y + 1 +- 0.5 * 2", "(~ a.x (+ b.y 1) (* 0.5 2))"),
+            ("a.x~1+-0.1", "(~ a.x 1 0.1)"),
+            ("a.x ~ 1 ± 0.1", "(~ a.x 1 0.1)"),
+            ("a.x != 1 and a.y == 2", "(and (!= a.x 1) (== a.y 2))"),
+            ("a.x > 1 or a.x >= 2", "(or (> a.x 1) (>= a.x 2))"),
+            ("(a.f)", "a.f"),
+            (
+                "((a.x < 1)) and (b.f or c.f)",
+                "(and (< a.x 1) (or b.f c.f))",
+            ),
+        ];
+        for (text, tree) in cases {
+            assert_eq!(sexp(&expr(text)), tree, "{text}");
+        }
+    }
+
+    #[test]
+    fn expression_spans_cover_their_text() {
+        let text = "expect (a.x + 1) * b.y <= -c.z and not d.f";
+        let Some(Stmt::Expect(e)) = parse_ok(text).pop() else {
+            panic!()
+        };
+        assert_eq!(snippet(text, e.span), "(a.x + 1) * b.y <= -c.z and not d.f");
+        let ExprKind::And(cmp, not) = &e.kind else {
+            panic!()
+        };
+        assert_eq!(snippet(text, cmp.span), "(a.x + 1) * b.y <= -c.z");
+        assert_eq!(snippet(text, not.span), "not d.f");
+        let ExprKind::Compare { lhs, rhs, .. } = &cmp.kind else {
+            panic!()
+        };
+        assert_eq!(snippet(text, lhs.span), "(a.x + 1) * b.y");
+        assert_eq!(snippet(text, rhs.span), "-c.z");
+        let ExprKind::Arith { lhs, .. } = &lhs.kind else {
+            panic!()
+        };
+        assert_eq!(snippet(text, lhs.span), "(a.x + 1)");
+        let ExprKind::Metric { plan, metric } = &rhs.kind else {
+            let ExprKind::Neg(inner) = &rhs.kind else {
+                panic!()
+            };
+            let ExprKind::Metric { plan, metric } = &inner.kind else {
+                panic!()
+            };
+            assert_eq!(
+                (snippet(text, plan.span), snippet(text, metric.span)),
+                ("c", "z")
+            );
+            return;
+        };
+        panic!("{plan:?} {metric:?}");
+    }
+
+    #[test]
+    fn comments_and_layout_are_insignificant() {
+        let text = "# header\nrobot#c\nr#c\npoint#c\nplan a k r{start(0,0)#c\n}expect a.f#c\nexpect\n  a.g\n";
+        let s = parse_ok(text);
+        assert_eq!(s.len(), 4);
+        let Stmt::Expect(e) = &s[3] else { panic!() };
+        assert_eq!(snippet(text, e.span), "a.g");
+        // `#` inside a string is not a comment.
+        let Stmt::Scenario { title, .. } = &parse_ok("scenario \"a # b\" # c")[0] else {
+            panic!()
+        };
+        assert_eq!(title.value, "a # b");
+    }
+
+    #[test]
+    fn every_broken_statement_is_reported_with_its_line() {
+        let text = "world {\n  bounds (0,0) (10,10)\n}\nrobot r\nplan p astar r { start (0,0 }\nexpect p.found\nexpect p.cost <\n";
+        let (file, diags) = parse(text, 0);
+        let lines: Vec<_> = diags
+            .iter()
+            .map(|d| line_of(text, d.span.unwrap()))
+            .collect();
+        assert_eq!(lines, [4, 5, 7], "{diags:#?}");
+        assert!(diags.iter().all(|d| d.code == "scen::syntax::expected"));
+        assert_eq!(
+            diags[0].message,
+            "expected `rect`, `polygon`, `disk` or `point`, found `plan`"
+        );
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "r");
+        assert_eq!(diags[1].message, "expected `,` or `)`, found `}`");
+        assert_eq!(snippet(text, diags[1].span.unwrap()), "}");
+        assert_eq!(
+            diags[2].message,
+            "expected an expression, found the end of the file"
+        );
+        assert_eq!(snippet(text, diags[2].span.unwrap()), "<");
+        // The statements that parsed are still returned.
+        assert_eq!(file.statements.len(), 2);
+    }
+
+    #[test]
+    fn leading_and_trailing_junk_is_not_a_statement() {
+        let text = "hello world {}\nrobot r point extra\nWorld {}";
+        let diags = errors(text);
+        assert_eq!(diags.len(), 2, "{diags:#?}");
+        assert_eq!(diags[0].message, EXPECTED_STATEMENT);
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "hello");
+        assert_eq!(diags[1].message, EXPECTED_STATEMENT);
+        assert_eq!(snippet(text, diags[1].span.unwrap()), "extra");
+        let diags = errors("robot r point\nWorld {}");
+        assert_eq!(
+            diags[0].help.as_deref(),
+            Some("keywords are lowercase: `world`")
+        );
+        let diags = errors("robot r point }");
+        assert_eq!(
+            diags[0].help.as_deref(),
+            Some("this `}` has no matching `{`")
+        );
+    }
+
+    #[test]
+    fn a_missing_closing_brace_points_at_the_opening_one() {
+        let text =
+            "world {\n  bounds (0,0) (1,1)\n\nrobot r point\nplan p astar r {\n  start (0, 0)\n";
+        let (file, diags) = parse(text, 0);
+        assert_eq!(diags.len(), 2, "{diags:#?}");
+        assert_eq!(line_of(text, diags[0].span.unwrap()), 2);
+        assert_eq!(snippet(text, diags[0].span.unwrap()), ")");
+        assert!(
+            diags[0].message.ends_with("or `}`, found `robot`"),
+            "{}",
+            diags[0].message
+        );
+        assert_eq!(snippet(text, diags[0].related[0].0), "{");
+        assert_eq!(diags[0].related[0].0.start, 6);
+        assert_eq!(diags[0].help.as_deref(), Some("add the missing `}`"));
+        assert_eq!(line_of(text, diags[1].related[0].0), 5);
+        assert!(
+            diags[1].message.ends_with("found the end of the file"),
+            "{}",
+            diags[1].message
+        );
+        // The robot between the two broken blocks still parses.
+        assert_eq!(file.statements.len(), 1);
+    }
+
+    #[test]
+    fn nesting_deeper_than_the_limit_is_an_error_at_the_first_bracket_too_deep() {
+        let ok = format!(
+            "plan p k r {{ x {}1, 2{} }}",
+            "(".repeat(MAX_NESTING - 1),
+            ")".repeat(MAX_NESTING - 1)
+        );
+        let (_, diags) = parse(&ok, 0);
+        assert!(
+            diags.iter().all(|d| d.code != "scen::syntax::too_deep"),
+            "{diags:#?}"
+        );
+        let deep = format!("expect {}1{}", "(".repeat(100_000), ")".repeat(100_000));
+        let diags = errors(&deep);
+        assert_eq!(diags.len(), 1);
+        assert_eq!(diags[0].code, "scen::syntax::too_deep");
+        assert_eq!(diags[0].span.unwrap().start, "expect ".len() + MAX_NESTING);
+        // At the limit the expression grammar still parses (and does not overflow
+        // a test thread's stack).
+        let at_limit = format!(
+            "expect {}1{}",
+            "(".repeat(MAX_NESTING),
+            ")".repeat(MAX_NESTING)
+        );
+        assert_eq!(sexp(&expr(&at_limit["expect ".len()..])), "1");
+        let mixed = format!("world {{ polygon {} }}", "[(".repeat(40));
+        assert_eq!(errors(&mixed)[0].code, "scen::syntax::too_deep");
+    }
+
+    #[test]
+    fn long_expressions_are_refused_not_overflowed() {
+        let long = format!("expect {}", vec!["a.x"; 100_000].join(" + "));
+        let diags = errors(&long);
+        assert_eq!(diags.len(), 1);
+        assert_eq!(diags[0].code, "scen::syntax::too_deep");
+        let nots = format!("expect {} a.f", "not ".repeat(100_000));
+        assert_eq!(errors(&nots)[0].code, "scen::syntax::too_deep");
+        let negs = format!("expect {}1 < 2", "-".repeat(100_000));
+        assert_eq!(errors(&negs)[0].code, "scen::syntax::too_deep");
+        // A long but reasonable conjunction is fine.
+        let fine = format!("expect {}", vec!["a.f"; 200].join(" and "));
+        parse_ok(&fine);
+    }
+
+    #[test]
+    fn literal_errors() {
+        let text = "robot r disk 1e999\nplan p k r { x 90degx y 1e }";
+        let diags = errors(text);
+        let codes: Vec<_> = diags.iter().map(|d| d.code).collect();
+        assert_eq!(
+            codes,
+            [
+                "scen::syntax::bad_number",
+                "scen::syntax::bad_unit",
+                "scen::syntax::bad_unit"
+            ]
+        );
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "1e999");
+        assert_eq!(diags[0].message, "number out of range");
+        assert_eq!(snippet(text, diags[1].span.unwrap()), "degx");
+        assert_eq!(diags[1].message, "unknown unit `degx`");
+        assert_eq!(
+            diags[2].help.as_deref(),
+            Some("an exponent needs digits, as in `1e-3`")
+        );
+
+        let text = "include \"maps\\arena.map\"";
+        let diags = errors(text);
+        assert_eq!(diags[0].code, "scen::syntax::bad_escape");
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "\\a");
+
+        let diags = errors("expect a.time_ms < 2s");
+        assert_eq!(diags[0].code, "scen::syntax::unit_not_allowed");
+        assert!(diags[0].help.as_deref().unwrap().contains("`2000`"));
+    }
+
+    #[test]
+    fn unterminated_strings() {
+        let text = "scenario \"title\nrobot r point\ninclude \"x";
+        let (file, diags) = parse(text, 0);
+        assert_eq!(diags.len(), 2, "{diags:#?}");
+        assert!(
+            diags
+                .iter()
+                .all(|d| d.code == "scen::syntax::unterminated_string")
+        );
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "\"title");
+        assert_eq!(snippet(text, diags[1].span.unwrap()), "\"x");
+        assert!(diags[0].help.is_some());
+        assert_eq!(file.statements.len(), 1);
+        // An escaped quote does not close the string.
+        assert_eq!(
+            errors("scenario \"a\\\"")[0].code,
+            "scen::syntax::unterminated_string"
+        );
+    }
+
+    #[test]
+    fn a_unit_apart_from_its_number_gets_a_help() {
+        let text = "plan p k r { start (0, 0, 90 deg) }";
+        let diags = errors(text);
+        assert_eq!(
+            diags[0].help.as_deref(),
+            Some("write the unit right after the number: `90deg`")
+        );
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "deg");
+        let text = "plan p k r { limit time 2 s }";
+        let diags = errors(text);
+        assert_eq!(diags[0].code, "scen::syntax::detached_unit");
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "2 s");
+        assert_eq!(
+            diags[0].help.as_deref(),
+            Some("write the unit right after the number: `2s`")
+        );
+        let diags = errors("expect c.coverage == 100 %");
+        assert_eq!(
+            diags[0].help.as_deref(),
+            Some("write the unit right after the number: `100%`")
+        );
+    }
+
+    #[test]
+    fn expression_errors_have_helps() {
+        let d = &errors("expect a.x < b.y < 3")[0];
+        assert_eq!(d.message, "comparisons cannot be chained");
+        assert!(d.help.as_deref().unwrap().contains("and"));
+        let d = &errors("expect a.x = 3")[0];
+        assert_eq!(d.help.as_deref(), Some("compare with `==`"));
+        let d = &errors("expect a.x ~ 3")[0];
+        assert_eq!(
+            d.help.as_deref(),
+            Some("approximate equality needs a tolerance: `A ~ B +- TOL`")
+        );
+        let d = &errors("expect offline")[0];
+        assert!(d.help.as_deref().unwrap().contains("PLAN.METRIC"));
+        let d = &errors("expect a.x and")[0];
+        assert_eq!(
+            d.message,
+            "expected an expression, found the end of the file"
+        );
+        let d = &errors("plan p k r { start (1, 2, 3, 4) }")[0];
+        assert_eq!(
+            d.help.as_deref(),
+            Some("a point is `(x, y)` and a pose `(x, y, θ)`")
+        );
+    }
+
+    #[test]
+    fn binary_garbage_gives_a_normal_syntax_error() {
+        let text = "\u{0}\u{1}\u{7f}\u{fffd}ÿ\u{1b}[0m";
+        let diags = errors(text);
+        assert_eq!(diags.len(), 1);
+        assert_eq!(diags[0].code, "scen::syntax::expected");
+        assert_eq!(diags[0].label, "unexpected `\\u{0}`");
+        let text = "world { \u{0} }";
+        assert_eq!(errors(text)[0].label, "unexpected `\\u{0}`");
+    }
+
+    #[test]
+    fn no_input_derived_from_a_valid_file_panics() {
+        // Every prefix, and every byte replaced by a troublesome character.
+        for end in (0..=APARTMENT.len()).filter(|&k| APARTMENT.is_char_boundary(k)) {
+            let _ = parse(&APARTMENT[..end], 0);
+        }
+        for k in (0..APARTMENT.len()).filter(|&k| APARTMENT.is_char_boundary(k)) {
+            let next = APARTMENT[k..].chars().next().unwrap().len_utf8();
+            for c in [
+                "", "(", "}", "\"", "#", "-", ".", "é", "\u{0}", "e", "world ", "\n",
+            ] {
+                let text = format!("{}{c}{}", &APARTMENT[..k], &APARTMENT[k + next..]);
+                let (_, diags) = parse(&text, 0);
+                for d in diags {
+                    let span = d.span.expect("every syntax error has a span");
+                    assert!(span.end <= text.len() && text.is_char_boundary(span.start));
+                    assert!(!span.is_empty() || text.is_empty(), "{d:?} in {text:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_ten_megabyte_file_parses() {
+        let block = "# a comment line that is fairly long to fill the file quickly ........\n\
+                     plan p astar r { start (0, 0) goal (1, 1, 90deg) limit time 2s }\n\
+                     expect p.cost <= 90 and p.found\n";
+        let text = block.repeat(10_000_000 / block.len() + 1);
+        assert!(text.len() >= 10_000_000);
+        let started = std::time::Instant::now();
+        let (file, diags) = parse(&text, 0);
+        eprintln!("parsed {} bytes in {:?}", text.len(), started.elapsed());
+        assert!(diags.is_empty());
+        assert_eq!(file.statements.len(), 2 * (10_000_000 / block.len() + 1));
+
+        let comments = "# nothing but comments here\n".repeat(10_000_000 / 28 + 1);
+        let started = std::time::Instant::now();
+        assert!(parse_ok(&comments).is_empty());
+        eprintln!(
+            "parsed {} bytes of comments in {:?}",
+            comments.len(),
+            started.elapsed()
+        );
+
+        let body = format!(
+            "plan p k r {{ {} }}",
+            "key 1.5 (1, 2) ".repeat(10_000_000 / 16)
+        );
+        let started = std::time::Instant::now();
+        assert_eq!(plan_body(&body).len(), 3 * (10_000_000 / 16));
+        eprintln!(
+            "parsed a {}-byte plan body in {:?}",
+            body.len(),
+            started.elapsed()
+        );
+    }
+}
+#[cfg(test)]
+mod tmp_bench {
+    fn size() -> usize { std::env::var("TMP_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(10_000_000) }
+    #[test]
+    fn tmp_body() {
+        let body = format!("plan p k r {{ {} }}", "key 1.5 (1, 2) ".repeat(size() / 16));
+        let t = std::time::Instant::now();
+        let _ = super::parse(&body, 0);
+        eprintln!("body full {:?}", t.elapsed());
+    }
+    #[test]
+    fn tmp_stmts() {
+        let block = "# a comment line that is fairly long to fill the file quickly ........\n\
+                     plan p astar r { start (0, 0) goal (1, 1, 90deg) limit time 2s }\n\
+                     expect p.cost <= 90 and p.found\n";
+        let text = block.repeat(size() / block.len() + 1);
+        let t = std::time::Instant::now();
+        let _ = super::parse(&text, 0);
+        eprintln!("stmts full {:?}", t.elapsed());
     }
 }

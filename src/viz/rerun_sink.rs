@@ -168,7 +168,8 @@ fn spawn_viewer() -> Result<String, ViewerError> {
         Ok(url)
     } else {
         Err(ViewerError::Spawn(format!(
-            "`rerun` was started but does not listen on port {}",
+            "`rerun` was started but is not listening on port {} \
+             (it may have failed to open a window)",
             spawned.port
         )))
     }
@@ -176,7 +177,7 @@ fn spawn_viewer() -> Result<String, ViewerError> {
 
 /// The proxy URL for a `--connect` address (see [`ViewerTarget::Connect`]).
 fn proxy_url(addr: Option<&str>) -> Result<String, ViewerError> {
-    let Some(addr) = addr.map(str::trim) else {
+    let Some(addr) = addr.map(str::trim).filter(|a| !a.is_empty()) else {
         return Ok(rerun::DEFAULT_CONNECT_URL.to_string());
     };
     let mut url = if addr.contains("://") {
@@ -629,6 +630,7 @@ mod tests {
             url(Some("rerun+http://localhost:9877/")),
             Ok("rerun+http://localhost:9877/proxy".into())
         );
+        assert_eq!(url(Some(" ")), url(None));
         assert!(url(Some("ftp://x")).is_err());
     }
 

@@ -1,0 +1,226 @@
+//! The CLI as a user runs it: the real binary on small inputs written in
+//! the test, comparing output and exit codes.
+
+mod common;
+
+use common::{repo, Test};
+
+const SMALL: &str = r#"scenario "Small"
+world {
+  bounds (0, 0) (10, 10)
+  rect wall (4, 0) (5, 8)
+}
+robot p point
+plan go astar p {
+  start (0.5, 0.5)
+  goal  (9.5, 0.5)
+  connect 4
+  cost l1
+}
+expect go.found
+expect go.cost == 25
+"#;
+
+#[test]
+fn run_prints_the_report_and_exits_0() {
+    Test::new()
+        .file("small.scen", SMALL)
+        .args(&["run", "small.scen"])
+        .stdout(
+            "small.scen — Small
+
+plan go (astar, robot p): found, collision-free
+  cost 25  length 25  turn 0  nodes 26  expanded 63  generated 67  cells 100  free_cells 92  layers 1
+
+checks
+  PASS  line 13  go.found   (go.found = true)
+  PASS  line 14  go.cost == 25   (go.cost = 25)
+
+2 passed, 0 failed
+",
+        )
+        .status(0)
+        .run();
+}
+
+#[test]
+fn a_failed_check_exits_1_and_points_at_the_expression() {
+    let text = SMALL.replace("go.cost == 25", "go.cost < 20");
+    Test::new()
+        .file("small.scen", &text)
+        .args(&["run", "small.scen"])
+        .stdout_contains("FAIL  line 14  go.cost < 20   (go.cost = 25)")
+        .stdout_contains("1 passed, 1 failed")
+        .stderr_contains("check failed: `go.cost < 20`")
+        .stderr_contains("small.scen:14:8")
+        .status(1)
+        .run();
+}
+
+#[test]
+fn quiet_prints_failures_and_the_summary() {
+    Test::new()
+        .file("small.scen", SMALL)
+        .args(&["run", "-q", "small.scen"])
+        .stdout("2 passed, 0 failed\n")
+        .run();
+}
+
+#[test]
+fn check_reports_every_error_at_once_with_exit_2() {
+    Test::new()
+        .file(
+            "bad.scen",
+            "world { bounds (0, 0) (10, 10) }\nrobot p point\nplan a astar p { start (1, 1) goal (2, 2) cel 1 }\nplan b astar q { start (1, 1) goal (2, 2) }\nexpect a.fond\n",
+        )
+        .args(&["check", "bad.scen"])
+        .stderr_contains("bad.scen:3:43")
+        .stderr_contains("unknown parameter `cel` for planner `astar`")
+        .stderr_contains("did you mean `cell`?")
+        .stderr_contains("bad.scen:4:14")
+        .stderr_contains("unknown robot `q`")
+        .stderr_contains("bad.scen:5:10")
+        .stderr_contains("has no metric `fond`")
+        .stderr_contains("3 error(s)")
+        .status(2)
+        .run();
+}
+
+#[test]
+fn check_json_prints_one_object_per_diagnostic() {
+    let out = Test::new()
+        .file("bad.scen", "world { bounds (0, 0) (10, 10) }\nrobot p point\nrobot p point\n")
+        .args(&["check", "--format", "json", "bad.scen"])
+        .status(2)
+        .run();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<serde_json::Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON object per line"))
+        .collect();
+    assert_eq!(lines.len(), 1, "{stdout}");
+    assert_eq!(lines[0]["code"], "scen::analyze::duplicate_name");
+    assert_eq!(lines[0]["line"], 3);
+    assert_eq!(lines[0]["column"], 7);
+    assert_eq!(lines[0]["severity"], "error");
+    assert!(lines[0]["file"].as_str().is_some_and(|f| f.ends_with("bad.scen")));
+}
+
+#[test]
+fn check_accepts_a_good_file() {
+    Test::new()
+        .file("small.scen", SMALL)
+        .args(&["check", "small.scen"])
+        .stdout("small.scen: ok (1 robot(s), 1 plan(s), 2 check(s))\n")
+        .run();
+}
+
+#[test]
+fn a_missing_file_is_exit_2() {
+    Test::new()
+        .args(&["run", "nope.scen"])
+        .stderr_contains("cannot read scenario file `nope.scen`")
+        .status(2)
+        .run();
+}
+
+#[test]
+fn bad_usage_is_exit_2() {
+    Test::new().args(&["run"]).status(2).run();
+    Test::new().args(&["frobnicate"]).status(2).run();
+}
+
+#[test]
+fn test_runs_a_folder_and_counts_checks() {
+    Test::new()
+        .file("suite/a.scen", SMALL)
+        .file("suite/b.scen", &SMALL.replace("go.cost == 25", "go.cost == 24"))
+        .file("suite/_fragment.scen", "world {")
+        .args(&["test", "suite"])
+        .stdout("ok      suite/a.scen  (2 checks)\nFAILED  suite/b.scen  (1 of 2 checks failed)\n3 passed, 1 failed\n")
+        .stderr_contains("check failed: `go.cost == 24`")
+        .status(1)
+        .run();
+}
+
+#[test]
+fn json_output_follows_the_spec() {
+    let out = Test::new()
+        .file("small.scen", SMALL)
+        .args(&["run", "--json", "small.scen"])
+        .run();
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON document");
+    assert_eq!(doc["file"], "small.scen");
+    assert_eq!(doc["scenario"], "Small");
+    let go = &doc["plans"]["go"];
+    assert_eq!(go["kind"], "astar");
+    assert_eq!(go["robot"], "p");
+    assert_eq!(go["metrics"]["found"], true);
+    assert_eq!(go["metrics"]["cost"], 25);
+    let path = go["path"].as_array().expect("a path");
+    assert_eq!(path.len(), 26);
+    assert_eq!(path[0], serde_json::json!([0.5, 0.5]));
+    assert_eq!(doc["checks"][1]["line"], 14);
+    assert_eq!(doc["checks"][1]["expr"], "go.cost == 25");
+    assert_eq!(doc["checks"][1]["values"]["go.cost"], 25);
+    assert_eq!(doc["passed"], 2);
+    assert_eq!(doc["failed"], 0);
+}
+
+#[test]
+fn plan_selects_plans_and_their_checks() {
+    let text = SMALL.replace("expect go.found", "plan other astar p { start (0.5, 0.5) goal (0.5, 9.5) }\nexpect other.found");
+    Test::new()
+        .file("small.scen", &text)
+        .args(&["run", "--plan", "other", "small.scen"])
+        .stdout_contains("plan other (astar, robot p): found")
+        .stdout_contains("1 passed, 0 failed")
+        .run();
+    Test::new()
+        .file("small.scen", SMALL)
+        .args(&["run", "--plan", "nosuch", "small.scen"])
+        .stderr_contains("has no plan `nosuch`")
+        .status(2)
+        .run();
+}
+
+#[test]
+fn svg_is_written() {
+    let t = Test::new().file("small.scen", SMALL).args(&["run", "-q", "--svg", "out.svg", "small.scen"]);
+    let dir = t.dir().to_path_buf();
+    t.run();
+    let svg = std::fs::read_to_string(dir.join("out.svg")).expect("out.svg written");
+    assert!(svg.contains("<svg"), "{svg}");
+    assert!(svg.contains("polyline"), "{svg}");
+}
+
+#[test]
+fn an_unreachable_viewer_warns_once_and_the_report_is_complete() {
+    Test::new()
+        .file("small.scen", SMALL)
+        .args(&["run", "--connect", "rerun+http://127.0.0.1:9/proxy", "small.scen"])
+        .stdout_contains("2 passed, 0 failed")
+        .stderr_contains("warning: viewer")
+        .status(0)
+        .run();
+}
+
+#[test]
+fn import_is_not_implemented_and_says_so() {
+    Test::new()
+        .file("input.txt", "1\n0, 0, 1, 1\n0, 1\n1, 0\n")
+        .args(&["import", "roadmap", "input.txt"])
+        .stderr_contains("not implemented yet")
+        .status(2)
+        .run();
+}
+
+#[test]
+fn every_scenario_passes_scen_test() {
+    let scenarios = repo().join("scenarios");
+    Test::new()
+        .args(&["test", scenarios.to_str().expect("utf-8 path")])
+        .stdout_contains(" 0 failed")
+        .status(0)
+        .run();
+}

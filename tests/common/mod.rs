@@ -1,0 +1,192 @@
+//! A `Test` builder in the style of casey/just's integration tests: write
+//! files into a temporary folder, run the real `scen` binary there, and
+//! compare stdout, stderr and the exit code.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+pub fn scen_bin() -> &'static str {
+    env!("CARGO_BIN_EXE_scen")
+}
+
+/// The repository's root folder.
+pub fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A fresh temporary folder, removed on drop.
+pub struct TempDir(PathBuf);
+
+impl TempDir {
+    pub fn new(tag: &str) -> Self {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        static N: AtomicUsize = AtomicUsize::new(0);
+        let dir = std::env::temp_dir().join(format!(
+            "scen-test-{tag}-{}-{}",
+            std::process::id(),
+            N.fetch_add(1, Ordering::SeqCst)
+        ));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create temp dir");
+        TempDir(dir)
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+pub struct Test {
+    dir: TempDir,
+    args: Vec<String>,
+    env: Vec<(String, String)>,
+    stdout: Option<String>,
+    stdout_contains: Vec<String>,
+    stderr: Option<String>,
+    stderr_contains: Vec<String>,
+    status: i32,
+    timeout: Duration,
+}
+
+impl Test {
+    pub fn new() -> Self {
+        Test {
+            dir: TempDir::new("cli"),
+            args: Vec::new(),
+            env: vec![("NO_COLOR".into(), "1".into())],
+            stdout: None,
+            stdout_contains: Vec::new(),
+            stderr: None,
+            stderr_contains: Vec::new(),
+            status: 0,
+            timeout: Duration::from_secs(60),
+        }
+    }
+
+    /// Writes a file (relative to the test's folder).
+    pub fn file(self, name: &str, text: &str) -> Self {
+        let p = self.dir.path().join(name);
+        if let Some(parent) = p.parent() {
+            std::fs::create_dir_all(parent).expect("create folder");
+        }
+        std::fs::write(p, text).expect("write test file");
+        self
+    }
+
+    pub fn args(mut self, args: &[&str]) -> Self {
+        self.args.extend(args.iter().map(|s| s.to_string()));
+        self
+    }
+
+    pub fn env(mut self, key: &str, value: &str) -> Self {
+        self.env.push((key.into(), value.into()));
+        self
+    }
+
+    pub fn stdout(mut self, s: &str) -> Self {
+        self.stdout = Some(s.into());
+        self
+    }
+
+    pub fn stdout_contains(mut self, s: &str) -> Self {
+        self.stdout_contains.push(s.into());
+        self
+    }
+
+    pub fn stderr(mut self, s: &str) -> Self {
+        self.stderr = Some(s.into());
+        self
+    }
+
+    pub fn stderr_contains(mut self, s: &str) -> Self {
+        self.stderr_contains.push(s.into());
+        self
+    }
+
+    pub fn status(mut self, code: i32) -> Self {
+        self.status = code;
+        self
+    }
+
+    pub fn dir(&self) -> &Path {
+        self.dir.path()
+    }
+
+    /// Runs `scen` in the test's folder and checks every expectation.
+    pub fn run(self) -> Output {
+        let out = run_with_timeout(
+            Command::new(scen_bin())
+                .args(&self.args)
+                .current_dir(self.dir.path())
+                .envs(self.env.iter().map(|(k, v)| (k.as_str(), v.as_str()))),
+            self.timeout,
+        );
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        let ctx = format!("scen {}\n--- stdout\n{stdout}\n--- stderr\n{stderr}", self.args.join(" "));
+        assert_eq!(out.status.code(), Some(self.status), "exit code\n{ctx}");
+        if let Some(s) = &self.stdout {
+            assert_eq!(&stdout, s, "stdout\n{ctx}");
+        }
+        for s in &self.stdout_contains {
+            assert!(stdout.contains(s.as_str()), "stdout lacks {s:?}\n{ctx}");
+        }
+        if let Some(s) = &self.stderr {
+            assert_eq!(&stderr, s, "stderr\n{ctx}");
+        }
+        for s in &self.stderr_contains {
+            assert!(stderr.contains(s.as_str()), "stderr lacks {s:?}\n{ctx}");
+        }
+        assert!(!stderr.contains("panicked"), "scen panicked\n{ctx}");
+        out
+    }
+}
+
+/// Runs a command, killing it after `timeout` (a hang is a test failure).
+pub fn run_with_timeout(cmd: &mut Command, timeout: Duration) -> Output {
+    use std::process::Stdio;
+    let mut child = cmd
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn scen");
+    // Drain the pipes on threads so a chatty child cannot block on them.
+    let mut so = child.stdout.take().expect("stdout");
+    let mut se = child.stderr.take().expect("stderr");
+    let t1 = std::thread::spawn(move || {
+        let mut v = Vec::new();
+        let _ = std::io::Read::read_to_end(&mut so, &mut v);
+        v
+    });
+    let t2 = std::thread::spawn(move || {
+        let mut v = Vec::new();
+        let _ = std::io::Read::read_to_end(&mut se, &mut v);
+        v
+    });
+    let began = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().expect("wait") {
+            break s;
+        }
+        if began.elapsed() > timeout {
+            let _ = child.kill();
+            panic!("scen did not finish within {timeout:?}");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    Output {
+        status,
+        stdout: t1.join().unwrap_or_default(),
+        stderr: t2.join().unwrap_or_default(),
+    }
+}

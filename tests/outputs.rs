@@ -1,0 +1,134 @@
+//! Outputs that other programs read: determinism of the JSON document,
+//! and the Rerun recording checked by the real viewer binary.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::Command;
+use std::time::Duration;
+
+use common::{repo, run_with_timeout, scen_bin, TempDir};
+
+fn scenario_files() -> Vec<PathBuf> {
+    fn walk(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
+        let mut entries: Vec<_> = std::fs::read_dir(dir).expect("scenarios/").flatten().map(|e| e.path()).collect();
+        entries.sort();
+        for p in entries {
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|e| e == "scen")
+                && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('_'))
+            {
+                out.push(p);
+            }
+        }
+    }
+    let mut v = Vec::new();
+    walk(&repo().join("scenarios"), &mut v);
+    assert!(v.len() >= 5, "expected the scenarios folder to hold scenarios");
+    v
+}
+
+/// Removes every `"time_ms": N` so that two runs can be compared.
+fn without_time(json: &str) -> serde_json::Value {
+    fn strip(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(m) => {
+                m.remove("time_ms");
+                m.values_mut().for_each(strip);
+            }
+            serde_json::Value::Array(a) => a.iter_mut().for_each(strip),
+            _ => {}
+        }
+    }
+    let mut v: serde_json::Value = serde_json::from_str(json).expect("valid JSON");
+    strip(&mut v);
+    v
+}
+
+#[test]
+fn two_runs_of_every_scenario_give_identical_json() {
+    for file in scenario_files() {
+        let run = || {
+            let out = run_with_timeout(
+                Command::new(scen_bin()).args(["run", "--json"]).arg(&file),
+                Duration::from_secs(120),
+            );
+            String::from_utf8(out.stdout).expect("UTF-8 JSON")
+        };
+        let (a, b) = (run(), run());
+        assert!(!a.trim().is_empty(), "no JSON for {}", file.display());
+        let (va, vb) = (without_time(&a), without_time(&b));
+        assert_eq!(va, vb, "{} is not deterministic", file.display());
+        // Byte-identical apart from time_ms: re-serialised forms agree too.
+        assert_eq!(va.to_string(), vb.to_string());
+    }
+}
+
+/// The `rerun` binary of rerun-sdk==0.36.3: `SCEN_RERUN`, else PATH.
+fn rerun_binary() -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("SCEN_RERUN") {
+        return Some(PathBuf::from(p));
+    }
+    let venv = repo().join("target/rerun-venv/bin/rerun");
+    if venv.exists() {
+        return Some(venv);
+    }
+    std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths)
+            .map(|d| d.join("rerun"))
+            .find(|p| p.exists())
+    })
+}
+
+#[test]
+fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
+    let Some(rerun) = rerun_binary() else {
+        assert_ne!(
+            std::env::var("CI").as_deref(),
+            Ok("true"),
+            "CI must have the rerun binary (scripts/test.sh installs rerun-sdk==0.36.3)"
+        );
+        eprintln!("skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)");
+        return;
+    };
+    let dir = TempDir::new("rrd");
+    let rrd = dir.path().join("out.rrd");
+    let scenario = repo().join("scenarios/apartment_disk.scen");
+    let out = run_with_timeout(
+        Command::new(scen_bin()).arg("run").arg(&scenario).arg("--save").arg(&rrd),
+        Duration::from_secs(120),
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let verify = run_with_timeout(
+        Command::new(&rerun).args(["rrd", "verify"]).arg(&rrd),
+        Duration::from_secs(120),
+    );
+    assert!(
+        verify.status.success(),
+        "rerun rrd verify failed:\n{}\n{}",
+        String::from_utf8_lossy(&verify.stdout),
+        String::from_utf8_lossy(&verify.stderr)
+    );
+    let print = run_with_timeout(
+        Command::new(&rerun).args(["rrd", "print", "--verbose"]).arg(&rrd),
+        Duration::from_secs(120),
+    );
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&print.stdout),
+        String::from_utf8_lossy(&print.stderr)
+    );
+    assert!(print.status.success(), "rerun rrd print failed:\n{text}");
+    for entity in [
+        "/world/bounds",
+        "/world/obstacles/B1",
+        "/world/obstacles/B01",
+        "/plans/offline/path",
+        "/plans/offline/robot",
+        "/plans/offline/search",
+        "/checks",
+    ] {
+        assert!(text.contains(entity), "`rerun rrd print` does not list {entity}:\n{}", &text[..text.len().min(4000)]);
+    }
+}
