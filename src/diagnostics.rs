@@ -209,10 +209,8 @@ impl Diag {
                 }
             }
             d = d.with_labels(labels);
-            // The location line under the message makes file:line:col greppable
-            // even when the terminal renderer is not used.
-            let (line, col) = f.line_col(span.start);
-            let name = format!("{}:{}:{}", f.path.display(), line, col);
+            // miette prints `[file:line:col]` from the name and the label.
+            let name = f.path.display().to_string();
             Report::new(d).with_source_code(NamedSource::new(name, f.text.to_string()))
         } else {
             Report::new(d)

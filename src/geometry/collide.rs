@@ -1,28 +1,1157 @@
 //! The planners' collision queries for point and disk robots, with a broad
-//! phase over all obstacles. (stub: to be implemented)
+//! phase over all obstacles.
+//!
+//! The geometry here is written by hand and shares no code with the
+//! validator ([`super::validator`]), which is built on parry: the two check
+//! each other (see the property tests at the bottom).
+//!
+//! # Semantics (the same as the validator's)
+//! A query shape is a point or a segment (its *core*) grown by a radius
+//! `r ≥ 0`: a disk at `p`, or the capsule swept by that disk from `p` to `q`.
+//! It collides with an obstacle piece when `r + ρ − signed_distance(core,
+//! piece core) > TOUCH_EPS`, where the signed distance is negative by the
+//! penetration depth when the cores overlap, and ρ is the piece's own radius
+//! (a disk obstacle's; 0 otherwise). So touching is allowed; a point never
+//! collides with a segment obstacle, a moving point only when it crosses the
+//! segment properly. Queries with `r ≤ TOUCH_EPS` also collide with the
+//! *seams* of multi-piece obstacles — the open band of half-width
+//! `TOUCH_EPS` around an edge shared by two pieces of a polygon or by two
+//! blocked cells of a grid (stopping `TOUCH_EPS` short of the obstacle's
+//! boundary), and the square of half-width `2·TOUCH_EPS` around a grid corner
+//! whose four cells are blocked — because those lie inside the obstacle.
 
-use super::{Point, World};
+use super::{Aabb, Point, Shape, TOUCH_EPS, Vector, World, polygon};
 
 /// Obstacles of a world prepared for fast queries by the planners.
-pub struct ObstacleIndex {}
+///
+/// Convex pieces (polygon pieces, rects, disks, segments, seams) sit in a
+/// uniform bucket grid over the world's bounds (grown to hold every
+/// obstacle); grid obstacles are looked up cell by cell. Queries allocate
+/// nothing.
+pub struct ObstacleIndex {
+    pieces: Vec<Piece>,
+    /// Edges of all convex polygon pieces, piece after piece.
+    edges: Vec<Edge>,
+    buckets: Buckets,
+    grids: Vec<IndexedGrid>,
+}
+
+/// An edge `a → next a` of a counter-clockwise convex piece, with its unit
+/// outward normal `n` and `c = n·a` (the piece is `n·x ≤ c` for all edges).
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    a: Point,
+    n: Vector,
+    c: f64,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    /// Bounding box, grown by `3·TOUCH_EPS`.
+    aabb: Aabb,
+    /// Index of the obstacle in `world.obstacles`.
+    owner: u32,
+    kind: Kind,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    /// `edges[first .. first + len]`.
+    Convex {
+        first: u32,
+        len: u32,
+    },
+    Rect(Aabb),
+    Disk {
+        center: Point,
+        radius: f64,
+    },
+    Wall {
+        a: Point,
+        b: Point,
+    },
+    /// The open band { a + u·d + w·d⊥ : u0 < u < u1, |w| < TOUCH_EPS }.
+    Seam {
+        a: Point,
+        d: Vector,
+        u0: f64,
+        u1: f64,
+    },
+}
+
+/// Piece indices by square bucket, in compressed rows: bucket (col, k)
+/// (k from the bottom) holds `items[start[i] .. start[i + 1]]`, i = k·nx + col.
+struct Buckets {
+    origin: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+struct IndexedGrid {
+    owner: u32,
+    origin: Point,
+    cell: f64,
+    width: usize,
+    height: usize,
+    /// Row-major from the *bottom* row (k = 0), unlike [`super::Grid`].
+    blocked: Vec<bool>,
+}
+
+impl IndexedGrid {
+    #[inline]
+    fn blocked(&self, col: usize, k: usize) -> bool {
+        self.blocked[k * self.width + col]
+    }
+
+    fn extent(&self) -> Aabb {
+        Aabb {
+            min: self.origin,
+            max: Point::new(
+                self.origin.x + self.width as f64 * self.cell,
+                self.origin.y + self.height as f64 * self.cell,
+            ),
+        }
+    }
+}
+
+/// One query: the core `p → q` (a point when `p == q`) grown by `r`.
+struct Probe {
+    p: Point,
+    q: Point,
+    r: f64,
+    /// `q − p`.
+    d: Vector,
+    len: f64,
+    /// Unit normal of `p → q` (zero for a point).
+    m: Vector,
+    moving: bool,
+    thin: bool,
+    /// The box of everything the probe can reach, grown by `3·TOUCH_EPS`.
+    aabb: Aabb,
+}
+
+impl Probe {
+    #[inline]
+    fn new(p: Point, q: Point, r: f64) -> Self {
+        let r = r.max(0.0);
+        let d = q - p;
+        let len = d.norm();
+        let moving = len > 0.0;
+        let m = if moving {
+            Vector::new(-d.y, d.x) / len
+        } else {
+            Vector::zeros()
+        };
+        let reach = r + 3.0 * TOUCH_EPS;
+        let aabb = Aabb {
+            min: Point::new(p.x.min(q.x) - reach, p.y.min(q.y) - reach),
+            max: Point::new(p.x.max(q.x) + reach, p.y.max(q.y) + reach),
+        };
+        Probe {
+            p,
+            q,
+            r,
+            d,
+            len,
+            m,
+            moving,
+            thin: r <= TOUCH_EPS,
+            aabb,
+        }
+    }
+
+    /// Distance from `x` to the core.
+    #[inline]
+    fn distance_to(&self, x: Point) -> f64 {
+        distance_point_segment(x, self.p, self.q)
+    }
+}
 
 impl ObstacleIndex {
+    /// Prepares `world` for queries: O(total size of the obstacles); grids
+    /// are copied. Polygons without pieces are decomposed here.
     pub fn new(world: &World) -> Self {
-        let _ = world;
-        todo!()
+        let mut pieces = Vec::new();
+        let mut edges = Vec::new();
+        let mut grids = Vec::new();
+        for (i, o) in world.obstacles.iter().enumerate() {
+            let owner = i as u32;
+            let mut push = |kind: Kind, aabb: Aabb| {
+                pieces.push(Piece {
+                    aabb: grow(aabb, 3.0 * TOUCH_EPS),
+                    owner,
+                    kind,
+                })
+            };
+            match &o.shape {
+                Shape::Polygon {
+                    outline,
+                    pieces: convex,
+                } => {
+                    let decomposed;
+                    let convex = if convex.is_empty() {
+                        decomposed = polygon::convex_decomposition(outline);
+                        &decomposed
+                    } else {
+                        convex
+                    };
+                    for piece in convex {
+                        let first = edges.len() as u32;
+                        let v = &piece.vertices;
+                        for j in 0..v.len() {
+                            let (a, b) = (v[j], v[(j + 1) % v.len()]);
+                            let e = b - a;
+                            let l = e.norm();
+                            if l > 0.0 {
+                                let n = Vector::new(e.y, -e.x) / l;
+                                edges.push(Edge {
+                                    a,
+                                    n,
+                                    c: n.dot(&a.coords),
+                                });
+                            }
+                        }
+                        let len = edges.len() as u32 - first;
+                        if len >= 3 {
+                            push(Kind::Convex { first, len }, bounding_box(v));
+                        } else {
+                            edges.truncate(first as usize);
+                        }
+                    }
+                    for (a, b) in seams(outline, convex.iter().map(|p| p.vertices.as_slice())) {
+                        let (u0, u1) = (
+                            seam_end_margin(outline, a, b),
+                            (b - a).norm() - seam_end_margin(outline, b, a),
+                        );
+                        if u0 < u1 {
+                            let d = (b - a).normalize();
+                            push(
+                                Kind::Seam { a, d, u0, u1 },
+                                grow(Aabb::from_corners(a, b), TOUCH_EPS),
+                            );
+                        }
+                    }
+                }
+                Shape::Rect(b) => push(Kind::Rect(*b), *b),
+                Shape::Disk { center, radius } => {
+                    let v = Vector::new(*radius, *radius);
+                    push(
+                        Kind::Disk {
+                            center: *center,
+                            radius: *radius,
+                        },
+                        Aabb {
+                            min: center - v,
+                            max: center + v,
+                        },
+                    );
+                }
+                Shape::Segment(a, b) => {
+                    push(Kind::Wall { a: *a, b: *b }, Aabb::from_corners(*a, *b))
+                }
+                Shape::Grid(g) => {
+                    let mut blocked = vec![false; g.width * g.height];
+                    for row in 0..g.height {
+                        let k = g.height - 1 - row;
+                        for col in 0..g.width {
+                            blocked[k * g.width + col] = g.is_blocked(col, row);
+                        }
+                    }
+                    grids.push(IndexedGrid {
+                        owner,
+                        origin: g.origin,
+                        cell: g.cell,
+                        width: g.width,
+                        height: g.height,
+                        blocked,
+                    });
+                }
+            }
+        }
+        let buckets = Buckets::new(world.bounds, &pieces);
+        ObstacleIndex {
+            pieces,
+            edges,
+            buckets,
+            grids,
+        }
     }
 
     /// Whether a disk of radius `r` (0 = a point) centred at `p` stays out of
     /// every obstacle interior (touching allowed, tolerance TOUCH_EPS).
+    ///
+    /// See the module documentation for the exact rule. Bounds are not
+    /// checked.
     pub fn disk_free(&self, p: Point, r: f64) -> bool {
-        let _ = (p, r);
-        todo!()
+        self.disk_blocker(p, r).is_none()
+    }
+
+    /// The index in `world.obstacles` of an obstacle that a disk of radius
+    /// `r` at `p` overlaps (not necessarily the smallest such index), if any.
+    pub fn disk_blocker(&self, p: Point, r: f64) -> Option<usize> {
+        self.blocker(&Probe::new(p, p, r))
     }
 
     /// Whether the disk of radius `r` swept from `p` to `q` stays out of
     /// every obstacle interior and crosses no segment obstacle.
+    ///
+    /// Exact (up to rounding) for the straight motion, with the rule of the
+    /// module documentation: the swept capsule (the segment `pq` for `r = 0`)
+    /// may touch obstacles but not overlap them deeper than TOUCH_EPS. Bounds
+    /// are not checked.
     pub fn sweep_free(&self, p: Point, q: Point, r: f64) -> bool {
-        let _ = (p, q, r);
-        todo!()
+        self.sweep_blocker(p, q, r).is_none()
+    }
+
+    /// The index in `world.obstacles` of an obstacle that the disk of radius
+    /// `r` swept from `p` to `q` hits (not necessarily the smallest such
+    /// index), if any.
+    pub fn sweep_blocker(&self, p: Point, q: Point, r: f64) -> Option<usize> {
+        self.blocker(&Probe::new(p, q, r))
+    }
+
+    fn blocker(&self, probe: &Probe) -> Option<usize> {
+        for g in &self.grids {
+            if overlap(&g.extent(), &probe.aabb) && grid_hit(g, probe) {
+                return Some(g.owner as usize);
+            }
+        }
+        if self.pieces.is_empty() {
+            return None;
+        }
+        let mut found = None;
+        let b = &self.buckets;
+        visit_cells_along(b.origin, b.cell, b.nx, b.ny, probe, |col, k| {
+            let i = k * b.nx + col;
+            for &item in &b.items[b.start[i] as usize..b.start[i + 1] as usize] {
+                let piece = &self.pieces[item as usize];
+                if overlap(&piece.aabb, &probe.aabb) && self.piece_hit(piece, probe) {
+                    found = Some(piece.owner as usize);
+                    return true;
+                }
+            }
+            false
+        });
+        found
+    }
+
+    #[inline]
+    fn piece_hit(&self, piece: &Piece, probe: &Probe) -> bool {
+        match piece.kind {
+            Kind::Convex { first, len } => {
+                convex_hit(&self.edges[first as usize..(first + len) as usize], probe)
+            }
+            Kind::Rect(b) => box_hit(&b, probe),
+            Kind::Disk { center, radius } => {
+                probe.distance_to(center) < probe.r + radius - TOUCH_EPS
+            }
+            Kind::Wall { a, b } => wall_hit(a, b, probe),
+            Kind::Seam { a, d, u0, u1 } => {
+                probe.thin && {
+                    // The band in its own frame: u along the seam, w across.
+                    let frame = |x: Point| Point::new(d.dot(&(x - a)), d.perp(&(x - a)));
+                    let lo = Point::new(u0, -TOUCH_EPS);
+                    let hi = Point::new(u1, TOUCH_EPS);
+                    segment_meets_open_box(frame(probe.p), frame(probe.q), lo, hi)
+                }
+            }
+        }
+    }
+}
+
+impl Buckets {
+    /// About four buckets per piece, at most 128 × 128, over `bounds` grown
+    /// to hold every piece.
+    fn new(bounds: Aabb, pieces: &[Piece]) -> Self {
+        let ext = pieces.iter().fold(bounds, |e, p| union(&e, &p.aabb));
+        let side = ext.width().max(ext.height());
+        let per_side = ((4.0 * pieces.len() as f64).sqrt().ceil() as usize).clamp(1, 128);
+        let cell = if side > 0.0 && side.is_finite() {
+            side / per_side as f64
+        } else {
+            1.0
+        };
+        let nx = ((ext.width() / cell).ceil() as usize).clamp(1, 128);
+        let ny = ((ext.height() / cell).ceil() as usize).clamp(1, 128);
+        let mut buckets = Buckets {
+            origin: ext.min,
+            cell,
+            nx,
+            ny,
+            start: vec![0; nx * ny + 1],
+            items: Vec::new(),
+        };
+        let ranges: Vec<_> = pieces.iter().map(|p| buckets.range(&p.aabb)).collect();
+        // Count, then fill.
+        let mut counts = vec![0u32; nx * ny];
+        for &(cols, rows) in &ranges {
+            for k in rows.0..=rows.1 {
+                for c in cols.0..=cols.1 {
+                    counts[k * nx + c] += 1;
+                }
+            }
+        }
+        for i in 0..nx * ny {
+            buckets.start[i + 1] = buckets.start[i] + counts[i];
+        }
+        buckets.items = vec![0; buckets.start[nx * ny] as usize];
+        let mut next: Vec<u32> = buckets.start[..nx * ny].to_vec();
+        for (j, &(cols, rows)) in ranges.iter().enumerate() {
+            for k in rows.0..=rows.1 {
+                for c in cols.0..=cols.1 {
+                    let slot = &mut next[k * nx + c];
+                    buckets.items[*slot as usize] = j as u32;
+                    *slot += 1;
+                }
+            }
+        }
+        buckets
+    }
+
+    /// Inclusive column and row ranges of the buckets that `b` meets.
+    fn range(&self, b: &Aabb) -> ((usize, usize), (usize, usize)) {
+        let index =
+            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        let cols = (
+            index(b.min.x, self.origin.x, self.nx),
+            index(b.max.x, self.origin.x, self.nx),
+        );
+        let rows = (
+            index(b.min.y, self.origin.y, self.ny),
+            index(b.max.y, self.origin.y, self.ny),
+        );
+        (cols, rows)
+    }
+}
+
+/// Visits the cells (col, k), k counted from the bottom, of a raster of
+/// `cols × rows` squares of side `cell` with bottom-left corner `origin`,
+/// that the probe's capsule grown by `3·TOUCH_EPS` may meet: column by column,
+/// the rows spanned by the part of the capsule over that column (a superset
+/// of the cells met, linear in the capsule's length). Stops as soon as
+/// `visit` returns `true`, and returns `true` then.
+#[inline]
+fn visit_cells_along(
+    origin: Point,
+    cell: f64,
+    cols: usize,
+    rows: usize,
+    probe: &Probe,
+    mut visit: impl FnMut(usize, usize) -> bool,
+) -> bool {
+    if cols == 0 || rows == 0 {
+        return false;
+    }
+    let inv = 1.0 / cell;
+    let reach = probe.r + 3.0 * TOUCH_EPS;
+    let (x_lo, x_hi) = (
+        (probe.aabb.min.x - origin.x) * inv,
+        (probe.aabb.max.x - origin.x) * inv,
+    );
+    let (y_lo, y_hi) = (
+        (probe.aabb.min.y - origin.y) * inv,
+        (probe.aabb.max.y - origin.y) * inv,
+    );
+    if !(x_hi >= 0.0 && x_lo < cols as f64 && y_hi >= 0.0 && y_lo < rows as f64) {
+        return false;
+    }
+    let c0 = x_lo.floor().max(0.0) as usize;
+    let c1 = (x_hi.floor() as usize).min(cols - 1);
+    let (p, d) = (probe.p, probe.d);
+    for c in c0..=c1 {
+        let (ylo, yhi) = if c0 == c1 || d.x == 0.0 {
+            (probe.aabb.min.y, probe.aabb.max.y)
+        } else {
+            // The part of the core within `reach` of the column's strip.
+            let xa = origin.x + c as f64 * cell - reach;
+            let xb = xa + cell + 2.0 * reach;
+            let (ta, tb) = ((xa - p.x) / d.x, (xb - p.x) / d.x);
+            let (t0, t1) = (ta.min(tb).max(0.0), ta.max(tb).min(1.0));
+            if t0 > t1 {
+                continue;
+            }
+            let (ya, yb) = (p.y + t0 * d.y, p.y + t1 * d.y);
+            (ya.min(yb) - reach, ya.max(yb) + reach)
+        };
+        let k_hi = ((yhi - origin.y) * inv).floor();
+        if k_hi < 0.0 {
+            continue;
+        }
+        let k0 = (((ylo - origin.y) * inv).floor().max(0.0) as usize).min(rows);
+        let k1 = (k_hi as usize).min(rows - 1);
+        for k in k0..=k1 {
+            if visit(c, k) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Blocked cells along the probe, and for thin probes the seams between
+/// blocked cells and the corners of four blocked cells.
+fn grid_hit(g: &IndexedGrid, probe: &Probe) -> bool {
+    let e = TOUCH_EPS;
+    visit_cells_along(g.origin, g.cell, g.width, g.height, probe, |col, k| {
+        if !g.blocked(col, k) {
+            return false;
+        }
+        let x0 = g.origin.x + col as f64 * g.cell;
+        let y0 = g.origin.y + k as f64 * g.cell;
+        let (x1, y1) = (x0 + g.cell, y0 + g.cell);
+        let cell = Aabb {
+            min: Point::new(x0, y0),
+            max: Point::new(x1, y1),
+        };
+        if box_hit(&cell, probe) {
+            return true;
+        }
+        if !probe.thin {
+            return false;
+        }
+        let band = |lx: f64, ly: f64, hx: f64, hy: f64| {
+            segment_meets_open_box(probe.p, probe.q, Point::new(lx, ly), Point::new(hx, hy))
+        };
+        let right = col + 1 < g.width && g.blocked(col + 1, k);
+        let above = k + 1 < g.height && g.blocked(col, k + 1);
+        (right && band(x1 - e, y0 + e, x1 + e, y1 - e))
+            || (above && band(x0 + e, y1 - e, x1 - e, y1 + e))
+            || (right
+                && above
+                && g.blocked(col + 1, k + 1)
+                && band(x1 - 2.0 * e, y1 - 2.0 * e, x1 + 2.0 * e, y1 + 2.0 * e))
+    })
+}
+
+/// Whether the probe overlaps the convex piece bounded by `edges` deeper
+/// than TOUCH_EPS: separating axes (the piece's normals, the core's normal)
+/// first, then the exact distance if the cores are disjoint.
+#[inline]
+fn convex_hit(edges: &[Edge], probe: &Probe) -> bool {
+    let limit = probe.r - TOUCH_EPS;
+    let (p, q) = (probe.p.coords, probe.q.coords);
+    let mut gap = f64::NEG_INFINITY;
+    for e in edges {
+        let g = e.n.dot(&p).min(e.n.dot(&q)) - e.c;
+        if g >= limit {
+            return false;
+        }
+        gap = gap.max(g);
+    }
+    if probe.moving {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for e in edges {
+            let s = probe.m.dot(&(e.a - probe.p));
+            lo = lo.min(s);
+            hi = hi.max(s);
+        }
+        let g = lo.max(-hi);
+        if g >= limit {
+            return false;
+        }
+        gap = gap.max(g);
+    }
+    if gap < 0.0 {
+        return true;
+    }
+    let n = edges.len();
+    let to_piece = |x: Point| {
+        (0..n)
+            .map(|i| distance_point_segment(x, edges[i].a, edges[(i + 1) % n].a))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut distance = to_piece(probe.p);
+    if probe.moving {
+        distance = distance.min(to_piece(probe.q));
+        for e in edges {
+            distance = distance.min(probe.distance_to(e.a));
+        }
+    }
+    distance < limit
+}
+
+/// [`convex_hit`] for an axis-aligned box.
+#[inline]
+fn box_hit(b: &Aabb, probe: &Probe) -> bool {
+    let limit = probe.r - TOUCH_EPS;
+    let (p, q) = (probe.p, probe.q);
+    let gx = (b.min.x - p.x.max(q.x)).max(p.x.min(q.x) - b.max.x);
+    if gx >= limit {
+        return false;
+    }
+    let gy = (b.min.y - p.y.max(q.y)).max(p.y.min(q.y) - b.max.y);
+    if gy >= limit {
+        return false;
+    }
+    let mut gap = gx.max(gy);
+    if probe.moving {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for corner in b.corners() {
+            let s = probe.m.dot(&(corner - p));
+            lo = lo.min(s);
+            hi = hi.max(s);
+        }
+        let g = lo.max(-hi);
+        if g >= limit {
+            return false;
+        }
+        gap = gap.max(g);
+    }
+    if gap < 0.0 {
+        return true;
+    }
+    let distance = if probe.moving {
+        let corners = b.corners();
+        let mut d = distance_point_box(p, b).min(distance_point_box(q, b));
+        for corner in corners {
+            d = d.min(probe.distance_to(corner));
+        }
+        d
+    } else {
+        gx.max(0.0).hypot(gy.max(0.0))
+    };
+    distance < limit
+}
+
+/// Whether the probe meets the segment obstacle `ab` deeper than TOUCH_EPS.
+/// Two crossing segments overlap by the smallest distance of an endpoint to
+/// the other's line (their Minkowski difference is a parallelogram).
+#[inline]
+fn wall_hit(a: Point, b: Point, probe: &Probe) -> bool {
+    let limit = probe.r - TOUCH_EPS;
+    if !probe.moving {
+        return distance_point_segment(probe.p, a, b) < limit;
+    }
+    let w = b - a;
+    let wl = w.norm();
+    if wl == 0.0 {
+        return probe.distance_to(a) < limit;
+    }
+    let (p, q) = (probe.p, probe.q);
+    let (d1, d2) = (w.perp(&(p - a)) / wl, w.perp(&(q - a)) / wl);
+    let (d3, d4) = (
+        probe.d.perp(&(a - p)) / probe.len,
+        probe.d.perp(&(b - p)) / probe.len,
+    );
+    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+        let depth = d1.abs().min(d2.abs()).min(d3.abs()).min(d4.abs());
+        return -depth < limit;
+    }
+    if limit <= 0.0 {
+        return false;
+    }
+    let distance = distance_point_segment(p, a, b)
+        .min(distance_point_segment(q, a, b))
+        .min(probe.distance_to(a))
+        .min(probe.distance_to(b));
+    distance < limit
+}
+
+/// Whether the closed segment `pq` (a point when `p == q`) meets the open
+/// box `(lo, hi)`: Liang–Barsky clipping with strict inequalities.
+#[inline]
+fn segment_meets_open_box(p: Point, q: Point, lo: Point, hi: Point) -> bool {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (s, d, l, h) in [(p.x, q.x - p.x, lo.x, hi.x), (p.y, q.y - p.y, lo.y, hi.y)] {
+        if d == 0.0 {
+            if !(s > l && s < h) {
+                return false;
+            }
+        } else {
+            let (ta, tb) = ((l - s) / d, (h - s) / d);
+            t0 = t0.max(ta.min(tb));
+            t1 = t1.min(ta.max(tb));
+        }
+    }
+    t0 < t1 || (p == q && t0 <= t1)
+}
+
+/// The edges shared by two pieces (edges of a piece that are not on the
+/// outline), once each.
+fn seams<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) -> Vec<(Point, Point)> {
+    let n = outline.len();
+    let b = bounding_box(outline);
+    let tol = 1e-9 * b.width().max(b.height());
+    let mut out: Vec<(Point, Point)> = Vec::new();
+    for v in pieces {
+        for j in 0..v.len() {
+            let (a, b) = (v[j], v[(j + 1) % v.len()]);
+            let mid = Point::from((a.coords + b.coords) * 0.5);
+            let on_outline = (0..n)
+                .any(|i| distance_point_segment(mid, outline[i], outline[(i + 1) % n]) <= tol);
+            if !on_outline
+                && !out
+                    .iter()
+                    .any(|&(x, y)| (x, y) == (a, b) || (x, y) == (b, a))
+            {
+                out.push((a, b));
+            }
+        }
+    }
+    out
+}
+
+/// How far from its end `a` the band around the seam `a → b` starts, so
+/// that the band (half-width ε) stays ε away from the outline edges at `a`:
+/// a point u along the seam and w across is |u·sin α − w·cos α| from an edge
+/// at angle α, which is ≥ ε when u ≥ ε·(1 + |cos α|)/sin α.
+fn seam_end_margin(outline: &[Point], a: Point, b: Point) -> f64 {
+    let n = outline.len();
+    let Some(k) = outline.iter().position(|&v| v == a) else {
+        return 2.0 * TOUCH_EPS;
+    };
+    let d = (b - a).normalize();
+    let mut margin = TOUCH_EPS;
+    for v in [outline[(k + n - 1) % n], outline[(k + 1) % n]] {
+        let e = (v - a).normalize();
+        margin = margin.max(TOUCH_EPS * (1.0 + d.dot(&e).abs()) / d.perp(&e).abs());
+    }
+    margin * 1.01
+}
+
+#[inline]
+fn distance_point_segment(x: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 {
+        ((x - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (x - (a + ab * t)).norm()
+}
+
+#[inline]
+fn distance_point_box(x: Point, b: &Aabb) -> f64 {
+    let dx = (b.min.x - x.x).max(x.x - b.max.x).max(0.0);
+    let dy = (b.min.y - x.y).max(x.y - b.max.y).max(0.0);
+    dx.hypot(dy)
+}
+
+fn bounding_box(points: &[Point]) -> Aabb {
+    let first = points.first().copied().unwrap_or_else(Point::origin);
+    points.iter().fold(
+        Aabb {
+            min: first,
+            max: first,
+        },
+        |b, p| union(&b, &Aabb { min: *p, max: *p }),
+    )
+}
+
+#[inline]
+fn overlap(a: &Aabb, b: &Aabb) -> bool {
+    a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y
+}
+
+fn union(a: &Aabb, b: &Aabb) -> Aabb {
+    Aabb {
+        min: Point::new(a.min.x.min(b.min.x), a.min.y.min(b.min.y)),
+        max: Point::new(a.max.x.max(b.max.x), a.max.y.max(b.max.y)),
+    }
+}
+
+fn grow(b: Aabb, by: f64) -> Aabb {
+    let v = Vector::new(by, by);
+    Aabb {
+        min: b.min - v,
+        max: b.max + v,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::validator::{Validator, config_collision};
+    use crate::geometry::{Config, ConvexPolygon, Grid, Obstacle, RobotShape};
+    use proptest::prelude::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    fn world(shapes: Vec<Shape>) -> World {
+        World {
+            bounds: Aabb {
+                min: p(0.0, 0.0),
+                max: p(10.0, 10.0),
+            },
+            obstacles: shapes
+                .into_iter()
+                .enumerate()
+                .map(|(i, shape)| Obstacle {
+                    name: format!("o{i}"),
+                    shape,
+                })
+                .collect(),
+        }
+    }
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+        Shape::Rect(Aabb::from_corners(p(x0, y0), p(x1, y1)))
+    }
+
+    fn polygon_shape(v: &[Point]) -> Option<Shape> {
+        let outline = polygon::normalize_simple_polygon(v).ok()?;
+        let pieces = polygon::convex_decomposition(&outline);
+        Some(Shape::Polygon { outline, pieces })
+    }
+
+    fn grid(cell: f64, origin: Point, rows: &[&str]) -> Shape {
+        let cells = rows
+            .iter()
+            .flat_map(|r| r.chars().map(|ch| if ch == '#' { 0 } else { 1 }))
+            .collect();
+        Shape::Grid(Grid {
+            cell,
+            origin,
+            width: rows[0].len(),
+            height: rows.len(),
+            cells,
+        })
+    }
+
+    #[test]
+    fn points_and_disks_against_each_kind() {
+        let w = world(vec![
+            rect(1.0, 1.0, 2.0, 2.0),
+            Shape::Disk {
+                center: p(5.0, 5.0),
+                radius: 1.0,
+            },
+            Shape::Segment(p(8.0, 0.0), p(8.0, 4.0)),
+            polygon_shape(&[p(1.0, 6.0), p(3.0, 6.0), p(2.0, 8.0)]).unwrap(),
+        ]);
+        let ix = ObstacleIndex::new(&w);
+        assert_eq!(ix.disk_blocker(p(1.5, 1.5), 0.0), Some(0));
+        assert!(ix.disk_free(p(2.0, 1.5), 0.0), "on the edge");
+        assert!(ix.disk_free(p(2.5, 1.5), 0.5), "touching");
+        assert!(!ix.disk_free(p(2.5, 1.5), 0.5 + 1e-8));
+        assert_eq!(ix.disk_blocker(p(5.0, 6.5), 0.6), Some(1));
+        assert!(ix.disk_free(p(5.0, 6.5), 0.5));
+        assert!(
+            ix.disk_free(p(8.0, 2.0), 0.0),
+            "a point never collides with a wall"
+        );
+        assert_eq!(ix.disk_blocker(p(8.2, 2.0), 0.3), Some(2));
+        assert!(ix.disk_free(p(8.3, 2.0), 0.3));
+        assert_eq!(ix.disk_blocker(p(2.0, 7.0), 0.0), Some(3));
+        assert!(ix.disk_free(p(2.0, 6.0), 0.0));
+        assert!(ix.disk_free(p(2.0, 5.0), 1.0));
+    }
+
+    #[test]
+    fn sweeps_touching_and_crossing() {
+        let w = world(vec![
+            rect(4.0, 4.0, 6.0, 6.0),
+            Shape::Segment(p(8.0, 2.0), p(8.0, 8.0)),
+        ]);
+        let ix = ObstacleIndex::new(&w);
+        // Through, along an edge, through a corner.
+        assert_eq!(ix.sweep_blocker(p(1.0, 5.0), p(7.0, 5.0), 0.0), Some(0));
+        assert!(ix.sweep_free(p(1.0, 6.0), p(7.0, 6.0), 0.0));
+        assert!(ix.sweep_free(p(2.0, 4.0), p(6.0, 8.0), 0.0));
+        // A disk rolling along the top, exactly touching.
+        assert!(ix.sweep_free(p(1.0, 6.5), p(7.0, 6.5), 0.5));
+        assert!(!ix.sweep_free(p(1.0, 6.5), p(7.0, 6.5), 0.5 + 1e-8));
+        // The wall: crossing fails, touching its end or sliding along it does not.
+        assert_eq!(ix.sweep_blocker(p(7.0, 5.0), p(9.0, 5.0), 0.0), Some(1));
+        assert!(ix.sweep_free(p(7.0, 8.0), p(9.0, 8.0), 0.0));
+        assert!(ix.sweep_free(p(8.0, 1.0), p(8.0, 9.0), 0.0));
+        assert!(ix.sweep_free(p(7.0, 5.0), p(8.0, 5.0), 0.0));
+        assert!(!ix.sweep_free(p(8.0, 1.0), p(8.0, 9.0), 0.1));
+    }
+
+    #[test]
+    fn disk_between_two_walls_exactly_its_width_apart() {
+        let w = world(vec![
+            Shape::Segment(p(0.0, 2.0), p(10.0, 2.0)),
+            Shape::Segment(p(0.0, 3.0), p(10.0, 3.0)),
+            rect(0.0, 4.0, 10.0, 5.0),
+        ]);
+        let ix = ObstacleIndex::new(&w);
+        assert!(ix.sweep_free(p(1.0, 2.5), p(9.0, 2.5), 0.5));
+        assert!(!ix.sweep_free(p(1.0, 2.5), p(9.0, 2.5), 0.5 + 1e-8));
+        assert!(ix.sweep_free(p(1.0, 3.5), p(9.0, 3.5), 0.5));
+    }
+
+    #[test]
+    fn grid_corners_and_seams() {
+        // Row 0 is the top: blocked cells [0,1]x[1,2] and [1,2]x[0,1].
+        let w = world(vec![grid(1.0, p(0.0, 0.0), &["#.", ".#"])]);
+        let ix = ObstacleIndex::new(&w);
+        assert!(
+            ix.sweep_free(p(0.5, 0.5), p(1.5, 1.5), 0.0),
+            "diagonal through the corner"
+        );
+        assert!(!ix.sweep_free(p(0.5, 0.5), p(1.5, 0.5), 0.0));
+        assert!(ix.disk_free(p(1.0, 1.0), 0.0));
+        // A wall of two cells: its inner edge and the corner of four are inside.
+        let w = world(vec![grid(1.0, p(0.0, 0.0), &["##.", "##.", "..."])]);
+        let ix = ObstacleIndex::new(&w);
+        assert!(
+            !ix.disk_free(p(1.0, 1.0 + 1.0), 0.0),
+            "corner of four blocked cells"
+        );
+        assert!(
+            !ix.disk_free(p(1.0, 2.5), 0.0),
+            "seam between two blocked cells"
+        );
+        assert!(
+            !ix.sweep_free(p(1.0, 0.5), p(1.0, 3.5), 0.0),
+            "sliding along a seam"
+        );
+        assert!(
+            ix.sweep_free(p(0.0, 1.0), p(2.0, 1.0), 0.0),
+            "along the outer boundary"
+        );
+        assert!(ix.sweep_free(p(2.0, 0.5), p(2.0, 3.5), 0.0));
+        assert!(ix.disk_free(p(2.0, 1.0), 0.0));
+    }
+
+    #[test]
+    fn polygon_seams_are_inside() {
+        let l = polygon_shape(&[
+            p(0.0, 0.0),
+            p(4.0, 0.0),
+            p(4.0, 2.0),
+            p(2.0, 2.0),
+            p(2.0, 4.0),
+            p(0.0, 4.0),
+        ])
+        .unwrap();
+        let Shape::Polygon { outline, pieces } = &l else {
+            unreachable!()
+        };
+        let shared = seams(outline, pieces.iter().map(|pc| pc.vertices.as_slice()));
+        assert!(!shared.is_empty());
+        let ix = ObstacleIndex::new(&world(vec![l.clone()]));
+        for (a, b) in shared {
+            assert!(!ix.disk_free(Point::from((a.coords + b.coords) / 2.0), 0.0));
+            assert!(!ix.sweep_free(a, b, 0.0));
+        }
+        for i in 0..outline.len() {
+            assert!(ix.sweep_free(outline[i], outline[(i + 1) % outline.len()], 0.0));
+        }
+    }
+
+    #[test]
+    fn long_sweeps_visit_only_the_cells_along_them() {
+        // 512 x 512 cells; a blocked cell far off the diagonal does not
+        // matter, one on it does.
+        let mut cells = vec![1u8; 512 * 512];
+        cells[10 * 512 + 500] = 0;
+        let mut g = Grid {
+            cell: 1.0 / 64.0,
+            origin: p(1.0, 1.0),
+            width: 512,
+            height: 512,
+            cells,
+        };
+        let w = world(vec![Shape::Grid(g.clone())]);
+        let ix = ObstacleIndex::new(&w);
+        assert!(ix.sweep_free(p(1.0, 1.0), p(9.0, 9.0), 0.0));
+        g.cells[256 * 512 + 255] = 0;
+        let ix = ObstacleIndex::new(&world(vec![Shape::Grid(g)]));
+        assert!(!ix.sweep_free(p(1.0, 1.0), p(9.0, 9.0), 0.0));
+        assert!(!ix.sweep_free(p(9.0, 9.0), p(1.0, 1.0), 0.01));
+    }
+
+    #[test]
+    fn many_pieces_share_buckets() {
+        let shapes: Vec<Shape> = (0..200)
+            .map(|i| {
+                let (x, y) = ((i % 20) as f64 * 0.5, (i / 20) as f64 * 1.0);
+                rect(x, y, x + 0.2, y + 0.2)
+            })
+            .collect();
+        let w = world(shapes);
+        let ix = ObstacleIndex::new(&w);
+        for (i, o) in w.obstacles.iter().enumerate() {
+            let Shape::Rect(b) = &o.shape else {
+                unreachable!()
+            };
+            let c = Point::from((b.min.coords + b.max.coords) / 2.0);
+            assert_eq!(ix.disk_blocker(c, 0.0), Some(i));
+        }
+        assert!(ix.sweep_free(p(0.0, 0.5), p(10.0, 0.5), 0.1));
+        assert!(!ix.sweep_free(p(0.0, 0.5), p(10.0, 0.5), 0.31));
+    }
+
+    // ------------------------------------------------ agreement with the validator
+
+    /// A small random world: convex and non-convex polygons, rects, disks,
+    /// segments and a small grid, in and around [0, 10]².
+    fn random_world() -> impl Strategy<Value = World> {
+        let pt = || (0.0..10.0f64, 0.0..10.0f64).prop_map(|(x, y)| p(x, y));
+        let convex = (
+            pt(),
+            prop::collection::vec((-1.5..1.5f64, -1.5..1.5f64), 3..8),
+        )
+            .prop_filter_map("flat", |(c, v)| {
+                let hull = polygon::convex_hull(
+                    &v.iter()
+                        .map(|&(x, y)| p(c.x + x, c.y + y))
+                        .collect::<Vec<_>>(),
+                );
+                (hull.len() >= 3).then(|| Shape::Polygon {
+                    outline: hull.clone(),
+                    pieces: vec![ConvexPolygon { vertices: hull }],
+                })
+            });
+        let star = (
+            pt(),
+            prop::collection::vec((0.0..1.0f64, 0.3..2.0f64), 4..9),
+        )
+            .prop_filter_map("bad", |(c, v)| {
+                let k = v.len() as f64;
+                let pts: Vec<Point> = v
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &(j, r))| {
+                        let a = (i as f64 + 0.8 * j) * std::f64::consts::TAU / k;
+                        p(c.x + r * a.cos(), c.y + r * a.sin())
+                    })
+                    .collect();
+                polygon_shape(&pts)
+            });
+        let rect =
+            (pt(), 0.1..3.0f64, 0.1..3.0f64).prop_map(|(a, w, h)| rect(a.x, a.y, a.x + w, a.y + h));
+        let disk = (pt(), 0.1..2.0f64).prop_map(|(c, r)| Shape::Disk {
+            center: c,
+            radius: r,
+        });
+        let wall = (pt(), pt()).prop_map(|(a, b)| Shape::Segment(a, b));
+        let raster = (
+            pt(),
+            0.3..2.0f64,
+            1..7usize,
+            1..7usize,
+            prop::collection::vec(prop::bool::weighted(0.45), 36),
+        )
+            .prop_map(|(o, cell, w, h, bits)| {
+                let cells = (0..w * h)
+                    .map(|i| if bits[i % 36] { 0 } else { 1 })
+                    .collect();
+                Shape::Grid(Grid {
+                    cell,
+                    origin: p(o.x - 3.0, o.y - 3.0),
+                    width: w,
+                    height: h,
+                    cells,
+                })
+            });
+        (
+            prop::collection::vec(convex, 0..3),
+            prop::collection::vec(star, 0..2),
+            prop::collection::vec(rect, 0..3),
+            prop::collection::vec(disk, 0..3),
+            prop::collection::vec(wall, 0..3),
+            prop::option::of(raster),
+        )
+            .prop_map(|(a, b, c, d, e, f)| {
+                let shapes: Vec<Shape> = a
+                    .into_iter()
+                    .chain(b)
+                    .chain(c)
+                    .chain(d)
+                    .chain(e)
+                    .chain(f)
+                    .collect();
+                let mut w = world(shapes);
+                // The validator also checks bounds; make them irrelevant.
+                w.bounds = Aabb {
+                    min: p(-100.0, -100.0),
+                    max: p(100.0, 100.0),
+                };
+                w
+            })
+    }
+
+    fn probe_radius() -> impl Strategy<Value = f64> {
+        prop_oneof![Just(0.0), 0.01..1.5f64]
+    }
+
+    fn validator_sweep_free(v: &Validator, p: Point, q: Point, r: f64) -> bool {
+        let robot = if r == 0.0 {
+            RobotShape::Point
+        } else {
+            RobotShape::Disk(r)
+        };
+        v.validate_path(
+            &robot,
+            &[Config::new(p.x, p.y, 0.0), Config::new(q.x, q.y, 0.0)],
+            0.01,
+        )
+        .is_ok()
+    }
+
+    /// Whether the verdict could flip within 1e-7 of `r` (exact contact,
+    /// where rounding decides).
+    fn ambiguous(ix: &ObstacleIndex, v: &Validator, p: Point, q: Point, r: f64) -> bool {
+        let (lo, hi) = ((r - 1e-7).max(0.0), r + 1e-7);
+        ix.sweep_free(p, q, lo) != ix.sweep_free(p, q, hi)
+            || validator_sweep_free(v, p, q, lo) != validator_sweep_free(v, p, q, hi)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        #[test]
+        fn sweep_free_agrees_with_the_validator(
+            w in random_world(),
+            a in (-1.0..11.0f64, -1.0..11.0f64),
+            b in (-1.0..11.0f64, -1.0..11.0f64),
+            r in probe_radius(),
+        ) {
+            let (pa, pb) = (p(a.0, a.1), p(b.0, b.1));
+            let ix = ObstacleIndex::new(&w);
+            let v = Validator::new(&w);
+            prop_assume!(!ambiguous(&ix, &v, pa, pb, r));
+            prop_assert_eq!(ix.sweep_free(pa, pb, r), validator_sweep_free(&v, pa, pb, r));
+        }
+
+        #[test]
+        fn disk_free_agrees_with_config_collision(
+            w in random_world(),
+            a in (-1.0..11.0f64, -1.0..11.0f64),
+            r in probe_radius(),
+        ) {
+            let pa = p(a.0, a.1);
+            let ix = ObstacleIndex::new(&w);
+            let v = Validator::new(&w);
+            prop_assume!(!ambiguous(&ix, &v, pa, pa, r));
+            let robot = if r == 0.0 { RobotShape::Point } else { RobotShape::Disk(r) };
+            let blocker = ix.disk_blocker(pa, r);
+            prop_assert_eq!(blocker.is_none(), config_collision(&w, &robot, Config::new(pa.x, pa.y, 0.0)).is_none());
+            if let Some(i) = blocker {
+                // The blocker named is one the validator agrees on.
+                let alone = World { obstacles: vec![w.obstacles[i].clone()], ..w.clone() };
+                prop_assert!(config_collision(&alone, &robot, Config::new(pa.x, pa.y, 0.0)).is_some());
+            }
+        }
+
+        /// On a half-unit lattice over a unit grid every contact is exact:
+        /// seams, corners and edges are met exactly, and the two must still
+        /// agree (no tolerance band).
+        #[test]
+        fn lattice_moves_on_unit_grids_agree_exactly(
+            bits in prop::collection::vec(prop::bool::weighted(0.5), 36),
+            a in (0..13i32, 0..13i32),
+            step in (-2..3i32, -2..3i32),
+            r in prop_oneof![Just(0.0), Just(0.5), Just(0.25)],
+        ) {
+            let cells = bits.iter().map(|&b| if b { 0 } else { 1 }).collect();
+            let mut w = world(vec![Shape::Grid(Grid { cell: 1.0, origin: p(0.0, 0.0), width: 6, height: 6, cells })]);
+            w.bounds = Aabb { min: p(-100.0, -100.0), max: p(100.0, 100.0) };
+            let pa = p(a.0 as f64 * 0.5, a.1 as f64 * 0.5);
+            let pb = p(pa.x + step.0 as f64 * 0.5, pa.y + step.1 as f64 * 0.5);
+            let ix = ObstacleIndex::new(&w);
+            let v = Validator::new(&w);
+            prop_assert_eq!(ix.sweep_free(pa, pb, r), validator_sweep_free(&v, pa, pb, r));
+        }
     }
 }

@@ -67,7 +67,11 @@ fn length_tolerance(points: &[Point]) -> f64 {
 fn distance_point_segment(p: Point, a: Point, b: Point) -> f64 {
     let ab = b - a;
     let len2 = ab.norm_squared();
-    let t = if len2 > 0.0 { ((p - a).dot(&ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if len2 > 0.0 {
+        ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     (p - (a + ab * t)).norm()
 }
 
@@ -128,6 +132,10 @@ pub fn normalize_simple_polygon(points: &[Point]) -> Result<Vec<Point>, PolygonE
         ring.pop();
     }
 
+    if all_on_one_line(&ring, tol) {
+        return Err(PolygonError::TooFewVertices);
+    }
+
     // Drop collinear vertices until none is left; a vertex where the boundary
     // folds back onto itself makes its two edges overlap.
     let mut changed = true;
@@ -182,8 +190,30 @@ pub fn normalize_simple_polygon(points: &[Point]) -> Result<Vec<Point>, PolygonE
     Ok(outline)
 }
 
+/// Whether all points lie within `tol` of one line (the line through the
+/// first point and the point farthest from it).
+fn all_on_one_line(ring: &[(Point, usize)], tol: f64) -> bool {
+    let Some(&(a, _)) = ring.first() else {
+        return true;
+    };
+    let far = ring.iter().map(|&(p, _)| p).fold(a, |f, p| {
+        if (p - a).norm() > (f - a).norm() {
+            p
+        } else {
+            f
+        }
+    });
+    let len = (far - a).norm();
+    len == 0.0
+        || ring
+            .iter()
+            .all(|&(p, _)| cross(far - a, p - a).abs() / len <= tol)
+}
+
 fn self_intersecting(i: usize, j: usize) -> PolygonError {
-    PolygonError::SelfIntersecting { edges: (i.min(j), i.max(j)) }
+    PolygonError::SelfIntersecting {
+        edges: (i.min(j), i.max(j)),
+    }
 }
 
 /// The input edges that make up edge `k` of the cleaned ring (the ring's
@@ -203,12 +233,17 @@ fn edge_length(points: &[Point], e: usize) -> f64 {
 
 fn first_proper_edge(points: &[Point], mut edges: impl Iterator<Item = usize> + Clone) -> usize {
     let first = edges.clone().next().unwrap_or(0);
-    edges.find(|&e| edge_length(points, e) > 0.0).unwrap_or(first)
+    edges
+        .find(|&e| edge_length(points, e) > 0.0)
+        .unwrap_or(first)
 }
 
 fn last_proper_edge(points: &[Point], edges: impl Iterator<Item = usize> + Clone) -> usize {
     let last = edges.clone().last().unwrap_or(0);
-    edges.filter(|&e| edge_length(points, e) > 0.0).last().unwrap_or(last)
+    edges
+        .filter(|&e| edge_length(points, e) > 0.0)
+        .last()
+        .unwrap_or(last)
 }
 
 /// The pair of input edges, one from each span, that come closest.
@@ -221,7 +256,12 @@ fn closest_input_edges(
     let mut best = (f64::INFINITY, 0, 0);
     for e in a {
         for f in b.clone() {
-            let d = distance_segment_segment(points[e], points[(e + 1) % n], points[f], points[(f + 1) % n]);
+            let d = distance_segment_segment(
+                points[e],
+                points[(e + 1) % n],
+                points[f],
+                points[(f + 1) % n],
+            );
             if d < best.0 {
                 best = (d, e, f);
             }
@@ -285,7 +325,9 @@ pub fn convex_decomposition(ccw: &[Point]) -> Vec<ConvexPolygon> {
         return Vec::new();
     }
     if is_convex(ccw) {
-        return vec![ConvexPolygon { vertices: ccw.to_vec() }];
+        return vec![ConvexPolygon {
+            vertices: ccw.to_vec(),
+        }];
     }
     let triangles = ear_clipping(ccw);
     let pieces = hertel_mehlhorn(ccw, triangles);
@@ -295,7 +337,8 @@ pub fn convex_decomposition(ccw: &[Point]) -> Vec<ConvexPolygon> {
         .filter_map(|idx| {
             let mut vertices: Vec<Point> = idx.iter().map(|&i| ccw[i]).collect();
             remove_straight_vertices(&mut vertices, tol);
-            (vertices.len() >= 3 && signed_area2(&vertices) > 0.0).then_some(ConvexPolygon { vertices })
+            (vertices.len() >= 3 && signed_area2(&vertices) > 0.0)
+                .then_some(ConvexPolygon { vertices })
         })
         .collect()
 }
@@ -370,7 +413,8 @@ fn ear_clipping(pts: &[Point]) -> Vec<[usize; 3]> {
 /// Merges triangles across diagonals while both ends of the diagonal stay
 /// strictly convex. Pieces are vertex index cycles, counter-clockwise.
 fn hertel_mehlhorn(pts: &[Point], triangles: Vec<[usize; 3]>) -> Vec<Vec<usize>> {
-    let mut pieces: Vec<Option<Vec<usize>>> = triangles.into_iter().map(|t| Some(t.to_vec())).collect();
+    let mut pieces: Vec<Option<Vec<usize>>> =
+        triangles.into_iter().map(|t| Some(t.to_vec())).collect();
     // Directed edge → the piece that has it.
     let mut owner: HashMap<(usize, usize), usize> = HashMap::new();
     for (k, piece) in pieces.iter().enumerate() {
@@ -380,7 +424,11 @@ fn hertel_mehlhorn(pts: &[Point], triangles: Vec<[usize; 3]>) -> Vec<Vec<usize>>
             }
         }
     }
-    let mut diagonals: Vec<(usize, usize)> = owner.keys().copied().filter(|&(u, v)| u < v && owner.contains_key(&(v, u))).collect();
+    let mut diagonals: Vec<(usize, usize)> = owner
+        .keys()
+        .copied()
+        .filter(|&(u, v)| u < v && owner.contains_key(&(v, u)))
+        .collect();
     diagonals.sort_unstable();
 
     let strictly_convex = |a: usize, b: usize, c: usize| {
@@ -428,7 +476,11 @@ fn remove_straight_vertices(vertices: &mut Vec<Point>, tol: f64) {
     let mut i = 0;
     while i < vertices.len() && vertices.len() > 3 {
         let n = vertices.len();
-        let (a, b, c) = (vertices[(i + n - 1) % n], vertices[i], vertices[(i + 1) % n]);
+        let (a, b, c) = (
+            vertices[(i + n - 1) % n],
+            vertices[i],
+            vertices[(i + 1) % n],
+        );
         if turn_deviation(a, b, c) <= tol {
             vertices.remove(i);
             i = i.saturating_sub(1);
@@ -451,7 +503,11 @@ fn remove_straight_vertices(vertices: &mut Vec<Point>, tol: f64) {
 ///   points lie on one line;
 /// * the single point when all points coincide; nothing for no input.
 pub fn convex_hull(points: &[Point]) -> Vec<Point> {
-    let mut pts: Vec<Point> = points.iter().copied().filter(|p| p.x.is_finite() && p.y.is_finite()).collect();
+    let mut pts: Vec<Point> = points
+        .iter()
+        .copied()
+        .filter(|p| p.x.is_finite() && p.y.is_finite())
+        .collect();
     pts.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     pts.dedup();
     if pts.len() < 3 {
@@ -468,7 +524,9 @@ pub fn convex_hull(points: &[Point]) -> Vec<Point> {
     }
     let lower_len = hull.len() + 1;
     for &p in pts.iter().rev().skip(1) {
-        while hull.len() >= lower_len && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+        while hull.len() >= lower_len
+            && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+        {
             hull.pop();
         }
         hull.push(p);
@@ -529,10 +587,21 @@ mod tests {
         }
         let total: f64 = pieces.iter().map(|p| signed_area2(&p.vertices)).sum();
         let area = signed_area2(poly);
-        assert!((total - area).abs() <= 1e-9 * area.abs().max(1.0), "areas {total} vs {area}");
+        assert!(
+            (total - area).abs() <= 1e-9 * area.abs().max(1.0),
+            "areas {total} vs {area}"
+        );
         let (lo, hi) = poly.iter().fold(
-            (Point::new(f64::INFINITY, f64::INFINITY), Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY)),
-            |(lo, hi), p| (Point::new(lo.x.min(p.x), lo.y.min(p.y)), Point::new(hi.x.max(p.x), hi.y.max(p.y))),
+            (
+                Point::new(f64::INFINITY, f64::INFINITY),
+                Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+            ),
+            |(lo, hi), p| {
+                (
+                    Point::new(lo.x.min(p.x), lo.y.min(p.y)),
+                    Point::new(hi.x.max(p.x), hi.y.max(p.y)),
+                )
+            },
         );
         let steps = 37;
         for i in 0..=steps {
@@ -543,7 +612,9 @@ mod tests {
                 );
                 let scale = (hi.x - lo.x).max(hi.y - lo.y);
                 if near_boundary(poly, p, 1e-9 * scale)
-                    || pieces.iter().any(|pc| near_boundary(&pc.vertices, p, 1e-9 * scale))
+                    || pieces
+                        .iter()
+                        .any(|pc| near_boundary(&pc.vertices, p, 1e-9 * scale))
                 {
                     continue;
                 }
@@ -555,7 +626,8 @@ mod tests {
 
     #[test]
     fn normalize_reverses_clockwise_input() {
-        let out = normalize_simple_polygon(&pts(&[(0.0, 0.0), (0.0, 1.0), (1.0, 1.0), (1.0, 0.0)])).unwrap();
+        let out = normalize_simple_polygon(&pts(&[(0.0, 0.0), (0.0, 1.0), (1.0, 1.0), (1.0, 0.0)]))
+            .unwrap();
         assert!(signed_area2(&out) > 0.0);
         assert_eq!(out.len(), 4);
     }
@@ -577,14 +649,24 @@ mod tests {
 
     #[test]
     fn normalize_removes_a_collinear_first_vertex() {
-        let out = normalize_simple_polygon(&pts(&[(1.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0), (0.0, 0.0)])).unwrap();
+        let out = normalize_simple_polygon(&pts(&[
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 2.0),
+            (0.0, 2.0),
+            (0.0, 0.0),
+        ]))
+        .unwrap();
         assert_eq!(out.len(), 4);
         assert!(!out.contains(&Point::new(1.0, 0.0)));
     }
 
     #[test]
     fn normalize_rejects_too_few_vertices() {
-        assert_eq!(normalize_simple_polygon(&[]), Err(PolygonError::TooFewVertices));
+        assert_eq!(
+            normalize_simple_polygon(&[]),
+            Err(PolygonError::TooFewVertices)
+        );
         assert_eq!(
             normalize_simple_polygon(&pts(&[(0.0, 0.0), (1.0, 1.0), (0.0, 0.0)])),
             Err(PolygonError::TooFewVertices)
@@ -631,15 +713,30 @@ mod tests {
     #[test]
     fn normalize_rejects_a_vertex_touching_another_edge() {
         // Vertex 3, (1,0), lies on edge 0, (0,0)→(2,0).
-        let e = normalize_simple_polygon(&pts(&[(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (1.0, 0.0), (0.0, 2.0)]));
-        assert!(matches!(e, Err(PolygonError::SelfIntersecting { .. })), "{e:?}");
+        let e = normalize_simple_polygon(&pts(&[
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 2.0),
+            (1.0, 0.0),
+            (0.0, 2.0),
+        ]));
+        assert!(
+            matches!(e, Err(PolygonError::SelfIntersecting { .. })),
+            "{e:?}"
+        );
     }
 
     #[test]
     fn normalize_rejects_flat_polygons() {
         // A sliver far thinner than the tolerance relative to its size.
         let e = normalize_simple_polygon(&pts(&[(0.0, 0.0), (1.0, 0.0), (0.5, 1e-11)]));
-        assert!(matches!(e, Err(PolygonError::TooFewVertices | PolygonError::ZeroArea)), "{e:?}");
+        assert!(
+            matches!(
+                e,
+                Err(PolygonError::TooFewVertices | PolygonError::ZeroArea)
+            ),
+            "{e:?}"
+        );
     }
 
     #[test]
@@ -649,7 +746,14 @@ mod tests {
         let mut cw = square.clone();
         cw.reverse();
         assert!(!is_convex(&cw));
-        let l = pts(&[(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)]);
+        let l = pts(&[
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+        ]);
         assert!(!is_convex(&l));
         // Exactly straight vertices are allowed.
         let with_straight = pts(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 1.0)]);
@@ -667,12 +771,22 @@ mod tests {
     #[test]
     fn decomposition_of_a_convex_polygon_is_itself() {
         let square = pts(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]);
-        assert_eq!(convex_decomposition(&square), vec![ConvexPolygon { vertices: square }]);
+        assert_eq!(
+            convex_decomposition(&square),
+            vec![ConvexPolygon { vertices: square }]
+        );
     }
 
     #[test]
     fn decomposition_of_an_l_shape_has_two_pieces() {
-        let l = pts(&[(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 1.0), (1.0, 2.0), (0.0, 2.0)]);
+        let l = pts(&[
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+        ]);
         let pieces = convex_decomposition(&l);
         assert_eq!(pieces.len(), 2);
         assert_tiles(&l, &pieces);
@@ -713,14 +827,24 @@ mod tests {
 
     #[test]
     fn hull_of_a_square_with_inner_and_edge_points() {
-        let h = convex_hull(&pts(&[(0.0, 0.0), (1.0, 0.0), (0.5, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)]));
+        let h = convex_hull(&pts(&[
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (0.5, 0.0),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (0.5, 0.5),
+        ]));
         assert_eq!(h, pts(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]));
     }
 
     #[test]
     fn hull_of_degenerate_inputs() {
         assert!(convex_hull(&[]).is_empty());
-        assert_eq!(convex_hull(&pts(&[(1.0, 1.0), (1.0, 1.0)])), pts(&[(1.0, 1.0)]));
+        assert_eq!(
+            convex_hull(&pts(&[(1.0, 1.0), (1.0, 1.0)])),
+            pts(&[(1.0, 1.0)])
+        );
         assert_eq!(
             convex_hull(&pts(&[(2.0, 2.0), (0.0, 0.0), (1.0, 1.0), (3.0, 3.0)])),
             pts(&[(0.0, 0.0), (3.0, 3.0)])

@@ -24,6 +24,7 @@ pub(crate) fn analyze(
     let mut a = Analyzer {
         sources,
         diags: Vec::new(),
+        invalid_robots: Vec::new(),
     };
     let title = a.title(&statements);
     let (world, obstacle_spans) = a.world(&statements);
@@ -54,6 +55,9 @@ pub(crate) fn analyze(
 struct Analyzer {
     sources: SourceMap,
     diags: Vec<Diag>,
+    /// Robots that were declared but failed analysis (no "unknown robot"
+    /// noise for plans that use them).
+    invalid_robots: Vec<String>,
 }
 
 /// A plan kind's name, its schema, and the robot it plans for.
@@ -299,6 +303,7 @@ impl Analyzer {
 
     fn world(&mut self, statements: &[SourcedStmt]) -> (Option<World>, Vec<Span>) {
         let mut bounds: Option<(Aabb, Span)> = None;
+        let mut bounds_given = false;
         let mut obstacles = Vec::new();
         let mut spans = Vec::new();
         let mut names: HashMap<String, Span> = HashMap::new();
@@ -321,6 +326,10 @@ impl Analyzer {
             for item in &w.items {
                 match item {
                     ast::WorldItem::Bounds { min, max, span } => {
+                        if bounds_given && bounds.is_none() {
+                            continue; // the first `bounds` was invalid and reported
+                        }
+                        bounds_given = true;
                         if let Some((_, first)) = &bounds {
                             self.error(
                                 Diag::error("scen::analyze::duplicate_bounds", "`bounds` is given twice")
@@ -379,6 +388,9 @@ impl Analyzer {
             return (None, spans);
         }
         let Some((bounds, _)) = bounds else {
+            if bounds_given {
+                return (None, spans); // invalid bounds, already reported
+            }
             let span = statements
                 .iter()
                 .find_map(|s| match &s.stmt {
@@ -604,6 +616,9 @@ impl Analyzer {
                 }
                 ast::RobotShape::Polygon(v) => self.robot_polygon(v),
             };
+            if shape.is_none() {
+                self.invalid_robots.push(r.name.value.clone());
+            }
             if let Some(shape) = shape {
                 robots.push(Robot {
                     name: r.name.value.clone(),
@@ -671,6 +686,11 @@ impl Analyzer {
             return None;
         };
         let robot_index = robots.iter().position(|r| r.name == p.robot.value);
+        if robot_index.is_none() && self.invalid_robots.contains(&p.robot.value) {
+            // The robot's own error was reported; check the parameters only.
+            self.params(p, schema, None, None);
+            return None;
+        }
         let Some(robot_index) = robot_index else {
             let names: Vec<&str> = robots.iter().map(|r| r.name.as_str()).collect();
             let mut d = Diag::error("scen::analyze::unknown_robot", format!("unknown robot `{}`", p.robot.value))
@@ -743,6 +763,7 @@ impl Analyzer {
         let mut values: BTreeMap<&'static str, Param> = BTreeMap::new();
         let mut limits = Limits::default();
         let mut limit_spans: HashMap<&'static str, Span> = HashMap::new();
+        let mut given: Vec<&'static str> = Vec::new();
         let mut ok = true;
         let mut i = 0;
         while i < tokens.len() {
@@ -781,6 +802,7 @@ impl Analyzer {
                 }
                 continue;
             };
+            given.push(spec.key);
             if !spec.repeatable
                 && let Some(first) = values.get(spec.key)
             {
@@ -831,6 +853,9 @@ impl Analyzer {
                                 .help(format!("`limit` takes {}", spec.value.describe())),
                         );
                         ok = false;
+                        if let Some(ParamToken::Value(_)) = amount {
+                            i += 1; // its amount
+                        }
                         continue;
                     };
                     let Some(ParamToken::Value(v)) = amount else {
@@ -919,20 +944,24 @@ impl Analyzer {
         let plan_head = p.name.span.to(p.robot.span);
         let start = values.remove("start");
         let goal = values.remove("goal");
-        let (Some(start), goal) = (start, goal) else {
+        if start.is_none() && !given.contains(&"start") {
             self.error(
                 Diag::error("scen::analyze::missing_key", format!("plan `{}` has no `start`", p.name.value))
                     .at(plan_head, "needs `start`")
                     .help("add `start (x, y)` to the plan's block"),
             );
-            return None;
-        };
-        if schema.needs_goal && goal.is_none() {
+        }
+        if schema.needs_goal && goal.is_none() && !given.contains(&"goal") {
             self.error(
                 Diag::error("scen::analyze::missing_key", format!("plan `{}` has no `goal`", p.name.value))
                     .at(plan_head, "needs `goal`")
                     .help("add `goal (x, y)` to the plan's block"),
             );
+        }
+        let (true, Some(start)) = (ok, start) else {
+            return None;
+        };
+        if schema.needs_goal && goal.is_none() {
             return None;
         }
         let ParamValue::Pose(start_c) = start.value else { return None };

@@ -403,8 +403,9 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | Rule::element
         | Rule::world_item
         | Rule::grid_name
-        | Rule::primary
-        | Rule::compare_op => return None,
+        | Rule::WORD_END
+        // A missing operand is reported as "an expression" (`primary`).
+        | Rule::prefix => return None,
         Rule::string => "a string",
         Rule::lbrace | Rule::param_block | Rule::grid_rows => "`{`",
         Rule::rbrace => "`}`",
@@ -429,34 +430,14 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_cell | Rule::grid_cell => "`cell`",
         Rule::kw_origin | Rule::grid_origin => "`origin`",
         Rule::kw_point | Rule::point_shape => "`point`",
-        Rule::kw_not => "`not`",
         Rule::kw_true => "`true`",
         Rule::kw_false => "`false`",
         Rule::value => "a value",
         Rule::tuple => "a point `(x, y)`",
         Rule::list => "a list `[...]`",
-        Rule::disjunction
-        | Rule::conjunction
-        | Rule::negation
-        | Rule::comparison
-        | Rule::sum
-        | Rule::product
-        | Rule::unary => "an expression",
+        Rule::expr | Rule::operand | Rule::primary => "an expression",
         Rule::metric => "a metric `PLAN.METRIC`",
-        Rule::kw_and
-        | Rule::kw_or
-        | Rule::le
-        | Rule::ge
-        | Rule::eq
-        | Rule::ne
-        | Rule::lt
-        | Rule::gt
-        | Rule::tilde
-        | Rule::plus
-        | Rule::minus
-        | Rule::star
-        | Rule::slash => "an operator",
-        Rule::plusminus => "`+-`",
+        Rule::operator => "an operator",
     })
 }
 
@@ -538,14 +519,8 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     let mut diag = Diag::error("scen::syntax::expected", message).at(span, label);
 
     let has = |rule: Rule| positives.contains(&rule);
-    let compares = ["<", "<=", ">", ">=", "==", "!=", "~"];
-    let help = if compares.contains(&token) && has(Rule::kw_and) && !has(Rule::lt) {
-        diag.message = "comparisons cannot be chained".to_string();
-        Some("join two comparisons with `and`: `a < b and b < c`".to_string())
-    } else if token == "=" {
+    let help = if token == "=" && has(Rule::operator) {
         Some("compare with `==`".to_string())
-    } else if has(Rule::plusminus) {
-        Some("approximate equality needs a tolerance: `A ~ B +- TOL`".to_string())
     } else if has(Rule::dot) {
         Some("refer to a metric as `PLAN.METRIC`, e.g. `offline.found`".to_string())
     } else if token == "," && expected == ["`)`"] {
@@ -632,6 +607,47 @@ fn split_number(token: &str) -> (&str, &str) {
 
 // ------------------------------------------------------------ pairs → AST
 
+/// Binding powers of `expect` operators, loosest first. `not` binds looser
+/// than a comparison (`not a < b` is `not (a < b)`), unary `-` tightest.
+const OR_POWER: u8 = 1;
+const AND_POWER: u8 = 2;
+const NOT_POWER: u8 = 3;
+const COMPARE_POWER: u8 = 4;
+const ADD_POWER: u8 = 5;
+const MUL_POWER: u8 = 6;
+const NEG_POWER: u8 = 7;
+
+/// The binding power of an infix `operator` token. `+-` gets a comparison's
+/// power so that a stray one stops the operand before it and is reported.
+fn infix_power(operator: &str) -> u8 {
+    match operator {
+        "or" => OR_POWER,
+        "and" => AND_POWER,
+        "+" | "-" => ADD_POWER,
+        "*" | "/" => MUL_POWER,
+        _ => COMPARE_POWER,
+    }
+}
+
+/// An expression under construction.
+struct Built {
+    expr: Expr,
+    /// The height of its tree, bounded by [`MAX_EXPR_HEIGHT`].
+    height: usize,
+    /// A comparison not in parentheses: another comparison may not follow it.
+    comparison: bool,
+}
+
+impl Built {
+    fn new(expr: Expr, height: usize) -> Self {
+        Built {
+            expr,
+            height,
+            comparison: false,
+        }
+    }
+}
+
 /// Turns the pairs of one chunk into AST nodes. Spans are offset by `base`,
 /// the chunk's offset in the file.
 struct Builder<'t, 'd> {
@@ -694,7 +710,7 @@ impl Builder<'_, '_> {
                 let expr = children(pair)
                     .nth(1)
                     .expect("grammar guarantees an expression");
-                Stmt::Expect(self.expr(expr)?.0)
+                Stmt::Expect(self.expression(expr, 0)?.expr)
             }
             rule => unreachable!("grammar guarantees a statement, got {rule:?}"),
         })
@@ -933,9 +949,12 @@ impl Builder<'_, '_> {
                 "write numbers as `12`, `-3.5`, `1e-3` or `.5`"
             };
             self.diags.push(
-                Diag::error("scen::syntax::bad_number", format!("malformed number `{token}`"))
-                    .at(span, "not a number")
-                    .help(help),
+                Diag::error(
+                    "scen::syntax::bad_number",
+                    format!("malformed number `{token}`"),
+                )
+                .at(span, "not a number")
+                .help(help),
             );
             return ValueKind::Number(0.0);
         }
@@ -1015,172 +1034,208 @@ impl Builder<'_, '_> {
 
     // --------------------------------------------------------- expressions
 
-    /// An expression pair and the height of its tree; `None` after reporting
-    /// a tree taller than [`MAX_EXPR_HEIGHT`].
-    fn expr(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
-        let span = self.span(&pair);
-        let leaf = |kind| Some((Expr { kind, span }, 1));
-        match pair.as_rule() {
-            Rule::disjunction | Rule::conjunction | Rule::sum | Rule::product => self.chain(pair),
-            Rule::negation | Rule::unary => self.prefixed(pair),
-            Rule::comparison => self.comparison(pair),
+    /// An `expr` pair: a flat sequence of operands and operators, given its
+    /// tree by precedence climbing. `depth` counts the enclosing parentheses
+    /// and operators, for [`MAX_EXPR_HEIGHT`].
+    fn expression(&mut self, pair: P<'_>, depth: usize) -> Option<Built> {
+        let mut tokens = Vec::new();
+        for child in pair.into_inner() {
+            match child.as_rule() {
+                Rule::operand => tokens.extend(child.into_inner()),
+                _ => tokens.push(child),
+            }
+        }
+        let mut pos = 0;
+        let built = self.climb(&tokens, &mut pos, 0, depth)?;
+        debug_assert_eq!(pos, tokens.len(), "every token of the expression is used");
+        Some(built)
+    }
+
+    /// Parses `tokens[*pos..]` up to the first operator that binds no tighter
+    /// than `min_power` (see [`infix_power`]).
+    fn climb(
+        &mut self,
+        tokens: &[P<'_>],
+        pos: &mut usize,
+        min_power: u8,
+        depth: usize,
+    ) -> Option<Built> {
+        let first = &tokens[*pos];
+        *pos += 1;
+        let first_span = self.span(first);
+        self.check_height(depth, first_span)?;
+        let mut lhs = match first.as_rule() {
+            Rule::prefix => {
+                let (power, negate) = if first.as_str() == "-" {
+                    (NEG_POWER, true)
+                } else {
+                    (NOT_POWER, false)
+                };
+                let operand = self.climb(tokens, pos, power, depth + 1)?;
+                let span = first_span.to(operand.expr.span);
+                let inner = Box::new(operand.expr);
+                let kind = if negate {
+                    ExprKind::Neg(inner)
+                } else {
+                    ExprKind::Not(inner)
+                };
+                Built::new(Expr { kind, span }, operand.height + 1)
+            }
+            Rule::primary => self.primary(first.clone(), depth)?,
+            rule => unreachable!("grammar guarantees an operand, got {rule:?}"),
+        };
+        while let Some(op) = tokens.get(*pos) {
+            let op_span = self.span(op);
+            let text = op.as_str();
+            let power = infix_power(text);
+            if power <= min_power {
+                break;
+            }
+            *pos += 1;
+            if matches!(text, "+-" | "±") {
+                self.diags.push(
+                    Diag::error("scen::syntax::expected", format!("`{text}` without `~`"))
+                        .at(op_span, "a tolerance needs an approximate comparison")
+                        .help("approximate equality is written `A ~ B +- TOL`"),
+                );
+                return None;
+            }
+            let comparison = power == COMPARE_POWER;
+            if comparison && lhs.comparison {
+                self.diags.push(
+                    Diag::error(
+                        "scen::syntax::chained_comparison",
+                        "comparisons cannot be chained",
+                    )
+                    .at(op_span, "a second comparison")
+                    .with_related(lhs.expr.span, "the first comparison")
+                    .help("join two comparisons with `and`: `a < b and b < c`"),
+                );
+                return None;
+            }
+            let rhs = self.climb(tokens, pos, power, depth + 1)?;
+            let (lhs_expr, rhs_expr) = (Box::new(lhs.expr), Box::new(rhs.expr));
+            let mut height = lhs.height.max(rhs.height);
+            let kind = match text {
+                "or" => ExprKind::Or(lhs_expr, rhs_expr),
+                "and" => ExprKind::And(lhs_expr, rhs_expr),
+                "~" => {
+                    let tolerance = tokens
+                        .get(*pos)
+                        .filter(|t| matches!(t.as_str(), "+-" | "±"));
+                    if tolerance.is_none() {
+                        self.diags.push(
+                            Diag::error(
+                                "scen::syntax::expected",
+                                "expected `+-` and a tolerance after `A ~ B`",
+                            )
+                            .at(op_span, "an approximate comparison without a tolerance")
+                            .help("approximate equality needs a tolerance: `A ~ B +- TOL`"),
+                        );
+                        return None;
+                    }
+                    *pos += 1;
+                    let tol = self.climb(tokens, pos, COMPARE_POWER, depth + 1)?;
+                    height = height.max(tol.height);
+                    ExprKind::Approx {
+                        lhs: lhs_expr,
+                        rhs: rhs_expr,
+                        tol: Box::new(tol.expr),
+                    }
+                }
+                _ if comparison => {
+                    let op = match text {
+                        "<" => CompareOp::Lt,
+                        "<=" => CompareOp::Le,
+                        ">" => CompareOp::Gt,
+                        ">=" => CompareOp::Ge,
+                        "==" => CompareOp::Eq,
+                        _ => CompareOp::Ne,
+                    };
+                    ExprKind::Compare {
+                        op,
+                        lhs: lhs_expr,
+                        rhs: rhs_expr,
+                    }
+                }
+                _ => {
+                    let op = match text {
+                        "+" => ArithOp::Add,
+                        "-" => ArithOp::Sub,
+                        "*" => ArithOp::Mul,
+                        _ => ArithOp::Div,
+                    };
+                    ExprKind::Arith {
+                        op,
+                        lhs: lhs_expr,
+                        rhs: rhs_expr,
+                    }
+                }
+            };
+            let span = first_span.to(self.span(&tokens[*pos - 1]));
+            let height = self.check_height(height + 1, span)?;
+            lhs = Built {
+                expr: Expr { kind, span },
+                height,
+                comparison,
+            };
+        }
+        Some(lhs)
+    }
+
+    /// A `primary` pair: a number, `true`, `false`, `PLAN.METRIC` or `( expr )`.
+    fn primary(&mut self, pair: P<'_>, depth: usize) -> Option<Built> {
+        let inner = pair
+            .into_inner()
+            .next()
+            .expect("grammar guarantees a primary");
+        let span = self.span(&inner);
+        let kind = match inner.as_rule() {
             Rule::paren => {
-                let inner = children(pair)
+                let expr = children(inner)
                     .next()
                     .expect("grammar guarantees `( expr )`");
+                let built = self.expression(expr, depth + 1)?;
                 // The span includes the parentheses, so an enclosing
                 // expression's span covers them too.
-                let (expr, height) = self.expr(inner)?;
-                Some((
+                return Some(Built::new(
                     Expr {
-                        kind: expr.kind,
+                        kind: built.expr.kind,
                         span,
                     },
-                    height,
-                ))
+                    built.height,
+                ));
             }
             Rule::expr_number => {
-                let kind = match self.quantity(pair) {
+                match self.quantity(inner) {
                     ValueKind::Percent(x) => ExprKind::Percent(x),
                     // Angle metrics (`turn`) are in radians.
                     ValueKind::Number(x) | ValueKind::Angle(x) => ExprKind::Number(x),
                     ValueKind::Duration(seconds) => {
                         self.diags.push(
-                            Diag::error(
-                                "scen::syntax::unit_not_allowed",
-                                "a duration cannot appear in an expectation",
-                            )
+                        Diag::error("scen::syntax::unit_not_allowed", "a duration cannot appear in an expectation")
                             .at(span, "a duration")
                             .help(format!(
                                 "metrics are plain numbers (`time_ms` is in milliseconds): write `{}`",
                                 seconds * 1000.0
                             )),
-                        );
+                    );
                         ExprKind::Number(seconds)
                     }
-                    other => unreachable!("a number literal is a quantity, got {other:?}"),
-                };
-                leaf(kind)
+                    other => unreachable!("a number token is a quantity, got {other:?}"),
+                }
             }
-            Rule::kw_true => leaf(ExprKind::Bool(true)),
-            Rule::kw_false => leaf(ExprKind::Bool(false)),
+            Rule::kw_true => ExprKind::Bool(true),
+            Rule::kw_false => ExprKind::Bool(false),
             Rule::metric => {
-                let mut inner = children(pair);
-                let plan = self.ident(&inner.next().expect("grammar guarantees PLAN"));
-                let metric = self.ident(&inner.next().expect("grammar guarantees METRIC"));
-                leaf(ExprKind::Metric { plan, metric })
+                let mut parts = children(inner);
+                let plan = self.ident(&parts.next().expect("grammar guarantees PLAN"));
+                let metric = self.ident(&parts.next().expect("grammar guarantees METRIC"));
+                ExprKind::Metric { plan, metric }
             }
-            rule => unreachable!("grammar guarantees an expression, got {rule:?}"),
-        }
-    }
-
-    /// `a OP b OP c ...`, associating to the left.
-    fn chain(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
-        let mut inner = pair.into_inner();
-        let (mut acc, mut height) =
-            self.expr(inner.next().expect("grammar guarantees an operand"))?;
-        while let Some(op) = inner.next() {
-            let rhs = inner
-                .next()
-                .expect("grammar guarantees an operand after an operator");
-            let (rhs, rhs_height) = self.expr(rhs)?;
-            let span = acc.span.to(rhs.span);
-            let (lhs, rhs) = (Box::new(acc), Box::new(rhs));
-            let kind = match op.as_rule() {
-                Rule::kw_or => ExprKind::Or(lhs, rhs),
-                Rule::kw_and => ExprKind::And(lhs, rhs),
-                Rule::plus => ExprKind::Arith {
-                    op: ArithOp::Add,
-                    lhs,
-                    rhs,
-                },
-                Rule::minus => ExprKind::Arith {
-                    op: ArithOp::Sub,
-                    lhs,
-                    rhs,
-                },
-                Rule::star => ExprKind::Arith {
-                    op: ArithOp::Mul,
-                    lhs,
-                    rhs,
-                },
-                Rule::slash => ExprKind::Arith {
-                    op: ArithOp::Div,
-                    lhs,
-                    rhs,
-                },
-                rule => unreachable!("grammar guarantees an operator, got {rule:?}"),
-            };
-            acc = Expr { kind, span };
-            height = self.check_height(height.max(rhs_height) + 1, span)?;
-        }
-        Some((acc, height))
-    }
-
-    /// `not* comparison` or `-* primary`.
-    fn prefixed(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
-        let mut inner: Vec<P<'_>> = pair.into_inner().collect();
-        let operand = inner.pop().expect("grammar guarantees an operand");
-        let (mut acc, mut height) = self.expr(operand)?;
-        for op in inner.iter().rev() {
-            let span = self.span(op).to(acc.span);
-            let kind = match op.as_rule() {
-                Rule::kw_not => ExprKind::Not(Box::new(acc)),
-                Rule::minus => ExprKind::Neg(Box::new(acc)),
-                rule => unreachable!("grammar guarantees a prefix operator, got {rule:?}"),
-            };
-            acc = Expr { kind, span };
-            height = self.check_height(height + 1, span)?;
-        }
-        Some((acc, height))
-    }
-
-    /// `a`, `a OP b` or `a ~ b +- tol`.
-    fn comparison(&mut self, pair: P<'_>) -> Option<(Expr, usize)> {
-        let mut inner = pair.into_inner().filter(|p| p.as_rule() != Rule::plusminus);
-        let lhs = inner.next().expect("grammar guarantees an operand");
-        let Some(op) = inner.next() else {
-            return self.expr(lhs);
+            rule => unreachable!("grammar guarantees a primary, got {rule:?}"),
         };
-        let mut operand = |this: &mut Self| {
-            this.expr(
-                inner
-                    .next()
-                    .expect("grammar guarantees an operand after an operator"),
-            )
-        };
-        let (lhs, lhs_height) = self.expr(lhs)?;
-        let (rhs, rhs_height) = operand(self)?;
-        let (kind, span, height) = if op.as_rule() == Rule::tilde {
-            let (tol, tol_height) = operand(self)?;
-            let span = lhs.span.to(tol.span);
-            let height = lhs_height.max(rhs_height).max(tol_height);
-            let kind = ExprKind::Approx {
-                lhs: Box::new(lhs),
-                rhs: Box::new(rhs),
-                tol: Box::new(tol),
-            };
-            (kind, span, height)
-        } else {
-            let op = match op.as_rule() {
-                Rule::lt => CompareOp::Lt,
-                Rule::le => CompareOp::Le,
-                Rule::gt => CompareOp::Gt,
-                Rule::ge => CompareOp::Ge,
-                Rule::eq => CompareOp::Eq,
-                Rule::ne => CompareOp::Ne,
-                rule => unreachable!("grammar guarantees a comparison, got {rule:?}"),
-            };
-            let span = lhs.span.to(rhs.span);
-            let kind = ExprKind::Compare {
-                op,
-                lhs: Box::new(lhs),
-                rhs: Box::new(rhs),
-            };
-            (kind, span, lhs_height.max(rhs_height))
-        };
-        let height = self.check_height(height + 1, span)?;
-        Some((Expr { kind, span }, height))
+        Some(Built::new(Expr { kind, span }, 1))
     }
 
     fn check_height(&mut self, height: usize, span: Span) -> Option<usize> {
@@ -2074,7 +2129,12 @@ expect cover.coverage == 100%
 }
 #[cfg(test)]
 mod tmp_bench {
-    fn size() -> usize { std::env::var("TMP_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(10_000_000) }
+    fn size() -> usize {
+        std::env::var("TMP_SIZE")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(10_000_000)
+    }
     #[test]
     fn tmp_body() {
         let body = format!("plan p k r {{ {} }}", "key 1.5 (1, 2) ".repeat(size() / 16));

@@ -122,7 +122,7 @@ impl Test {
     }
 
     /// Runs `scen` in the test's folder and checks every expectation.
-    pub fn run(self) -> Output {
+    pub fn run(&self) -> Output {
         let out = run_with_timeout(
             Command::new(scen_bin())
                 .args(&self.args)
