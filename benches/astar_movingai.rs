@@ -8,8 +8,9 @@
 //! them through [`Cost`], an `f64` ordered by `total_cmp`), so the two must
 //! agree on every length within 1e-4; that is asserted once, before timing.
 //!
-//! Benches (each over the same fixed sample of [`QUERIES`] rows, every
-//! 8th row of the file so that every bucket is represented):
+//! Benches (each over the same fixed sample: every [`EVERY`]-th row of the
+//! file, 251 rows spread evenly over the buckets; all 8010 rows would take
+//! minutes per iteration):
 //! - `lattice_build`: the obstacle index and the classified lattice;
 //! - `scen_astar/warm`: the queries on one lattice whose edge checks are
 //!   cached from earlier queries (as in a long-lived lattice);
@@ -27,8 +28,9 @@ use std::cmp::Ordering;
 use std::hint::black_box;
 use std::ops::Add;
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
-use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{BatchSize, Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
 use pathfinding::num_traits::Zero;
 use scen::geometry::collide::ObstacleIndex;
 use scen::geometry::{Shape, World};
@@ -36,8 +38,8 @@ use scen::planners::astar::{CostMetric, GridLattice, SearchBuffers, SearchConfig
 use scen::planners::lattice::{LatticeSpec, Sample};
 use scen::scenario::Limits;
 
-/// How many scenario rows each iteration runs.
-const QUERIES: usize = 1000;
+/// Every `EVERY`-th scenario row is in the sample.
+const EVERY: usize = 32;
 
 const MAP: &str = "maze512-32-9.map";
 const SCEN: &str = "maze512-32-9.map.scen";
@@ -102,7 +104,7 @@ fn data_dir() -> PathBuf {
 }
 
 /// Loads the map through scen (a world-only scenario in a temporary folder)
-/// and every 8th row of the scenario file.
+/// and every [`EVERY`]-th row of the scenario file.
 fn load_bench() -> Bench {
     let dir = data_dir();
     let map = dir.join(MAP);
@@ -139,8 +141,7 @@ fn load_bench() -> Bench {
     };
     let queries = read_queries(&dir.join(SCEN))
         .into_iter()
-        .step_by(8)
-        .take(QUERIES)
+        .step_by(EVERY)
         .collect();
     Bench {
         world,
@@ -269,12 +270,21 @@ fn pathfinding_query(b: &Bench, q: &Query) -> (Option<f64>, u64) {
     (result.map(|(_, c)| c.0), expanded.get())
 }
 
+/// Expansions and wall time of one pass over the sample.
+#[derive(Default)]
+struct Pass {
+    expanded: u64,
+    time: Duration,
+}
+
 /// Both searches agree with each other and with MovingAI on every query.
-fn assert_agreement(b: &Bench, scen: &Scen) -> (u64, u64) {
+/// Returns one untimed-by-criterion pass of each (scen on a fresh lattice).
+fn assert_agreement(b: &Bench, scen: &Scen) -> (Pass, Pass) {
     let mut lattice = scen.lattice();
     let mut buffers = SearchBuffers::default();
-    let (mut scen_expanded, mut pf_expanded) = (0, 0);
+    let (mut ours, mut theirs) = (Pass::default(), Pass::default());
     for (k, q) in b.queries.iter().enumerate() {
+        let t = Instant::now();
         let r = search(
             &mut lattice,
             &scen.index,
@@ -284,9 +294,12 @@ fn assert_agreement(b: &Bench, scen: &Scen) -> (u64, u64) {
             false,
             &mut buffers,
         );
-        let (pf, pf_exp) = pathfinding_query(b, q);
-        scen_expanded += r.expanded;
-        pf_expanded += pf_exp;
+        ours.time += t.elapsed();
+        ours.expanded += r.expanded;
+        let t = Instant::now();
+        let (pf, pf_expanded) = pathfinding_query(b, q);
+        theirs.time += t.elapsed();
+        theirs.expanded += pf_expanded;
         assert!(r.nodes.is_some(), "sample {k}: scen found no path");
         let pf = pf.unwrap_or_else(|| panic!("sample {k}: pathfinding found no path"));
         assert!(
@@ -296,32 +309,43 @@ fn assert_agreement(b: &Bench, scen: &Scen) -> (u64, u64) {
             q.optimal
         );
     }
-    (scen_expanded, pf_expanded)
+    (ours, theirs)
 }
 
 fn benches(c: &mut Criterion) {
     let b = load_bench();
     let scen = Scen::new(&b.world);
     let n = b.queries.len();
-    let (scen_expanded, pf_expanded) = assert_agreement(&b, &scen);
+    let (ours, theirs) = assert_agreement(&b, &scen);
     let free = b.passable.iter().filter(|p| **p).count();
     eprintln!(
         "{MAP}: {}×{} cells, {free} passable; {n} queries agree (scen, pathfinding, MovingAI) within 1e-4",
         b.width, b.height
     );
-    eprintln!("expansions per {n} queries: scen {scen_expanded}, pathfinding {pf_expanded}");
+    for (name, pass) in [("scen (fresh lattice)", &ours), ("pathfinding", &theirs)] {
+        eprintln!(
+            "one pass, {name}: {} expansions in {:.2?} = {:.0} queries/s, {:.3e} expansions/s",
+            pass.expanded,
+            pass.time,
+            n as f64 / pass.time.as_secs_f64(),
+            pass.expanded as f64 / pass.time.as_secs_f64()
+        );
+    }
 
-    let mut group = c.benchmark_group("maze512");
-    group.sample_size(10);
-
-    group.throughput(Throughput::Elements(1));
-    group.bench_function("lattice_build", |bench| {
+    let mut build = c.benchmark_group("maze512_build");
+    build.bench_function("lattice_build", |bench| {
         bench.iter(|| {
             let index = ObstacleIndex::new(&b.world);
             black_box(GridLattice::build(scen.spec, &index, 0.0).free.len())
         })
     });
+    build.finish();
 
+    // Seconds per iteration: the same number of iterations in every sample.
+    let mut group = c.benchmark_group("maze512_queries");
+    group.sampling_mode(SamplingMode::Flat);
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(60));
     group.throughput(Throughput::Elements(n as u64));
     let mut warm = scen.lattice();
     let mut buffers = SearchBuffers::default();

@@ -206,7 +206,7 @@ fn excerpt(text: &str) -> String {
     const MAX: usize = 1500;
     let mut s: String = text.chars().take(MAX).collect();
     if text.chars().count() > MAX {
-        s.push_str("…");
+        s.push('…');
     }
     s
 }
@@ -272,7 +272,7 @@ fn check_case(case: &Case) -> Vec<String> {
         let missing: Vec<&str> = ["file", "line", "column", "code", "message"]
             .into_iter()
             .filter(|k| match *k {
-                "line" | "column" => !d[*k].as_u64().is_some_and(|n| n >= 1),
+                "line" | "column" => d[*k].as_u64().is_none_or(|n| n == 0),
                 _ => !d[*k].is_string(),
             })
             .collect();
@@ -477,7 +477,7 @@ impl Drop for TempDir {
 #[test]
 fn generated_bad_inputs_are_reported() {
     let tmp = TempDir::new("bad-inputs");
-    let garbage = pseudo_random_bytes(0x5EED_0F_BAD_1A7E, 64 << 10);
+    let garbage = pseudo_random_bytes(0x5EED_0FBA_D1A7, 64 << 10);
     assert!(
         std::str::from_utf8(&garbage).is_err(),
         "the garbage must not be UTF-8"

@@ -12,7 +12,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use scen::geometry::collide::ObstacleIndex;
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
@@ -184,16 +184,10 @@ fn lattice_node(spec: &LatticeSpec, height: usize, (x, y): (usize, usize)) -> us
     spec.index(x, height - 1 - y)
 }
 
-/// Runs every `every`-th query of `scen_file` on `map_file` and checks the
-/// lengths; every `validate_every`-th found path also goes through the
-/// validator. Returns how many queries ran.
-fn check_agreement(
-    dir: &Path,
-    map_file: &str,
-    scen_file: &str,
-    every: usize,
-    validate_every: usize,
-) -> usize {
+/// Runs every `every`-th query of `scen_file` on `map_file` on one lattice
+/// and checks the lengths; every path also goes through the validator (it
+/// is cheap next to the searches). Returns how many queries ran.
+fn check_agreement(dir: &Path, map_file: &str, scen_file: &str, every: usize) -> usize {
     let tmp = TempDir::new(&format!("movingai-{map_file}"));
     let (world, grid) = load_world(&dir.join(map_file), &tmp);
     let queries = read_queries(&dir.join(scen_file), map_file, grid.width, grid.height);
@@ -221,12 +215,15 @@ fn check_agreement(
     };
     let mut buffers = SearchBuffers::default();
     let mut failures = Vec::new();
-    let (mut ran, mut validated, mut expanded) = (0, 0, 0);
+    let (mut searching, mut validating) = (Duration::ZERO, Duration::ZERO);
+    let (mut ran, mut expanded) = (0, 0);
     for q in queries.iter().step_by(every) {
         ran += 1;
         let start = lattice_node(&spec, grid.height, q.start);
         let goal = lattice_node(&spec, grid.height, q.goal);
+        let t = Instant::now();
         let r = search(&mut lattice, &index, start, goal, &cfg, false, &mut buffers);
+        searching += t.elapsed();
         expanded += r.expanded;
         let Some(nodes) = r.nodes else {
             failures.push(format!(
@@ -249,13 +246,14 @@ fn check_agreement(
                 Config::new(p.x, p.y, 0.0)
             })
             .collect();
-        // The reported cost is the length of the returned moves, each a
-        // single lattice step.
+        // The reported cost is the length of the returned moves, each one
+        // step to a lattice neighbour.
         let steps_ok = nodes.first() == Some(&start)
             && nodes.last() == Some(&goal)
-            && path
-                .windows(2)
-                .all(|w| (w[1].x - w[0].x).abs() <= 1.0 && (w[1].y - w[0].y).abs() <= 1.0);
+            && path.windows(2).all(|w| {
+                let (dx, dy) = ((w[1].x - w[0].x).abs(), (w[1].y - w[0].y).abs());
+                dx <= 1.0 && dy <= 1.0 && dx + dy > 0.0
+            });
         let length: f64 = path
             .windows(2)
             .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
@@ -266,19 +264,19 @@ fn check_agreement(
                 q.row, r.cost
             ));
         }
-        if ran % validate_every == 0 {
-            validated += 1;
-            if let Err(e) = validate_path(&world, &RobotShape::Point, &path, DEFAULT_TOLERANCE) {
-                failures.push(format!(
-                    "row {}: the validator rejects the path: {e:?}",
-                    q.row
-                ));
-            }
+        let t = Instant::now();
+        if let Err(e) = validate_path(&world, &RobotShape::Point, &path, DEFAULT_TOLERANCE) {
+            failures.push(format!(
+                "row {}: the validator rejects the path: {e:?}",
+                q.row
+            ));
         }
+        validating += t.elapsed();
     }
     let elapsed = started.elapsed();
     eprintln!(
-        "{map_file}: {ran} of {} queries ({validated} validated), {expanded} expansions, lattice built in {built:.2?}, all in {elapsed:.2?}",
+        "{map_file}: {ran} of {} queries, {expanded} expansions; lattice built in {built:.2?}, \
+         searches {searching:.2?}, validation {validating:.2?}, all in {elapsed:.2?}",
         queries.len()
     );
     assert!(
@@ -293,7 +291,7 @@ fn check_agreement(
 #[test]
 fn arena_every_row_is_optimal() {
     let Some(dir) = data_dir() else { return };
-    check_agreement(&dir, "arena.map", "arena.map.scen", 1, 10);
+    check_agreement(&dir, "arena.map", "arena.map.scen", 1);
 }
 
 #[test]
@@ -304,14 +302,16 @@ fn random_32_32_10_every_row_is_optimal() {
         "random-32-32-10.map",
         "random-32-32-10-random-1.scen",
         1,
-        10,
     );
 }
 
+/// Every 16th row: 501 rows spread evenly over the buckets, about 13 s in
+/// release. All 8010 rows agree too, but take over five minutes (most of
+/// the long maze queries expand the whole maze).
 #[test]
 fn maze512_rows_are_optimal() {
     let Some(dir) = data_dir() else { return };
-    let ran = check_agreement(&dir, "maze512-32-9.map", "maze512-32-9.map.scen", 1, 10);
+    let ran = check_agreement(&dir, "maze512-32-9.map", "maze512-32-9.map.scen", 16);
     assert!(ran >= 500, "only {ran} maze512 rows ran");
 }
 

@@ -111,7 +111,8 @@ fn turn_deviation(a: Point, b: Point, c: Point) -> f64 {
 ///
 /// # Returns
 /// The cleaned vertex list, counter-clockwise, or:
-/// * [`PolygonError::TooFewVertices`] when fewer than 3 vertices are left;
+/// * [`PolygonError::TooFewVertices`] when fewer than 3 vertices are left
+///   (in particular when all points lie on one line);
 /// * [`PolygonError::SelfIntersecting`] when two edges cross or touch (non
 ///   adjacent edges) or overlap (adjacent edges folding back); the edge
 ///   indices refer to `points` (edge `i` runs from `points[i]` to
@@ -884,6 +885,50 @@ mod tests {
             let out = normalize_simple_polygon(&input).unwrap();
             prop_assert!((signed_area2(&out) - signed_area2(&poly).abs()).abs() < 1e-9);
             prop_assert_eq!(normalize_simple_polygon(&out).unwrap(), out);
+        }
+
+        /// Small integer coordinates make duplicates, collinear runs,
+        /// touching and overlapping edges common.
+        #[test]
+        fn normalize_accepts_only_simple_polygons_and_names_real_edges(
+            v in prop::collection::vec((0..4i32, 0..4i32), 0..9)
+        ) {
+            let input: Vec<Point> = v.iter().map(|&(x, y)| Point::new(x as f64, y as f64)).collect();
+            let n = input.len();
+            match normalize_simple_polygon(&input) {
+                Ok(out) => {
+                    let m = out.len();
+                    prop_assert!(m >= 3 && signed_area2(&out) > 0.0);
+                    for i in 0..m {
+                        let (a, b, c) = (out[(i + m - 1) % m], out[i], out[(i + 1) % m]);
+                        prop_assert!(orient(a, b, c) != 0.0, "collinear vertex in {:?}", out);
+                        for j in i + 2..m {
+                            if i == 0 && j == m - 1 {
+                                continue;
+                            }
+                            let d = distance_segment_segment(b, c, out[j], out[(j + 1) % m]);
+                            prop_assert!(d > 0.0, "edges {} and {} of {:?} meet", i, j, out);
+                        }
+                    }
+                    // Every output vertex is an input vertex.
+                    prop_assert!(out.iter().all(|p| input.contains(p)));
+                    assert_tiles(&out, &convex_decomposition(&out));
+                }
+                Err(PolygonError::SelfIntersecting { edges: (i, j) }) => {
+                    prop_assert!(i < j && j < n);
+                    let seg = |e: usize| (input[e], input[(e + 1) % n]);
+                    let ((a, b), (c, d)) = (seg(i), seg(j));
+                    prop_assert!(distance_segment_segment(a, b, c, d) == 0.0, "edges {} and {} of {:?}", i, j, input);
+                }
+                Err(PolygonError::TooFewVertices) => {
+                    // All points on one line.
+                    let far = input.iter().copied().find(|p| *p != input[0]);
+                    if let Some(f) = far {
+                        prop_assert!(input.iter().all(|&p| orient(input[0], f, p) == 0.0), "{:?}", input);
+                    }
+                }
+                Err(PolygonError::ZeroArea) => prop_assert!(false, "no flat simple polygon on a lattice: {:?}", input),
+            }
         }
 
         #[test]

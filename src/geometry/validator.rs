@@ -502,7 +502,8 @@ fn seam_zones<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) 
         .filter_map(|(a, b)| {
             let length = (b - a).norm();
             let (ma, mb) = (end_margin(a, b), end_margin(b, a));
-            if !(ma + mb < length) {
+            // (Also drops the band when a margin is NaN or infinite.)
+            if ma + mb >= length || ma.is_nan() || mb.is_nan() {
                 return None;
             }
             let d = (b - a) / length;

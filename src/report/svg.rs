@@ -663,6 +663,6 @@ mod tests {
         assert_eq!(num(12.0), "12");
         assert_eq!(num(12.5), "12.5");
         assert_eq!(num(-0.001), "0");
-        assert_eq!(num(3.14159), "3.14");
+        assert_eq!(num(1.23456), "1.23");
     }
 }

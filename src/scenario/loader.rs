@@ -109,6 +109,8 @@ fn parse_into(
 
 /// Reads a text file into the source map. `from` is the span that named the
 /// file (an include or a grid), where a failure is reported.
+/// (The error is a full diagnostic; it is returned once per file read.)
+#[allow(clippy::result_large_err)]
 pub(crate) fn read_text(
     path: &Path,
     max_bytes: u64,

@@ -5,15 +5,18 @@
 //!    statement keyword outside any bracket. It also reports what pest must
 //!    never see: unterminated strings and brackets nested more than
 //!    [`MAX_NESTING`] deep (pest's rules recurse once per bracket).
-//! 2. pest parses each chunk with `statement_chunk` (grammar/scen.pest), and
+//! 2. pest parses each chunk with the rule for its keyword (grammar/scen.pest), and
 //!    the pairs are turned into AST nodes with file-relative spans.
 //!
 //! Because each statement is parsed on its own, an error in one statement
 //! does not hide the errors of the others: [`parse`] returns them all.
 
+use std::ops::Range;
+
 use pest::Parser as _;
 use pest::error::{ErrorVariant, InputLocation};
 use pest::iterators::Pair;
+use rayon::prelude::*;
 
 use super::ast::{
     self, ArithOp, CompareOp, Expr, ExprKind, GridSpec, Ident, ObstacleDecl, ObstacleKind,
@@ -52,36 +55,142 @@ const UNITS_HELP: &str = "units are `deg` and `rad` for angles, `%` for percenta
 /// out-of-range number, an unknown unit or escape) is kept with a placeholder
 /// in its place. An empty file parses to no statements and no error.
 pub fn parse(text: &str, file: FileId) -> (ast::File, Vec<Diag>) {
-    let mut diags = Vec::new();
+    let chunks = split_statements(text, file);
+    let units = work_units(&chunks);
+    let parse_unit = |unit: &Range<usize>| {
+        let mut parser = FileParser {
+            text,
+            file,
+            statements: Vec::new(),
+            diags: Vec::new(),
+        };
+        parser.unit(&chunks[unit.clone()]);
+        (parser.statements, parser.diags)
+    };
+    // Units are independent, so a large file is parsed on all cores.
+    let parsed: Vec<_> = if units.len() > 1 {
+        units.par_iter().map(parse_unit).collect()
+    } else {
+        units.iter().map(parse_unit).collect()
+    };
     let mut statements = Vec::new();
-    for chunk in split_statements(text, file) {
-        if !chunk.is_statement {
-            diags.push(not_a_statement(text, file, chunk.start));
-            continue;
-        }
-        if !chunk.lexical_errors.is_empty() {
-            diags.extend(chunk.lexical_errors);
-            continue;
-        }
-        match ScenParser::parse(Rule::statement_chunk, &text[chunk.start..chunk.end]) {
-            Ok(mut pairs) => {
-                let pair = pairs.next().expect("grammar guarantees a statement pair");
-                let mut builder = Builder {
-                    text,
-                    file,
-                    base: chunk.start,
-                    diags: &mut diags,
-                    expr_too_deep: false,
-                };
-                if let Some(statement) = builder.statement(pair) {
-                    statements.push(statement);
-                }
-            }
-            Err(error) => diags.push(syntax_error(text, file, &chunk, &error)),
-        }
+    let mut diags = Vec::new();
+    for (unit_statements, unit_diags) in parsed {
+        statements.extend(unit_statements);
+        diags.extend(unit_diags);
     }
     sort_diags(&mut diags);
     (ast::File { statements }, diags)
+}
+
+/// Consecutive clean statements are parsed by one pest call of up to this
+/// many bytes: pest's per-call setup dominates for short statements.
+const BATCH_BYTES: usize = 64 * 1024;
+
+/// Groups chunks into units of work: a run of clean chunks of at most
+/// [`BATCH_BYTES`] (or a single larger one), or one chunk with an error.
+fn work_units(chunks: &[Chunk]) -> Vec<Range<usize>> {
+    let mut units = Vec::new();
+    let mut start = 0;
+    while start < chunks.len() {
+        let mut end = start + 1;
+        if chunks[start].is_clean() {
+            while end < chunks.len()
+                && chunks[end].is_clean()
+                && chunks[end].end - chunks[start].start <= BATCH_BYTES
+            {
+                end += 1;
+            }
+        }
+        units.push(start..end);
+        start = end;
+    }
+    units
+}
+
+struct FileParser<'t> {
+    text: &'t str,
+    file: FileId,
+    statements: Vec<Stmt>,
+    diags: Vec<Diag>,
+}
+
+impl FileParser<'_> {
+    /// Parses one unit of [`work_units`].
+    fn unit(&mut self, chunks: &[Chunk]) {
+        match chunks {
+            [chunk] if chunk.rule.is_none() => {
+                self.diags
+                    .push(not_a_statement(self.text, self.file, chunk.start));
+            }
+            [chunk] if !chunk.lexical_errors.is_empty() => {
+                self.diags.extend(chunk.lexical_errors.iter().cloned());
+            }
+            [chunk] => self.one(chunk),
+            _ => {
+                if !self.batch(chunks) {
+                    chunks.iter().for_each(|chunk| self.one(chunk));
+                }
+            }
+        }
+    }
+
+    /// Parses one chunk, reporting its syntax error if any.
+    fn one(&mut self, chunk: &Chunk) {
+        let rule = chunk.rule.expect("only statement chunks are parsed");
+        match ScenParser::parse(rule, &self.text[chunk.start..chunk.end]) {
+            Ok(mut pairs) => {
+                let pair = pairs.next().expect("grammar guarantees a statement pair");
+                self.build(pair, chunk.start);
+            }
+            Err(error) => self
+                .diags
+                .push(syntax_error(self.text, self.file, chunk, &error)),
+        }
+    }
+
+    /// Parses clean chunks in one go. Returns false, having added nothing,
+    /// unless they parse to exactly the statements the chunks delimit (so the
+    /// result never differs from parsing them one by one).
+    fn batch(&mut self, chunks: &[Chunk]) -> bool {
+        let (Some(first), Some(last)) = (chunks.first(), chunks.last()) else {
+            return true;
+        };
+        let base = first.start;
+        let Ok(pairs) = ScenParser::parse(Rule::statement_chunks, &self.text[base..last.end])
+        else {
+            return false;
+        };
+        let pairs: Vec<P<'_>> = pairs.filter(|p| p.as_rule() != Rule::EOI).collect();
+        // Statements that start where the chunks start end where they end
+        // too: only blanks and comments lie between a chunk's end and the
+        // next chunk's start.
+        let same = pairs.len() == chunks.len()
+            && pairs
+                .iter()
+                .zip(chunks)
+                .all(|(pair, chunk)| base + pair.as_span().start() == chunk.start);
+        if !same {
+            return false;
+        }
+        for pair in pairs {
+            self.build(pair, base);
+        }
+        true
+    }
+
+    fn build(&mut self, pair: P<'_>, base: usize) {
+        let mut builder = Builder {
+            text: self.text,
+            file: self.file,
+            base,
+            diags: &mut self.diags,
+            expr_too_deep: false,
+        };
+        if let Some(statement) = builder.statement(pair) {
+            self.statements.push(statement);
+        }
+    }
 }
 
 // ------------------------------------------------------------------ scanner
@@ -92,8 +201,9 @@ struct Chunk {
     start: usize,
     /// End of the chunk's last token; trailing blanks and comments are left out.
     end: usize,
-    /// Starts with a statement keyword (only the leading chunk may not).
-    is_statement: bool,
+    /// The rule for the statement keyword it starts with (see [`chunk_rule`]);
+    /// `None` for leading text that does not start with one.
+    rule: Option<Rule>,
     /// Unterminated strings and too-deep nesting found by the scanner; pest
     /// does not run on a chunk that has any.
     lexical_errors: Vec<Diag>,
@@ -103,11 +213,15 @@ struct Chunk {
 }
 
 impl Chunk {
-    fn new(start: usize, end: usize, is_statement: bool) -> Self {
+    fn is_clean(&self) -> bool {
+        self.rule.is_some() && self.lexical_errors.is_empty()
+    }
+
+    fn new(start: usize, end: usize, rule: Option<Rule>) -> Self {
         Chunk {
             start,
             end,
-            is_statement,
+            rule,
             lexical_errors: Vec::new(),
             unclosed: Vec::new(),
         }
@@ -120,7 +234,19 @@ fn is_ident_byte(b: u8) -> bool {
 
 /// The blanks of the grammar's `WHITESPACE`.
 fn is_blank(c: char) -> bool {
-    matches!(c, ' ' | '\t'..='\r' | '\u{FEFF}')
+    matches!(c, ' ' | '\t'..='\r')
+}
+
+/// The rule that parses a chunk starting with the statement keyword `keyword`.
+fn chunk_rule(keyword: &str) -> Rule {
+    match keyword {
+        "scenario" => Rule::scenario_chunk,
+        "include" => Rule::include_chunk,
+        "world" => Rule::world_chunk,
+        "robot" => Rule::robot_chunk,
+        "plan" => Rule::plan_chunk,
+        _ => Rule::expect_chunk,
+    }
 }
 
 /// Splits `text` into statement chunks; see the module docs.
@@ -159,7 +285,8 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                     .map_or(bytes.len(), |k| i + k);
                 continue;
             }
-            _ if bytes[i..].starts_with("\u{FEFF}".as_bytes()) => {
+            // A byte order mark is ignored at the start of the file only.
+            _ if i == 0 && text.starts_with('\u{FEFF}') => {
                 i += 3;
                 continue;
             }
@@ -188,7 +315,7 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                     "robot" => 1,
                     _ => 0,
                 };
-                current = Some(Chunk::new(token_start, i, true));
+                current = Some(Chunk::new(token_start, i, Some(chunk_rule(word))));
                 prev_byte = bytes[i - 1];
                 continue;
             }
@@ -198,7 +325,7 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
         } else {
             names_to_skip = 0;
         }
-        let chunk = current.get_or_insert_with(|| Chunk::new(token_start, token_start, false));
+        let chunk = current.get_or_insert_with(|| Chunk::new(token_start, token_start, None));
         match b {
             _ if is_ident_byte(b) => {}
             b'"' => {
@@ -390,16 +517,23 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::ident => "a name",
         Rule::plan_kind => "a planner kind (such as `astar`)",
         Rule::word => "a word",
-        Rule::metric_name => "a metric name",
         Rule::number | Rule::expr_number => "a number",
         // Silent rules never reach an error message; the unit is optional.
         Rule::WHITESPACE
-        | Rule::statement_chunk
-        | Rule::statement
+        | Rule::COMMENT_TEXT
+        | Rule::STRING_TEXT
+        | Rule::scenario_chunk
+        | Rule::include_chunk
+        | Rule::world_chunk
+        | Rule::robot_chunk
+        | Rule::plan_chunk
+        | Rule::expect_chunk
+        | Rule::statement_chunks
         | Rule::IDENT_START
         | Rule::IDENT_CHAR
         | Rule::IDENT
         | Rule::NUMBER_TAIL
+        | Rule::value
         | Rule::element
         | Rule::world_item
         | Rule::grid_name
@@ -414,7 +548,6 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::lbracket => "`[`",
         Rule::rbracket => "`]`",
         Rule::comma => "`,`",
-        Rule::dot => "`.`",
         Rule::kw_scenario | Rule::scenario => "`scenario`",
         Rule::kw_include | Rule::include => "`include`",
         Rule::kw_world | Rule::world => "`world`",
@@ -432,7 +565,6 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_point | Rule::point_shape => "`point`",
         Rule::kw_true => "`true`",
         Rule::kw_false => "`false`",
-        Rule::value => "a value",
         Rule::tuple => "a point `(x, y)`",
         Rule::list => "a list `[...]`",
         Rule::expr | Rule::operand | Rule::primary => "an expression",
@@ -496,6 +628,14 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     // statement read best last.
     let closing = ["`)`", "`]`", "`}`", "the end of the statement"];
     expected.sort_by_key(|d| closing.iter().position(|c| c == d));
+    // `value` is silent, so that pest does less work per value.
+    let value_parts = ["a number", "a string", "`(`", "`[`"];
+    if let Some(first) = expected.iter().position(|d| value_parts.contains(d))
+        && value_parts.iter().all(|part| expected.contains(part))
+    {
+        expected.retain(|d| !value_parts.contains(d));
+        expected.insert(first.min(expected.len()), "a value");
+    }
     let only_end = expected == ["the end of the statement"];
 
     let span = if at_end {
@@ -521,7 +661,9 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     let has = |rule: Rule| positives.contains(&rule);
     let help = if token == "=" && has(Rule::operator) {
         Some("compare with `==`".to_string())
-    } else if has(Rule::dot) {
+    } else if expected.contains(&"an expression")
+        && token.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+    {
         Some("refer to a metric as `PLAN.METRIC`, e.g. `offline.found`".to_string())
     } else if token == "," && expected == ["`)`"] {
         Some("a point is `(x, y)` and a pose `(x, y, θ)`".to_string())
@@ -671,9 +813,18 @@ fn is_punctuation(rule: Rule) -> bool {
             | Rule::lbracket
             | Rule::rbracket
             | Rule::comma
-            | Rule::dot
             | Rule::EOI
     )
+}
+
+/// Where the text of `pair` ends, in the chunk. A pest rule that ends with
+/// an optional or repeated part (`grid ... cell 1`, an expression) also spans
+/// the blanks and comments skipped before pest found that part absent.
+fn content_end(pair: &P<'_>) -> usize {
+    match pair.clone().into_inner().next_back() {
+        Some(last) => content_end(&last),
+        None => pair.as_span().end(),
+    }
 }
 
 /// The children of `pair` that carry meaning (punctuation left out).
@@ -685,6 +836,13 @@ impl Builder<'_, '_> {
     fn span(&self, pair: &P<'_>) -> Span {
         let s = pair.as_span();
         Span::new(self.file, self.base + s.start(), self.base + s.end())
+    }
+
+    /// The span of a rule that may end with an absent optional part (see
+    /// [`content_end`]).
+    fn trimmed_span(&self, pair: &P<'_>) -> Span {
+        let start = pair.as_span().start();
+        Span::new(self.file, self.base + start, self.base + content_end(pair))
     }
 
     fn ident(&self, pair: &P<'_>) -> Ident {
@@ -729,7 +887,7 @@ impl Builder<'_, '_> {
     }
 
     fn world_item(&mut self, pair: P<'_>) -> WorldItem {
-        let span = self.span(&pair);
+        let span = self.trimmed_span(&pair);
         let rule = pair.as_rule();
         let mut inner = children(pair).peekable();
         let keyword = inner.next().expect("grammar guarantees a keyword");
@@ -877,7 +1035,9 @@ impl Builder<'_, '_> {
                     }
                 }
                 Rule::word => ParamToken::Word(self.ident(&pair)),
-                Rule::value => ParamToken::Value(self.value(pair)),
+                Rule::number | Rule::string | Rule::tuple | Rule::list => {
+                    ParamToken::Value(self.value(pair))
+                }
                 rule => unreachable!("grammar guarantees a parameter token, got {rule:?}"),
             });
         }
@@ -912,17 +1072,11 @@ impl Builder<'_, '_> {
         }
     }
 
-    /// A `value` pair, or one of its alternatives, or a `word` in a container.
+    /// A value: a `number`, `string`, `tuple` or `list` pair, or a `word` in a
+    /// container.
     fn value(&mut self, pair: P<'_>) -> Value {
         let span = self.span(&pair);
         let kind = match pair.as_rule() {
-            Rule::value => {
-                return self.value(
-                    pair.into_inner()
-                        .next()
-                        .expect("grammar guarantees a value"),
-                );
-            }
             Rule::number => self.quantity(pair),
             Rule::string => ValueKind::Str(self.string(&pair).value),
             Rule::word => ValueKind::Word(pair.as_str().to_string()),
@@ -1228,10 +1382,18 @@ impl Builder<'_, '_> {
             Rule::kw_true => ExprKind::Bool(true),
             Rule::kw_false => ExprKind::Bool(false),
             Rule::metric => {
-                let mut parts = children(inner);
-                let plan = self.ident(&parts.next().expect("grammar guarantees PLAN"));
-                let metric = self.ident(&parts.next().expect("grammar guarantees METRIC"));
-                ExprKind::Metric { plan, metric }
+                let (plan, metric) = inner
+                    .as_str()
+                    .split_once('.')
+                    .expect("grammar guarantees `PLAN.METRIC`");
+                let dot = span.start + plan.len();
+                ExprKind::Metric {
+                    plan: Spanned::new(plan.to_string(), Span::new(self.file, span.start, dot)),
+                    metric: Spanned::new(
+                        metric.to_string(),
+                        Span::new(self.file, dot + 1, span.end),
+                    ),
+                }
             }
             rule => unreachable!("grammar guarantees a primary, got {rule:?}"),
         };
@@ -1447,6 +1609,13 @@ expect cover.coverage == 100%
         };
         assert_eq!(points.len(), 3);
 
+        let WorldItem::Obstacle(g) = &world.items[5] else {
+            panic!()
+        };
+        assert_eq!(
+            snippet(APARTMENT, g.span),
+            r#"grid    G  "maps/arena.map" cell 1 origin (0, 0)"#
+        );
         let WorldItem::Obstacle(g) = &world.items[5] else {
             panic!()
         };
@@ -2151,5 +2320,30 @@ mod tmp_bench {
         let t = std::time::Instant::now();
         let _ = super::parse(&text, 0);
         eprintln!("stmts full {:?}", t.elapsed());
+    }
+}
+#[cfg(test)]
+mod tmp_bench3 {
+    #[test]
+    fn tmp_tiny() {
+        let n: usize = std::env::var("TMP_SIZE")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(10_000_000);
+        let text = "expect a.f\n".repeat(n / 11);
+        let t = std::time::Instant::now();
+        let (f, _) = super::parse(&text, 0);
+        eprintln!("tiny full {:?} {}", t.elapsed(), f.statements.len());
+    }
+}
+#[cfg(test)]
+mod tmp_bench4 {
+    #[test]
+    fn tmp_world() {
+        let n: usize = std::env::var("TMP_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(10_000_000);
+        let text = format!("world {{\n{}}}", "  rect (0, 0) (1.5, 2)\n".repeat(n / 23));
+        let t = std::time::Instant::now();
+        let (f, d) = super::parse(&text, 0);
+        eprintln!("world full {:?} {} {}", t.elapsed(), f.statements.len(), d.len());
     }
 }
