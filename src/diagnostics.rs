@@ -198,6 +198,27 @@ impl Diag {
             d = d.with_help(help.clone());
         }
         let file = self.span.and_then(|s| sources.get(s.file).map(|f| (s, f)));
+        if let Some((span, f)) = file
+            && has_long_lines(&f.text, span)
+        {
+            // miette cannot draw under columns past 65535 (and nobody wants
+            // to read such a line): give the location in words instead.
+            let (line, col) = f.line_col(span.start);
+            let located = MietteDiagnostic::new(format!(
+                "{}\n  at {}:{}:{}: {}",
+                self.message,
+                f.path.display(),
+                line,
+                col,
+                self.label
+            ))
+            .with_code(self.code);
+            let located = match &self.help {
+                Some(h) => located.with_help(h.clone()),
+                None => located,
+            };
+            return Report::new(located);
+        }
         if let Some((span, f)) = file {
             let mut labels = vec![LabeledSpan::new_primary_with_span(
                 Some(self.label.clone()).filter(|l| !l.is_empty()),
@@ -239,6 +260,39 @@ impl Diag {
         }
         obj
     }
+}
+
+/// Whether the lines around a span (one line of context each side) are too
+/// long to draw.
+fn has_long_lines(text: &str, span: Span) -> bool {
+    const MAX_LINE: usize = 2000;
+    let start = span.start.min(text.len());
+    let end = span.end.clamp(start, text.len());
+    let bytes = text.as_bytes();
+    // Two line breaks back and two forward cover the context lines.
+    let mut from = start;
+    let mut breaks = 0;
+    while from > 0 {
+        if bytes[from - 1] == b'\n' {
+            breaks += 1;
+            if breaks == 2 {
+                break;
+            }
+        }
+        from -= 1;
+    }
+    let mut to = end;
+    breaks = 0;
+    while to < bytes.len() {
+        if bytes[to] == b'\n' {
+            breaks += 1;
+            if breaks == 2 {
+                break;
+            }
+        }
+        to += 1;
+    }
+    bytes[from..to].split(|b| *b == b'\n').any(|l| l.len() > MAX_LINE)
 }
 
 fn clamp(span: Span, text: &str) -> (usize, usize) {

@@ -532,7 +532,6 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | Rule::IDENT_START
         | Rule::IDENT_CHAR
         | Rule::IDENT
-        | Rule::NUMBER_TAIL
         | Rule::value
         | Rule::element
         | Rule::world_item
