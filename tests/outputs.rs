@@ -131,4 +131,14 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
     ] {
         assert!(text.contains(entity), "`rerun rrd print` does not list {entity}:\n{}", &text[..text.len().min(4000)]);
     }
+    // The robot moves on timeline `step`, the search on `expansion`, with
+    // the archetypes of SPEC 6.
+    let headers = run_with_timeout(
+        Command::new(&rerun).args(["rrd", "print", "-vv"]).arg(&rrd),
+        Duration::from_secs(120),
+    );
+    let headers = String::from_utf8_lossy(&headers.stdout);
+    for needle in ["index_name: step", "index_name: expansion", "archetype: LineStrips2D", "archetype: Points2D", "archetype: TextLog"] {
+        assert!(headers.contains(needle), "`rerun rrd print -vv` lacks {needle}");
+    }
 }

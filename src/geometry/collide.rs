@@ -5,15 +5,21 @@
 //! validator ([`super::validator`]), which is built on parry: the two check
 //! each other (see the property tests at the bottom).
 //!
-//! # Semantics (the same as the validator's)
+//! # Semantics (the validator's, but stricter for points at segments)
 //! A query shape is a point or a segment (its *core*) grown by a radius
 //! `r ≥ 0`: a disk at `p`, or the capsule swept by that disk from `p` to `q`.
 //! It collides with an obstacle piece when `r + ρ − signed_distance(core,
 //! piece core) > TOUCH_EPS`, where the signed distance is negative by the
 //! penetration depth when the cores overlap, and ρ is the piece's own radius
-//! (a disk obstacle's; 0 otherwise). So touching is allowed; a point never
-//! collides with a segment obstacle, a moving point only when it crosses the
-//! segment properly. Queries with `r ≤ TOUCH_EPS` also collide with the
+//! (a disk obstacle's; 0 otherwise). So touching is allowed, except for
+//! segment obstacles and queries with `r ≤ TOUCH_EPS` (points): those collide
+//! with a segment obstacle as soon as they touch it (distance at most
+//! `TOUCH_EPS`). The validator lets a point touch a segment and only refuses
+//! a path that passes from one side of the segments to the other, which a
+//! single motion cannot tell (it may cross a chain of segments at a shared
+//! vertex, or reach a segment that the next motion leaves on the other side);
+//! refusing every contact is stricter, and sound for any path made of such
+//! motions. Queries with `r ≤ TOUCH_EPS` also collide with the
 //! *seams* of multi-piece obstacles — the open band of half-width
 //! `TOUCH_EPS` around an edge shared by two pieces of a polygon or by two
 //! blocked cells of a grid (stopping `TOUCH_EPS` short of the obstacle's
@@ -319,7 +325,8 @@ impl ObstacleIndex {
     }
 
     /// Whether a disk of radius `r` (0 = a point) centred at `p` stays out of
-    /// every obstacle interior (touching allowed, tolerance TOUCH_EPS).
+    /// every obstacle interior (touching allowed, tolerance TOUCH_EPS); a
+    /// point (`r ≤ TOUCH_EPS`) must also stay off every segment obstacle.
     ///
     /// See the module documentation for the exact rule. Bounds are not
     /// checked.
@@ -338,8 +345,10 @@ impl ObstacleIndex {
     ///
     /// Exact (up to rounding) for the straight motion, with the rule of the
     /// module documentation: the swept capsule (the segment `pq` for `r = 0`)
-    /// may touch obstacles but not overlap them deeper than TOUCH_EPS. Bounds
-    /// are not checked.
+    /// may touch obstacles but not overlap them deeper than TOUCH_EPS; a
+    /// moving point (`r ≤ TOUCH_EPS`) may not even touch a segment obstacle
+    /// (conservative: the validator accepts every path made of such motions).
+    /// Bounds are not checked.
     pub fn sweep_free(&self, p: Point, q: Point, r: f64) -> bool {
         self.sweep_blocker(p, q, r).is_none()
     }
@@ -691,11 +700,15 @@ fn box_hit(b: &Aabb, probe: &Probe) -> bool {
     distance < limit
 }
 
-/// Whether the probe meets the segment obstacle `ab` deeper than TOUCH_EPS.
+/// Whether the probe meets the segment obstacle `ab` deeper than TOUCH_EPS,
+/// or, for a thin probe (a point), comes within TOUCH_EPS of it at all.
 /// Two crossing segments overlap by the smallest distance of an endpoint to
 /// the other's line (their Minkowski difference is a parallelogram).
 #[inline]
 fn wall_hit(a: Point, b: Point, probe: &Probe) -> bool {
+    if probe.thin {
+        return thin_wall_distance(a, b, probe) <= TOUCH_EPS;
+    }
     let limit = probe.r - TOUCH_EPS;
     if !probe.moving {
         return distance_point_segment(probe.p, a, b) < limit;
@@ -723,6 +736,26 @@ fn wall_hit(a: Point, b: Point, probe: &Probe) -> bool {
         .min(probe.distance_to(a))
         .min(probe.distance_to(b));
     distance < limit
+}
+
+/// The distance from the probe's core to the segment `ab` (0 when they
+/// cross).
+#[inline]
+fn thin_wall_distance(a: Point, b: Point, probe: &Probe) -> f64 {
+    let (p, q) = (probe.p, probe.q);
+    if !probe.moving {
+        return distance_point_segment(p, a, b);
+    }
+    let w = b - a;
+    let (d1, d2) = (w.perp(&(p - a)), w.perp(&(q - a)));
+    let (d3, d4) = (probe.d.perp(&(a - p)), probe.d.perp(&(b - p)));
+    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+        return 0.0;
+    }
+    distance_point_segment(p, a, b)
+        .min(distance_point_segment(q, a, b))
+        .min(probe.distance_to(a))
+        .min(probe.distance_to(b))
 }
 
 /// Whether the closed segment `pq` (a point when `p == q`) meets the open
@@ -916,9 +949,12 @@ mod tests {
         assert_eq!(ix.disk_blocker(p(5.0, 6.5), 0.6), Some(1));
         assert!(ix.disk_free(p(5.0, 6.5), 0.5));
         assert!(
-            ix.disk_free(p(8.0, 2.0), 0.0),
-            "a point never collides with a wall"
+            !ix.disk_free(p(8.0, 2.0), 0.0),
+            "a point on a wall is refused"
         );
+        assert_eq!(ix.disk_blocker(p(8.0, 4.0 + 0.5e-9), 0.0), Some(2));
+        assert!(ix.disk_free(p(8.0 + 2e-9, 2.0), 0.0));
+        assert!(ix.disk_free(p(8.0, 4.0 + 2e-9), 0.0));
         assert_eq!(ix.disk_blocker(p(8.2, 2.0), 0.3), Some(2));
         assert!(ix.disk_free(p(8.3, 2.0), 0.3));
         assert_eq!(ix.disk_blocker(p(2.0, 7.0), 0.0), Some(3));
@@ -940,11 +976,24 @@ mod tests {
         // A disk rolling along the top, exactly touching.
         assert!(ix.sweep_free(p(1.0, 6.5), p(7.0, 6.5), 0.5));
         assert!(!ix.sweep_free(p(1.0, 6.5), p(7.0, 6.5), 0.5 + 1e-8));
-        // The wall: crossing fails, touching its end or sliding along it does not.
+        // The wall: crossing fails; a point touching it (its end, sliding
+        // along it, reaching it or leaving it) is refused too, since the
+        // next motion might leave on the other side.
         assert_eq!(ix.sweep_blocker(p(7.0, 5.0), p(9.0, 5.0), 0.0), Some(1));
-        assert!(ix.sweep_free(p(7.0, 8.0), p(9.0, 8.0), 0.0));
-        assert!(ix.sweep_free(p(8.0, 1.0), p(8.0, 9.0), 0.0));
-        assert!(ix.sweep_free(p(7.0, 5.0), p(8.0, 5.0), 0.0));
+        assert_eq!(ix.sweep_blocker(p(7.0, 8.0), p(9.0, 8.0), 0.0), Some(1));
+        assert_eq!(ix.sweep_blocker(p(8.0, 1.0), p(8.0, 9.0), 0.0), Some(1));
+        assert_eq!(ix.sweep_blocker(p(7.0, 5.0), p(8.0, 5.0), 0.0), Some(1));
+        assert_eq!(ix.sweep_blocker(p(8.0, 5.0), p(9.0, 6.0), 0.0), Some(1));
+        assert_eq!(
+            ix.sweep_blocker(p(7.0, 8.0 + 0.5e-9), p(9.0, 8.0 + 0.5e-9), 0.0),
+            Some(1)
+        );
+        assert!(ix.sweep_free(p(7.0, 8.0 + 2e-9), p(9.0, 8.0 + 2e-9), 0.0));
+        assert!(ix.sweep_free(p(7.0, 5.0), p(8.0 - 2e-9, 5.0), 0.0));
+        assert!(ix.sweep_free(p(8.0 + 2e-9, 1.0), p(8.0 + 2e-9, 9.0), 0.0));
+        // A tiny disk is a point; a larger one may touch the wall.
+        assert!(!ix.sweep_free(p(7.0, 8.0), p(9.0, 8.0), 0.5e-9));
+        assert!(ix.sweep_free(p(7.0, 9.0), p(9.0, 9.0), 1.0));
         assert!(!ix.sweep_free(p(8.0, 1.0), p(8.0, 9.0), 0.1));
     }
 
@@ -1172,6 +1221,47 @@ mod tests {
         .is_ok()
     }
 
+    fn has_walls(w: &World) -> bool {
+        w.obstacles
+            .iter()
+            .any(|o| matches!(o.shape, Shape::Segment(..)))
+    }
+
+    fn without_walls(w: &World) -> World {
+        World {
+            obstacles: w
+                .obstacles
+                .iter()
+                .filter(|o| !matches!(o.shape, Shape::Segment(..)))
+                .cloned()
+                .collect(),
+            ..w.clone()
+        }
+    }
+
+    /// The distance from the segment `pq` (a point when `p == q`) to the
+    /// nearest segment obstacle of `w`, by parry.
+    fn wall_distance(w: &World, p: Point, q: Point) -> f64 {
+        use parry2d_f64::math::Isometry;
+        use parry2d_f64::shape::Segment;
+        let id = Isometry::identity();
+        w.obstacles
+            .iter()
+            .filter_map(|o| match o.shape {
+                Shape::Segment(a, b) => Some(
+                    parry2d_f64::query::distance(
+                        &id,
+                        &Segment::new(p, q),
+                        &id,
+                        &Segment::new(a, b),
+                    )
+                    .unwrap(),
+                ),
+                _ => None,
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Whether the verdict could flip within 1e-7 of `r` (exact contact,
     /// where rounding decides).
     fn ambiguous(ix: &ObstacleIndex, v: &Validator, p: Point, q: Point, r: f64) -> bool {
@@ -1184,6 +1274,12 @@ mod tests {
         #![proptest_config(ProptestConfig::with_cases(5000))]
 
         #[test]
+        /// Exact agreement, except for a point among segment obstacles: the
+        /// planner refuses every contact with a segment, the validator only
+        /// a passage from one side to the other. There a free sweep must be
+        /// a valid path, and the planner's verdict is exactly "free of the
+        /// other obstacles and farther than TOUCH_EPS from every segment".
+        #[test]
         fn sweep_free_agrees_with_the_validator(
             w in random_world(),
             a in (-1.0..11.0f64, -1.0..11.0f64),
@@ -1194,7 +1290,23 @@ mod tests {
             let ix = ObstacleIndex::new(&w);
             let v = Validator::new(&w);
             prop_assume!(!ambiguous(&ix, &v, pa, pb, r));
-            prop_assert_eq!(ix.sweep_free(pa, pb, r), validator_sweep_free(&v, pa, pb, r));
+            let planner = ix.sweep_free(pa, pb, r);
+            let referee = validator_sweep_free(&v, pa, pb, r);
+            if r <= TOUCH_EPS && has_walls(&w) {
+                if planner {
+                    prop_assert!(referee);
+                }
+                let solid = without_walls(&w);
+                let (ix2, v2) = (ObstacleIndex::new(&solid), Validator::new(&solid));
+                prop_assume!(!ambiguous(&ix2, &v2, pa, pb, r));
+                let d = wall_distance(&w, pa, pb);
+                prop_assume!((d - TOUCH_EPS).abs() > 1e-12);
+                let solid_free = ix2.sweep_free(pa, pb, r);
+                prop_assert_eq!(solid_free, validator_sweep_free(&v2, pa, pb, r));
+                prop_assert_eq!(planner, solid_free && d > TOUCH_EPS);
+            } else {
+                prop_assert_eq!(planner, referee);
+            }
         }
 
         #[test]
@@ -1208,13 +1320,70 @@ mod tests {
             let v = Validator::new(&w);
             prop_assume!(!ambiguous(&ix, &v, pa, pa, r));
             let robot = if r == 0.0 { RobotShape::Point } else { RobotShape::Disk(r) };
+            let at = Config::new(pa.x, pa.y, 0.0);
             let blocker = ix.disk_blocker(pa, r);
-            prop_assert_eq!(blocker.is_none(), config_collision(&w, &robot, Config::new(pa.x, pa.y, 0.0)).is_none());
-            if let Some(i) = blocker {
-                // The blocker named is one the validator agrees on.
-                let alone = World { obstacles: vec![w.obstacles[i].clone()], ..w.clone() };
-                prop_assert!(config_collision(&alone, &robot, Config::new(pa.x, pa.y, 0.0)).is_some());
+            let referee = config_collision(&w, &robot, at).is_none();
+            if r <= TOUCH_EPS && has_walls(&w) {
+                // Sitting on a segment is refused by the planner only.
+                if blocker.is_none() {
+                    prop_assert!(referee);
+                }
+                let d = wall_distance(&w, pa, pa);
+                prop_assume!((d - TOUCH_EPS).abs() > 1e-12);
+                let solid = without_walls(&w);
+                let solid_free = ObstacleIndex::new(&solid).disk_free(pa, r);
+                prop_assert_eq!(solid_free, config_collision(&solid, &robot, at).is_none());
+                prop_assert_eq!(blocker.is_none(), solid_free && d > TOUCH_EPS);
+            } else {
+                prop_assert_eq!(blocker.is_none(), referee);
             }
+            if let Some(i) = blocker {
+                // The blocker named is one the validator agrees on (or a
+                // segment the point touches).
+                let alone = World { obstacles: vec![w.obstacles[i].clone()], ..w.clone() };
+                prop_assert!(
+                    config_collision(&alone, &robot, at).is_some()
+                        || (r <= TOUCH_EPS && wall_distance(&alone, pa, pa) <= TOUCH_EPS)
+                );
+            }
+        }
+
+        /// Lattice paths among segment walls with integer ends (closed and
+        /// open chains, T and X junctions, collinear overlaps): a point
+        /// moving only along moves that `sweep_free` accepts never crosses
+        /// a wall, so the validator accepts every such path.
+        #[test]
+        fn point_lattice_paths_among_segments_are_valid(
+            walls in prop::collection::vec((0..9i32, 0..9i32, 0..9i32, 0..9i32), 1..7),
+            chain in prop::collection::vec((0..9i32, 0..9i32), 3..7),
+            closed in any::<bool>(),
+            start in (0..17i32, 0..17i32),
+            steps in prop::collection::vec((-2..3i32, -2..3i32), 1..30),
+        ) {
+            let q = |x: i32, y: i32| p(x as f64, y as f64);
+            let mut shapes: Vec<Shape> = walls
+                .iter()
+                .map(|&(x0, y0, x1, y1)| Shape::Segment(q(x0, y0), q(x1, y1)))
+                .collect();
+            let n = chain.len();
+            for i in 0..(if closed { n } else { n - 1 }) {
+                let ((x0, y0), (x1, y1)) = (chain[i], chain[(i + 1) % n]);
+                shapes.push(Shape::Segment(q(x0, y0), q(x1, y1)));
+            }
+            let mut w = world(shapes);
+            w.bounds = Aabb { min: p(-100.0, -100.0), max: p(100.0, 100.0) };
+            let ix = ObstacleIndex::new(&w);
+            let mut at = p(start.0 as f64 * 0.5, start.1 as f64 * 0.5);
+            let mut path = vec![Config::new(at.x, at.y, 0.0)];
+            for (dx, dy) in steps {
+                let next = p(at.x + dx as f64 * 0.5, at.y + dy as f64 * 0.5);
+                if ix.sweep_free(at, next, 0.0) {
+                    path.push(Config::new(next.x, next.y, 0.0));
+                    at = next;
+                }
+            }
+            let v = Validator::new(&w);
+            prop_assert!(v.validate_path(&RobotShape::Point, &path, 0.01).is_ok(), "{:?}", path);
         }
 
         /// On a half-unit lattice over a unit grid every contact is exact:

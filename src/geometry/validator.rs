@@ -29,6 +29,13 @@
 //! grid corner whose four cells are blocked. Larger robots cannot reach a
 //! seam without overlapping a piece deeper than `TOUCH_EPS`.
 //!
+//! A point robot (radius at most `TOUCH_EPS`) may touch segment obstacles,
+//! but it may not pass from one side of the set of segments to the other:
+//! through a vertex shared by several segments, through a path vertex lying
+//! on a segment, or along a run on the segments. Each segment alone cannot
+//! tell that, so [`Validator::validate_path`] also checks the whole polyline
+//! against all segment obstacles (see [`Validator::check_wall_crossings`]).
+//!
 //! Signed distances are exact up to rounding: the separating-axis test over
 //! the edge normals of both cores (with parry's support maps) gives the
 //! penetration depth, and parry's distance query the distance of separated
@@ -69,7 +76,11 @@ pub const DEFAULT_TOLERANCE: f64 = 0.01;
 /// `tolerance`. For each sub-step the swept region (the convex hull of the
 /// robot's bodies at both ends) must not collide with any obstacle (see the
 /// module documentation), and the reference point must stay in `bounds`
-/// (closed, with a margin of [`TOUCH_EPS`]).
+/// (closed, with a margin of [`TOUCH_EPS`]). A point robot (radius at most
+/// `TOUCH_EPS`) must moreover not pass from one side of the segment
+/// obstacles to the other anywhere along the path
+/// ([`Validator::check_wall_crossings`]), reported as "the point crosses the
+/// wall at (x, y)".
 ///
 /// # Arguments
 /// * `tolerance` — the largest motion of any point of the robot within one
@@ -104,6 +115,17 @@ pub fn config_collision(world: &World, robot: &RobotShape, c: Config) -> Option<
 pub struct Validator<'w> {
     world: &'w World,
     obstacles: Vec<Prepared<'w>>,
+    /// The segment obstacles of non-zero length, for the point robot's
+    /// polyline test.
+    walls: Vec<Wall>,
+}
+
+/// A segment obstacle `a → b` (`a != b`) and the index of its obstacle.
+struct Wall {
+    a: Point,
+    b: Point,
+    obstacle: usize,
+    aabb: Aabb,
 }
 
 struct Prepared<'w> {
@@ -149,7 +171,25 @@ impl<'w> Validator<'w> {
     /// here.
     pub fn new(world: &'w World) -> Self {
         let obstacles = world.obstacles.iter().map(|o| prepare(&o.shape)).collect();
-        Validator { world, obstacles }
+        let walls = world
+            .obstacles
+            .iter()
+            .enumerate()
+            .filter_map(|(obstacle, o)| match o.shape {
+                Shape::Segment(a, b) if a != b => Some(Wall {
+                    a,
+                    b,
+                    obstacle,
+                    aabb: Aabb::from_corners(a, b),
+                }),
+                _ => None,
+            })
+            .collect();
+        Validator {
+            world,
+            obstacles,
+            walls,
+        }
     }
 
     /// See [`validate_path`].
@@ -177,6 +217,9 @@ impl<'w> Validator<'w> {
                 self.check_config_in_bounds(0, path[0])?;
                 for (segment, pair) in path.windows(2).enumerate() {
                     self.check_motion(robot, segment, pair[0], pair[1], tolerance)?;
+                }
+                if robot.radius() <= TOUCH_EPS && !self.walls.is_empty() {
+                    self.check_wall_crossings(path)?;
                 }
                 Ok(())
             }
@@ -271,6 +314,226 @@ impl<'w> Validator<'w> {
                 ),
             })
         }
+    }
+
+    /// The polyline test for point robots: the path may touch the segment
+    /// obstacles but not pass from one side of them to the other.
+    ///
+    /// # Formulation
+    /// Points and directions are compared with the tolerance
+    /// `δ = TOUCH_EPS` (a point within δ of a segment is on it). The path's
+    /// (x, y) polyline, without steps shorter than δ, is cut at its *contact
+    /// points*: its vertices, the points where a segment endpoint lies on it
+    /// and the points where it crosses a segment; contact points closer than δ
+    /// along a path segment merge. At a contact point C the segments through
+    /// C give *rays* from C (one for a segment ending at C, two opposite ones
+    /// for a segment passing through C; rays in the same direction merge),
+    /// which cut the circle of directions around C into *sectors*. The path
+    /// arrives at C along a direction (pointing back along the path) and
+    /// leaves along another; each lies in a sector, or exactly on a ray
+    /// (within an angle of `ALIGN`), where it moves along a segment.
+    ///
+    /// Walking the contact points in order, the path is *allowed* in a set of
+    /// sectors at each: every sector where the path starts, the sector it
+    /// arrives from, or (arriving along a ray) the sectors beside that ray
+    /// on the sides it kept while moving along the segments. It must leave
+    /// into an allowed sector, or along a ray that has an allowed sector on
+    /// at least one side, and then keeps those sides (left or right of its
+    /// motion) until the next contact point. Anything else passes from one
+    /// side of the segments to the other: the path crosses the wall at C.
+    /// The path may end anywhere, and the tip of a lone segment (one ray, one
+    /// sector) never separates anything.
+    pub fn check_wall_crossings(&self, path: &[Config]) -> Result<(), ValidationError> {
+        // The polyline without steps of at most δ (turns on the spot,
+        // repeated configurations): each kept point with the index of the
+        // last configuration merged into it.
+        let mut verts: Vec<(Point, usize)> = Vec::with_capacity(path.len());
+        for (i, c) in path.iter().enumerate() {
+            let p = c.xy();
+            match verts.last_mut() {
+                Some(last) if (p - last.0).norm() <= WALL_EPS => last.1 = i,
+                _ => verts.push((p, i)),
+            }
+        }
+        if verts.len() < 2 {
+            return Ok(());
+        }
+        let segments = verts.len() - 1;
+        let dirs: Vec<Vector> = verts
+            .windows(2)
+            .map(|w| (w[1].0 - w[0].0).normalize())
+            .collect();
+        // Contact points inside each path segment (distance along it and
+        // half-extent of the merged cluster), and the extent of the clusters
+        // merged into each vertex.
+        let mut vertex_extent = vec![0.0f64; verts.len()];
+        let mut inner: Vec<Vec<(f64, f64)>> = vec![Vec::new(); segments];
+        let mut params: Vec<f64> = Vec::new();
+        for k in 0..segments {
+            let (u, v, d) = (verts[k].0, verts[k + 1].0, dirs[k]);
+            let length = (v - u).norm();
+            let reach = grow(Aabb::from_corners(u, v), 2.0 * WALL_EPS);
+            params.clear();
+            for w in self.walls.iter().filter(|w| aabbs_meet(&w.aabb, &reach)) {
+                for e in [w.a, w.b] {
+                    if point_segment_distance(e, u, v) <= WALL_EPS {
+                        params.push((e - u).dot(&d).clamp(0.0, length));
+                    }
+                }
+                let (o1, o2) = ((v - u).perp(&(w.a - u)), (v - u).perp(&(w.b - u)));
+                let (o3, o4) = ((w.b - w.a).perp(&(u - w.a)), (w.b - w.a).perp(&(v - w.a)));
+                if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
+                    params.push((length * o3 / (o3 - o4)).clamp(0.0, length));
+                }
+            }
+            params.sort_by(f64::total_cmp);
+            let mut i = 0;
+            while i < params.len() {
+                let (lo, mut hi) = (params[i], params[i]);
+                i += 1;
+                while i < params.len() && params[i] - hi <= WALL_EPS {
+                    hi = params[i];
+                    i += 1;
+                }
+                let (at_start, at_end) = (lo <= WALL_EPS, hi >= length - WALL_EPS);
+                if at_start {
+                    vertex_extent[k] = vertex_extent[k].max(hi);
+                }
+                if at_end {
+                    vertex_extent[k + 1] = vertex_extent[k + 1].max(length - lo);
+                }
+                if !at_start && !at_end {
+                    inner[k].push(((lo + hi) / 2.0, (hi - lo) / 2.0));
+                }
+            }
+        }
+        // Walk the contact points in order. `along`: while the path moves
+        // along segments, whether it may be on their left and on their right.
+        let mut along: Option<[bool; 2]> = None;
+        let mut check = |c: Point,
+                         extent: f64,
+                         arriving: Option<Vector>,
+                         leaving: Option<Vector>,
+                         segment: usize,
+                         at: Config|
+         -> Result<(), ValidationError> {
+            let carried = along.take();
+            let rays = self.rays_at(c, extent);
+            if rays.is_empty() {
+                return Ok(());
+            }
+            let n = rays.len();
+            // Sector i lies counter-clockwise of ray i, up to ray i + 1.
+            let ccw = |i: usize| i;
+            let cw = |i: usize| (i + n - 1) % n;
+            let mut allowed = vec![false; n];
+            match arriving {
+                None => allowed.fill(true),
+                Some(d) => match classify(&rays, -d) {
+                    Way::Sector(m) => allowed[m] = true,
+                    Way::Ray(i) => {
+                        // Arriving along ray i: its left is the sector
+                        // clockwise of the ray, its right the one
+                        // counter-clockwise.
+                        let [left, right] = carried.unwrap_or_else(|| {
+                            // The previous contact point did not see the
+                            // path move along a segment: the exact side.
+                            let s = rays[i].dir.perp(&-d);
+                            [s <= 0.0, s >= 0.0]
+                        });
+                        allowed[cw(i)] |= left;
+                        allowed[ccw(i)] |= right;
+                    }
+                },
+            }
+            let Some(d) = leaving else {
+                return Ok(());
+            };
+            let crossed = match classify(&rays, d) {
+                Way::Sector(m) => !allowed[m],
+                Way::Ray(i) => {
+                    let sides = [allowed[ccw(i)], allowed[cw(i)]];
+                    along = Some(sides);
+                    sides == [false, false]
+                }
+            };
+            if !crossed {
+                return Ok(());
+            }
+            let wall = rays.iter().map(|r| r.obstacle).min().unwrap_or(0);
+            Err(ValidationError {
+                segment,
+                at,
+                obstacle: Some(self.world.obstacles[wall].name.clone()),
+                reason: format!("the point crosses the wall at ({}, {})", c.x, c.y),
+            })
+        };
+        for k in 0..verts.len() {
+            let (c, index) = verts[k];
+            let arriving = k.checked_sub(1).map(|j| dirs[j]);
+            let leaving = dirs.get(k).copied();
+            let segment = index.min(path.len() - 2);
+            check(c, vertex_extent[k], arriving, leaving, segment, path[index])?;
+            if k < segments {
+                for &(t, extent) in &inner[k] {
+                    let c = c + dirs[k] * t;
+                    let at = Config::new(c.x, c.y, path[index].theta);
+                    check(c, extent, Some(dirs[k]), Some(dirs[k]), segment, at)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The rays of the segment obstacles from the contact point `c` (the
+    /// segments within `WALL_EPS + extent` of `c`), sorted by angle, rays in
+    /// the same direction merged.
+    fn rays_at(&self, c: Point, extent: f64) -> Vec<Ray> {
+        let r = WALL_EPS + extent;
+        let near = grow(Aabb { min: c, max: c }, r);
+        let mut rays: Vec<Ray> = Vec::new();
+        for w in self.walls.iter().filter(|w| aabbs_meet(&w.aabb, &near)) {
+            if point_segment_distance(c, w.a, w.b) > r {
+                continue;
+            }
+            let (at_a, at_b) = ((w.a - c).norm() <= r, (w.b - c).norm() <= r);
+            let u = (w.b - w.a).normalize();
+            let mut push = |dir: Vector, end: Point| {
+                rays.push(Ray {
+                    dir,
+                    angle: dir.y.atan2(dir.x),
+                    length: (end - c).norm(),
+                    obstacle: w.obstacle,
+                })
+            };
+            // A segment both of whose ends are at `c` is a point there.
+            if !at_b {
+                push(u, w.b);
+            }
+            if !at_a {
+                push(-u, w.a);
+            }
+        }
+        rays.sort_by(|x, y| x.angle.total_cmp(&y.angle));
+        let same = |x: &Ray, y: &Ray| {
+            let s = x.dir.perp(&y.dir).abs();
+            x.dir.dot(&y.dir) > 0.0 && (s <= ALIGN || s * x.length.min(y.length) <= WALL_EPS)
+        };
+        let mut merged: Vec<Ray> = Vec::with_capacity(rays.len());
+        for ray in rays {
+            match merged.last_mut() {
+                Some(last) if same(last, &ray) => {
+                    last.obstacle = last.obstacle.min(ray.obstacle);
+                    last.length = last.length.max(ray.length);
+                }
+                _ => merged.push(ray),
+            }
+        }
+        if merged.len() > 1 && same(&merged[0], &merged[merged.len() - 1]) {
+            let last = merged.pop().unwrap();
+            merged[0].obstacle = merged[0].obstacle.min(last.obstacle);
+        }
+        merged
     }
 
     fn obstacle_error(&self, segment: usize, at: Config, i: usize) -> ValidationError {
@@ -659,6 +922,68 @@ fn convex_core(points: &[Point]) -> Core {
             None => Core::Segment(Segment::new(merged[0], merged[merged.len() / 2])),
         },
     }
+}
+
+// ------------------------------------------------------------------ walls
+
+/// The tolerance of the point robot's polyline test against segment
+/// obstacles: points closer than this are one point.
+const WALL_EPS: f64 = TOUCH_EPS;
+
+/// Directions closer than this angle (in radians) are one direction: a path
+/// moving along a ray of a segment stays within `WALL_EPS` of it for 10
+/// units.
+const ALIGN: f64 = 1e-10;
+
+/// A ray of a segment obstacle from a contact point.
+struct Ray {
+    /// Unit direction.
+    dir: Vector,
+    /// `atan2` of `dir`, in [−π, π].
+    angle: f64,
+    /// How far the segment goes along the ray.
+    length: f64,
+    obstacle: usize,
+}
+
+/// Where a direction from a contact point lies among the rays there.
+#[derive(Debug, PartialEq)]
+enum Way {
+    /// Strictly inside sector `m` (between rays `m` and `m + 1`).
+    Sector(usize),
+    /// Along ray `i` (within `ALIGN`).
+    Ray(usize),
+}
+
+/// Classifies the unit direction `dir` among the non-empty, sorted `rays`.
+fn classify(rays: &[Ray], dir: Vector) -> Way {
+    let mut best: Option<(usize, f64)> = None;
+    for (i, r) in rays.iter().enumerate() {
+        let dot = r.dir.dot(&dir);
+        if dot > 0.0 && r.dir.perp(&dir).abs() <= ALIGN && best.is_none_or(|(_, b)| dot > b) {
+            best = Some((i, dot));
+        }
+    }
+    if let Some((i, _)) = best {
+        return Way::Ray(i);
+    }
+    let phi = dir.y.atan2(dir.x);
+    Way::Sector(
+        rays.iter()
+            .rposition(|r| r.angle < phi)
+            .unwrap_or(rays.len() - 1),
+    )
+}
+
+fn point_segment_distance(x: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 {
+        ((x - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (x - (a + ab * t)).norm()
 }
 
 // ------------------------------------------------------------------ boxes
@@ -1071,6 +1396,500 @@ mod tests {
             &RobotShape::Point,
             &[c(1.0, y + 1.0 / 64.0), c(9.0, y + 1.0 / 64.0)]
         ));
+    }
+
+    // ------------------------------------------- a point against walls of segments
+
+    fn seg(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+        Shape::Segment(p(x0, y0), p(x1, y1))
+    }
+
+    /// A world of `obstacles` with bounds far away.
+    fn walls(obstacles: Vec<(&str, Shape)>) -> World {
+        let mut w = world(obstacles);
+        w.bounds = Aabb {
+            min: p(-100.0, -100.0),
+            max: p(100.0, 100.0),
+        };
+        w
+    }
+
+    fn path(v: &[(f64, f64)]) -> Vec<Config> {
+        v.iter().map(|&(x, y)| c(x, y)).collect()
+    }
+
+    /// The closed box of four segments around [6, 9]².
+    fn boxed() -> World {
+        walls(vec![
+            ("S", seg(6.0, 6.0, 9.0, 6.0)),
+            ("E", seg(9.0, 6.0, 9.0, 9.0)),
+            ("N", seg(9.0, 9.0, 6.0, 9.0)),
+            ("W", seg(6.0, 9.0, 6.0, 6.0)),
+        ])
+    }
+
+    fn crossing(w: &World, v: &[(f64, f64)]) -> ValidationError {
+        let e = validate_path(w, &RobotShape::Point, &path(v), DEFAULT_TOLERANCE)
+            .expect_err("the path crosses a wall");
+        assert!(e.reason.contains("crosses"), "{e:?}");
+        let name = e.obstacle.as_deref().expect("a wall is named");
+        assert!(
+            w.obstacles
+                .iter()
+                .any(|o| o.name == name && matches!(o.shape, Shape::Segment(..))),
+            "{e:?}"
+        );
+        e
+    }
+
+    fn accepted(w: &World, v: &[(f64, f64)]) -> bool {
+        ok(w, &RobotShape::Point, &path(v))
+    }
+
+    #[test]
+    fn a_point_cannot_enter_a_box_of_segments_through_a_corner() {
+        let w = boxed();
+        // (a) Through the shared vertex (6, 6), inside a path segment.
+        let e = crossing(&w, &[(5.5, 5.5), (6.5, 6.5)]);
+        assert_eq!(e.reason, "the point crosses the wall at (6, 6)");
+        assert_eq!(e.segment, 0);
+        assert!(matches!(e.obstacle.as_deref(), Some("S" | "W")));
+        // With a path vertex at the corner, and at every corner.
+        crossing(&w, &[(5.0, 5.0), (6.0, 6.0), (7.0, 7.0)]);
+        crossing(&w, &[(10.0, 10.0), (9.0, 9.0), (8.5, 8.0)]);
+        crossing(&w, &[(10.0, 5.0), (8.0, 7.0)]);
+        crossing(&w, &[(5.0, 10.0), (6.0, 9.0), (6.5, 8.0)]);
+        // And out again.
+        crossing(&w, &[(7.0, 7.0), (6.0, 6.0), (5.0, 5.0)]);
+        // Through a corner within TOUCH_EPS (a proper crossing of depth
+        // 1e-10 of the western segment, just above the corner).
+        crossing(&w, &[(5.5, 5.5), (6.5, 6.5 + 2e-10)]);
+        // The boxed goal of scenarios/features/unreachable.scen.
+        crossing(&w, &[(1.0, 1.0), (6.0, 6.0), (7.5, 7.5)]);
+    }
+
+    #[test]
+    fn a_point_cannot_cross_a_wall_at_a_path_vertex_on_it() {
+        // (b)
+        let w = walls(vec![("W", seg(0.0, 1.0, 2.0, 1.0))]);
+        let e = crossing(&w, &[(0.5, 0.5), (0.5, 1.0), (0.5, 1.5)]);
+        assert_eq!(e.obstacle.as_deref(), Some("W"));
+        assert_eq!(e.reason, "the point crosses the wall at (0.5, 1)");
+        assert_eq!((e.segment, e.at), (1, c(0.5, 1.0)));
+        crossing(&w, &[(0.5, 0.5), (1.0, 1.0), (1.5, 1.5)]);
+        crossing(&w, &[(0.5, 1.5), (1.0, 1.0), (1.9, 0.1)]);
+        // Repeated configurations and turns on the spot change nothing.
+        crossing(&w, &[(0.5, 0.5), (0.5, 1.0), (0.5, 1.0), (0.5, 1.5)]);
+        let turning = [
+            Config::new(0.5, 0.5, 0.0),
+            Config::new(0.5, 1.0, 0.0),
+            Config::new(0.5, 1.0, 2.0),
+            Config::new(0.5, 1.5, 2.0),
+        ];
+        assert!(!ok(&w, &RobotShape::Point, &turning));
+        // A disk robot of radius up to TOUCH_EPS is a point.
+        assert!(!ok(
+            &w,
+            &RobotShape::Disk(0.5e-9),
+            &path(&[(0.5, 0.5), (0.5, 1.0), (0.5, 1.5)])
+        ));
+    }
+
+    #[test]
+    fn a_point_cannot_cross_a_wall_by_running_along_it() {
+        // (c) Arrives from below, runs along the wall, leaves above.
+        let w = walls(vec![("W", seg(0.0, 1.0, 2.0, 1.0))]);
+        crossing(&w, &[(0.5, 0.5), (0.5, 1.0), (1.5, 1.0), (1.5, 1.5)]);
+        crossing(&w, &[(0.5, 0.5), (1.0, 1.0), (1.5, 1.0), (1.0, 1.5)]);
+        // Arriving obliquely through the wall's end and leaving above.
+        crossing(&w, &[(-1.0, 0.0), (0.5, 1.0), (1.5, 1.0), (1.5, 1.5)]);
+        // Back and forth along it before leaving on the other side.
+        crossing(
+            &w,
+            &[(0.5, 0.5), (0.5, 1.0), (1.5, 1.0), (1.0, 1.0), (1.0, 1.5)],
+        );
+        // A run along the whole wall, past both ends, is around it.
+        assert!(accepted(
+            &w,
+            &[(-1.0, 0.5), (-1.0, 1.0), (3.0, 1.0), (3.0, 1.5)]
+        ));
+        assert!(accepted(
+            &w,
+            &[(0.5, 0.5), (0.5, 1.0), (3.0, 1.0), (3.0, 1.5)]
+        ));
+        // Two collinear overlapping walls are one wall.
+        let w = walls(vec![
+            ("A", seg(0.0, 1.0, 2.0, 1.0)),
+            ("B", seg(1.0, 1.0, 3.0, 1.0)),
+        ]);
+        crossing(&w, &[(0.5, 0.5), (0.5, 1.0), (2.5, 1.0), (2.5, 1.5)]);
+        assert!(accepted(
+            &w,
+            &[(0.5, 0.5), (0.5, 1.0), (2.5, 1.0), (2.5, 0.5)]
+        ));
+        assert!(accepted(
+            &w,
+            &[(0.5, 0.5), (0.5, 1.0), (4.0, 1.0), (4.0, 1.5)]
+        ));
+    }
+
+    #[test]
+    fn a_point_cannot_cross_a_chain_at_its_vertices() {
+        // (d) A run along one segment continuing along the next one.
+        let w = walls(vec![
+            ("A", seg(0.0, 1.0, 2.0, 1.0)),
+            ("B", seg(2.0, 1.0, 4.0, 1.0)),
+        ]);
+        crossing(&w, &[(0.5, 0.5), (0.5, 1.0), (3.0, 1.0), (3.0, 1.5)]);
+        crossing(&w, &[(0.5, 0.5), (2.0, 1.0), (3.0, 1.5)]);
+        crossing(&w, &[(1.0, 0.5), (1.0, 1.0), (2.0, 1.0), (2.0, 1.5)]);
+        assert!(accepted(
+            &w,
+            &[(0.5, 0.5), (0.5, 1.0), (3.0, 1.0), (3.0, 0.5)]
+        ));
+        // An L: below/right of it is one side, the corner inside the other.
+        let w = walls(vec![
+            ("A", seg(0.0, 0.0, 4.0, 0.0)),
+            ("B", seg(4.0, 0.0, 4.0, 4.0)),
+        ]);
+        assert!(accepted(
+            &w,
+            &[(1.0, -1.0), (1.0, 0.0), (4.0, 0.0), (4.0, 2.0), (5.0, 2.0)]
+        ));
+        crossing(
+            &w,
+            &[(1.0, -1.0), (1.0, 0.0), (4.0, 0.0), (4.0, 2.0), (3.0, 2.0)],
+        );
+        crossing(
+            &w,
+            &[(1.0, 1.0), (1.0, 0.0), (4.0, 0.0), (4.0, 2.0), (5.0, 2.0)],
+        );
+        crossing(&w, &[(5.0, -1.0), (3.0, 1.0)]);
+        assert!(accepted(&w, &[(5.0, 1.0), (4.0, 0.0), (5.0, -1.0)]));
+        // Three segments meeting at (5, 5): rays at 0°, 90° and 225°.
+        let w = walls(vec![
+            ("A", seg(5.0, 5.0, 8.0, 5.0)),
+            ("B", seg(5.0, 5.0, 5.0, 8.0)),
+            ("C", seg(2.0, 2.0, 5.0, 5.0)),
+        ]);
+        crossing(&w, &[(6.0, 4.0), (4.0, 6.0)]);
+        crossing(&w, &[(6.0, 4.0), (5.0, 5.0), (6.0, 6.0)]);
+        crossing(&w, &[(4.0, 6.0), (5.0, 5.0), (4.0, 3.0)]);
+        assert!(accepted(&w, &[(6.0, 4.0), (5.0, 5.0), (5.5, 3.0)]));
+        assert!(accepted(&w, &[(6.0, 6.0), (5.0, 5.0), (5.5, 7.0)]));
+        // Along C, through the vertex and along A, staying below.
+        assert!(accepted(
+            &w,
+            &[(3.0, 2.0), (3.0, 3.0), (5.0, 5.0), (7.0, 5.0), (7.0, 4.0)]
+        ));
+        crossing(
+            &w,
+            &[(3.0, 2.0), (3.0, 3.0), (5.0, 5.0), (7.0, 5.0), (7.0, 6.0)],
+        );
+        // A T: running along the bar hits the stem on one side only.
+        let w = walls(vec![
+            ("bar", seg(0.0, 5.0, 10.0, 5.0)),
+            ("stem", seg(5.0, 5.0, 5.0, 8.0)),
+        ]);
+        let e = crossing(&w, &[(1.0, 6.0), (1.0, 5.0), (9.0, 5.0), (9.0, 6.0)]);
+        assert_eq!(e.reason, "the point crosses the wall at (5, 5)");
+        assert!(accepted(
+            &w,
+            &[(1.0, 4.0), (1.0, 5.0), (9.0, 5.0), (9.0, 4.0)]
+        ));
+        // Up the stem's left side and down its right side: around its tip.
+        assert!(accepted(
+            &w,
+            &[
+                (4.0, 6.0),
+                (5.0, 6.0),
+                (5.0, 8.0),
+                (5.0, 9.0),
+                (5.0, 6.0),
+                (6.0, 6.0)
+            ]
+        ));
+        crossing(&w, &[(4.0, 6.0), (5.0, 6.0), (6.0, 6.0)]);
+        // An X: two segments crossing in their middles.
+        let w = walls(vec![
+            ("a", seg(0.0, 0.0, 4.0, 4.0)),
+            ("b", seg(0.0, 4.0, 4.0, 0.0)),
+        ]);
+        crossing(&w, &[(1.0, 2.0), (2.0, 2.0), (3.0, 2.0)]);
+        crossing(&w, &[(1.0, 2.0), (3.0, 2.0)]);
+        assert!(accepted(&w, &[(1.0, 2.0), (2.0, 2.0), (1.0, 2.5)]));
+    }
+
+    #[test]
+    fn a_point_may_touch_walls_and_go_back() {
+        let w = walls(vec![("W", seg(0.0, 1.0, 2.0, 1.0))]);
+        // Touching a wall and going back to the same side.
+        assert!(accepted(&w, &[(0.5, 0.5), (0.5, 1.0), (1.5, 0.5)]));
+        assert!(accepted(&w, &[(0.5, 0.5), (0.5, 1.0), (0.5, 0.5)]));
+        // Running along it and leaving on the side it came from.
+        assert!(accepted(
+            &w,
+            &[(0.5, 0.5), (0.5, 1.0), (1.5, 1.0), (1.5, 0.5)]
+        ));
+        // Starting or ending on it, on either side.
+        assert!(accepted(&w, &[(0.5, 1.0), (0.5, 1.5)]));
+        assert!(accepted(&w, &[(0.5, 1.0), (1.5, 1.0), (0.5, 0.5)]));
+        assert!(accepted(&w, &[(0.5, 0.5), (0.5, 1.0)]));
+        assert!(accepted(&w, &[(0.5, 0.5), (0.5, 1.0), (1.5, 1.0)]));
+        // Through the free ends (tips) of an open chain.
+        let w = walls(vec![
+            ("A", seg(0.0, 1.0, 2.0, 1.0)),
+            ("B", seg(2.0, 1.0, 2.0, 3.0)),
+        ]);
+        assert!(accepted(&w, &[(0.0, 0.0), (0.0, 2.0)]));
+        assert!(accepted(&w, &[(-0.5, 0.5), (0.0, 1.0), (0.5, 1.5)]));
+        assert!(accepted(&w, &[(1.0, 3.5), (2.0, 3.0), (3.0, 2.5)]));
+        assert!(accepted(&w, &[(1.0, 3.5), (3.0, 2.5)]));
+        // Through a chain vertex, staying outside the box.
+        let w = boxed();
+        assert!(accepted(&w, &[(5.0, 6.5), (6.0, 6.0), (6.5, 5.0)]));
+        assert!(accepted(&w, &[(5.0, 7.0), (7.0, 5.0)]));
+        assert!(accepted(&w, &[(8.0, 5.0), (9.0, 6.0), (10.0, 7.0)]));
+        // Roadmap-like: along the outside from one vertex to the next, and
+        // all the way round.
+        assert!(accepted(
+            &w,
+            &[(5.0, 5.0), (6.0, 6.0), (9.0, 6.0), (10.0, 5.0)]
+        ));
+        assert!(accepted(
+            &w,
+            &[
+                (5.0, 5.0),
+                (6.0, 6.0),
+                (9.0, 6.0),
+                (9.0, 9.0),
+                (6.0, 9.0),
+                (5.0, 10.0)
+            ]
+        ));
+        assert!(accepted(
+            &w,
+            &[
+                (5.0, 5.0),
+                (6.0, 6.0),
+                (9.0, 6.0),
+                (9.0, 9.0),
+                (6.0, 9.0),
+                (6.0, 6.0)
+            ]
+        ));
+        // Inside, along the walls, and out nowhere.
+        assert!(accepted(
+            &w,
+            &[(7.0, 7.0), (6.0, 6.0), (9.0, 6.0), (8.0, 8.0)]
+        ));
+        crossing(&w, &[(7.0, 7.0), (6.0, 6.0), (9.0, 6.0), (10.0, 7.0)]);
+        // Starting on the wall, into the box; ending on it from outside.
+        assert!(accepted(&w, &[(6.0, 7.0), (7.0, 7.0)]));
+        assert!(accepted(&w, &[(5.0, 7.0), (6.0, 7.0)]));
+        assert!(accepted(&w, &[(6.0, 6.0), (7.0, 7.0)]));
+        // A point never collides with a wall, even sitting on a corner.
+        assert_eq!(config_collision(&w, &RobotShape::Point, c(6.0, 6.0)), None);
+    }
+
+    #[test]
+    fn walls_with_rounded_coordinates() {
+        // A box turned by 0.3 rad: no coordinate is exact, and a point
+        // interpolated on an edge is only within rounding of it.
+        let (s, co) = 0.3f64.sin_cos();
+        let at = |x: f64, y: f64| p(5.0 + co * x - s * y, 5.0 + s * x + co * y);
+        let v = [at(-1.5, -1.5), at(1.5, -1.5), at(1.5, 1.5), at(-1.5, 1.5)];
+        let names = ["a", "b", "c", "d"];
+        let w = walls(
+            (0..4)
+                .map(|i| (names[i], Shape::Segment(v[i], v[(i + 1) % 4])))
+                .collect(),
+        );
+        let xy = |q: Point| (q.x, q.y);
+        let (out0, out1) = (at(-2.5, -2.5), at(2.5, -2.5));
+        let (in0, in1) = (at(-1.0, -1.0), at(1.0, -1.0));
+        // Roadmap-like: along the outside of an edge, vertex to vertex.
+        assert!(accepted(&w, &[xy(out0), xy(v[0]), xy(v[1]), xy(out1)]));
+        crossing(&w, &[xy(out0), xy(v[0]), xy(v[1]), xy(in1)]);
+        crossing(&w, &[xy(out0), xy(v[0]), xy(in0)]);
+        crossing(&w, &[xy(out0), xy(in0)]);
+        // Onto an edge at an interpolated point and back, or across.
+        for k in 1..10 {
+            let t = k as f64 / 10.0;
+            let e = v[0] + (v[1] - v[0]) * t;
+            let (below, above) = (at(-1.5 + 3.0 * t, -2.0), at(-1.5 + 3.0 * t, -1.0));
+            assert!(accepted(&w, &[xy(below), xy(e), xy(out1)]), "{t}");
+            assert!(accepted(&w, &[xy(out0), xy(v[0]), xy(e), xy(below)]), "{t}");
+            crossing(&w, &[xy(below), xy(e), xy(above)]);
+            crossing(&w, &[xy(out0), xy(v[0]), xy(e), xy(above)]);
+            // Inside, along the edge from the vertex, and back inside.
+            assert!(accepted(&w, &[xy(in0), xy(v[0]), xy(e), xy(above)]), "{t}");
+        }
+        // Starting inside, out through a vertex.
+        crossing(&w, &[xy(at(0.0, 0.0)), xy(v[2]), xy(at(2.5, 2.5))]);
+    }
+
+    #[test]
+    fn disks_and_polygons_are_not_affected_by_the_point_rule() {
+        // A disk crossing the corner overlaps the walls; one passing by it
+        // touches them and is fine, as before.
+        let w = boxed();
+        let disk = RobotShape::Disk(0.5);
+        assert!(!ok(&w, &disk, &path(&[(5.0, 5.0), (7.0, 7.0)])));
+        assert!(ok(&w, &disk, &path(&[(5.5, 5.0), (5.5, 10.0)])));
+        assert!(ok(&w, &disk, &path(&[(5.5, 5.5), (9.5, 5.5), (9.5, 6.0)])));
+    }
+
+    /// Which side of the convex counter-clockwise polygon `v` the point `x`
+    /// is on: 1 strictly inside, -1 strictly outside, 0 on the boundary
+    /// (exact for the small dyadic coordinates used here).
+    fn side_of(v: &[Point], x: Point) -> i32 {
+        let n = v.len();
+        let s: Vec<f64> = (0..n)
+            .map(|i| (v[(i + 1) % n] - v[i]).perp(&(x - v[i])))
+            .collect();
+        if s.iter().all(|&s| s > 0.0) {
+            1
+        } else if s.iter().any(|&s| s < 0.0) {
+            -1
+        } else {
+            0
+        }
+    }
+
+    /// Whether the segment `ab` meets the open interior of the convex
+    /// counter-clockwise polygon `v`: the open interval of parameters where
+    /// every edge function is positive meets [0, 1].
+    fn enters(v: &[Point], a: Point, b: Point) -> bool {
+        let n = v.len();
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for i in 0..n {
+            let e = v[(i + 1) % n] - v[i];
+            let (f0, f1) = (e.perp(&(a - v[i])), e.perp(&(b - v[i])));
+            let slope = f1 - f0;
+            if slope == 0.0 {
+                if f0 <= 0.0 {
+                    return false;
+                }
+            } else if slope > 0.0 {
+                lo = lo.max(-f0 / slope);
+            } else {
+                hi = hi.min(-f0 / slope);
+            }
+        }
+        // The coordinates are multiples of 1/2 on a small grid: a real
+        // passage through the interior is far longer than 1e-9.
+        hi - lo > 1e-9 && lo < 1.0 - 1e-9 && hi > 1e-9
+    }
+
+    /// A closed convex chain of segment obstacles through integer points
+    /// (some edges split at an inner lattice point), and its polygon.
+    fn random_chain() -> impl Strategy<Value = (World, Vec<Point>)> {
+        (
+            prop::collection::vec((1..10i32, 1..10i32), 3..7),
+            prop::collection::vec(any::<bool>(), 8),
+        )
+            .prop_filter_map("flat", |(pts, split)| {
+                let pts: Vec<Point> = pts.iter().map(|&(x, y)| p(x as f64, y as f64)).collect();
+                let hull = polygon::convex_hull(&pts);
+                if hull.len() < 3 {
+                    return None;
+                }
+                let gcd = |mut a: i64, mut b: i64| {
+                    while b != 0 {
+                        (a, b) = (b, a % b);
+                    }
+                    a.abs()
+                };
+                let mut segments = Vec::new();
+                for i in 0..hull.len() {
+                    let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
+                    let g = gcd((b.x - a.x) as i64, (b.y - a.y) as i64);
+                    if split[i % 8] && g >= 2 {
+                        let m = a + (b - a) * ((g / 2) as f64 / g as f64);
+                        segments.push(Shape::Segment(a, m));
+                        segments.push(Shape::Segment(m, b));
+                    } else {
+                        segments.push(Shape::Segment(a, b));
+                    }
+                }
+                let mut w = world(
+                    segments
+                        .into_iter()
+                        .enumerate()
+                        .map(|(i, s)| {
+                            (
+                                [
+                                    "s0", "s1", "s2", "s3", "s4", "s5", "s6", "s7", "s8", "s9",
+                                    "s10", "s11",
+                                ][i],
+                                s,
+                            )
+                        })
+                        .collect(),
+                );
+                w.bounds = Aabb {
+                    min: p(-100.0, -100.0),
+                    max: p(100.0, 100.0),
+                };
+                Some((w, hull))
+            })
+    }
+
+    /// Path vertices: lattice points of step 1/2 over [0, 10]², the chain's
+    /// vertices, and lattice points on its edges.
+    fn chain_path(hull: &[Point], picks: &[(u8, i32, i32, usize)]) -> Vec<Point> {
+        picks
+            .iter()
+            .map(|&(kind, x, y, i)| match kind {
+                0 | 1 => p(x as f64 * 0.5, y as f64 * 0.5),
+                2 => hull[i % hull.len()],
+                _ => {
+                    let (a, b) = (hull[i % hull.len()], hull[(i + 1) % hull.len()]);
+                    // The point of the edge's line nearest a lattice point,
+                    // if it is on the lattice and on the edge.
+                    let x = p(x as f64 * 0.5, y as f64 * 0.5);
+                    let t = ((x - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+                    let q = a + (b - a) * t;
+                    let snapped = p((q.x * 2.0).round() / 2.0, (q.y * 2.0).round() / 2.0);
+                    if (b - a).perp(&(snapped - a)) == 0.0 {
+                        snapped
+                    } else {
+                        a
+                    }
+                }
+            })
+            .collect()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        /// A point starting outside a closed chain of segments can never
+        /// get in, and one that stays out of its interior is never refused,
+        /// whatever vertices, edges and runs along the chain it touches.
+        #[test]
+        fn a_point_stays_on_its_side_of_a_closed_chain(
+            (w, hull) in random_chain(),
+            picks in prop::collection::vec((0..4u8, 0..21i32, 0..21i32, 0..12usize), 2..7),
+        ) {
+            let pts = chain_path(&hull, &picks);
+            let configs: Vec<Config> = pts.iter().map(|q| c(q.x, q.y)).collect();
+            let got = validate_path(&w, &RobotShape::Point, &configs, DEFAULT_TOLERANCE);
+            let gets_in = pts.windows(2).any(|s| enters(&hull, s[0], s[1]));
+            let start = side_of(&hull, pts[0]);
+            if start == -1 && gets_in {
+                prop_assert!(got.is_err(), "{:?} enters {:?}", pts, hull);
+            }
+            if start != 1 && !gets_in {
+                prop_assert!(got.is_ok(), "{:?} stays out of {:?}: {:?}", pts, hull, got);
+            }
+            // Inside it is the same: a point that starts inside stays inside.
+            let leaves = pts.iter().any(|&q| side_of(&hull, q) == -1);
+            if start == 1 && leaves {
+                prop_assert!(got.is_err(), "{:?} leaves {:?}", pts, hull);
+            }
+        }
     }
 
     proptest! {

@@ -38,6 +38,8 @@ const MAX_EXPR_HEIGHT: usize = 256;
 
 const STATEMENT_KEYWORDS: [&str; 6] = ["scenario", "include", "world", "robot", "plan", "expect"];
 
+const WORLD_ITEM_KEYWORDS: [&str; 6] = ["bounds", "rect", "polygon", "segment", "disk", "grid"];
+
 const EXPECTED_STATEMENT: &str =
     "expected a statement: `world`, `robot`, `plan`, `expect`, `include` or `scenario`";
 
@@ -58,34 +60,44 @@ pub fn parse(text: &str, file: FileId) -> (ast::File, Vec<Diag>) {
     let chunks = split_statements(text, file);
     let units = work_units(&chunks);
     let parse_unit = |unit: &Range<usize>| {
-        let mut parser = FileParser {
-            text,
-            file,
-            statements: Vec::new(),
-            diags: Vec::new(),
-        };
+        let mut parser = FileParser::new(text, file);
         parser.unit(&chunks[unit.clone()]);
-        (parser.statements, parser.diags)
+        parser
     };
-    // Units are independent, so a large file is parsed on all cores.
-    let parsed: Vec<_> = if units.len() > 1 {
-        units.par_iter().map(parse_unit).collect()
-    } else {
-        units.iter().map(parse_unit).collect()
-    };
-    let mut statements = Vec::new();
-    let mut diags = Vec::new();
-    for (unit_statements, unit_diags) in parsed {
-        statements.extend(unit_statements);
-        diags.extend(unit_diags);
+    let mut parsed = FileParser::new(text, file);
+    // Units are independent, so a large file is parsed on all cores; in
+    // groups, so that the results waiting to be joined stay small.
+    for group in units.chunks(PARALLEL_UNITS) {
+        let results: Vec<FileParser<'_>> = if group.len() > 1 {
+            group.par_iter().map(parse_unit).collect()
+        } else {
+            group.iter().map(parse_unit).collect()
+        };
+        for result in results {
+            parsed.append(result);
+        }
     }
-    sort_diags(&mut diags);
-    (ast::File { statements }, diags)
+    sort_diags(&mut parsed.diags);
+    (
+        ast::File {
+            statements: parsed.statements,
+        },
+        parsed.diags,
+    )
 }
 
 /// Consecutive clean statements are parsed by one pest call of up to this
 /// many bytes: pest's per-call setup dominates for short statements.
 const BATCH_BYTES: usize = 64 * 1024;
+
+/// A larger `world` or `plan` statement is cut into pieces of about this
+/// size, parsed in parallel: pest keeps a token queue for the whole input it
+/// parses, of many times its size.
+const PIECE_BYTES: usize = BATCH_BYTES;
+
+/// How many units of work are parsed in parallel before their results are
+/// joined.
+const PARALLEL_UNITS: usize = 64;
 
 /// Groups chunks into units of work: a run of clean chunks of at most
 /// [`BATCH_BYTES`] (or a single larger one), or one chunk with an error.
@@ -115,7 +127,21 @@ struct FileParser<'t> {
     diags: Vec<Diag>,
 }
 
-impl FileParser<'_> {
+impl<'t> FileParser<'t> {
+    fn new(text: &'t str, file: FileId) -> Self {
+        FileParser {
+            text,
+            file,
+            statements: Vec::new(),
+            diags: Vec::new(),
+        }
+    }
+
+    fn append(&mut self, mut other: FileParser<'_>) {
+        self.statements.append(&mut other.statements);
+        self.diags.append(&mut other.diags);
+    }
+
     /// Parses one unit of [`work_units`].
     fn unit(&mut self, chunks: &[Chunk]) {
         match chunks {
@@ -123,8 +149,8 @@ impl FileParser<'_> {
                 self.diags
                     .push(not_a_statement(self.text, self.file, chunk.start));
             }
-            [chunk] if !chunk.lexical_errors.is_empty() => {
-                self.diags.extend(chunk.lexical_errors.iter().cloned());
+            [chunk] if !chunk.lexical_errors().is_empty() => {
+                self.diags.extend(chunk.lexical_errors().iter().cloned());
             }
             [chunk] => self.one(chunk),
             _ => {
@@ -137,6 +163,9 @@ impl FileParser<'_> {
 
     /// Parses one chunk, reporting its syntax error if any.
     fn one(&mut self, chunk: &Chunk) {
+        if !chunk.splits().is_empty() && self.pieces(chunk) {
+            return;
+        }
         let rule = chunk.rule.expect("only statement chunks are parsed");
         match ScenParser::parse(rule, &self.text[chunk.start..chunk.end]) {
             Ok(mut pairs) => {
@@ -179,6 +208,81 @@ impl FileParser<'_> {
         true
     }
 
+    /// Parses a large `world` or `plan` chunk cut at its split points, each
+    /// piece wrapped into a statement of its own: the first keeps the real
+    /// header and gets a closing `}`, the others get a made-up header (whose
+    /// nodes are dropped). Returns false, having added nothing, when a piece
+    /// fails: the whole chunk is then parsed for the error messages.
+    fn pieces(&mut self, chunk: &Chunk) -> bool {
+        let rule = chunk.rule.expect("only statement chunks are parsed");
+        let header = match rule {
+            Rule::world_chunk => "world{",
+            Rule::plan_chunk => "plan p k r{",
+            _ => return false,
+        };
+        let bounds: Vec<usize> = std::iter::once(chunk.start)
+            .chain(chunk.splits().iter().copied())
+            .chain([chunk.end])
+            .collect();
+        let last = bounds.len() - 2;
+        let pieces: Vec<Option<(Stmt, Vec<Diag>)>> = bounds
+            .windows(2)
+            .enumerate()
+            .collect::<Vec<_>>()
+            .par_iter()
+            .map(|&(k, window)| {
+                let (start, end) = (window[0], window[1]);
+                let prefix = if k == 0 { "" } else { header };
+                let suffix = if k == last { "" } else { "}" };
+                let source = format!("{prefix}{}{suffix}", &self.text[start..end]);
+                let mut pairs = ScenParser::parse(rule, &source).ok()?;
+                let mut piece = FileParser::new(self.text, self.file);
+                // Real tokens sit at or after `prefix.len()` in `source`, so
+                // their file offsets come out right.
+                piece.build(pairs.next()?, start - prefix.len());
+                Some((piece.statements.pop()?, piece.diags))
+            })
+            .collect();
+        if pieces.iter().any(Option::is_none) {
+            return false;
+        }
+        let span = Span::new(self.file, chunk.start, chunk.end);
+        let mut pieces = pieces.into_iter().flatten();
+        let Some((mut statement, diags)) = pieces.next() else {
+            return false;
+        };
+        self.diags.extend(diags);
+        for (piece, diags) in pieces {
+            self.diags.extend(diags);
+            match (&mut statement, piece) {
+                (Stmt::World(world), Stmt::World(more)) => world.items.extend(more.items),
+                (Stmt::Plan(plan), Stmt::Plan(more)) => {
+                    // `90 deg` may straddle the cut.
+                    if let (Some(before), Some(after)) = (plan.body.last(), more.body.first()) {
+                        let pair = [before.clone(), after.clone()];
+                        let mut builder = Builder {
+                            text: self.text,
+                            file: self.file,
+                            base: 0,
+                            diags: &mut self.diags,
+                            expr_too_deep: false,
+                        };
+                        builder.check_detached_units(&pair);
+                    }
+                    plan.body.extend(more.body);
+                }
+                _ => unreachable!("every piece parses with the chunk's rule"),
+            }
+        }
+        match &mut statement {
+            Stmt::World(world) => world.span = span,
+            Stmt::Plan(plan) => plan.span = span,
+            _ => unreachable!("only world and plan chunks are cut"),
+        }
+        self.statements.push(statement);
+        true
+    }
+
     fn build(&mut self, pair: P<'_>, base: usize) {
         let mut builder = Builder {
             text: self.text,
@@ -204,27 +308,51 @@ struct Chunk {
     /// The rule for the statement keyword it starts with (see [`chunk_rule`]);
     /// `None` for leading text that does not start with one.
     rule: Option<Rule>,
+    /// Rarely needed facts, boxed to keep the common chunk small.
+    details: Option<Box<ChunkDetails>>,
+}
+
+#[derive(Debug, Default)]
+struct ChunkDetails {
     /// Unterminated strings and too-deep nesting found by the scanner; pest
     /// does not run on a chunk that has any.
     lexical_errors: Vec<Diag>,
     /// Offsets of the brackets still open at the chunk's end, outermost first
     /// (at most `MAX_NESTING + 1`).
     unclosed: Vec<usize>,
+    /// Where a large `world` or `plan` statement may be cut into pieces that
+    /// parse on their own (see [`FileParser::pieces`]).
+    splits: Vec<usize>,
 }
 
 impl Chunk {
-    fn is_clean(&self) -> bool {
-        self.rule.is_some() && self.lexical_errors.is_empty()
-    }
-
     fn new(start: usize, end: usize, rule: Option<Rule>) -> Self {
         Chunk {
             start,
             end,
             rule,
-            lexical_errors: Vec::new(),
-            unclosed: Vec::new(),
+            details: None,
         }
+    }
+
+    fn details_mut(&mut self) -> &mut ChunkDetails {
+        self.details.get_or_insert_with(Box::default)
+    }
+
+    fn lexical_errors(&self) -> &[Diag] {
+        self.details.as_ref().map_or(&[], |d| &d.lexical_errors)
+    }
+
+    fn unclosed(&self) -> &[usize] {
+        self.details.as_ref().map_or(&[], |d| &d.unclosed)
+    }
+
+    fn splits(&self) -> &[usize] {
+        self.details.as_ref().map_or(&[], |d| &d.splits)
+    }
+
+    fn is_clean(&self) -> bool {
+        self.rule.is_some() && self.lexical_errors().is_empty()
     }
 }
 
@@ -265,7 +393,16 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
     let mut open: Vec<usize> = Vec::new();
     let mut names_to_skip = 0u8;
     let mut prev_byte = 0u8;
+    // The previous token when it was a word (for the world's split points).
+    let mut prev_word: Option<&str> = None;
+    let mut last_split = 0;
     let mut i = 0;
+    let finish = |mut chunk: Chunk, open: &mut Vec<usize>, chunks: &mut Vec<Chunk>| {
+        if !open.is_empty() {
+            chunk.details_mut().unclosed = std::mem::take(open);
+        }
+        chunks.push(chunk);
+    };
     while i < bytes.len() {
         let b = bytes[i];
         match b {
@@ -293,30 +430,33 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
             _ => {}
         }
         let token_start = i;
+        let mut word = None;
         if is_ident_byte(b) {
             while i < bytes.len() && is_ident_byte(bytes[i]) {
                 i += 1;
             }
-            let word = &text[token_start..i];
+            let this = &text[token_start..i];
+            word = Some(this);
             let at_line_start = token_start == 0 || bytes[token_start - 1] == b'\n';
             let starts_statement = !b.is_ascii_digit()
-                && STATEMENT_KEYWORDS.contains(&word)
+                && STATEMENT_KEYWORDS.contains(&this)
                 && prev_byte != b'.'
                 && next_nonblank_byte(bytes, i) != Some(b'.')
                 && ((depth == 0 && names_to_skip == 0) || (depth > 0 && at_line_start));
             if starts_statement {
-                if let Some(mut done) = current.take() {
-                    done.unclosed = std::mem::take(&mut open);
-                    chunks.push(done);
+                if let Some(done) = current.take() {
+                    finish(done, &mut open, &mut chunks);
                 }
                 depth = 0;
-                names_to_skip = match word {
+                names_to_skip = match this {
                     "plan" => 3,
                     "robot" => 1,
                     _ => 0,
                 };
-                current = Some(Chunk::new(token_start, i, Some(chunk_rule(word))));
+                current = Some(Chunk::new(token_start, i, Some(chunk_rule(this))));
                 prev_byte = bytes[i - 1];
+                prev_word = Some(this);
+                last_split = token_start;
                 continue;
             }
             if depth == 0 {
@@ -326,8 +466,15 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
             names_to_skip = 0;
         }
         let chunk = current.get_or_insert_with(|| Chunk::new(token_start, token_start, None));
+        if depth == 1
+            && token_start - last_split >= PIECE_BYTES
+            && is_split_point(text, chunk.rule, token_start, word, prev_word)
+        {
+            chunk.details_mut().splits.push(token_start);
+            last_split = token_start;
+        }
         match b {
-            _ if is_ident_byte(b) => {}
+            _ if word.is_some() => {}
             b'"' => {
                 let (end, closed) = scan_string(bytes, i);
                 i = end;
@@ -337,7 +484,7 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                     } else {
                         end
                     };
-                    chunk.lexical_errors.push(
+                    chunk.details_mut().lexical_errors.push(
                         Diag::error("scen::syntax::unterminated_string", "unterminated string")
                             .at(
                                 Span::new(file, token_start, end),
@@ -354,13 +501,14 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                 if open.len() <= MAX_NESTING {
                     open.push(i);
                 }
+                // Reported once per chunk, at the first bracket too deep.
                 if depth == MAX_NESTING + 1
                     && !chunk
-                        .lexical_errors
+                        .lexical_errors()
                         .iter()
                         .any(|d| d.code == "scen::syntax::too_deep")
                 {
-                    chunk.lexical_errors.push(
+                    chunk.details_mut().lexical_errors.push(
                         Diag::error(
                             "scen::syntax::too_deep",
                             format!("brackets are nested more than {MAX_NESTING} deep"),
@@ -383,12 +531,41 @@ fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
         }
         chunk.end = i;
         prev_byte = bytes[i - 1];
+        prev_word = word;
     }
-    if let Some(mut done) = current {
-        done.unclosed = open;
-        chunks.push(done);
+    if let Some(done) = current {
+        finish(done, &mut open, &mut chunks);
     }
     chunks
+}
+
+/// Whether a large statement may be cut before the token at `at` (in its
+/// top-level block) so that both sides parse on their own exactly as they
+/// would together. In a plan body any word after a blank starts a token. In
+/// a world block, an item keyword at the start of a line starts an item,
+/// unless the token before is an item keyword itself (`grid` followed by a
+/// word on the next line takes that word as its name).
+fn is_split_point(
+    text: &str,
+    rule: Option<Rule>,
+    at: usize,
+    word: Option<&str>,
+    prev_word: Option<&str>,
+) -> bool {
+    let Some(word) = word.filter(|w| !w.starts_with(|c: char| c.is_ascii_digit())) else {
+        return false;
+    };
+    let before = &text[..at];
+    match rule {
+        Some(Rule::plan_chunk) => before.ends_with(is_blank),
+        Some(Rule::world_chunk) => {
+            let line_start = before.trim_end_matches([' ', '\t']);
+            WORLD_ITEM_KEYWORDS.contains(&word)
+                && (line_start.is_empty() || line_start.ends_with('\n'))
+                && !prev_word.is_some_and(|w| WORLD_ITEM_KEYWORDS.contains(&w))
+        }
+        _ => false,
+    }
 }
 
 /// The end of the string literal opening at `start`, and whether it is closed.
@@ -444,7 +621,17 @@ fn token_end(text: &str, start: usize) -> usize {
             .take_while(|&&b| is_ident_byte(b) || b == b'.' || b == b'%')
             .count()
     } else if is_ident_byte(bytes[0]) {
-        bytes.iter().take_while(|&&b| is_ident_byte(b)).count()
+        // A word, or a (perhaps unfinished) metric reference `plan.metric`.
+        let word = bytes.iter().take_while(|&&b| is_ident_byte(b)).count();
+        if bytes.get(word) == Some(&b'.') {
+            word + 1
+                + bytes[word + 1..]
+                    .iter()
+                    .take_while(|&&b| is_ident_byte(b))
+                    .count()
+        } else {
+            word
+        }
     } else if c == '"' {
         match bytes[1..].iter().position(|&b| b == b'"' || b == b'\n') {
             Some(k) if bytes[1 + k] == b'"' => k + 2,
@@ -518,7 +705,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::plan_kind => "a planner kind (such as `astar`)",
         Rule::word => "a word",
         Rule::number | Rule::expr_number => "a number",
-        // Silent rules never reach an error message; the unit is optional.
+        // Silent and atomic helper rules never reach an error message.
         Rule::WHITESPACE
         | Rule::COMMENT_TEXT
         | Rule::STRING_TEXT
@@ -640,7 +827,7 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     let span = if at_end {
         last_char_span(text, file, chunk.end)
     } else {
-        Span::new(file, at, token_end(text, at).max(at + 1).min(text.len()))
+        Span::new(file, at, token_end(text, at))
     };
     let what = one_of(&expected);
     let message = if only_end {
@@ -662,8 +849,17 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
         Some("compare with `==`".to_string())
     } else if expected.contains(&"an expression")
         && token.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+        && !["and", "or", "not"].contains(&token)
     {
         Some("refer to a metric as `PLAN.METRIC`, e.g. `offline.found`".to_string())
+    } else if has(Rule::kw_point) {
+        Some(
+            "a robot's shape is `point`, `disk RADIUS`, `rect WIDTH HEIGHT` or \
+             `polygon [(x, y), ...]`"
+                .to_string(),
+        )
+    } else if chunk.rule == Some(Rule::plan_chunk) && (has(Rule::ident) || has(Rule::plan_kind)) {
+        Some("a plan is written `plan NAME KIND ROBOT { PARAMETERS }`".to_string())
     } else if token == "," && expected == ["`)`"] {
         Some("a point is `(x, y)` and a pose `(x, y, θ)`".to_string())
     } else if let Some(number) = detached_number(text, token_start, token) {
@@ -684,7 +880,7 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     let expects_closer = has(Rule::rbrace) || has(Rule::rparen) || has(Rule::rbracket);
     if at_end
         && expects_closer
-        && let Some(&open) = chunk.unclosed.last()
+        && let Some(&open) = chunk.unclosed().last()
     {
         let bracket = &text[open..open + 1];
         let closer = match bracket {
@@ -2105,6 +2301,11 @@ expect cover.coverage == 100%
             ")".repeat(MAX_NESTING)
         );
         assert_eq!(sexp(&expr(&at_limit["expect ".len()..])), "1");
+        // The same on the parser's worker threads (a file of many units).
+        let many = format!("{}{at_limit}\n", "expect a.found\n".repeat(20_000));
+        let (file, diags) = parse(&many, 0);
+        assert!(diags.is_empty());
+        assert_eq!(file.statements.len(), 20_001);
         let mixed = format!("world {{ polygon {} }}", "[(".repeat(40));
         assert_eq!(errors(&mixed)[0].code, "scen::syntax::too_deep");
     }
@@ -2261,6 +2462,8 @@ expect cover.coverage == 100%
     }
 
     #[test]
+    /// Timings are printed, not asserted (see BENCHMARKS.md for figures):
+    /// `cargo test --release --lib ten_megabyte -- --nocapture`.
     fn a_ten_megabyte_file_parses() {
         let block = "# a comment line that is fairly long to fill the file quickly ........\n\
                      plan p astar r { start (0, 0) goal (1, 1, 90deg) limit time 2s }\n\
@@ -2269,7 +2472,11 @@ expect cover.coverage == 100%
         assert!(text.len() >= 10_000_000);
         let started = std::time::Instant::now();
         let (file, diags) = parse(&text, 0);
-        eprintln!("parsed {} bytes in {:?}", text.len(), started.elapsed());
+        eprintln!(
+            "parsed {} bytes of statements in {:?}",
+            text.len(),
+            started.elapsed()
+        );
         assert!(diags.is_empty());
         assert_eq!(file.statements.len(), 2 * (10_000_000 / block.len() + 1));
 
@@ -2282,67 +2489,181 @@ expect cover.coverage == 100%
             started.elapsed()
         );
 
-        let body = format!(
-            "plan p k r {{ {} }}",
-            "key 1.5 (1, 2) ".repeat(10_000_000 / 16)
+        // One statement of 10 MB: parsed in pieces.
+        let world = format!(
+            "world {{\n{}}}",
+            "  rect (0, 0) (1.5, 2)\n".repeat(10_000_000 / 23)
         );
         let started = std::time::Instant::now();
-        assert_eq!(plan_body(&body).len(), 3 * (10_000_000 / 16));
+        assert_eq!(world_items(&world).len(), 10_000_000 / 23);
         eprintln!(
-            "parsed a {}-byte plan body in {:?}",
-            body.len(),
+            "parsed a {}-byte world in {:?}",
+            world.len(),
             started.elapsed()
         );
     }
-}
-#[cfg(test)]
-mod tmp_bench {
-    fn size() -> usize {
-        std::env::var("TMP_SIZE")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(10_000_000)
-    }
+
     #[test]
-    fn tmp_body() {
-        let body = format!("plan p k r {{ {} }}", "key 1.5 (1, 2) ".repeat(size() / 16));
-        let t = std::time::Instant::now();
-        let _ = super::parse(&body, 0);
-        eprintln!("body full {:?}", t.elapsed());
+    fn a_missing_value_is_expected_as_a_value() {
+        let d = &errors("robot r disk")[0];
+        assert_eq!(d.message, "expected a value, found the end of the file");
+        let d = &errors("world { rect A (0, 0) }")[0];
+        assert_eq!(d.message, "expected a value, found `}`");
+        let d = &errors("plan p k r { start (0 0) }")[0];
+        assert_eq!(d.message, "expected `,`, found `0`");
+        let d = &errors("robot r polygon [(0, 0) (1, 0)]")[0];
+        assert_eq!(d.message, "expected `,` or `]`, found `(`");
     }
+
     #[test]
-    fn tmp_stmts() {
-        let block = "# a comment line that is fairly long to fill the file quickly ........\n\
-                     plan p astar r { start (0, 0) goal (1, 1, 90deg) limit time 2s }\n\
-                     expect p.cost <= 90 and p.found\n";
-        let text = block.repeat(size() / block.len() + 1);
-        let t = std::time::Instant::now();
-        let _ = super::parse(&text, 0);
-        eprintln!("stmts full {:?}", t.elapsed());
+    fn malformed_numbers_are_one_bad_token() {
+        for (text, token) in [
+            ("1.2.3", "1.2.3"),
+            ("5-3", "5-3"),
+            ("1e-", "1e-"),
+            ("2.", "2."),
+        ] {
+            let source = format!("plan p k r {{ x {text} }}");
+            let diags = errors(&source);
+            assert_eq!(diags.len(), 1, "{text}: {diags:#?}");
+            assert_eq!(diags[0].code, "scen::syntax::bad_number", "{text}");
+            assert_eq!(snippet(&source, diags[0].span.unwrap()), token);
+        }
+        // In an expression `-` is an operator, and `e-3` an exponent.
+        assert_eq!(sexp(&expr("a.x < 5-3")), "(< a.x (- 5 3))");
+        assert_eq!(sexp(&expr("a.x < 2e-3-1")), "(< a.x (- 0.002 1))");
     }
-}
-#[cfg(test)]
-mod tmp_bench3 {
+
     #[test]
-    fn tmp_tiny() {
-        let n: usize = std::env::var("TMP_SIZE")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(10_000_000);
-        let text = "expect a.f\n".repeat(n / 11);
-        let t = std::time::Instant::now();
-        let (f, _) = super::parse(&text, 0);
-        eprintln!("tiny full {:?} {}", t.elapsed(), f.statements.len());
+    fn a_byte_order_mark_is_ignored_at_the_start_only() {
+        assert_eq!(parse_ok("\u{FEFF}robot r point").len(), 1);
+        let diags = errors("robot r \u{FEFF}point");
+        assert_eq!(diags[0].code, "scen::syntax::expected");
     }
-}
-#[cfg(test)]
-mod tmp_bench4 {
+
     #[test]
-    fn tmp_world() {
-        let n: usize = std::env::var("TMP_SIZE").ok().and_then(|s| s.parse().ok()).unwrap_or(10_000_000);
-        let text = format!("world {{\n{}}}", "  rect (0, 0) (1.5, 2)\n".repeat(n / 23));
-        let t = std::time::Instant::now();
-        let (f, d) = super::parse(&text, 0);
-        eprintln!("world full {:?} {} {}", t.elapsed(), f.statements.len(), d.len());
+    fn crlf_line_endings_are_blanks() {
+        let text = "world {\r\n  bounds (0, 0) (1, 1)\r\n}\r\nexpect a.f # c\r\n";
+        assert_eq!(parse_ok(text).len(), 2);
+    }
+
+    /// The AST and diagnostics of `text`, parsing every chunk whole.
+    fn parse_without_cutting(text: &str) -> (ast::File, Vec<Diag>) {
+        let mut parser = FileParser::new(text, 0);
+        for mut chunk in split_statements(text, 0) {
+            if let Some(details) = &mut chunk.details {
+                details.splits.clear();
+            }
+            parser.unit(std::slice::from_ref(&chunk));
+        }
+        sort_diags(&mut parser.diags);
+        (
+            ast::File {
+                statements: parser.statements,
+            },
+            parser.diags,
+        )
+    }
+
+    fn assert_same_as_uncut(text: &str) -> (ast::File, Vec<Diag>) {
+        let chunks = split_statements(text, 0);
+        assert!(
+            chunks.iter().any(|c| !c.splits().is_empty()),
+            "the test needs a cut"
+        );
+        let (file, diags) = parse(text, 0);
+        let (whole, whole_diags) = parse_without_cutting(text);
+        assert_eq!(
+            format!("{:?}", file.statements),
+            format!("{:?}", whole.statements)
+        );
+        assert_eq!(format!("{diags:?}"), format!("{whole_diags:?}"));
+        (file, diags)
+    }
+
+    #[test]
+    fn a_large_world_is_cut_into_pieces_with_the_same_result() {
+        let mut text = String::from("scenario \"big\"\nworld {\n  bounds (0, 0) (100, 100)\n");
+        for k in 0..6000 {
+            text.push_str(&format!(
+                "  rect R{k} ({k}, 0) ({k}.5, 1)\n  disk (1, 2) 0.5 # a comment\n  \
+                 grid G{k} cell 1 origin (0, 0) {{ \"..#\" }}\n  grid\n    H{k}\n  \
+                 polygon [(0, 0), (1, 0), (0, 1),]\n  segment rect (0, 0) (1, 1)\n"
+            ));
+        }
+        text.push_str("}\nexpect p.found\n");
+        let (file, diags) = assert_same_as_uncut(&text);
+        assert!(diags.is_empty());
+        let Stmt::World(world) = &file.statements[1] else {
+            panic!()
+        };
+        assert_eq!(world.items.len(), 1 + 6 * 6000);
+        assert_eq!(snippet(&text, world.keyword), "world");
+        assert!(
+            snippet(&text, world.span).starts_with("world {")
+                && snippet(&text, world.span).ends_with('}')
+        );
+        let WorldItem::Obstacle(last) = world.items.last().unwrap() else {
+            panic!()
+        };
+        assert_eq!(snippet(&text, last.span), "segment rect (0, 0) (1, 1)");
+
+        // An error in a piece: the whole block is parsed for the message.
+        let broken = text.replacen("R5000 (5000, 0)", "R5000 (5000 0)", 1);
+        let (_, diags) = assert_same_as_uncut(&broken);
+        assert_eq!(diags.len(), 1);
+        assert_eq!(snippet(&broken, diags[0].span.unwrap()), "0");
+        assert_eq!(line_of(&broken, diags[0].span.unwrap()), 3 + 5000 * 7 + 1);
+    }
+
+    #[test]
+    fn a_large_plan_body_is_cut_into_pieces_with_the_same_result() {
+        let mut text = String::from("plan p astar r {\n");
+        for k in 0..8000 {
+            text.push_str(&format!(
+                "  start ({k}, 0, 90deg) goal [1, 2] {}\n  drive unicycle {{ dt 0.02 }} name \"n\" 90 deg\n",
+                if k % 2 == 0 { "x" } else { "1e-3" }
+            ));
+        }
+        text.push('}');
+        let (file, diags) = assert_same_as_uncut(&text);
+        assert_eq!(diags.len(), 8000);
+        assert!(
+            diags
+                .iter()
+                .all(|d| d.code == "scen::syntax::detached_unit")
+        );
+        let Stmt::Plan(plan) = &file.statements[0] else {
+            panic!()
+        };
+        assert_eq!(plan.body.len(), 8000 * 12);
+        assert_eq!(plan.span, Span::new(0, 0, text.len()));
+    }
+
+    #[test]
+    fn statements_and_errors_keep_their_order_in_a_large_file() {
+        let mut text = String::new();
+        for k in 0..20_000 {
+            if k % 5000 == 4999 {
+                text.push_str(&format!("robot r{k}\n"));
+            } else {
+                text.push_str(&format!("expect p{k}.found\n"));
+            }
+        }
+        let (file, diags) = parse(&text, 0);
+        assert_eq!(file.statements.len(), 20_000 - 4);
+        let Stmt::Expect(Expr {
+            kind: ExprKind::Metric { plan, .. },
+            ..
+        }) = &file.statements[5000]
+        else {
+            panic!()
+        };
+        assert_eq!(plan.value, "p5001");
+        let lines: Vec<_> = diags
+            .iter()
+            .map(|d| line_of(&text, d.span.unwrap()))
+            .collect();
+        assert_eq!(lines, [5000, 10_000, 15_000, 20_000]);
     }
 }
