@@ -106,17 +106,6 @@ impl GridLattice {
         self.free.iter().filter(|f| **f).count()
     }
 
-    /// The neighbour of `node` in direction `d`, if inside the lattice.
-    fn neighbour(&self, node: usize, d: usize) -> Option<usize> {
-        let (i, j) = self.spec.coords(node);
-        let (dx, dy) = DIRS[d];
-        let (ni, nj) = (i as i64 + dx, j as i64 + dy);
-        if ni < 0 || nj < 0 || ni >= self.spec.nx as i64 || nj >= self.spec.ny as i64 {
-            return None;
-        }
-        Some(self.spec.index(ni as usize, nj as usize))
-    }
-
     /// Whether the motion along edge (node, d) is collision-free; `to` is
     /// the neighbour. Checked once per edge and cached for both directions.
     fn edge_free(&mut self, index: &ObstacleIndex, node: usize, d: usize, to: usize) -> bool {
@@ -229,16 +218,19 @@ pub fn search(
     let n = lat.spec.layer_len();
     buf.reset(n);
     let stamp = buf.stamp;
+    let spec = lat.spec;
+    let (nx, ny) = (spec.nx as i64, spec.ny as i64);
     let goal_pt = {
-        let (i, j) = lat.spec.coords(goal);
-        lat.spec.point(i, j)
+        let (i, j) = spec.coords(goal);
+        spec.point(i, j)
     };
-    let h = |lat: &GridLattice, node: usize| -> f64 {
+    // h at lattice coordinates (i, j): the cost metric to the goal, inflated.
+    let h = |i: i64, j: i64| -> f64 {
         if !cfg.heuristic {
             return 0.0;
         }
-        let (i, j) = lat.spec.coords(node);
-        cfg.weight * cfg.cost.between(lat.spec.point(i, j), goal_pt)
+        let p = Point::new(spec.x0 + i as f64 * spec.cell, spec.y0 + j as f64 * spec.cell);
+        cfg.weight * cfg.cost.between(p, goal_pt)
     };
     let mut out = SearchResult::default();
     if !lat.free[start] || !lat.free[goal] {
@@ -247,20 +239,21 @@ pub fn search(
     buf.g[start] = 0.0;
     buf.parent[start] = u32::MAX;
     buf.seen[start] = stamp;
+    let (si, sj) = spec.coords(start);
     buf.heap.push(Open {
-        f: h(lat, start),
+        f: h(si as i64, sj as i64),
         g: 0.0,
         node: start as u32,
     });
     out.generated = 1;
     let dirs = if cfg.connect == 4 { 4 } else { 8 };
-    let step_cost: Vec<f64> = DIRS
-        .iter()
-        .map(|&(dx, dy)| {
-            cfg.cost
-                .between(Point::origin(), Point::new(dx as f64 * lat.spec.cell, dy as f64 * lat.spec.cell))
-        })
-        .collect();
+    let step_cost: [f64; 8] = DIRS.map(|(dx, dy)| {
+        cfg.cost
+            .between(Point::origin(), Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell))
+    });
+    // Index offsets of the neighbours, so that no division is needed per
+    // neighbour; bounds are checked on (i, j).
+    let delta: [i64; 8] = DIRS.map(|(dx, dy)| dx + dy * nx);
     while let Some(Open { g, node, .. }) = buf.heap.pop() {
         let node = node as usize;
         if buf.closed[node] == stamp || g > buf.g[node] {
@@ -296,20 +289,21 @@ pub fn search(
             out.nodes = Some(nodes);
             return out;
         }
+        let (i, j) = ((node % spec.nx) as i64, (node / spec.nx) as i64);
         for d in 0..dirs {
-            let Some(to) = lat.neighbour(node, d) else { continue };
+            let (dx, dy) = DIRS[d];
+            let (ni, nj) = (i + dx, j + dy);
+            if ni < 0 || nj < 0 || ni >= nx || nj >= ny {
+                continue;
+            }
+            let to = (node as i64 + delta[d]) as usize;
             if !lat.free[to] || buf.closed[to] == stamp {
                 continue;
             }
-            if d >= 4 {
-                // No corner cutting: both orthogonal neighbours must be free.
-                let (dx, dy) = DIRS[d];
-                let ox = lat.neighbour(node, if dx > 0 { 0 } else { 2 });
-                let oy = lat.neighbour(node, if dy > 0 { 1 } else { 3 });
-                match (ox, oy) {
-                    (Some(a), Some(b)) if lat.free[a] && lat.free[b] => {}
-                    _ => continue,
-                }
+            // No corner cutting: both orthogonal neighbours must be free
+            // (they are inside the lattice since the diagonal one is).
+            if d >= 4 && !(lat.free[(node as i64 + dx) as usize] && lat.free[(node as i64 + dy * nx) as usize]) {
+                continue;
             }
             let ng = g + step_cost[d];
             if buf.seen[to] == stamp && ng >= buf.g[to] {
@@ -325,7 +319,7 @@ pub fn search(
             buf.g[to] = ng;
             buf.parent[to] = node as u32;
             buf.heap.push(Open {
-                f: ng + h(lat, to),
+                f: ng + h(ni, nj),
                 g: ng,
                 node: to as u32,
             });
