@@ -136,7 +136,11 @@ pub(crate) fn read_text(
         fail(
             format!("cannot read {what} file `{}`: {e}", path.display()),
             "cannot be read",
-            "paths are relative to the folder of the file that names them",
+            if from.is_some() {
+                "paths are relative to the folder of the file that names them"
+            } else {
+                "check the file's path"
+            },
         )
     })?;
     let mut bytes = Vec::new();
