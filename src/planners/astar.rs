@@ -30,7 +30,7 @@ impl CostMetric {
     pub fn between(self, a: Point, b: Point) -> f64 {
         let (dx, dy) = ((b.x - a.x).abs(), (b.y - a.y).abs());
         match self {
-            CostMetric::Euclid => dx.hypot(dy),
+            CostMetric::Euclid => (dx * dx + dy * dy).sqrt(),
             CostMetric::L1 => dx + dy,
         }
     }
@@ -157,31 +157,38 @@ impl Ord for Open {
     }
 }
 
+/// Per-node search state, packed so that one cache line serves a node.
+#[derive(Clone, Copy)]
+struct NodeState {
+    g: f64,
+    parent: u32,
+    /// `2·stamp` once seen in the current query, `2·stamp + 1` once closed;
+    /// anything smaller is from an earlier query.
+    mark: u32,
+}
+
 /// Reusable buffers, so that many queries on one lattice allocate once.
 #[derive(Default)]
 pub struct SearchBuffers {
-    g: Vec<f64>,
-    parent: Vec<u32>,
-    /// `stamp` marks nodes seen in this query; `closed` nodes expanded.
-    seen: Vec<u32>,
-    closed: Vec<u32>,
+    nodes: Vec<NodeState>,
     stamp: u32,
     heap: BinaryHeap<Open>,
 }
 
 impl SearchBuffers {
     fn reset(&mut self, n: usize) {
-        if self.g.len() != n {
-            self.g = vec![f64::INFINITY; n];
-            self.parent = vec![u32::MAX; n];
-            self.seen = vec![0; n];
-            self.closed = vec![0; n];
+        let fresh = NodeState {
+            g: f64::INFINITY,
+            parent: u32::MAX,
+            mark: 0,
+        };
+        if self.nodes.len() != n {
+            self.nodes = vec![fresh; n];
             self.stamp = 0;
         }
-        self.stamp = self.stamp.wrapping_add(1);
-        if self.stamp == 0 {
-            self.seen.fill(0);
-            self.closed.fill(0);
+        self.stamp += 1;
+        if self.stamp >= u32::MAX / 2 {
+            self.nodes.fill(fresh);
             self.stamp = 1;
         }
         self.heap.clear();
@@ -217,7 +224,7 @@ pub fn search(
     let began = Instant::now();
     let n = lat.spec.layer_len();
     buf.reset(n);
-    let stamp = buf.stamp;
+    let (seen, closed) = (2 * buf.stamp, 2 * buf.stamp + 1);
     let spec = lat.spec;
     let (nx, ny) = (spec.nx as i64, spec.ny as i64);
     let goal_pt = {
@@ -236,9 +243,11 @@ pub fn search(
     if !lat.free[start] || !lat.free[goal] {
         return out;
     }
-    buf.g[start] = 0.0;
-    buf.parent[start] = u32::MAX;
-    buf.seen[start] = stamp;
+    buf.nodes[start] = NodeState {
+        g: 0.0,
+        parent: u32::MAX,
+        mark: seen,
+    };
     let (si, sj) = spec.coords(start);
     buf.heap.push(Open {
         f: h(si as i64, sj as i64),
@@ -256,7 +265,7 @@ pub fn search(
     let delta: [i64; 8] = DIRS.map(|(dx, dy)| dx + dy * nx);
     while let Some(Open { g, node, .. }) = buf.heap.pop() {
         let node = node as usize;
-        if buf.closed[node] == stamp || g > buf.g[node] {
+        if buf.nodes[node].mark == closed || g > buf.nodes[node].g {
             continue; // a stale entry
         }
         if let Some(max) = cfg.limits.expansions
@@ -272,7 +281,7 @@ pub fn search(
             out.gave_up = true;
             return out;
         }
-        buf.closed[node] = stamp;
+        buf.nodes[node].mark = closed;
         out.expanded += 1;
         if record {
             out.expansion_order.push(node);
@@ -280,8 +289,8 @@ pub fn search(
         if node == goal {
             let mut nodes = vec![goal];
             let mut cur = goal;
-            while buf.parent[cur] != u32::MAX {
-                cur = buf.parent[cur] as usize;
+            while buf.nodes[cur].parent != u32::MAX {
+                cur = buf.nodes[cur].parent as usize;
                 nodes.push(cur);
             }
             nodes.reverse();
@@ -297,7 +306,8 @@ pub fn search(
                 continue;
             }
             let to = (node as i64 + delta[d]) as usize;
-            if !lat.free[to] || buf.closed[to] == stamp {
+            let state = buf.nodes[to];
+            if !lat.free[to] || state.mark == closed {
                 continue;
             }
             // No corner cutting: both orthogonal neighbours must be free
@@ -306,18 +316,20 @@ pub fn search(
                 continue;
             }
             let ng = g + step_cost[d];
-            if buf.seen[to] == stamp && ng >= buf.g[to] {
+            if state.mark == seen && ng >= state.g {
                 continue;
             }
             if !lat.edge_free(index, node, d, to) {
                 continue;
             }
-            if buf.seen[to] != stamp {
+            if state.mark != seen {
                 out.generated += 1;
-                buf.seen[to] = stamp;
             }
-            buf.g[to] = ng;
-            buf.parent[to] = node as u32;
+            buf.nodes[to] = NodeState {
+                g: ng,
+                parent: node as u32,
+                mark: seen,
+            };
             buf.heap.push(Open {
                 f: ng + h(ni, nj),
                 g: ng,

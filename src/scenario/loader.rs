@@ -11,7 +11,7 @@ use crate::syntax::{self, ast};
 use super::Scenario;
 
 /// The largest `.scen` file accepted.
-pub const MAX_SCEN_BYTES: u64 = 8 << 20;
+pub const MAX_SCEN_BYTES: u64 = 4 << 20;
 /// The largest map file (`grid "x.map"`) accepted.
 pub const MAX_MAP_BYTES: u64 = 64 << 20;
 /// How deep includes may nest.
