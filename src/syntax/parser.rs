@@ -6,10 +6,17 @@
 //!    never see: unterminated strings and brackets nested more than
 //!    [`MAX_NESTING`] deep (pest's rules recurse once per bracket).
 //! 2. pest parses each chunk with the rule for its keyword (grammar/scen.pest), and
-//!    the pairs are turned into AST nodes with file-relative spans.
+//!    the pairs are turned into AST nodes with file-relative spans; `expect`
+//!    expressions get their precedence here, by precedence climbing.
 //!
 //! Because each statement is parsed on its own, an error in one statement
 //! does not hide the errors of the others: [`parse`] returns them all.
+//!
+//! Large files stay fast and small: runs of error-free chunks are parsed by
+//! one pest call (up to [`BATCH_BYTES`]), the runs in parallel, and a huge
+//! `world` or `plan` statement is cut into pieces parsed in parallel. Either
+//! shortcut gives exactly the result of parsing chunk by chunk, or is not
+//! taken.
 
 use std::ops::Range;
 
@@ -676,11 +683,13 @@ fn last_char_span(text: &str, file: FileId, end: usize) -> Span {
     Span::new(file, end - len, end)
 }
 
-/// A help line for a word that is a statement keyword written with capitals.
-fn keyword_case_help(token: &str) -> Option<String> {
-    let lower = token.to_ascii_lowercase();
-    (lower != token && STATEMENT_KEYWORDS.contains(&lower.as_str()))
-        .then(|| format!("keywords are lowercase: `{lower}`"))
+/// A help line for a word that looks like one of `keywords` misspelt.
+fn keyword_help(word: &str, keywords: &[&str]) -> Option<String> {
+    let lower = word.to_ascii_lowercase();
+    if lower != word && keywords.contains(&lower.as_str()) {
+        return Some(format!("keywords are lowercase: `{lower}`"));
+    }
+    closest_keyword(word, keywords).map(|keyword| format!("did you mean `{keyword}`?"))
 }
 
 /// Leading text that is not a statement.
@@ -691,10 +700,10 @@ fn not_a_statement(text: &str, file: FileId, start: usize) -> Diag {
         Span::new(file, start, end),
         format!("unexpected {}", show(token)),
     );
-    match keyword_case_help(token) {
-        Some(help) => diag.help(help),
-        None => diag,
-    }
+    diag.help(keyword_help(token, &STATEMENT_KEYWORDS).unwrap_or_else(|| {
+        "a file is a list of statements, each beginning with its keyword; `#` starts a comment"
+            .to_string()
+    }))
 }
 
 /// What a rule looks like in "expected ..." messages; `None` hides it.
@@ -844,59 +853,249 @@ fn syntax_error(text: &str, file: FileId, chunk: &Chunk, error: &pest::error::Er
     };
     let mut diag = Diag::error("scen::syntax::expected", message).at(span, label);
 
-    let has = |rule: Rule| positives.contains(&rule);
-    let help = if token == "=" && has(Rule::operator) {
-        Some("compare with `==`".to_string())
-    } else if expected.contains(&"an expression")
-        && token.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
-        && !["and", "or", "not"].contains(&token)
-    {
-        Some("refer to a metric as `PLAN.METRIC`, e.g. `offline.found`".to_string())
-    } else if has(Rule::kw_point) {
-        Some(
-            "a robot's shape is `point`, `disk RADIUS`, `rect WIDTH HEIGHT` or \
-             `polygon [(x, y), ...]`"
-                .to_string(),
-        )
-    } else if chunk.rule == Some(Rule::plan_chunk) && (has(Rule::ident) || has(Rule::plan_kind)) {
-        Some("a plan is written `plan NAME KIND ROBOT { PARAMETERS }`".to_string())
-    } else if token == "," && expected == ["`)`"] {
-        Some("a point is `(x, y)` and a pose `(x, y, θ)`".to_string())
-    } else if let Some(number) = detached_number(text, token_start, token) {
-        Some(format!(
-            "write the unit right after the number: `{number}{token}`"
-        ))
-    } else if only_end && token == "}" {
-        Some("this `}` has no matching `{`".to_string())
-    } else if only_end {
-        keyword_case_help(token)
+    // The innermost bracket still open where the error is.
+    let open = if at_end {
+        chunk.unclosed().last().copied()
     } else {
-        None
+        innermost_open_bracket(text, chunk.start, at)
     };
-    if let Some(help) = help {
+    let open_closer = open.map(|k| match text.as_bytes()[k] {
+        b'(' => "`)`",
+        b'[' => "`]`",
+        _ => "`}`",
+    });
+    let context = HelpContext {
+        text,
+        chunk,
+        token,
+        token_start,
+        expected: &expected,
+        positives: &positives,
+        open_closer,
+    };
+    if let Some(help) = context.help() {
         diag = diag.help(help);
     }
-
-    let expects_closer = has(Rule::rbrace) || has(Rule::rparen) || has(Rule::rbracket);
-    if at_end
-        && expects_closer
-        && let Some(&open) = chunk.unclosed().last()
+    if let (Some(open), Some(closer)) = (open, open_closer)
+        && expected.contains(&closer)
     {
         let bracket = &text[open..open + 1];
-        let closer = match bracket {
-            "(" => ")",
-            "[" => "]",
-            _ => "}",
+        let state = if at_end {
+            "never closed"
+        } else {
+            "not closed yet"
         };
         diag = diag.with_related(
             Span::new(file, open, open + 1),
-            format!("this `{bracket}` is never closed"),
+            format!("this `{bracket}` is {state}"),
         );
-        if diag.help.is_none() {
-            diag = diag.help(format!("add the missing `{closer}`"));
-        }
     }
     diag
+}
+
+/// What [`HelpContext::help`] looks at to suggest a fix for a pest error.
+struct HelpContext<'a> {
+    text: &'a str,
+    chunk: &'a Chunk,
+    /// The token found where the error is ("" at the end of the file).
+    token: &'a str,
+    token_start: usize,
+    /// What was expected, as described to the user.
+    expected: &'a [&'a str],
+    positives: &'a [Rule],
+    /// The closer of the innermost bracket open at the error, in backticks.
+    open_closer: Option<&'static str>,
+}
+
+impl HelpContext<'_> {
+    /// The likely fix, most specific first.
+    fn help(&self) -> Option<String> {
+        let (token, expected) = (self.token, self.expected);
+        let has = |rule: Rule| self.positives.contains(&rule);
+        let expects = |what: &str| expected.contains(&what);
+        let only_end = expected == ["the end of the statement"];
+        let is_word = token.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+        if token == "=" && has(Rule::operator) {
+            return Some("compare with `==`".to_string());
+        }
+        if let Some(number) = detached_number(self.text, self.token_start, token) {
+            return Some(format!(
+                "write the unit right after the number: `{number}{token}`"
+            ));
+        }
+        // A misspelt keyword: the candidates are the keywords expected here.
+        let keywords: Vec<&str> = if only_end {
+            STATEMENT_KEYWORDS.to_vec()
+        } else {
+            expected
+                .iter()
+                .filter_map(|d| d.strip_prefix('`')?.strip_suffix('`'))
+                .filter(|k| k.bytes().all(|b| b.is_ascii_lowercase()))
+                .collect()
+        };
+        if is_word && let Some(help) = keyword_help(token, &keywords) {
+            return Some(help);
+        }
+        if expects("an expression") {
+            if is_word && !["and", "or", "not"].contains(&token) {
+                return Some(
+                    "refer to a metric as `PLAN.METRIC`, e.g. `offline.found`".to_string(),
+                );
+            }
+            return Some(
+                match trailing_operator(self.text, self.chunk.start, self.token_start) {
+                    Some(op) => {
+                        format!("complete the expression after `{op}`, e.g. `offline.cost <= 90`")
+                    }
+                    None => "write a condition, e.g. `offline.found` or `offline.cost <= 90`"
+                        .to_string(),
+                },
+            );
+        }
+        if token == "," && expects("a value") {
+            return Some(
+                "values are separated by blanks, commas only separate the elements of \
+                 `( )` and `[ ]`: `bounds (0, 0) (10, 10)`"
+                    .to_string(),
+            );
+        }
+        if token == "," && expected == ["`)`"] {
+            return Some("a point is `(x, y)` and a pose `(x, y, θ)`".to_string());
+        }
+        if only_end && token == "}" {
+            return Some("this `}` has no matching `{`".to_string());
+        }
+        if only_end {
+            let keyword = self.text[self.chunk.start..]
+                .split(|c: char| !c.is_ascii_alphabetic())
+                .next();
+            return Some(format!(
+                "the `{}` statement is complete before this: remove it, or begin a new \
+                 statement with a keyword",
+                keyword.unwrap_or_default()
+            ));
+        }
+        if has(Rule::kw_point) {
+            return Some(
+                "a robot's shape is `point`, `disk RADIUS`, `rect WIDTH HEIGHT` or \
+                 `polygon [(x, y), ...]`"
+                    .to_string(),
+            );
+        }
+        if self.chunk.rule == Some(Rule::plan_chunk) && (has(Rule::ident) || has(Rule::plan_kind)) {
+            return Some("a plan is written `plan NAME KIND ROBOT { PARAMETERS }`".to_string());
+        }
+        if let Some(closer) = self.open_closer.filter(|c| expects(c)) {
+            return Some(format!("add the missing {closer}"));
+        }
+        if expects("`,`") {
+            return Some("separate the elements with commas: `(x, y)`, `[a, b, c]`".to_string());
+        }
+        if has(Rule::kw_bounds) {
+            return Some(
+                "write one world item per line, e.g. `rect B1 (0, 0) (10, 1)`".to_string(),
+            );
+        }
+        if expects("a string") {
+            return Some("write text in double quotes: `\"...\"`".to_string());
+        }
+        if expects("a name") {
+            return Some(
+                "a name is a word: letters, digits and `_`, not starting with a digit".to_string(),
+            );
+        }
+        if expects("a value") {
+            return Some(
+                "a value is a number (`1.5`, `90deg`, `50%`, `2s`), a string, a point `(x, y)` \
+                 or a list `[...]`"
+                    .to_string(),
+            );
+        }
+        None
+    }
+}
+
+/// The keyword among `keywords` that `word` most likely misspells: a longer
+/// form of it (`robots`, `rectangle`, `degrees`), or at most a third of its
+/// letters changed (in any case).
+fn closest_keyword<'k>(word: &str, keywords: &[&'k str]) -> Option<&'k str> {
+    if word.len() > 32 || keywords.contains(&word) {
+        return None;
+    }
+    let lower = word.to_ascii_lowercase();
+    keywords
+        .iter()
+        .map(|&k| {
+            let distance = if k.len() >= 3 && lower.starts_with(k) {
+                0
+            } else {
+                edit_distance(&lower, k)
+            };
+            (distance, k)
+        })
+        .filter(|&(distance, k)| distance <= (k.len() / 3).max(1))
+        .min()
+        .map(|(_, k)| k)
+}
+
+/// Levenshtein distance between two short ASCII words.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b = b.as_bytes();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.bytes().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitute = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitute.min(row[j] + 1).min(row[j + 1] + 1);
+        }
+    }
+    row[b.len()]
+}
+
+/// The operator that `text[from..at]` ends with, blanks ignored.
+fn trailing_operator(text: &str, from: usize, at: usize) -> Option<&'static str> {
+    const OPERATORS: [&str; 16] = [
+        "<=", ">=", "==", "!=", "+-", "<", ">", "~", "±", "+", "-", "*", "/", "and", "or", "not",
+    ];
+    let before = text[from..at].trim_end_matches(is_blank);
+    OPERATORS.into_iter().find(|op| {
+        before.strip_suffix(op).is_some_and(|rest| {
+            !op.starts_with(|c: char| c.is_ascii_alphabetic())
+                || !rest.ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_')
+        })
+    })
+}
+
+/// The innermost bracket open at `at`, scanning `text[from..at]` with strings
+/// and comments skipped.
+fn innermost_open_bracket(text: &str, from: usize, at: usize) -> Option<usize> {
+    let bytes = &text.as_bytes()[..at];
+    let mut open = Vec::new();
+    let mut i = from;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'"' => {
+                i = scan_string(bytes, i).0;
+                continue;
+            }
+            b'#' => {
+                i = bytes[i..]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                    .map_or(bytes.len(), |k| i + k);
+                continue;
+            }
+            b'(' | b'[' | b'{' => open.push(i),
+            b')' | b']' | b'}' => {
+                open.pop();
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    open.pop()
 }
 
 /// When `token` is a unit written apart from the number before it (`90 deg`),
@@ -1300,7 +1499,7 @@ impl Builder<'_, '_> {
             self.diags.push(
                 Diag::error(
                     "scen::syntax::bad_number",
-                    format!("malformed number `{token}`"),
+                    format!("malformed number {}", show(token)),
                 )
                 .at(span, "not a number")
                 .help(help),
@@ -1330,15 +1529,19 @@ impl Builder<'_, '_> {
             "s" => ValueKind::Duration(x),
             other => {
                 let help = if other.eq_ignore_ascii_case("e") {
-                    "an exponent needs digits, as in `1e-3`"
+                    "an exponent needs digits, as in `1e-3`".to_string()
+                } else if let Some(unit) = closest_keyword(other, &UNIT_WORDS) {
+                    format!("did you mean `{literal}{unit}`?")
                 } else {
-                    UNITS_HELP
+                    UNITS_HELP.to_string()
                 };
                 self.diags.push(
-                    Diag::error("scen::syntax::bad_unit", format!("unknown unit `{other}`"))
-                        .at(unit_span, "not a unit")
-                        .with_related(span, "in this number")
-                        .help(help),
+                    Diag::error(
+                        "scen::syntax::bad_unit",
+                        format!("unknown unit {}", show(other)),
+                    )
+                    .at(unit_span, "not a unit")
+                    .help(help),
                 );
                 ValueKind::Number(x)
             }
@@ -2461,9 +2664,9 @@ expect cover.coverage == 100%
         }
     }
 
-    #[test]
-    /// Timings are printed, not asserted (see BENCHMARKS.md for figures):
+    /// Timings are printed, not asserted:
     /// `cargo test --release --lib ten_megabyte -- --nocapture`.
+    #[test]
     fn a_ten_megabyte_file_parses() {
         let block = "# a comment line that is fairly long to fill the file quickly ........\n\
                      plan p astar r { start (0, 0) goal (1, 1, 90deg) limit time 2s }\n\
@@ -2665,5 +2868,37 @@ expect cover.coverage == 100%
             .map(|d| line_of(&text, d.span.unwrap()))
             .collect();
         assert_eq!(lines, [5000, 10_000, 15_000, 20_000]);
+    }
+
+    #[test]
+    fn syntax_errors_suggest_a_fix() {
+        let help = |text: &str| errors(text)[0].help.clone().unwrap_or_default();
+        assert_eq!(help("robots r point"), "did you mean `robot`?");
+        assert_eq!(
+            help("robot r point\nrobots q point"),
+            "did you mean `robot`?"
+        );
+        assert_eq!(
+            help("world { rectangle (0, 0) (1, 1) }"),
+            "did you mean `rect`?"
+        );
+        assert_eq!(help("robot r dsk 1"), "did you mean `disk`?");
+        assert_eq!(help("plan p k r { x 90degrees }"), "did you mean `90deg`?");
+        assert!(
+            help("world { bounds (0, 0), (1, 1) }").starts_with("values are separated by blanks")
+        );
+        assert_eq!(
+            help("expect p.cost <="),
+            "complete the expression after `<=`, e.g. `offline.cost <= 90`"
+        );
+        assert!(help("expect").starts_with("write a condition"));
+        assert!(help("robot r disk 0.5 0.5").starts_with("the `robot` statement is complete"));
+        assert!(help("%%%").starts_with("a file is a list of statements"));
+
+        let text = "plan p k r {\n  start (1.5, 1.5\n  goal (8.5, 1.5)\n}";
+        let d = &errors(text)[0];
+        assert_eq!(d.help.as_deref(), Some("add the missing `)`"));
+        assert_eq!(snippet(text, d.related[0].0), "(");
+        assert_eq!(d.related[0].1, "this `(` is not closed yet");
     }
 }
