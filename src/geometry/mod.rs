@@ -4,6 +4,8 @@
 //! Everything is in f64 world units; angles are radians, counter-clockwise.
 
 pub mod collide;
+pub mod cspace;
+pub mod minkowski;
 pub mod polygon;
 pub mod validator;
 
