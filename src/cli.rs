@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use crate::diagnostics::{Diag, SourceMap};
 use crate::report;
-use crate::run::{run_scenario, RunReport};
+use crate::run::{RunReport, run_scenario};
 use crate::scenario::loader::LoadFailure;
 use crate::viz::rerun_sink::{self, ViewerTarget};
 
@@ -18,7 +18,11 @@ pub const EXIT_CHECK_FAILED: i32 = 1;
 pub const EXIT_BAD_INPUT: i32 = 2;
 
 #[derive(Parser, Debug)]
-#[command(name = "scen", version, about = "Run 2D motion-planning scenarios and check their results")]
+#[command(
+    name = "scen",
+    version,
+    about = "Run 2D motion-planning scenarios and check their results"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -96,7 +100,11 @@ pub fn main() -> i32 {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {
-            let code = if e.use_stderr() { EXIT_BAD_INPUT } else { EXIT_OK };
+            let code = if e.use_stderr() {
+                EXIT_BAD_INPUT
+            } else {
+                EXIT_OK
+            };
             let _ = e.print();
             return code;
         }
@@ -140,7 +148,9 @@ fn print_failure(f: &LoadFailure) {
 
 fn cmd_run(args: &RunArgs) -> i32 {
     if args.files.len() > 1 && (args.save.is_some() || args.svg.is_some()) {
-        eprintln!("error: `--save` and `--svg` take one scenario file; run the files one at a time");
+        eprintln!(
+            "error: `--save` and `--svg` take one scenario file; run the files one at a time"
+        );
         return EXIT_BAD_INPUT;
     }
     let mut code = EXIT_OK;
@@ -154,7 +164,11 @@ fn cmd_run(args: &RunArgs) -> i32 {
                 continue;
             }
         };
-        if let Some(unknown) = args.plans.iter().find(|p| !scenario.plans.iter().any(|q| &q.name == *p)) {
+        if let Some(unknown) = args
+            .plans
+            .iter()
+            .find(|p| !scenario.plans.iter().any(|q| &q.name == *p))
+        {
             let names: Vec<&str> = scenario.plans.iter().map(|p| p.name.as_str()).collect();
             eprintln!(
                 "error: `{}` has no plan `{unknown}` (plans: {})",
@@ -224,7 +238,12 @@ fn print_text(report: &RunReport, args: &RunArgs) {
         for c in report.checks.iter().filter(|c| !c.passed) {
             let _ = writeln!(out, "{}", report::text::check_line(report, c));
         }
-        let _ = writeln!(out, "{} passed, {} failed", report.passed(), report.failed());
+        let _ = writeln!(
+            out,
+            "{} passed, {} failed",
+            report.passed(),
+            report.failed()
+        );
     } else {
         let _ = write!(out, "{}", report::text::render(report, args.verbose));
     }
@@ -279,14 +298,18 @@ fn cmd_check(args: &CheckArgs) -> i32 {
 /// with `_` are include-only fragments and are skipped.
 fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
     if path.is_dir() {
-        let Ok(entries) = std::fs::read_dir(path) else { return };
+        let Ok(entries) = std::fs::read_dir(path) else {
+            return;
+        };
         let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
         entries.sort();
         for e in entries {
             if e.is_dir() {
                 collect_scen(&e, out);
             } else if e.extension().is_some_and(|x| x == "scen")
-                && !e.file_name().is_some_and(|n| n.to_string_lossy().starts_with('_'))
+                && !e
+                    .file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with('_'))
             {
                 out.push(e);
             }
@@ -297,7 +320,11 @@ fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
 }
 
 fn cmd_test(args: &TestArgs) -> i32 {
-    let roots = if args.paths.is_empty() { vec![PathBuf::from(".")] } else { args.paths.clone() };
+    let roots = if args.paths.is_empty() {
+        vec![PathBuf::from(".")]
+    } else {
+        args.paths.clone()
+    };
     let mut files = Vec::new();
     for r in &roots {
         if !r.exists() {
@@ -307,7 +334,14 @@ fn cmd_test(args: &TestArgs) -> i32 {
         collect_scen(r, &mut files);
     }
     if files.is_empty() {
-        eprintln!("error: no *.scen files under {}", roots.iter().map(|r| r.display().to_string()).collect::<Vec<_>>().join(", "));
+        eprintln!(
+            "error: no *.scen files under {}",
+            roots
+                .iter()
+                .map(|r| r.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
         return EXIT_BAD_INPUT;
     }
     // Each file: (line, diagnostics text, passed, failed).
@@ -337,12 +371,18 @@ fn cmd_test(args: &TestArgs) -> i32 {
                     .collect();
                 let mut text = render_diags(&diags, &report.scenario.sources);
                 for name in invalid {
-                    text.push_str(&format!("plan `{name}` returned a path that fails the validator\n"));
+                    text.push_str(&format!(
+                        "plan `{name}` returned a path that fails the validator\n"
+                    ));
                 }
                 let line = if failed == 0 {
                     format!("ok      {}  ({passed} checks)", f.display())
                 } else {
-                    format!("FAILED  {}  ({failed} of {} checks failed)", f.display(), passed + failed)
+                    format!(
+                        "FAILED  {}  ({failed} of {} checks failed)",
+                        f.display(),
+                        passed + failed
+                    )
                 };
                 (line, text, passed, failed)
             }
@@ -358,5 +398,9 @@ fn cmd_test(args: &TestArgs) -> i32 {
         failed += f;
     }
     println!("{passed} passed, {failed} failed");
-    if failed > 0 { EXIT_CHECK_FAILED } else { EXIT_OK }
+    if failed > 0 {
+        EXIT_CHECK_FAILED
+    } else {
+        EXIT_OK
+    }
 }

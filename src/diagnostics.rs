@@ -121,7 +121,9 @@ impl SourceMap {
     }
 
     pub fn line_of(&self, span: Span) -> usize {
-        self.get(span.file).map(|f| f.line_col(span.start).0).unwrap_or(0)
+        self.get(span.file)
+            .map(|f| f.line_col(span.start).0)
+            .unwrap_or(0)
     }
 }
 
@@ -226,7 +228,10 @@ impl Diag {
             )];
             for (s, l) in &self.related {
                 if s.file == span.file {
-                    labels.push(LabeledSpan::new_with_span(Some(l.clone()), clamp(*s, &f.text)));
+                    labels.push(LabeledSpan::new_with_span(
+                        Some(l.clone()),
+                        clamp(*s, &f.text),
+                    ));
                 }
             }
             d = d.with_labels(labels);
@@ -292,7 +297,9 @@ fn has_long_lines(text: &str, span: Span) -> bool {
         }
         to += 1;
     }
-    bytes[from..to].split(|b| *b == b'\n').any(|l| l.len() > MAX_LINE)
+    bytes[from..to]
+        .split(|b| *b == b'\n')
+        .any(|l| l.len() > MAX_LINE)
 }
 
 fn clamp(span: Span, text: &str) -> (usize, usize) {
@@ -306,5 +313,9 @@ pub type Diags = Vec<Diag>;
 
 /// Sort diagnostics by file and offset, errors without a span first.
 pub fn sort_diags(diags: &mut [Diag]) {
-    diags.sort_by_key(|d| d.span.map(|s| (s.file, s.start, s.end)).unwrap_or((0, 0, 0)));
+    diags.sort_by_key(|d| {
+        d.span
+            .map(|s| (s.file, s.start, s.end))
+            .unwrap_or((0, 0, 0))
+    });
 }

@@ -16,5 +16,5 @@ pub mod syntax;
 pub mod viz;
 
 pub use diagnostics::{Diag, SourceMap, Span};
-pub use run::{run_scenario, RunReport};
-pub use scenario::{load, Scenario};
+pub use run::{RunReport, run_scenario};
+pub use scenario::{Scenario, load};

@@ -8,8 +8,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::checks;
-use crate::geometry::validator::{self, ValidationError, DEFAULT_TOLERANCE};
-use crate::geometry::{angle_diff, Config, RobotShape};
+use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
+use crate::geometry::{Config, RobotShape, angle_diff};
 use crate::planners::{self, MetricValue, Metrics, PlanOutcome};
 use crate::scenario::{Plan, Scenario};
 
@@ -126,16 +126,43 @@ fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
 }
 
 /// The metrics of SPEC 3 that every planner has, plus the planner's own.
-fn common_metrics(out: &PlanOutcome, robot: &RobotShape, plan: &Plan, time_ms: f64, valid: bool) -> Metrics {
+fn common_metrics(
+    out: &PlanOutcome,
+    robot: &RobotShape,
+    plan: &Plan,
+    time_ms: f64,
+    valid: bool,
+) -> Metrics {
     use MetricValue::{Bool, Num};
     let mut m = out.extra.clone();
     let found = out.path.is_some();
     let path = out.path.as_deref().unwrap_or(&[]);
     m.insert("found".into(), Bool(found));
     m.insert("gave_up".into(), Bool(out.gave_up));
-    m.insert("cost".into(), Num(if found { out.cost.unwrap_or(path_length(path)) } else { f64::INFINITY }));
-    m.insert("length".into(), Num(if found { path_length(path) } else { f64::INFINITY }));
-    m.insert("turn".into(), Num(if robot.rotates() { path_turn(path) } else { 0.0 }));
+    m.insert(
+        "cost".into(),
+        Num(if found {
+            out.cost.unwrap_or(path_length(path))
+        } else {
+            f64::INFINITY
+        }),
+    );
+    m.insert(
+        "length".into(),
+        Num(if found {
+            path_length(path)
+        } else {
+            f64::INFINITY
+        }),
+    );
+    m.insert(
+        "turn".into(),
+        Num(if robot.rotates() {
+            path_turn(path)
+        } else {
+            0.0
+        }),
+    );
     m.insert("nodes".into(), Num(path.len() as f64));
     m.insert("expanded".into(), Num(out.expanded as f64));
     m.insert("time_ms".into(), Num((time_ms * 1000.0).round() / 1000.0));
@@ -143,7 +170,11 @@ fn common_metrics(out: &PlanOutcome, robot: &RobotShape, plan: &Plan, time_ms: f
     let reaches = match (path.last(), plan.params.goal) {
         (Some(last), Some(goal)) => {
             let d = (last.x - goal.x).hypot(last.y - goal.y);
-            let dt = if robot.rotates() { angle_diff(last.theta, goal.theta).abs() } else { 0.0 };
+            let dt = if robot.rotates() {
+                angle_diff(last.theta, goal.theta).abs()
+            } else {
+                0.0
+            };
             d <= 1e-9 && dt <= 1e-9
         }
         _ => false,
@@ -154,10 +185,14 @@ fn common_metrics(out: &PlanOutcome, robot: &RobotShape, plan: &Plan, time_ms: f
 
 /// Euclidean length of the (x, y) polyline.
 pub fn path_length(path: &[Config]) -> f64 {
-    path.windows(2).map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y)).sum()
+    path.windows(2)
+        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+        .sum()
 }
 
 /// Total absolute rotation along the shorter arcs, in radians.
 pub fn path_turn(path: &[Config]) -> f64 {
-    path.windows(2).map(|w| angle_diff(w[0].theta, w[1].theta).abs()).sum()
+    path.windows(2)
+        .map(|w| angle_diff(w[0].theta, w[1].theta).abs())
+        .sum()
 }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{repo, Test};
+use common::{Test, repo};
 
 const SMALL: &str = r#"scenario "Small"
 world {
@@ -89,7 +89,10 @@ fn check_reports_every_error_at_once_with_exit_2() {
 #[test]
 fn check_json_prints_one_object_per_diagnostic() {
     let out = Test::new()
-        .file("bad.scen", "world { bounds (0, 0) (10, 10) }\nrobot p point\nrobot p point\n")
+        .file(
+            "bad.scen",
+            "world { bounds (0, 0) (10, 10) }\nrobot p point\nrobot p point\n",
+        )
         .args(&["check", "--format", "json", "bad.scen"])
         .status(2)
         .run();
@@ -103,7 +106,11 @@ fn check_json_prints_one_object_per_diagnostic() {
     assert_eq!(lines[0]["line"], 3);
     assert_eq!(lines[0]["column"], 7);
     assert_eq!(lines[0]["severity"], "error");
-    assert!(lines[0]["file"].as_str().is_some_and(|f| f.ends_with("bad.scen")));
+    assert!(
+        lines[0]["file"]
+            .as_str()
+            .is_some_and(|f| f.ends_with("bad.scen"))
+    );
 }
 
 #[test]
@@ -169,7 +176,10 @@ fn json_output_follows_the_spec() {
 
 #[test]
 fn plan_selects_plans_and_their_checks() {
-    let text = SMALL.replace("expect go.found", "plan other astar p { start (0.5, 0.5) goal (0.5, 9.5) }\nexpect other.found");
+    let text = SMALL.replace(
+        "expect go.found",
+        "plan other astar p { start (0.5, 0.5) goal (0.5, 9.5) }\nexpect other.found",
+    );
     Test::new()
         .file("small.scen", &text)
         .args(&["run", "--plan", "other", "small.scen"])
@@ -186,7 +196,13 @@ fn plan_selects_plans_and_their_checks() {
 
 #[test]
 fn svg_is_written() {
-    let t = Test::new().file("small.scen", SMALL).args(&["run", "-q", "--svg", "out.svg", "small.scen"]);
+    let t = Test::new().file("small.scen", SMALL).args(&[
+        "run",
+        "-q",
+        "--svg",
+        "out.svg",
+        "small.scen",
+    ]);
     t.run();
     let svg = std::fs::read_to_string(t.dir().join("out.svg")).expect("out.svg written");
     assert!(svg.contains("<svg"), "{svg}");
@@ -197,7 +213,12 @@ fn svg_is_written() {
 fn an_unreachable_viewer_warns_once_and_the_report_is_complete() {
     Test::new()
         .file("small.scen", SMALL)
-        .args(&["run", "--connect", "rerun+http://127.0.0.1:9/proxy", "small.scen"])
+        .args(&[
+            "run",
+            "--connect",
+            "rerun+http://127.0.0.1:9/proxy",
+            "small.scen",
+        ])
         .stdout_contains("2 passed, 0 failed")
         .stderr_contains("warning: viewer")
         .status(0)

@@ -7,17 +7,23 @@ use std::path::PathBuf;
 use std::process::Command;
 use std::time::Duration;
 
-use common::{repo, run_with_timeout, scen_bin, TempDir};
+use common::{TempDir, repo, run_with_timeout, scen_bin};
 
 fn scenario_files() -> Vec<PathBuf> {
     fn walk(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
-        let mut entries: Vec<_> = std::fs::read_dir(dir).expect("scenarios/").flatten().map(|e| e.path()).collect();
+        let mut entries: Vec<_> = std::fs::read_dir(dir)
+            .expect("scenarios/")
+            .flatten()
+            .map(|e| e.path())
+            .collect();
         entries.sort();
         for p in entries {
             if p.is_dir() {
                 walk(&p, out);
             } else if p.extension().is_some_and(|e| e == "scen")
-                && !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('_'))
+                && !p
+                    .file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with('_'))
             {
                 out.push(p);
             }
@@ -25,7 +31,10 @@ fn scenario_files() -> Vec<PathBuf> {
     }
     let mut v = Vec::new();
     walk(&repo().join("scenarios"), &mut v);
-    assert!(v.len() >= 5, "expected the scenarios folder to hold scenarios");
+    assert!(
+        v.len() >= 5,
+        "expected the scenarios folder to hold scenarios"
+    );
     v
 }
 
@@ -89,17 +98,28 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
             Ok("true"),
             "CI must have the rerun binary (scripts/test.sh installs rerun-sdk==0.36.3)"
         );
-        eprintln!("skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)");
+        eprintln!(
+            "skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)"
+        );
         return;
     };
     let dir = TempDir::new("rrd");
     let rrd = dir.path().join("out.rrd");
     let scenario = repo().join("scenarios/apartment_disk.scen");
     let out = run_with_timeout(
-        Command::new(scen_bin()).arg("run").arg(&scenario).arg("--save").arg(&rrd),
+        Command::new(scen_bin())
+            .arg("run")
+            .arg(&scenario)
+            .arg("--save")
+            .arg(&rrd),
         Duration::from_secs(120),
     );
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let verify = run_with_timeout(
         Command::new(&rerun).args(["rrd", "verify"]).arg(&rrd),
         Duration::from_secs(120),
@@ -111,7 +131,9 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
         String::from_utf8_lossy(&verify.stderr)
     );
     let print = run_with_timeout(
-        Command::new(&rerun).args(["rrd", "print", "--verbose"]).arg(&rrd),
+        Command::new(&rerun)
+            .args(["rrd", "print", "--verbose"])
+            .arg(&rrd),
         Duration::from_secs(120),
     );
     let text = format!(
@@ -129,7 +151,11 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
         "/plans/offline/search",
         "/checks",
     ] {
-        assert!(text.contains(entity), "`rerun rrd print` does not list {entity}:\n{}", &text[..text.len().min(4000)]);
+        assert!(
+            text.contains(entity),
+            "`rerun rrd print` does not list {entity}:\n{}",
+            &text[..text.len().min(4000)]
+        );
     }
     // The robot moves on timeline `step`, the search on `expansion`, with
     // the archetypes of SPEC 6.
@@ -138,7 +164,16 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
         Duration::from_secs(120),
     );
     let headers = String::from_utf8_lossy(&headers.stdout);
-    for needle in ["index_name: step", "index_name: expansion", "archetype: LineStrips2D", "archetype: Points2D", "archetype: TextLog"] {
-        assert!(headers.contains(needle), "`rerun rrd print -vv` lacks {needle}");
+    for needle in [
+        "index_name: step",
+        "index_name: expansion",
+        "archetype: LineStrips2D",
+        "archetype: Points2D",
+        "archetype: TextLog",
+    ] {
+        assert!(
+            headers.contains(needle),
+            "`rerun rrd print -vv` lacks {needle}"
+        );
     }
 }

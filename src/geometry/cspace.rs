@@ -827,8 +827,7 @@ mod tests {
             _ => 0.0,
         };
         let poly = ParryPolygon::from_convex_polyline_unmodified(body.to_vec()).unwrap();
-        let eroded =
-            erode(body, MARGIN).and_then(|v| ParryPolygon::from_convex_polyline_unmodified(v));
+        let eroded = erode(body, MARGIN).and_then(ParryPolygon::from_convex_polyline_unmodified);
         let mut all_free = true;
         for solid in solids {
             let (hit, free) = match solid {

@@ -155,7 +155,10 @@ pub enum Shape {
     Rect(Aabb),
     /// A zero-thickness wall: no interior, but nothing may cross it.
     Segment(Point, Point),
-    Disk { center: Point, radius: f64 },
+    Disk {
+        center: Point,
+        radius: f64,
+    },
     Grid(Grid),
 }
 

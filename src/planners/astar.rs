@@ -13,7 +13,7 @@ use std::collections::BinaryHeap;
 use std::time::Instant;
 
 use crate::geometry::collide::ObstacleIndex;
-use crate::geometry::{polygon, Config, Point, RobotShape, Shape, World};
+use crate::geometry::{Config, Point, RobotShape, Shape, World, polygon};
 use crate::scenario::{Limits, Params};
 
 use super::lattice::LatticeSpec;
@@ -65,10 +65,23 @@ impl SearchConfig {
 }
 
 /// Neighbour offsets: the 4 axis moves first, then the diagonals.
-const DIRS: [(i64, i64); 8] = [(1, 0), (0, 1), (-1, 0), (0, -1), (1, 1), (-1, 1), (-1, -1), (1, -1)];
+const DIRS: [(i64, i64); 8] = [
+    (1, 0),
+    (0, 1),
+    (-1, 0),
+    (0, -1),
+    (1, 1),
+    (-1, 1),
+    (-1, -1),
+    (1, -1),
+];
 
 fn opposite(d: usize) -> usize {
-    if d < 4 { (d + 2) % 4 } else { 4 + (d - 4 + 2) % 4 }
+    if d < 4 {
+        (d + 2) % 4
+    } else {
+        4 + (d - 4 + 2) % 4
+    }
 }
 
 /// The (x, y) lattice of one plan: which points are free, and a cache of
@@ -236,7 +249,10 @@ pub fn search(
         if !cfg.heuristic {
             return 0.0;
         }
-        let p = Point::new(spec.x0 + i as f64 * spec.cell, spec.y0 + j as f64 * spec.cell);
+        let p = Point::new(
+            spec.x0 + i as f64 * spec.cell,
+            spec.y0 + j as f64 * spec.cell,
+        );
         cfg.weight * cfg.cost.between(p, goal_pt)
     };
     let mut out = SearchResult::default();
@@ -257,8 +273,10 @@ pub fn search(
     out.generated = 1;
     let dirs = if cfg.connect == 4 { 4 } else { 8 };
     let step_cost: [f64; 8] = DIRS.map(|(dx, dy)| {
-        cfg.cost
-            .between(Point::origin(), Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell))
+        cfg.cost.between(
+            Point::origin(),
+            Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell),
+        )
     });
     // Index offsets of the neighbours, so that no division is needed per
     // neighbour; bounds are checked on (i, j).
@@ -312,7 +330,10 @@ pub fn search(
             }
             // No corner cutting: both orthogonal neighbours must be free
             // (they are inside the lattice since the diagonal one is).
-            if d >= 4 && !(lat.free[(node as i64 + dx) as usize] && lat.free[(node as i64 + dy * nx) as usize]) {
+            if d >= 4
+                && !(lat.free[(node as i64 + dx) as usize]
+                    && lat.free[(node as i64 + dy * nx) as usize])
+            {
                 continue;
             }
             let ng = g + step_cost[d];
@@ -357,9 +378,14 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     let index = ObstacleIndex::new(world);
     let mut lat = GridLattice::build(spec, &index, radius);
     let mut out = PlanOutcome::default();
-    out.extra.insert("cells".into(), MetricValue::Num(spec.cells_f64()));
-    out.extra.insert("free_cells".into(), MetricValue::Num(lat.free_count() as f64));
-    out.extra.insert("layers".into(), MetricValue::Num(spec.layers as f64));
+    out.extra
+        .insert("cells".into(), MetricValue::Num(spec.cells_f64()));
+    out.extra.insert(
+        "free_cells".into(),
+        MetricValue::Num(lat.free_count() as f64),
+    );
+    out.extra
+        .insert("layers".into(), MetricValue::Num(spec.layers as f64));
     out.trace = Trace {
         expansions: Vec::new(),
         grown_obstacles: grown_obstacles(world, radius),
@@ -367,7 +393,8 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     let start = params.start;
     let goal = params.goal.unwrap_or(start);
     let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
-        out.notes.push("the lattice is empty: `cell` is larger than the bounds".into());
+        out.notes
+            .push("the lattice is empty: `cell` is larger than the bounds".into());
         out.extra.insert("generated".into(), MetricValue::Num(0.0));
         return out;
     };
@@ -390,7 +417,8 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     let r = search(&mut lat, &index, s_node, g_node, &cfg, true, &mut buf);
     out.expanded = r.expanded;
     out.gave_up = r.gave_up;
-    out.extra.insert("generated".into(), MetricValue::Num(r.generated as f64));
+    out.extra
+        .insert("generated".into(), MetricValue::Num(r.generated as f64));
     out.trace.expansions = r
         .expansion_order
         .iter()

@@ -42,7 +42,9 @@ impl LatticeSpec {
         let layers = if rotating {
             match params.num("layers") {
                 Some(n) => n,
-                None => (std::f64::consts::TAU * robot.radius() / cell).ceil().max(1.0),
+                None => (std::f64::consts::TAU * robot.radius() / cell)
+                    .ceil()
+                    .max(1.0),
             }
         } else {
             1.0
@@ -68,7 +70,13 @@ impl LatticeSpec {
             Sample::Center => 0.5 * cell,
             Sample::Corner => 0.0,
         };
-        let clamp = |v: f64| if v.is_finite() && v < 1e15 { v as usize } else { usize::MAX };
+        let clamp = |v: f64| {
+            if v.is_finite() && v < 1e15 {
+                v as usize
+            } else {
+                usize::MAX
+            }
+        };
         LatticeSpec {
             cell,
             sample,
@@ -102,7 +110,10 @@ impl LatticeSpec {
     }
 
     pub fn point(&self, i: usize, j: usize) -> Point {
-        Point::new(self.x0 + i as f64 * self.cell, self.y0 + j as f64 * self.cell)
+        Point::new(
+            self.x0 + i as f64 * self.cell,
+            self.y0 + j as f64 * self.cell,
+        )
     }
 
     /// The nearest lattice point to `c`, if the lattice is not empty.
@@ -110,8 +121,12 @@ impl LatticeSpec {
         if self.nx == 0 || self.ny == 0 {
             return None;
         }
-        let fi = ((c.x - self.x0) / self.cell).round().clamp(0.0, (self.nx - 1) as f64);
-        let fj = ((c.y - self.y0) / self.cell).round().clamp(0.0, (self.ny - 1) as f64);
+        let fi = ((c.x - self.x0) / self.cell)
+            .round()
+            .clamp(0.0, (self.nx - 1) as f64);
+        let fj = ((c.y - self.y0) / self.cell)
+            .round()
+            .clamp(0.0, (self.ny - 1) as f64);
         Some((fi as usize, fj as usize))
     }
 }

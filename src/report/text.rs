@@ -11,7 +11,13 @@ use crate::run::{CheckOutcome, RunReport};
 /// Metrics shown first, in this order; the rest follow alphabetically.
 const KEY_METRICS: &[&str] = &["cost", "length", "turn", "nodes", "expanded", "generated"];
 /// Metrics not repeated in the metric line (shown elsewhere or noise).
-const HIDDEN: &[&str] = &["found", "gave_up", "collision_free", "reaches_goal", "time_ms"];
+const HIDDEN: &[&str] = &[
+    "found",
+    "gave_up",
+    "collision_free",
+    "reaches_goal",
+    "time_ms",
+];
 
 /// The report as text. `diagnostics` renders a failed check as a miette
 /// diagnostic (pointing at the expression) under its FAIL line.
@@ -42,7 +48,11 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
         } else {
             "not found".to_string()
         };
-        let _ = writeln!(s, "\nplan {} ({}, robot {}): {}", plan.name, plan.kind, robot.name, status);
+        let _ = writeln!(
+            s,
+            "\nplan {} ({}, robot {}): {}",
+            plan.name, plan.kind, robot.name, status
+        );
         let mut parts = Vec::new();
         for k in KEY_METRICS {
             if let Some(v) = m.get(*k) {
@@ -62,7 +72,11 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
             let _ = writeln!(s, "  note: {note}");
         }
         if let Some(v) = &run.validation {
-            let what = v.obstacle.as_deref().map(|o| format!("obstacle `{o}`")).unwrap_or_else(|| "the bounds".into());
+            let what = v
+                .obstacle
+                .as_deref()
+                .map(|o| format!("obstacle `{o}`"))
+                .unwrap_or_else(|| "the bounds".into());
             let _ = writeln!(
                 s,
                 "  validator: segment {} hits {} at ({}, {}): {}",
@@ -80,7 +94,12 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
             let _ = writeln!(s, "  {}", check_line(report, c));
         }
     }
-    let _ = writeln!(s, "\n{} passed, {} failed", report.passed(), report.failed());
+    let _ = writeln!(
+        s,
+        "\n{} passed, {} failed",
+        report.passed(),
+        report.failed()
+    );
     s
 }
 
@@ -93,7 +112,11 @@ pub fn check_line(report: &RunReport, c: &CheckOutcome) -> String {
         if c.passed { "PASS" } else { "FAIL" },
         check.line,
         check.text,
-        if values.is_empty() { String::new() } else { format!("   ({values})") }
+        if values.is_empty() {
+            String::new()
+        } else {
+            format!("   ({values})")
+        }
     )
 }
 
@@ -109,7 +132,17 @@ pub fn values_text(c: &CheckOutcome) -> String {
 pub fn failed_check_diag(report: &RunReport, c: &CheckOutcome) -> Diag {
     let check = &report.scenario.checks[c.check];
     let values = values_text(c);
-    Diag::error("scen::check::failed", format!("check failed: `{}`", check.text))
-        .at(check.span, if values.is_empty() { "false".to_string() } else { values })
-        .help("the expectation does not hold for this run; see the plan's metrics above")
+    Diag::error(
+        "scen::check::failed",
+        format!("check failed: `{}`", check.text),
+    )
+    .at(
+        check.span,
+        if values.is_empty() {
+            "false".to_string()
+        } else {
+            values
+        },
+    )
+    .help("the expectation does not hold for this run; see the plan's metrics above")
 }

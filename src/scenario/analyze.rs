@@ -8,12 +8,14 @@ use std::path::Path;
 
 use crate::diagnostics::{Diag, SourceMap, Span, Spanned};
 use crate::geometry::polygon::{self, PolygonError};
-use crate::geometry::{Aabb, Config, ConvexPolygon, Grid, Obstacle, Point, RobotShape, Shape, World};
+use crate::geometry::{
+    Aabb, Config, ConvexPolygon, Grid, Obstacle, Point, RobotShape, Shape, World,
+};
 use crate::syntax::ast::{self, Expr, ExprKind, ParamToken, Value, ValueKind};
 
-use super::loader::{LoadFailure, SourcedStmt, MAX_MAP_BYTES, read_text};
-use super::schema::{self, did_you_mean, MetricType, PlannerSchema, RobotKind, Support, ValueSpec};
-use super::{Check, Limits, Param, ParamValue, Params, Plan, Robot, Scenario, DEFAULT_CELL_CAP};
+use super::loader::{LoadFailure, MAX_MAP_BYTES, SourcedStmt, read_text};
+use super::schema::{self, MetricType, PlannerSchema, RobotKind, Support, ValueSpec, did_you_mean};
+use super::{Check, DEFAULT_CELL_CAP, Limits, Param, ParamValue, Params, Plan, Robot, Scenario};
 
 /// Analyses the statements of a scenario (includes already spliced in).
 pub(crate) fn analyze(
@@ -89,23 +91,32 @@ impl Analyzer {
             };
             if !s.in_main_file {
                 self.error(
-                    Diag::error("scen::analyze::title_in_include", "an included file has a `scenario` title")
-                        .at(*span, "only the main file may have a title")
-                        .help("remove this line from the included file"),
+                    Diag::error(
+                        "scen::analyze::title_in_include",
+                        "an included file has a `scenario` title",
+                    )
+                    .at(*span, "only the main file may have a title")
+                    .help("remove this line from the included file"),
                 );
             } else if let Some((_, first)) = &title {
                 self.error(
-                    Diag::error("scen::analyze::duplicate_title", "`scenario` is given twice")
-                        .at(*span, "second title")
-                        .with_related(*first, "first title")
-                        .help("a file has at most one `scenario` title"),
+                    Diag::error(
+                        "scen::analyze::duplicate_title",
+                        "`scenario` is given twice",
+                    )
+                    .at(*span, "second title")
+                    .with_related(*first, "first title")
+                    .help("a file has at most one `scenario` title"),
                 );
             } else {
                 if i != 0 {
                     self.error(
-                        Diag::error("scen::analyze::title_not_first", "`scenario` must be the first statement")
-                            .at(*span, "not the first statement")
-                            .help("move the `scenario \"...\"` line to the top of the file"),
+                        Diag::error(
+                            "scen::analyze::title_not_first",
+                            "`scenario` must be the first statement",
+                        )
+                        .at(*span, "not the first statement")
+                        .help("move the `scenario \"...\"` line to the top of the file"),
                     );
                 }
                 title = Some((t.value.clone(), *span));
@@ -121,9 +132,12 @@ impl Analyzer {
             ValueKind::Number(x) => Some(*x),
             ValueKind::Angle(_) => {
                 self.error(
-                    Diag::error("scen::analyze::wrong_unit", format!("{what} is a length, not an angle"))
-                        .at(v.span, "an angle")
-                        .help("remove the `deg`/`rad` unit"),
+                    Diag::error(
+                        "scen::analyze::wrong_unit",
+                        format!("{what} is a length, not an angle"),
+                    )
+                    .at(v.span, "an angle")
+                    .help("remove the `deg`/`rad` unit"),
                 );
                 None
             }
@@ -147,9 +161,12 @@ impl Analyzer {
             Some(x)
         } else {
             self.error(
-                Diag::error("scen::analyze::out_of_range", format!("{what} must be positive, got {x}"))
-                    .at(v.span, "not > 0")
-                    .help("use a value greater than 0"),
+                Diag::error(
+                    "scen::analyze::out_of_range",
+                    format!("{what} must be positive, got {x}"),
+                )
+                .at(v.span, "not > 0")
+                .help("use a value greater than 0"),
             );
             None
         }
@@ -166,7 +183,10 @@ impl Analyzer {
                 self.error(
                     Diag::error(
                         "scen::analyze::wrong_type",
-                        format!("{what} must be a point `(x, y)`, found {} values", items.len()),
+                        format!(
+                            "{what} must be a point `(x, y)`, found {} values",
+                            items.len()
+                        ),
                     )
                     .at(v.span, "expected `(x, y)`")
                     .help("a point has two coordinates: `(x, y)`"),
@@ -177,7 +197,10 @@ impl Analyzer {
                 self.error(
                     Diag::error(
                         "scen::analyze::wrong_type",
-                        format!("{what} must be a point `(x, y)`, found {}", other.describe()),
+                        format!(
+                            "{what} must be a point `(x, y)`, found {}",
+                            other.describe()
+                        ),
                     )
                     .at(v.span, "expected `(x, y)`")
                     .help("write a point as `(x, y)`"),
@@ -208,7 +231,10 @@ impl Analyzer {
                 self.error(
                     Diag::error(
                         "scen::analyze::wrong_type",
-                        format!("{what} must be a list of points, found {}", other.describe()),
+                        format!(
+                            "{what} must be a list of points, found {}",
+                            other.describe()
+                        ),
                     )
                     .at(v.span, "expected `[(x, y), ...]`")
                     .help("write the vertices as `[(0, 0), (1, 0), (0, 1)]`"),
@@ -242,7 +268,10 @@ impl Analyzer {
                             self.error(
                                 Diag::error(
                                     "scen::analyze::wrong_type",
-                                    format!("the angle of {what} must be an angle, found {}", other.describe()),
+                                    format!(
+                                        "the angle of {what} must be an angle, found {}",
+                                        other.describe()
+                                    ),
                                 )
                                 .at(t.span, "expected an angle")
                                 .help("write an angle as `90deg` or `1.5708rad`"),
@@ -257,7 +286,10 @@ impl Analyzer {
                 self.error(
                     Diag::error(
                         "scen::analyze::wrong_type",
-                        format!("{what} must be a pose `(x, y)` or `(x, y, θ)`, found {}", other.describe()),
+                        format!(
+                            "{what} must be a pose `(x, y)` or `(x, y, θ)`, found {}",
+                            other.describe()
+                        ),
                     )
                     .at(v.span, "expected a pose")
                     .help("write a pose as `(4, 24)` or `(4, 24, 90deg)`"),
@@ -286,7 +318,11 @@ impl Analyzer {
                 let at = vertex_spans.get(i).copied().unwrap_or(span);
                 let mut d = Diag::error(
                     "scen::analyze::self_intersecting",
-                    format!("{what} is not simple: edge {} crosses edge {}", i + 1, j + 1),
+                    format!(
+                        "{what} is not simple: edge {} crosses edge {}",
+                        i + 1,
+                        j + 1
+                    ),
                 )
                 .at(at, format!("edge {} starts here", i + 1))
                 .help("list the vertices in order around the boundary, without crossings");
@@ -311,14 +347,19 @@ impl Analyzer {
         let mut any_world = false;
         let mut index = 0usize;
         for s in statements {
-            let ast::Stmt::World(w) = &s.stmt else { continue };
+            let ast::Stmt::World(w) = &s.stmt else {
+                continue;
+            };
             any_world = true;
             if let Some(first) = world_in_file.get(&w.keyword.file) {
                 self.error(
-                    Diag::error("scen::analyze::duplicate_world", "a file has two `world` blocks")
-                        .at(w.keyword, "second `world`")
-                        .with_related(*first, "first `world`")
-                        .help("put all obstacles into one `world { ... }` block"),
+                    Diag::error(
+                        "scen::analyze::duplicate_world",
+                        "a file has two `world` blocks",
+                    )
+                    .at(w.keyword, "second `world`")
+                    .with_related(*first, "first `world`")
+                    .help("put all obstacles into one `world { ... }` block"),
                 );
             } else {
                 world_in_file.insert(w.keyword.file, w.keyword);
@@ -332,14 +373,20 @@ impl Analyzer {
                         bounds_given = true;
                         if let Some((_, first)) = &bounds {
                             self.error(
-                                Diag::error("scen::analyze::duplicate_bounds", "`bounds` is given twice")
-                                    .at(*span, "second `bounds`")
-                                    .with_related(*first, "first `bounds`")
-                                    .help("the world has exactly one `bounds`"),
+                                Diag::error(
+                                    "scen::analyze::duplicate_bounds",
+                                    "`bounds` is given twice",
+                                )
+                                .at(*span, "second `bounds`")
+                                .with_related(*first, "first `bounds`")
+                                .help("the world has exactly one `bounds`"),
                             );
                             continue;
                         }
-                        let (a, b) = (self.expect_point(min, "the min corner"), self.expect_point(max, "the max corner"));
+                        let (a, b) = (
+                            self.expect_point(min, "the min corner"),
+                            self.expect_point(max, "the max corner"),
+                        );
                         if let (Some(a), Some(b)) = (a, b) {
                             if a.x < b.x && a.y < b.y {
                                 bounds = Some((Aabb { min: a, max: b }, *span));
@@ -358,10 +405,13 @@ impl Analyzer {
                             Some(n) => {
                                 if let Some(first) = names.get(&n.value) {
                                     self.error(
-                                        Diag::error("scen::analyze::duplicate_name", format!("obstacle `{}` is declared twice", n.value))
-                                            .at(n.span, "second declaration")
-                                            .with_related(*first, "first declaration")
-                                            .help("obstacle names must be unique; rename one of them"),
+                                        Diag::error(
+                                            "scen::analyze::duplicate_name",
+                                            format!("obstacle `{}` is declared twice", n.value),
+                                        )
+                                        .at(n.span, "second declaration")
+                                        .with_related(*first, "first declaration")
+                                        .help("obstacle names must be unique; rename one of them"),
                                     );
                                 } else {
                                     names.insert(n.value.clone(), n.span);
@@ -379,11 +429,20 @@ impl Analyzer {
             }
         }
         if !any_world {
-            let span = statements.first().map(|s| stmt_span(&s.stmt)).unwrap_or_default();
+            let span = statements
+                .first()
+                .map(|s| stmt_span(&s.stmt))
+                .unwrap_or_default();
             self.error(
-                Diag::error("scen::analyze::no_world", "the scenario has no `world` block")
-                    .at(Span::new(span.file, 0, 0), "expected a `world { ... }` block")
-                    .help("add `world { bounds (0, 0) (10, 10) }` with the obstacles inside"),
+                Diag::error(
+                    "scen::analyze::no_world",
+                    "the scenario has no `world` block",
+                )
+                .at(
+                    Span::new(span.file, 0, 0),
+                    "expected a `world { ... }` block",
+                )
+                .help("add `world { bounds (0, 0) (10, 10) }` with the obstacles inside"),
             );
             return (None, spans);
         }
@@ -411,15 +470,21 @@ impl Analyzer {
     fn obstacle_shape(&mut self, o: &ast::ObstacleDecl) -> Option<Shape> {
         match &o.shape {
             ast::ObstacleShape::Rect(a, b) => {
-                let (a, b) = (self.expect_point(a, "a corner"), self.expect_point(b, "a corner"));
+                let (a, b) = (
+                    self.expect_point(a, "a corner"),
+                    self.expect_point(b, "a corner"),
+                );
                 let r = Aabb::from_corners(a?, b?);
                 if r.width() > 0.0 && r.height() > 0.0 {
                     Some(Shape::Rect(r))
                 } else {
                     self.error(
-                        Diag::error("scen::analyze::degenerate_rect", "the rectangle has zero area")
-                            .at(o.span, "zero width or height")
-                            .help("give two opposite corners; for a thin wall use `segment`"),
+                        Diag::error(
+                            "scen::analyze::degenerate_rect",
+                            "the rectangle has zero area",
+                        )
+                        .at(o.span, "zero width or height")
+                        .help("give two opposite corners; for a thin wall use `segment`"),
                     );
                     None
                 }
@@ -429,7 +494,9 @@ impl Analyzer {
                 match polygon::normalize_simple_polygon(&pts) {
                     Ok(outline) => {
                         let pieces = if polygon::is_convex(&outline) {
-                            vec![ConvexPolygon { vertices: outline.clone() }]
+                            vec![ConvexPolygon {
+                                vertices: outline.clone(),
+                            }]
                         } else {
                             polygon::convex_decomposition(&outline)
                         };
@@ -442,13 +509,19 @@ impl Analyzer {
                 }
             }
             ast::ObstacleShape::Segment(a, b) => {
-                let (a, b) = (self.expect_point(a, "an end point"), self.expect_point(b, "an end point"));
+                let (a, b) = (
+                    self.expect_point(a, "an end point"),
+                    self.expect_point(b, "an end point"),
+                );
                 let (a, b) = (a?, b?);
                 if a == b {
                     self.error(
-                        Diag::error("scen::analyze::degenerate_segment", "the segment has zero length")
-                            .at(o.span, "both ends are the same point")
-                            .help("give two different end points"),
+                        Diag::error(
+                            "scen::analyze::degenerate_segment",
+                            "the segment has zero length",
+                        )
+                        .at(o.span, "both ends are the same point")
+                        .help("give two different end points"),
                     );
                     return None;
                 }
@@ -457,7 +530,10 @@ impl Analyzer {
             ast::ObstacleShape::Disk(c, r) => {
                 let c = self.expect_point(c, "the centre");
                 let r = self.expect_positive(r, "the radius");
-                Some(Shape::Disk { center: c?, radius: r? })
+                Some(Shape::Disk {
+                    center: c?,
+                    radius: r?,
+                })
             }
             ast::ObstacleShape::Grid(g) => self.grid(g, o.span).map(Shape::Grid),
         }
@@ -477,17 +553,25 @@ impl Analyzer {
             (None, Some(rows)) => self.inline_rows(rows, span)?,
             (Some(f), Some(_)) => {
                 self.error(
-                    Diag::error("scen::analyze::grid_source", "a grid has both a map file and inline rows")
-                        .at(f.span, "map file")
-                        .help("use either `grid G \"file.map\" ...` or `grid G ... { \"rows\" }`"),
+                    Diag::error(
+                        "scen::analyze::grid_source",
+                        "a grid has both a map file and inline rows",
+                    )
+                    .at(f.span, "map file")
+                    .help("use either `grid G \"file.map\" ...` or `grid G ... { \"rows\" }`"),
                 );
                 return None;
             }
             (None, None) => {
                 self.error(
-                    Diag::error("scen::analyze::grid_source", "a grid needs a map file or inline rows")
-                        .at(span, "no cells")
-                        .help("write `grid G \"maps/arena.map\" cell 1` or `grid G cell 1 { \"..#.\" }`"),
+                    Diag::error(
+                        "scen::analyze::grid_source",
+                        "a grid needs a map file or inline rows",
+                    )
+                    .at(span, "no cells")
+                    .help(
+                        "write `grid G \"maps/arena.map\" cell 1` or `grid G cell 1 { \"..#.\" }`",
+                    ),
                 );
                 return None;
             }
@@ -501,7 +585,11 @@ impl Analyzer {
         })
     }
 
-    fn inline_rows(&mut self, rows: &[Spanned<String>], span: Span) -> Option<(usize, usize, Vec<u8>)> {
+    fn inline_rows(
+        &mut self,
+        rows: &[Spanned<String>],
+        span: Span,
+    ) -> Option<(usize, usize, Vec<u8>)> {
         let Some(first) = rows.first() else {
             self.error(
                 Diag::error("scen::analyze::empty_grid", "the grid has no rows")
@@ -534,7 +622,11 @@ impl Analyzer {
                     Some(w) => cells.push(w),
                     None => {
                         let at = if plain {
-                            Span::new(row.span.file, row.span.start + 1 + off, row.span.start + 1 + off + ch.len_utf8())
+                            Span::new(
+                                row.span.file,
+                                row.span.start + 1 + off,
+                                row.span.start + 1 + off + ch.len_utf8(),
+                            )
                         } else {
                             row.span
                         };
@@ -586,22 +678,32 @@ impl Analyzer {
         let mut robots: Vec<Robot> = Vec::new();
         let mut seen: HashMap<String, Span> = HashMap::new();
         for s in statements {
-            let ast::Stmt::Robot(r) = &s.stmt else { continue };
+            let ast::Stmt::Robot(r) = &s.stmt else {
+                continue;
+            };
             if let Some(first) = seen.get(&r.name.value) {
                 self.error(
-                    Diag::error("scen::analyze::duplicate_name", format!("robot `{}` is declared twice", r.name.value))
-                        .at(r.name.span, "second declaration")
-                        .with_related(*first, "first declaration")
-                        .help("robot names must be unique; rename one of them"),
+                    Diag::error(
+                        "scen::analyze::duplicate_name",
+                        format!("robot `{}` is declared twice", r.name.value),
+                    )
+                    .at(r.name.span, "second declaration")
+                    .with_related(*first, "first declaration")
+                    .help("robot names must be unique; rename one of them"),
                 );
                 continue;
             }
             seen.insert(r.name.value.clone(), r.name.span);
             let shape = match &r.shape {
                 ast::RobotShape::Point(_) => Some(RobotShape::Point),
-                ast::RobotShape::Disk(v) => self.expect_positive(v, "the robot's radius").map(RobotShape::Disk),
+                ast::RobotShape::Disk(v) => self
+                    .expect_positive(v, "the robot's radius")
+                    .map(RobotShape::Disk),
                 ast::RobotShape::Rect(w, h) => {
-                    let (w, h) = (self.expect_positive(w, "the width"), self.expect_positive(h, "the height"));
+                    let (w, h) = (
+                        self.expect_positive(w, "the width"),
+                        self.expect_positive(h, "the height"),
+                    );
                     match (w, h) {
                         (Some(w), Some(h)) => Some(RobotShape::Polygon(ConvexPolygon {
                             vertices: vec![
@@ -633,7 +735,9 @@ impl Analyzer {
     fn robot_polygon(&mut self, v: &Value) -> Option<RobotShape> {
         let (pts, vspans) = self.expect_points(v, "the robot polygon")?;
         match polygon::normalize_simple_polygon(&pts) {
-            Ok(outline) if polygon::is_convex(&outline) => Some(RobotShape::Polygon(ConvexPolygon { vertices: outline })),
+            Ok(outline) if polygon::is_convex(&outline) => {
+                Some(RobotShape::Polygon(ConvexPolygon { vertices: outline }))
+            }
             Ok(_) => {
                 self.error(
                     Diag::error("scen::analyze::robot_not_convex", "a robot polygon must be convex")
@@ -651,17 +755,27 @@ impl Analyzer {
 
     // ----------------------------------------------------------------- plans
 
-    fn plans(&mut self, statements: &[SourcedStmt], world: Option<&World>, robots: &[Robot]) -> Vec<Plan> {
+    fn plans(
+        &mut self,
+        statements: &[SourcedStmt],
+        world: Option<&World>,
+        robots: &[Robot],
+    ) -> Vec<Plan> {
         let mut plans = Vec::new();
         let mut seen: HashMap<String, Span> = HashMap::new();
         for s in statements {
-            let ast::Stmt::Plan(p) = &s.stmt else { continue };
+            let ast::Stmt::Plan(p) = &s.stmt else {
+                continue;
+            };
             if let Some(first) = seen.get(&p.name.value) {
                 self.error(
-                    Diag::error("scen::analyze::duplicate_name", format!("plan `{}` is declared twice", p.name.value))
-                        .at(p.name.span, "second declaration")
-                        .with_related(*first, "first declaration")
-                        .help("plan names must be unique; rename one of them"),
+                    Diag::error(
+                        "scen::analyze::duplicate_name",
+                        format!("plan `{}` is declared twice", p.name.value),
+                    )
+                    .at(p.name.span, "second declaration")
+                    .with_related(*first, "first declaration")
+                    .help("plan names must be unique; rename one of them"),
                 );
                 continue;
             }
@@ -676,10 +790,16 @@ impl Analyzer {
     fn plan(&mut self, p: &ast::PlanDecl, world: Option<&World>, robots: &[Robot]) -> Option<Plan> {
         let Some(schema) = schema::planner(&p.kind.value) else {
             let kinds: Vec<&str> = schema::PLANNERS.iter().map(|s| s.kind).collect();
-            let mut d = Diag::error("scen::analyze::unknown_planner", format!("unknown planner `{}`", p.kind.value))
-                .at(p.kind.span, "not a planner kind");
+            let mut d = Diag::error(
+                "scen::analyze::unknown_planner",
+                format!("unknown planner `{}`", p.kind.value),
+            )
+            .at(p.kind.span, "not a planner kind");
             d = match did_you_mean(&p.kind.value, kinds.iter().copied()) {
-                Some(k) => d.help(format!("did you mean `{k}`? planners: {}", schema::backticked(&kinds))),
+                Some(k) => d.help(format!(
+                    "did you mean `{k}`? planners: {}",
+                    schema::backticked(&kinds)
+                )),
                 None => d.help(format!("planners: {}", schema::backticked(&kinds))),
             };
             self.error(d);
@@ -693,8 +813,11 @@ impl Analyzer {
         }
         let Some(robot_index) = robot_index else {
             let names: Vec<&str> = robots.iter().map(|r| r.name.as_str()).collect();
-            let mut d = Diag::error("scen::analyze::unknown_robot", format!("unknown robot `{}`", p.robot.value))
-                .at(p.robot.span, "no robot of this name");
+            let mut d = Diag::error(
+                "scen::analyze::unknown_robot",
+                format!("unknown robot `{}`", p.robot.value),
+            )
+            .at(p.robot.span, "no robot of this name");
             d = match did_you_mean(&p.robot.value, names.iter().copied()) {
                 Some(n) => d.help(format!("did you mean `{n}`?")),
                 None if names.is_empty() => d.help("declare it, e.g. `robot dot disk 0.5`"),
@@ -713,16 +836,29 @@ impl Analyzer {
                 self.error(
                     Diag::error(
                         "scen::analyze::robot_kind",
-                        format!("planner `{}` does not plan for {} robots", schema.kind, kind.name()),
+                        format!(
+                            "planner `{}` does not plan for {} robots",
+                            schema.kind,
+                            kind.name()
+                        ),
                     )
                     .at(p.robot.span, format!("a {} robot", kind.name()))
-                    .help(format!("`{}` plans for {} robots", schema.kind, ok.join(" and "))),
+                    .help(format!(
+                        "`{}` plans for {} robots",
+                        schema.kind,
+                        ok.join(" and ")
+                    )),
                 );
             }
             Some((_, Support::NotYet)) => {
                 let implemented: Vec<&str> = schema::PLANNERS
                     .iter()
-                    .flat_map(|s| s.robots.iter().filter(|(_, sup)| *sup == Support::Yes).map(move |(k, _)| (s.kind, k.name())))
+                    .flat_map(|s| {
+                        s.robots
+                            .iter()
+                            .filter(|(_, sup)| *sup == Support::Yes)
+                            .map(move |(k, _)| (s.kind, k.name()))
+                    })
                     .map(|(s, k)| if s == "astar" { k } else { s })
                     .collect();
                 let _ = implemented;
@@ -772,7 +908,11 @@ impl Analyzer {
                 self.error(
                     Diag::error("scen::analyze::expected_key", "expected a parameter name")
                         .at(tok.span(), "a value without a key")
-                        .help(format!("parameters of `{}`: {}", schema.kind, keys_of(schema))),
+                        .help(format!(
+                            "parameters of `{}`: {}",
+                            schema.kind,
+                            keys_of(schema)
+                        )),
                 );
                 ok = false;
                 i += 1;
@@ -782,7 +922,10 @@ impl Analyzer {
             let Some(spec) = schema.param(&key.value) else {
                 let mut d = Diag::error(
                     "scen::analyze::unknown_key",
-                    format!("unknown parameter `{}` for planner `{}`", key.value, schema.kind),
+                    format!(
+                        "unknown parameter `{}` for planner `{}`",
+                        key.value, schema.kind
+                    ),
                 )
                 .at(key.span, "unknown key");
                 d = match did_you_mean(&key.value, schema.all_params().map(|p| p.key)) {
@@ -807,18 +950,28 @@ impl Analyzer {
                 && let Some(first) = values.get(spec.key)
             {
                 self.error(
-                    Diag::error("scen::analyze::duplicate_key", format!("`{}` is given twice", spec.key))
-                        .at(key.span, "second time")
-                        .with_related(first.span, "first given here")
-                        .help("give each parameter once"),
+                    Diag::error(
+                        "scen::analyze::duplicate_key",
+                        format!("`{}` is given twice", spec.key),
+                    )
+                    .at(key.span, "second time")
+                    .with_related(first.span, "first given here")
+                    .help("give each parameter once"),
                 );
                 ok = false;
             }
             let missing = |this: &mut Self, at: Span| {
                 this.error(
-                    Diag::error("scen::analyze::missing_value", format!("`{}` needs a value", spec.key))
-                        .at(at, "no value")
-                        .help(format!("`{}` takes {}", spec.key, spec.value.describe())),
+                    Diag::error(
+                        "scen::analyze::missing_value",
+                        format!("`{}` needs a value", spec.key),
+                    )
+                    .at(at, "no value")
+                    .help(format!(
+                        "`{}` takes {}",
+                        spec.key,
+                        spec.value.describe()
+                    )),
                 );
             };
             let next = tokens.get(i);
@@ -829,7 +982,14 @@ impl Analyzer {
             };
             // A known key right after a key means the value is missing.
             if let ParamToken::Word(w) = next
-                && !matches!(spec.value, ValueSpec::Word(_) | ValueSpec::IntOrWord(_) | ValueSpec::ObstacleName | ValueSpec::Limit | ValueSpec::Drive)
+                && !matches!(
+                    spec.value,
+                    ValueSpec::Word(_)
+                        | ValueSpec::IntOrWord(_)
+                        | ValueSpec::ObstacleName
+                        | ValueSpec::Limit
+                        | ValueSpec::Drive
+                )
                 && schema.param(&w.value).is_some()
             {
                 missing(self, key.span);
@@ -848,9 +1008,12 @@ impl Analyzer {
                     let kinds = ["expansions", "steps", "time", "cells"];
                     let Some(k) = kinds.iter().find(|k| **k == which.value) else {
                         self.error(
-                            Diag::error("scen::analyze::bad_limit", format!("unknown limit `{}`", which.value))
-                                .at(which.span, "not a limit")
-                                .help(format!("`limit` takes {}", spec.value.describe())),
+                            Diag::error(
+                                "scen::analyze::bad_limit",
+                                format!("unknown limit `{}`", which.value),
+                            )
+                            .at(which.span, "not a limit")
+                            .help(format!("`limit` takes {}", spec.value.describe())),
                         );
                         ok = false;
                         if let Some(ParamToken::Value(_)) = amount {
@@ -866,22 +1029,30 @@ impl Analyzer {
                     i += 1;
                     if let Some(first) = limit_spans.get(k) {
                         self.error(
-                            Diag::error("scen::analyze::duplicate_key", format!("`limit {k}` is given twice"))
-                                .at(which.span, "second time")
-                                .with_related(*first, "first given here")
-                                .help("give each limit once"),
+                            Diag::error(
+                                "scen::analyze::duplicate_key",
+                                format!("`limit {k}` is given twice"),
+                            )
+                            .at(which.span, "second time")
+                            .with_related(*first, "first given here")
+                            .help("give each limit once"),
                         );
                         ok = false;
                     }
                     limit_spans.insert(k, which.span);
                     if *k == "time" {
                         match v.kind {
-                            ValueKind::Duration(s) if s > 0.0 && s.is_finite() => limits.time = Some(s),
+                            ValueKind::Duration(s) if s > 0.0 && s.is_finite() => {
+                                limits.time = Some(s)
+                            }
                             _ => {
                                 self.error(
-                                    Diag::error("scen::analyze::bad_limit", "`limit time` needs a positive duration")
-                                        .at(v.span, "expected a duration")
-                                        .help("write `limit time 2s` or `limit time 500ms`"),
+                                    Diag::error(
+                                        "scen::analyze::bad_limit",
+                                        "`limit time` needs a positive duration",
+                                    )
+                                    .at(v.span, "expected a duration")
+                                    .help("write `limit time 2s` or `limit time 500ms`"),
                                 );
                                 ok = false;
                             }
@@ -898,9 +1069,12 @@ impl Analyzer {
                             }
                             _ => {
                                 self.error(
-                                    Diag::error("scen::analyze::bad_limit", format!("`limit {k}` needs a positive integer"))
-                                        .at(v.span, "expected a positive integer")
-                                        .help(format!("write e.g. `limit {k} 10000`")),
+                                    Diag::error(
+                                        "scen::analyze::bad_limit",
+                                        format!("`limit {k}` needs a positive integer"),
+                                    )
+                                    .at(v.span, "expected a positive integer")
+                                    .help(format!("write e.g. `limit {k} 10000`")),
                                 );
                                 ok = false;
                             }
@@ -918,9 +1092,14 @@ impl Analyzer {
                         i += 1;
                     }
                     self.error(
-                        Diag::error("scen::analyze::not_implemented", "`drive` is not implemented yet in this version of scen")
-                            .at(key.span.to(w.span), "not implemented yet")
-                            .help("remove the `drive` parameter; plans are checked without driving them"),
+                        Diag::error(
+                            "scen::analyze::not_implemented",
+                            "`drive` is not implemented yet in this version of scen",
+                        )
+                        .at(key.span.to(w.span), "not implemented yet")
+                        .help(
+                            "remove the `drive` parameter; plans are checked without driving them",
+                        ),
                     );
                     ok = false;
                     continue;
@@ -946,16 +1125,22 @@ impl Analyzer {
         let goal = values.remove("goal");
         if start.is_none() && !given.contains(&"start") {
             self.error(
-                Diag::error("scen::analyze::missing_key", format!("plan `{}` has no `start`", p.name.value))
-                    .at(plan_head, "needs `start`")
-                    .help("add `start (x, y)` to the plan's block"),
+                Diag::error(
+                    "scen::analyze::missing_key",
+                    format!("plan `{}` has no `start`", p.name.value),
+                )
+                .at(plan_head, "needs `start`")
+                .help("add `start (x, y)` to the plan's block"),
             );
         }
         if schema.needs_goal && goal.is_none() && !given.contains(&"goal") {
             self.error(
-                Diag::error("scen::analyze::missing_key", format!("plan `{}` has no `goal`", p.name.value))
-                    .at(plan_head, "needs `goal`")
-                    .help("add `goal (x, y)` to the plan's block"),
+                Diag::error(
+                    "scen::analyze::missing_key",
+                    format!("plan `{}` has no `goal`", p.name.value),
+                )
+                .at(plan_head, "needs `goal`")
+                .help("add `goal (x, y)` to the plan's block"),
             );
         }
         let (true, Some(start)) = (ok, start) else {
@@ -964,9 +1149,14 @@ impl Analyzer {
         if schema.needs_goal && goal.is_none() {
             return None;
         }
-        let ParamValue::Pose(start_c) = start.value else { return None };
+        let ParamValue::Pose(start_c) = start.value else {
+            return None;
+        };
         let goal_c = match &goal {
-            Some(Param { value: ParamValue::Pose(c), .. }) => Some(*c),
+            Some(Param {
+                value: ParamValue::Pose(c),
+                ..
+            }) => Some(*c),
             _ => None,
         };
         let seed = values.remove("seed").and_then(|p| match p.value {
@@ -1009,17 +1199,45 @@ impl Analyzer {
         self.error(
             Diag::error(
                 "scen::analyze::wrong_type",
-                format!("`{}` takes {}, found {found}", spec.key, spec.value.describe()),
+                format!(
+                    "`{}` takes {}, found {found}",
+                    spec.key,
+                    spec.value.describe()
+                ),
             )
             .at(tok.span(), "unexpected value")
-            .help(format!("`{}`: {} (default {})", spec.key, spec.help, if spec.default.is_empty() { "none" } else { spec.default })),
+            .help(format!(
+                "`{}`: {} (default {})",
+                spec.key,
+                spec.help,
+                if spec.default.is_empty() {
+                    "none"
+                } else {
+                    spec.default
+                }
+            )),
         );
     }
 
-    fn param_value(&mut self, spec: &schema::ParamSpec, tok: &ParamToken, robot: Option<&Robot>) -> Option<ParamValue> {
+    fn param_value(
+        &mut self,
+        spec: &schema::ParamSpec,
+        tok: &ParamToken,
+        robot: Option<&Robot>,
+    ) -> Option<ParamValue> {
         match (spec.value, tok) {
-            (ValueSpec::Pose, ParamToken::Value(v)) => self.expect_pose(v, &format!("`{}`", spec.key)).map(ParamValue::Pose),
-            (ValueSpec::Number { min, min_open, max, integer }, ParamToken::Value(v)) => {
+            (ValueSpec::Pose, ParamToken::Value(v)) => self
+                .expect_pose(v, &format!("`{}`", spec.key))
+                .map(ParamValue::Pose),
+            (
+                ValueSpec::Number {
+                    min,
+                    min_open,
+                    max,
+                    integer,
+                },
+                ParamToken::Value(v),
+            ) => {
                 let x = match v.kind {
                     ValueKind::Number(x) => x,
                     _ => {
@@ -1056,16 +1274,27 @@ impl Analyzer {
                 if x.fract() == 0.0 && allowed.contains(&(x as i64)) {
                     Some(ParamValue::Num(x))
                 } else {
-                    let list = allowed.iter().map(|c| format!("`{c}`")).collect::<Vec<_>>().join(" or ");
+                    let list = allowed
+                        .iter()
+                        .map(|c| format!("`{c}`"))
+                        .collect::<Vec<_>>()
+                        .join(" or ");
                     let why = if spec.key == "connect" {
-                        if rotating { " for a rotating robot's (x, y, θ) lattice" } else { " for an (x, y) lattice" }
+                        if rotating {
+                            " for a rotating robot's (x, y, θ) lattice"
+                        } else {
+                            " for an (x, y) lattice"
+                        }
                     } else {
                         ""
                     };
                     self.error(
-                        Diag::error("scen::analyze::out_of_range", format!("`{}` must be {list}{why}, got {x}", spec.key))
-                            .at(v.span, "not accepted")
-                            .help(format!("`{}`: {}", spec.key, spec.help)),
+                        Diag::error(
+                            "scen::analyze::out_of_range",
+                            format!("`{}` must be {list}{why}, got {x}", spec.key),
+                        )
+                        .at(v.span, "not accepted")
+                        .help(format!("`{}`: {}", spec.key, spec.help)),
                     );
                     None
                 }
@@ -1087,12 +1316,17 @@ impl Analyzer {
                 }
             }
             (ValueSpec::IntOrWord(_), ParamToken::Value(v)) => match v.kind {
-                ValueKind::Number(x) if x >= 1.0 && x.fract() == 0.0 && x <= 1e9 => Some(ParamValue::Num(x)),
+                ValueKind::Number(x) if x >= 1.0 && x.fract() == 0.0 && x <= 1e9 => {
+                    Some(ParamValue::Num(x))
+                }
                 ValueKind::Number(x) => {
                     self.error(
-                        Diag::error("scen::analyze::out_of_range", format!("`{}` must be {}, got {x}", spec.key, spec.value.describe()))
-                            .at(v.span, "out of range")
-                            .help(format!("`{}`: {}", spec.key, spec.help)),
+                        Diag::error(
+                            "scen::analyze::out_of_range",
+                            format!("`{}` must be {}, got {x}", spec.key, spec.value.describe()),
+                        )
+                        .at(v.span, "out of range")
+                        .help(format!("`{}`: {}", spec.key, spec.help)),
                     );
                     None
                 }
@@ -1101,7 +1335,9 @@ impl Analyzer {
                     None
                 }
             },
-            (ValueSpec::ObstacleName, ParamToken::Word(w)) => Some(ParamValue::Word(w.value.clone())),
+            (ValueSpec::ObstacleName, ParamToken::Word(w)) => {
+                Some(ParamValue::Word(w.value.clone()))
+            }
             _ => {
                 self.wrong_value(spec, tok);
                 None
@@ -1116,7 +1352,11 @@ impl Analyzer {
         )
         .at(w.span, "not accepted");
         d = match did_you_mean(&w.value, words.iter().copied()) {
-            Some(s) => d.help(format!("did you mean `{s}`? `{}` takes {}", spec.key, spec.value.describe())),
+            Some(s) => d.help(format!(
+                "did you mean `{s}`? `{}` takes {}",
+                spec.key,
+                spec.value.describe()
+            )),
             None => d.help(format!("`{}` takes {}", spec.key, spec.value.describe())),
         };
         self.error(d);
@@ -1126,12 +1366,15 @@ impl Analyzer {
         if !world.bounds.contains(c.xy()) {
             let b = world.bounds;
             self.error(
-                Diag::error("scen::analyze::pose_outside", format!("the {which} lies outside the world's bounds"))
-                    .at(span, "outside `bounds`")
-                    .help(format!(
-                        "the bounds are ({}, {}) to ({}, {})",
-                        b.min.x, b.min.y, b.max.x, b.max.y
-                    )),
+                Diag::error(
+                    "scen::analyze::pose_outside",
+                    format!("the {which} lies outside the world's bounds"),
+                )
+                .at(span, "outside `bounds`")
+                .help(format!(
+                    "the bounds are ({}, {}) to ({}, {})",
+                    b.min.x, b.min.y, b.max.x, b.max.y
+                )),
             );
             return;
         }
@@ -1139,20 +1382,41 @@ impl Analyzer {
             self.error(
                 Diag::error(
                     "scen::analyze::pose_in_collision",
-                    format!("the {which} is in collision with obstacle `{}`", world.obstacles[i].name),
+                    format!(
+                        "the {which} is in collision with obstacle `{}`",
+                        world.obstacles[i].name
+                    ),
                 )
-                .at(span, format!("robot `{}` overlaps `{}` here", robot.name, world.obstacles[i].name))
-                .help(format!("move the {which} so that the robot's body is clear of every obstacle")),
+                .at(
+                    span,
+                    format!(
+                        "robot `{}` overlaps `{}` here",
+                        robot.name, world.obstacles[i].name
+                    ),
+                )
+                .help(format!(
+                    "move the {which} so that the robot's body is clear of every obstacle"
+                )),
             );
         }
     }
 
-    fn check_lattice_size(&mut self, world: &World, robot: &Robot, params: &Params, p: &ast::PlanDecl) -> Option<()> {
+    fn check_lattice_size(
+        &mut self,
+        world: &World,
+        robot: &Robot,
+        params: &Params,
+        p: &ast::PlanDecl,
+    ) -> Option<()> {
         let size = crate::planners::lattice::LatticeSpec::from_params(world, &robot.shape, params);
         let cap = params.limits.cells.unwrap_or(DEFAULT_CELL_CAP);
         let cells = size.cells_f64();
         if cells > cap as f64 {
-            let at = params.values.get("cell").map(|c| c.span).unwrap_or(p.name.span.to(p.robot.span));
+            let at = params
+                .values
+                .get("cell")
+                .map(|c| c.span)
+                .unwrap_or(p.name.span.to(p.robot.span));
             self.error(
                 Diag::error(
                     "scen::analyze::lattice_too_large",
@@ -1170,19 +1434,32 @@ impl Analyzer {
     }
 
     fn check_coverage_grid(&mut self, world: &World, params: &Params) {
-        if let Some(Param { value: ParamValue::Word(name), span }) = params.values.get("on") {
+        if let Some(Param {
+            value: ParamValue::Word(name),
+            span,
+        }) = params.values.get("on")
+        {
             let found = world.obstacles.iter().find(|o| &o.name == name);
             match found {
-                Some(Obstacle { shape: Shape::Grid(_), .. }) => {}
+                Some(Obstacle {
+                    shape: Shape::Grid(_),
+                    ..
+                }) => {}
                 Some(_) => self.error(
-                    Diag::error("scen::analyze::not_a_grid", format!("obstacle `{name}` is not a `grid`"))
-                        .at(*span, "not a grid")
-                        .help("`coverage` covers the free cells of a `grid` obstacle"),
+                    Diag::error(
+                        "scen::analyze::not_a_grid",
+                        format!("obstacle `{name}` is not a `grid`"),
+                    )
+                    .at(*span, "not a grid")
+                    .help("`coverage` covers the free cells of a `grid` obstacle"),
                 ),
                 None => self.error(
-                    Diag::error("scen::analyze::unknown_obstacle", format!("unknown obstacle `{name}`"))
-                        .at(*span, "no obstacle of this name")
-                        .help("name a `grid` obstacle of the world"),
+                    Diag::error(
+                        "scen::analyze::unknown_obstacle",
+                        format!("unknown obstacle `{name}`"),
+                    )
+                    .at(*span, "no obstacle of this name")
+                    .help("name a `grid` obstacle of the world"),
                 ),
             }
         }
@@ -1206,7 +1483,9 @@ impl Analyzer {
         let _ = plans;
         let mut checks = Vec::new();
         for s in statements {
-            let ast::Stmt::Expect(e) = &s.stmt else { continue };
+            let ast::Stmt::Expect(e) = &s.stmt else {
+                continue;
+            };
             let ty = self.type_expr(e, &known);
             if ty.is_some_and(|t| t != MetricType::Bool) {
                 self.error(
@@ -1225,34 +1504,50 @@ impl Analyzer {
         checks
     }
 
-    fn type_expr(&mut self, e: &Expr, plans: &HashMap<String, Option<PlanInfo<'_>>>) -> Option<MetricType> {
+    fn type_expr(
+        &mut self,
+        e: &Expr,
+        plans: &HashMap<String, Option<PlanInfo<'_>>>,
+    ) -> Option<MetricType> {
         use MetricType::{Bool, Num};
-        let want = |this: &mut Self, ty: Option<MetricType>, want: MetricType, e: &Expr, ctx: &str| {
-            if let Some(t) = ty
-                && t != want
-            {
-                let (what, help) = match want {
-                    Num => ("a number", "metrics such as `found` are true/false; compare numbers like `p.cost`"),
-                    Bool => ("a condition", "write a comparison such as `p.cost <= 90`"),
-                };
-                this.error(
-                    Diag::error("scen::analyze::type_mismatch", format!("{ctx} needs {what}"))
+        let want =
+            |this: &mut Self, ty: Option<MetricType>, want: MetricType, e: &Expr, ctx: &str| {
+                if let Some(t) = ty
+                    && t != want
+                {
+                    let (what, help) = match want {
+                        Num => (
+                            "a number",
+                            "metrics such as `found` are true/false; compare numbers like `p.cost`",
+                        ),
+                        Bool => ("a condition", "write a comparison such as `p.cost <= 90`"),
+                    };
+                    this.error(
+                        Diag::error(
+                            "scen::analyze::type_mismatch",
+                            format!("{ctx} needs {what}"),
+                        )
                         .at(e.span, format!("not {what}"))
                         .help(help),
-                );
-            }
-        };
+                    );
+                }
+            };
         match &e.kind {
             ExprKind::Number(_) | ExprKind::Percent(_) => Some(Num),
             ExprKind::Bool(_) => Some(Bool),
             ExprKind::Metric { plan, metric } => {
                 let Some(info) = plans.get(&plan.value) else {
                     let names: Vec<&str> = plans.keys().map(String::as_str).collect();
-                    let mut d = Diag::error("scen::analyze::unknown_plan", format!("unknown plan `{}`", plan.value))
-                        .at(plan.span, "no plan of this name");
+                    let mut d = Diag::error(
+                        "scen::analyze::unknown_plan",
+                        format!("unknown plan `{}`", plan.value),
+                    )
+                    .at(plan.span, "no plan of this name");
                     d = match did_you_mean(&plan.value, names.iter().copied()) {
                         Some(n) => d.help(format!("did you mean `{n}`?")),
-                        None => d.help("`expect` refers to metrics as `PLAN.METRIC`, e.g. `offline.found`"),
+                        None => d.help(
+                            "`expect` refers to metrics as `PLAN.METRIC`, e.g. `offline.found`",
+                        ),
                     };
                     self.error(d);
                     return None;
@@ -1264,12 +1559,23 @@ impl Analyzer {
                         let names: Vec<&str> = info.schema.all_metrics().map(|(m, _)| *m).collect();
                         let mut d = Diag::error(
                             "scen::analyze::unknown_metric",
-                            format!("plan `{}` ({}) has no metric `{}`", info.name, info.schema.kind, metric.value),
+                            format!(
+                                "plan `{}` ({}) has no metric `{}`",
+                                info.name, info.schema.kind, metric.value
+                            ),
                         )
                         .at(metric.span, "unknown metric");
                         d = match did_you_mean(&metric.value, names.iter().copied()) {
-                            Some(n) => d.help(format!("did you mean `{n}`? metrics of `{}`: {}", info.schema.kind, schema::backticked(&names))),
-                            None => d.help(format!("metrics of `{}`: {}", info.schema.kind, schema::backticked(&names))),
+                            Some(n) => d.help(format!(
+                                "did you mean `{n}`? metrics of `{}`: {}",
+                                info.schema.kind,
+                                schema::backticked(&names)
+                            )),
+                            None => d.help(format!(
+                                "metrics of `{}`: {}",
+                                info.schema.kind,
+                                schema::backticked(&names)
+                            )),
                         };
                         self.error(d);
                         None
@@ -1299,9 +1605,12 @@ impl Analyzer {
                         && a != b
                     {
                         self.error(
-                            Diag::error("scen::analyze::type_mismatch", format!("`{}` compares a condition with a number", op.symbol()))
-                                .at(e.span, "different types")
-                                .help("compare numbers with numbers, conditions with conditions"),
+                            Diag::error(
+                                "scen::analyze::type_mismatch",
+                                format!("`{}` compares a condition with a number", op.symbol()),
+                            )
+                            .at(e.span, "different types")
+                            .help("compare numbers with numbers, conditions with conditions"),
                         );
                     }
                 } else {
@@ -1311,7 +1620,11 @@ impl Analyzer {
                 Some(Bool)
             }
             ExprKind::Approx { lhs, rhs, tol } => {
-                let (l, r, t) = (self.type_expr(lhs, plans), self.type_expr(rhs, plans), self.type_expr(tol, plans));
+                let (l, r, t) = (
+                    self.type_expr(lhs, plans),
+                    self.type_expr(rhs, plans),
+                    self.type_expr(tol, plans),
+                );
                 want(self, l, Num, lhs, "`~`");
                 want(self, r, Num, rhs, "`~`");
                 want(self, t, Num, tol, "`+-`");
@@ -1319,7 +1632,11 @@ impl Analyzer {
             }
             ExprKind::And(a, b) | ExprKind::Or(a, b) => {
                 let (l, r) = (self.type_expr(a, plans), self.type_expr(b, plans));
-                let op = if matches!(e.kind, ExprKind::And(..)) { "`and`" } else { "`or`" };
+                let op = if matches!(e.kind, ExprKind::And(..)) {
+                    "`and`"
+                } else {
+                    "`or`"
+                };
                 want(self, l, Bool, a, op);
                 want(self, r, Bool, b, op);
                 Some(Bool)
@@ -1370,34 +1687,63 @@ pub fn parse_movingai(text: &str) -> Result<(usize, usize, Vec<u8>), (usize, Str
         match (words.next(), words.next()) {
             (Some("type"), _) => {}
             (Some("height"), Some(h)) => {
-                height = Some(h.parse::<usize>().map_err(|_| (n + 1, format!("bad height `{h}`")))?)
+                height = Some(
+                    h.parse::<usize>()
+                        .map_err(|_| (n + 1, format!("bad height `{h}`")))?,
+                )
             }
             (Some("width"), Some(w)) => {
-                width = Some(w.parse::<usize>().map_err(|_| (n + 1, format!("bad width `{w}`")))?)
+                width = Some(
+                    w.parse::<usize>()
+                        .map_err(|_| (n + 1, format!("bad width `{w}`")))?,
+                )
             }
             (Some("map"), None) => break,
             (None, _) => {}
-            _ => return Err((n + 1, format!("unexpected header line `{}`", truncate(line)))),
+            _ => {
+                return Err((
+                    n + 1,
+                    format!("unexpected header line `{}`", truncate(line)),
+                ));
+            }
         }
     }
     let (Some(h), Some(w)) = (height, width) else {
         return Err((1, "the header must give `height` and `width`".into()));
     };
     if h == 0 || w == 0 || h.saturating_mul(w) > MAX_MAP_CELLS {
-        return Err((1, format!("a {w} × {h} map is empty or too large (limit {MAX_MAP_CELLS} cells)")));
+        return Err((
+            1,
+            format!("a {w} × {h} map is empty or too large (limit {MAX_MAP_CELLS} cells)"),
+        ));
     }
     let mut cells = Vec::with_capacity(w * h);
     for r in 0..h {
         let Some((n, line)) = lines.next() else {
-            return Err((n_lines(text), format!("the map has {r} rows, the header says {h}")));
+            return Err((
+                n_lines(text),
+                format!("the map has {r} rows, the header says {h}"),
+            ));
         };
         if line.chars().count() != w {
-            return Err((n + 1, format!("row {} has {} cells, the header says {w}", r + 1, line.chars().count())));
+            return Err((
+                n + 1,
+                format!(
+                    "row {} has {} cells, the header says {w}",
+                    r + 1,
+                    line.chars().count()
+                ),
+            ));
         }
         for (c, ch) in line.chars().enumerate() {
             match grid_char(ch) {
                 Some(x) => cells.push(x),
-                None => return Err((n + 1, format!("`{ch}` in column {} is not a map cell", c + 1))),
+                None => {
+                    return Err((
+                        n + 1,
+                        format!("`{ch}` in column {} is not a map cell", c + 1),
+                    ));
+                }
             }
         }
     }

@@ -39,7 +39,14 @@ pub fn load(path: &Path) -> Result<Scenario, LoadFailure> {
     match read_text(path, MAX_SCEN_BYTES, None, "scenario", &mut sources) {
         Ok(id) => {
             let mut stack = vec![canonical(path)];
-            parse_into(id, true, &mut stack, &mut sources, &mut statements, &mut diags);
+            parse_into(
+                id,
+                true,
+                &mut stack,
+                &mut sources,
+                &mut statements,
+                &mut diags,
+            );
         }
         Err(d) => diags.push(d),
     }
@@ -64,7 +71,11 @@ fn parse_into(
 ) {
     let Some(file) = sources.get(id) else { return };
     let text = file.text.clone();
-    let dir = file.path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let dir = file
+        .path
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
     let (ast, mut errors) = syntax::parse(&text, id);
     diags.append(&mut errors);
     for stmt in ast.statements {
@@ -85,12 +96,21 @@ fn parse_into(
             if stack.len() >= MAX_INCLUDE_DEPTH {
                 diags.push(
                     Diag::error("scen::load::include_depth", "includes nest too deeply")
-                        .at(*span, format!("more than {MAX_INCLUDE_DEPTH} nested includes"))
+                        .at(
+                            *span,
+                            format!("more than {MAX_INCLUDE_DEPTH} nested includes"),
+                        )
                         .help("flatten the chain of includes"),
                 );
                 continue;
             }
-            match read_text(&target, MAX_SCEN_BYTES, Some(path.span), "included", sources) {
+            match read_text(
+                &target,
+                MAX_SCEN_BYTES,
+                Some(path.span),
+                "included",
+                sources,
+            ) {
                 Ok(child) => {
                     stack.push(canon);
                     parse_into(child, false, stack, sources, out, diags);
@@ -100,10 +120,7 @@ fn parse_into(
             }
             continue;
         }
-        out.push(SourcedStmt {
-            stmt,
-            in_main_file,
-        });
+        out.push(SourcedStmt { stmt, in_main_file });
     }
 }
 
@@ -144,13 +161,15 @@ pub(crate) fn read_text(
         )
     })?;
     let mut bytes = Vec::new();
-    file.take(max_bytes + 1).read_to_end(&mut bytes).map_err(|e| {
-        fail(
-            format!("cannot read {what} file `{}`: {e}", path.display()),
-            "cannot be read",
-            "check the file's permissions",
-        )
-    })?;
+    file.take(max_bytes + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| {
+            fail(
+                format!("cannot read {what} file `{}`: {e}", path.display()),
+                "cannot be read",
+                "check the file's permissions",
+            )
+        })?;
     if bytes.len() as u64 > max_bytes {
         let id = sources.add(path, "");
         return Err(Diag::error(

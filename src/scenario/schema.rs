@@ -68,7 +68,10 @@ impl ValueSpec {
             }
             ValueSpec::IntChoice(c) => format!(
                 "one of {}",
-                c.iter().map(|x| format!("`{x}`")).collect::<Vec<_>>().join(", ")
+                c.iter()
+                    .map(|x| format!("`{x}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
             ValueSpec::Word(w) => format!("one of {}", backticked(w)),
             ValueSpec::IntOrWord(w) => format!("a positive integer or {}", backticked(w)),
@@ -102,7 +105,12 @@ pub struct ParamSpec {
     pub repeatable: bool,
 }
 
-const fn p(key: &'static str, value: ValueSpec, default: &'static str, help: &'static str) -> ParamSpec {
+const fn p(
+    key: &'static str,
+    value: ValueSpec,
+    default: &'static str,
+    help: &'static str,
+) -> ParamSpec {
     ParamSpec {
         key,
         value,
@@ -141,8 +149,23 @@ pub const COMMON_PARAMS: &[ParamSpec] = &[
         help: "give up when reached: `expansions N`, `steps N`, `time 2s`, `cells N`",
         repeatable: true,
     },
-    p("seed", ValueSpec::Number { min: 0.0, min_open: false, max: 9.007_199_254_740_992e15, integer: true }, "0", "random seed"),
-    p("drive", ValueSpec::Drive, "", "simulate a differential-drive robot following the path"),
+    p(
+        "seed",
+        ValueSpec::Number {
+            min: 0.0,
+            min_open: false,
+            max: 9.007_199_254_740_992e15,
+            integer: true,
+        },
+        "0",
+        "random seed",
+    ),
+    p(
+        "drive",
+        ValueSpec::Drive,
+        "",
+        "simulate a differential-drive robot following the path",
+    ),
 ];
 
 /// The type of a metric, for typing `expect` expressions.
@@ -220,8 +243,18 @@ impl PlannerSchema {
 
 const LATTICE_PARAMS: [ParamSpec; 3] = [
     p("cell", positive(false), "1", "lattice spacing δ in x and y"),
-    p("sample", ValueSpec::Word(&["center", "corner"]), "center", "lattice points at cell centres or corners"),
-    p("connect", ValueSpec::IntChoice(&[4, 8, 6, 26]), "8 (26 for rotating robots)", "lattice neighbours: 4 or 8 in (x, y), 6 or 26 in (x, y, θ)"),
+    p(
+        "sample",
+        ValueSpec::Word(&["center", "corner"]),
+        "center",
+        "lattice points at cell centres or corners",
+    ),
+    p(
+        "connect",
+        ValueSpec::IntChoice(&[4, 8, 6, 26]),
+        "8 (26 for rotating robots)",
+        "lattice neighbours: 4 or 8 in (x, y), 6 or 26 in (x, y, θ)",
+    ),
 ];
 
 pub const ASTAR: PlannerSchema = PlannerSchema {
@@ -236,29 +269,82 @@ pub const ASTAR: PlannerSchema = PlannerSchema {
         LATTICE_PARAMS[0],
         LATTICE_PARAMS[1],
         LATTICE_PARAMS[2],
-        p("layers", ValueSpec::IntOrWord(&["auto"]), "auto", "θ layers for rotating robots; `auto` = ⌈2πR/δ⌉"),
-        p("cost", ValueSpec::Word(&["euclid", "l1"]), "euclid", "edge cost metric"),
-        p("turn_cost", at_least(0.0, false), "R of the robot", "cost of one radian of rotation"),
-        p("weight", at_least(1.0, false), "1", "heuristic inflation w ≥ 1"),
-        p("heuristic", ValueSpec::Word(&["metric", "zero"]), "metric", "`metric` (admissible) or `zero` (Dijkstra)"),
-        p("rotate", ValueSpec::Word(&["yes", "no"]), "yes for polygons", "search in θ too"),
+        p(
+            "layers",
+            ValueSpec::IntOrWord(&["auto"]),
+            "auto",
+            "θ layers for rotating robots; `auto` = ⌈2πR/δ⌉",
+        ),
+        p(
+            "cost",
+            ValueSpec::Word(&["euclid", "l1"]),
+            "euclid",
+            "edge cost metric",
+        ),
+        p(
+            "turn_cost",
+            at_least(0.0, false),
+            "R of the robot",
+            "cost of one radian of rotation",
+        ),
+        p(
+            "weight",
+            at_least(1.0, false),
+            "1",
+            "heuristic inflation w ≥ 1",
+        ),
+        p(
+            "heuristic",
+            ValueSpec::Word(&["metric", "zero"]),
+            "metric",
+            "`metric` (admissible) or `zero` (Dijkstra)",
+        ),
+        p(
+            "rotate",
+            ValueSpec::Word(&["yes", "no"]),
+            "yes for polygons",
+            "search in θ too",
+        ),
     ],
-    metrics: &[("cells", Num), ("free_cells", Num), ("layers", Num), ("generated", Num)],
+    metrics: &[
+        ("cells", Num),
+        ("free_cells", Num),
+        ("layers", Num),
+        ("generated", Num),
+    ],
     needs_goal: true,
 };
 
 pub const ONLINE: PlannerSchema = PlannerSchema {
     kind: "online",
     summary: "navigation in an unknown world",
-    robots: &[(RobotKind::Point, Support::NotYet), (RobotKind::Disk, Support::NotYet)],
+    robots: &[
+        (RobotKind::Point, Support::NotYet),
+        (RobotKind::Disk, Support::NotYet),
+    ],
     params: &[
         LATTICE_PARAMS[0],
         LATTICE_PARAMS[1],
         LATTICE_PARAMS[2],
-        p("strategy", ValueSpec::Word(&["backtrack", "shortcut", "replan", "dstar_lite"]), "replan", "how the robot explores"),
-        p("sense", at_least(1.0, true), "1", "sensing range in cells (Chebyshev)"),
+        p(
+            "strategy",
+            ValueSpec::Word(&["backtrack", "shortcut", "replan", "dstar_lite"]),
+            "replan",
+            "how the robot explores",
+        ),
+        p(
+            "sense",
+            at_least(1.0, true),
+            "1",
+            "sensing range in cells (Chebyshev)",
+        ),
     ],
-    metrics: &[("traveled", Num), ("steps", Num), ("replans", Num), ("sensed", Num)],
+    metrics: &[
+        ("traveled", Num),
+        ("steps", Num),
+        ("replans", Num),
+        ("sensed", Num),
+    ],
     needs_goal: true,
 };
 
@@ -270,7 +356,12 @@ pub const ROADMAP: PlannerSchema = PlannerSchema {
         (RobotKind::Disk, Support::NotYet),
         (RobotKind::Polygon, Support::NotYet),
     ],
-    params: &[p("arc_segments", at_least(8.0, true), "32", "segments per full circle for grown disks")],
+    params: &[p(
+        "arc_segments",
+        at_least(8.0, true),
+        "32",
+        "segments per full circle for grown disks",
+    )],
     metrics: &[("graph_nodes", Num), ("graph_edges", Num)],
     needs_goal: true,
 };
@@ -278,15 +369,28 @@ pub const ROADMAP: PlannerSchema = PlannerSchema {
 pub const POTENTIAL: PlannerSchema = PlannerSchema {
     kind: "potential",
     summary: "potential field with random-walk escape",
-    robots: &[(RobotKind::Point, Support::NotYet), (RobotKind::Disk, Support::NotYet)],
+    robots: &[
+        (RobotKind::Point, Support::NotYet),
+        (RobotKind::Disk, Support::NotYet),
+    ],
     params: &[
         p("attract", positive(false), "1", "attractive gain η"),
         p("repulse", positive(false), "1", "repulsive gain d"),
         p("influence", positive(false), "2", "influence distance ρ0"),
         p("step", positive(false), "0.05", "step length ε"),
         p("tolerance", positive(false), "= step", "goal tolerance"),
-        p("escape", ValueSpec::Word(&["none", "random_walk"]), "random_walk", "how to leave local minima"),
-        p("jump", positive(false), "5 × influence", "longest random-walk jump"),
+        p(
+            "escape",
+            ValueSpec::Word(&["none", "random_walk"]),
+            "random_walk",
+            "how to leave local minima",
+        ),
+        p(
+            "jump",
+            positive(false),
+            "5 × influence",
+            "longest random-walk jump",
+        ),
     ],
     metrics: &[("steps", Num), ("minima", Num), ("escapes", Num)],
     needs_goal: true,
@@ -295,11 +399,29 @@ pub const POTENTIAL: PlannerSchema = PlannerSchema {
 pub const COVERAGE: PlannerSchema = PlannerSchema {
     kind: "coverage",
     summary: "spanning tree coverage of a grid",
-    robots: &[(RobotKind::Disk, Support::NotYet), (RobotKind::Polygon, Support::NotYet)],
+    robots: &[
+        (RobotKind::Disk, Support::NotYet),
+        (RobotKind::Polygon, Support::NotYet),
+    ],
     params: &[
-        p("on", ValueSpec::ObstacleName, "", "the `grid` obstacle to cover"),
-        p("tool", positive(false), "the grid's cell", "side D of the square the robot covers"),
-        p("weights", ValueSpec::Word(&["max", "sum"]), "max", "mega-cell edge weights"),
+        p(
+            "on",
+            ValueSpec::ObstacleName,
+            "",
+            "the `grid` obstacle to cover",
+        ),
+        p(
+            "tool",
+            positive(false),
+            "the grid's cell",
+            "side D of the square the robot covers",
+        ),
+        p(
+            "weights",
+            ValueSpec::Word(&["max", "sum"]),
+            "max",
+            "mega-cell edge weights",
+        ),
     ],
     metrics: &[
         ("coverage", Num),
@@ -323,7 +445,10 @@ pub fn planner(kind: &str) -> Option<&'static PlannerSchema> {
 
 /// The closest of `candidates` to `word` by edit distance, if close enough
 /// to be a likely typo.
-pub fn did_you_mean<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+pub fn did_you_mean<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
     candidates
         .into_iter()
         .map(|c| (edit_distance(word, c), c))

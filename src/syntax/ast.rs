@@ -16,9 +16,15 @@ pub struct File {
 #[derive(Clone, Debug)]
 pub enum Stmt {
     /// `scenario "title"`
-    Scenario { title: Spanned<String>, span: Span },
+    Scenario {
+        title: Spanned<String>,
+        span: Span,
+    },
     /// `include "other.scen"`
-    Include { path: Spanned<String>, span: Span },
+    Include {
+        path: Spanned<String>,
+        span: Span,
+    },
     World(WorldBlock),
     Robot(RobotDecl),
     Plan(PlanDecl),
@@ -36,7 +42,11 @@ pub struct WorldBlock {
 #[derive(Clone, Debug)]
 pub enum WorldItem {
     /// `bounds (x0, y0) (x1, y1)`
-    Bounds { min: Value, max: Value, span: Span },
+    Bounds {
+        min: Value,
+        max: Value,
+        span: Span,
+    },
     Obstacle(ObstacleDecl),
 }
 
@@ -203,13 +213,28 @@ pub enum ExprKind {
     Percent(f64),
     Bool(bool),
     /// `PLAN.METRIC`
-    Metric { plan: Ident, metric: Ident },
+    Metric {
+        plan: Ident,
+        metric: Ident,
+    },
     Neg(Box<Expr>),
     Not(Box<Expr>),
-    Arith { op: ArithOp, lhs: Box<Expr>, rhs: Box<Expr> },
-    Compare { op: CompareOp, lhs: Box<Expr>, rhs: Box<Expr> },
+    Arith {
+        op: ArithOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
+    Compare {
+        op: CompareOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
     /// `lhs ~ rhs +- tol`
-    Approx { lhs: Box<Expr>, rhs: Box<Expr>, tol: Box<Expr> },
+    Approx {
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+        tol: Box<Expr>,
+    },
     And(Box<Expr>, Box<Expr>),
     Or(Box<Expr>, Box<Expr>),
 }

@@ -132,7 +132,10 @@ impl Test {
         );
         let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
         let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-        let ctx = format!("scen {}\n--- stdout\n{stdout}\n--- stderr\n{stderr}", self.args.join(" "));
+        let ctx = format!(
+            "scen {}\n--- stdout\n{stdout}\n--- stderr\n{stderr}",
+            self.args.join(" ")
+        );
         assert_eq!(out.status.code(), Some(self.status), "exit code\n{ctx}");
         if let Some(s) = &self.stdout {
             assert_eq!(&stdout, s, "stdout\n{ctx}");
