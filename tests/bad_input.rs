@@ -22,6 +22,9 @@
 //! All cases run before the test fails, and the failure lists every case
 //! that misbehaved and how.
 
+mod common;
+
+use common::TempDir;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus, Stdio};
@@ -456,24 +459,6 @@ fn pseudo_random_bytes(seed: u64, n: usize) -> Vec<u8> {
         .collect()
 }
 
-/// A temporary folder, removed when dropped.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> TempDir {
-        let dir = std::env::temp_dir().join(format!("scen-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("a temporary folder");
-        TempDir(dir)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 #[test]
 fn generated_bad_inputs_are_reported() {
     let tmp = TempDir::new("bad-inputs");
@@ -542,10 +527,10 @@ fn generated_bad_inputs_are_reported() {
     ];
     let mut cases = Vec::new();
     for (name, bytes, code, line) in generated {
-        std::fs::write(tmp.0.join(name), bytes).expect("writing a generated input");
+        std::fs::write(tmp.path().join(name), bytes).expect("writing a generated input");
         cases.push(Case {
             file: name.to_string(),
-            dir: tmp.0.clone(),
+            dir: tmp.path().to_path_buf(),
             codes: vec![code.to_string()],
             line,
             located_in: name.to_string(),

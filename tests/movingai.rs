@@ -10,6 +10,9 @@
 //! of the paths re-checked by the validator) and the CLI (`scen run` on a
 //! generated scenario with `expect p.cost ~ OPT +- 0.0001`).
 
+mod common;
+
+use common::TempDir;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
@@ -110,24 +113,6 @@ fn read_queries(scen_file: &Path, map_file: &str, width: usize, height: usize) -
     queries
 }
 
-/// A temporary folder, removed when dropped.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> TempDir {
-        let dir = std::env::temp_dir().join(format!("scen-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("a temporary folder");
-        TempDir(dir)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 /// `grid G "MAP" cell 1 origin (0, 0)` with the map's absolute path (a
 /// scenario's paths are relative to its folder; an absolute one stays as is).
 fn grid_line(map: &Path) -> String {
@@ -153,7 +138,7 @@ fn map_size(map: &Path) -> (usize, usize) {
 
 /// The map as scen imports it: a world-only scenario loaded with the library.
 fn load_world(map: &Path, tmp: &TempDir) -> (World, Grid) {
-    let file = tmp.0.join("world.scen");
+    let file = tmp.path().join("world.scen");
     let (w, h) = map_size(map);
     let scenario = format!(
         "world {{\n  bounds (0, 0) ({w}, {h})\n  {}\n}}\n",
@@ -359,7 +344,7 @@ fn cli_finds_optimal_lengths() {
                 q.optimal,
                 q.optimal,
             );
-            let file = tmp.0.join(format!("{map_file}-{row}.scen"));
+            let file = tmp.path().join(format!("{map_file}-{row}.scen"));
             std::fs::write(&file, scenario).expect("writing the scenario");
             let out = Command::new(env!("CARGO_BIN_EXE_scen"))
                 .args(["run", "-q"])

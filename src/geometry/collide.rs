@@ -881,6 +881,7 @@ fn grow(b: Aabb, by: f64) -> Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::fixtures::{grid, rect};
     use crate::geometry::validator::{Validator, config_collision};
     use crate::geometry::{Config, ConvexPolygon, Grid, Obstacle, RobotShape};
     use proptest::prelude::*;
@@ -906,28 +907,10 @@ mod tests {
         }
     }
 
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
-        Shape::Rect(Aabb::from_corners(p(x0, y0), p(x1, y1)))
-    }
-
     fn polygon_shape(v: &[Point]) -> Option<Shape> {
         let outline = polygon::normalize_simple_polygon(v).ok()?;
         let pieces = polygon::convex_decomposition(&outline);
         Some(Shape::Polygon { outline, pieces })
-    }
-
-    fn grid(cell: f64, origin: Point, rows: &[&str]) -> Shape {
-        let cells = rows
-            .iter()
-            .flat_map(|r| r.chars().map(|ch| if ch == '#' { 0 } else { 1 }))
-            .collect();
-        Shape::Grid(Grid {
-            cell,
-            origin,
-            width: rows[0].len(),
-            height: rows.len(),
-            cells,
-        })
     }
 
     #[test]

@@ -5,6 +5,8 @@
 
 pub mod collide;
 pub mod cspace;
+#[cfg(test)]
+mod fixtures;
 pub mod minkowski;
 pub mod polygon;
 pub mod validator;

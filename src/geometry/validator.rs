@@ -1017,6 +1017,7 @@ fn aabbs_meet(a: &Aabb, b: &Aabb) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::fixtures::{grid, rect};
     use crate::geometry::{ConvexPolygon, Obstacle};
     use proptest::prelude::*;
 
@@ -1044,30 +1045,11 @@ mod tests {
         }
     }
 
-    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
-        Shape::Rect(Aabb::from_corners(p(x0, y0), p(x1, y1)))
-    }
-
     fn polygon_shape(v: &[(f64, f64)]) -> Shape {
         let pts: Vec<Point> = v.iter().map(|&(x, y)| p(x, y)).collect();
         let outline = polygon::normalize_simple_polygon(&pts).unwrap();
         let pieces = polygon::convex_decomposition(&outline);
         Shape::Polygon { outline, pieces }
-    }
-
-    /// A grid from rows of `#` (blocked) and `.` (free), top row first.
-    fn grid(cell: f64, origin: Point, rows: &[&str]) -> Shape {
-        let cells = rows
-            .iter()
-            .flat_map(|r| r.chars().map(|ch| if ch == '#' { 0 } else { 1 }))
-            .collect();
-        Shape::Grid(Grid {
-            cell,
-            origin,
-            width: rows[0].len(),
-            height: rows.len(),
-            cells,
-        })
     }
 
     fn rod() -> RobotShape {
