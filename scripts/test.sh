@@ -15,4 +15,8 @@ fi
 export PATH="$PWD/$venv/bin:$PATH"
 export SCEN_RERUN="$PWD/$venv/bin/rerun"
 
+# Property tests draw from a fixed seed here, so that a CI run is
+# reproducible; unset PROPTEST_RNG_SEED (or set another) to explore new cases.
+export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}"
+
 cargo test --release "$@"

@@ -1,4 +1,5 @@
 //! `astar` (SPEC 3.1) for point and disk robots: A* on the (x, y) lattice.
+//! Polygon robots go to [`super::astar_rotating`] ((x, y, θ) lattice).
 //!
 //! A lattice point is free when the robot placed there overlaps no obstacle
 //! interior. An edge joins two free neighbours and is used only if the
@@ -366,12 +367,7 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     let radius = match robot {
         RobotShape::Point => 0.0,
         RobotShape::Disk(r) => *r,
-        RobotShape::Polygon(_) => {
-            return PlanOutcome {
-                notes: vec!["`astar` for polygon robots is not implemented yet".into()],
-                ..PlanOutcome::default()
-            };
-        }
+        RobotShape::Polygon(p) => return super::astar_rotating::plan(world, p, params),
     };
     let spec = LatticeSpec::from_params(world, robot, params);
     let cfg = SearchConfig::from_params(params);

@@ -56,4 +56,5 @@ pub struct Trace {
 }
 
 pub mod astar;
+pub mod astar_rotating;
 pub mod lattice;

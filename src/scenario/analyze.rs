@@ -872,7 +872,7 @@ impl Analyzer {
                         ),
                     )
                     .at(p.kind.span, "not implemented yet")
-                    .help("implemented so far: `astar` for point and disk robots"),
+                    .help("implemented so far: `astar` for point, disk and polygon robots"),
                 );
             }
             Some((_, Support::Yes)) => {}
@@ -1181,6 +1181,7 @@ impl Analyzer {
                 self.check_pose(world, robot, g, gs.span, "goal");
             }
             if schema.kind == "astar" {
+                self.check_connect(robot, &params);
                 self.check_lattice_size(world, robot, &params, p)?;
             }
             if schema.kind == "coverage" {
@@ -1266,8 +1267,14 @@ impl Analyzer {
                 };
                 // `connect` depends on the lattice: (x, y) or (x, y, θ).
                 let rotating = robot.is_some_and(|r| r.shape.rotates());
+                // A rotating robot may also take 4 or 8 with `rotate no`
+                // (checked once all parameters are known: `check_connect`).
                 let allowed: Vec<i64> = if spec.key == "connect" {
-                    if rotating { vec![6, 26] } else { vec![4, 8] }
+                    if rotating {
+                        vec![6, 26, 4, 8]
+                    } else {
+                        vec![4, 8]
+                    }
                 } else {
                     choices.to_vec()
                 };
@@ -1281,7 +1288,7 @@ impl Analyzer {
                         .join(" or ");
                     let why = if spec.key == "connect" {
                         if rotating {
-                            " for a rotating robot's (x, y, θ) lattice"
+                            " (6 or 26 for a rotating robot's (x, y, θ) lattice, 4 or 8 with `rotate no`)"
                         } else {
                             " for an (x, y) lattice"
                         }
@@ -1397,6 +1404,43 @@ impl Analyzer {
                 .help(format!(
                     "move the {which} so that the robot's body is clear of every obstacle"
                 )),
+            );
+        }
+    }
+
+    /// `connect` of a rotating robot: 6 or 26 on its (x, y, θ) lattice, 4
+    /// or 8 with `rotate no` (an (x, y) lattice at the start's θ).
+    fn check_connect(&mut self, robot: &Robot, params: &Params) {
+        let (Some(c), true) = (params.values.get("connect"), robot.shape.rotates()) else {
+            return;
+        };
+        let ParamValue::Num(x) = c.value else {
+            return;
+        };
+        let fixed = params.word("rotate") == Some("no");
+        let (ok, list, lattice, help) = if fixed {
+            (
+                x == 4.0 || x == 8.0,
+                "`4` or `8`",
+                "with `rotate no` (an (x, y) lattice at the start's θ)",
+                "use `connect 4` or `connect 8`, or remove `rotate no`",
+            )
+        } else {
+            (
+                x == 6.0 || x == 26.0,
+                "`6` or `26`",
+                "for a rotating robot's (x, y, θ) lattice",
+                "use `connect 6` or `connect 26`, or add `rotate no` to plan in (x, y) at the start's θ",
+            )
+        };
+        if !ok {
+            self.error(
+                Diag::error(
+                    "scen::analyze::out_of_range",
+                    format!("`connect` must be {list} {lattice}, got {x}"),
+                )
+                .at(c.span, "not accepted")
+                .help(help),
             );
         }
     }

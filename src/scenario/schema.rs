@@ -263,7 +263,7 @@ pub const ASTAR: PlannerSchema = PlannerSchema {
     robots: &[
         (RobotKind::Point, Support::Yes),
         (RobotKind::Disk, Support::Yes),
-        (RobotKind::Polygon, Support::NotYet),
+        (RobotKind::Polygon, Support::Yes),
     ],
     params: &[
         LATTICE_PARAMS[0],

@@ -1,0 +1,956 @@
+//! `astar` (SPEC 3.1) for convex polygon robots: A* on the (x, y, θ)
+//! lattice (or on the (x, y) lattice at the start's θ with `rotate no`).
+//!
+//! # Lattice
+//! x and y as in `sample` ([`LatticeSpec`]); θ_k = k·2π/N for the N layers
+//! (`rotate no`: one layer at the start's θ). A configuration is free when
+//! its (x, y) is not in the interior of a C-obstacle of its layer
+//! ([`CLayer::contains_interior`]).
+//!
+//! # Moves
+//! A move is (dx, dy, dk) in lattice steps; `connect 6` has ±x, ±y, ±θ,
+//! `connect 26` the whole 3×3×3 block minus the centre, `connect 4` / `8`
+//! (`rotate no`) the (x, y) moves of one layer. θ wraps (layer N−1
+//! neighbours layer 0). No corner cutting: a move with dx ≠ 0 and dy ≠ 0
+//! needs (x+dx, y) and (x, y+dy) free in the start layer k *and* in the end
+//! layer k+dk.
+//!
+//! # Sound edges
+//! An edge is used only if the robot's motion along it passes the validator
+//! (SPEC 3.0), decided once per edge and direction, lazily:
+//! * a translation within a layer: the segment between the two (x, y)
+//!   points must not penetrate any C-obstacle of the layer deeper than
+//!   `TOUCH_EPS / 2` ([`segment_depth`], separating axes over the
+//!   C-obstacle's edges and the segment's normal). The penetration depth of
+//!   the segment into `B ⊕ (−A(θ))` equals that of the swept body (the hull
+//!   of the robot's two end bodies) into `B`, which is what the validator
+//!   measures; the halved threshold absorbs rounding.
+//! * a rotation (alone or with a translation): first a conservative quick
+//!   test: every body point, during the motion, stays within
+//!   r = R·α²/8 (α the rotation) of the hull H of the two end bodies, and so
+//!   do the validator's sub-step hulls; if H is at least r away from every
+//!   obstacle piece (a separating axis with a gap ≥ r), the motion passes.
+//!   Otherwise the validator itself decides on the 2-configuration path.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::f64::consts::TAU;
+use std::time::Instant;
+
+use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
+use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
+use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World};
+use crate::geometry::{angle_diff, polygon};
+use crate::scenario::Params;
+
+use super::astar::CostMetric;
+use super::lattice::LatticeSpec;
+use super::{MetricValue, PlanOutcome};
+
+/// One lattice move.
+#[derive(Clone, Copy, Debug)]
+struct Move {
+    dx: i64,
+    dy: i64,
+    dk: i64,
+    cost: f64,
+}
+
+/// The moves of a `connect` value on a lattice of `layers` layers. A move
+/// in θ exists only for N ≥ 2; for N = 2, +1 and −1 reach the same layer
+/// by the same motion (a half turn, +π along [`angle_diff`]), so only +1
+/// is kept.
+fn moves(connect: u8, layers: usize, rotating: bool) -> Vec<(i64, i64, i64)> {
+    let mut out = Vec::new();
+    let full = matches!(connect, 8 | 26);
+    for dk in [0i64, 1, -1] {
+        if dk != 0 && (!rotating || layers < 2 || (layers == 2 && dk == -1)) {
+            continue;
+        }
+        for (dx, dy) in [
+            (0i64, 0i64),
+            (1, 0),
+            (0, 1),
+            (-1, 0),
+            (0, -1),
+            (1, 1),
+            (-1, 1),
+            (-1, -1),
+            (1, -1),
+        ] {
+            if dx == 0 && dy == 0 && dk == 0 {
+                continue;
+            }
+            let axes = usize::from(dx != 0) + usize::from(dy != 0) + usize::from(dk != 0);
+            if axes > 1 && !full {
+                continue;
+            }
+            out.push((dx, dy, dk));
+        }
+    }
+    out
+}
+
+/// The cost metric in (x, y, θ): `dt` is `c·|dθ|` already.
+fn metric(cost: CostMetric, dx: f64, dy: f64, dt: f64) -> f64 {
+    match cost {
+        CostMetric::Euclid => (dx * dx + dy * dy + dt * dt).sqrt(),
+        CostMetric::L1 => dx.abs() + dy.abs() + dt.abs(),
+    }
+}
+
+/// The penetration depth of the segment `p`–`q` into the convex polygon
+/// `poly` (counter-clockwise, at least 3 vertices): the smallest
+/// translation that separates them, over the separating axes (the
+/// polygon's edge normals and the segment's normal). ≤ 0 when they are
+/// apart or touch.
+pub fn segment_depth(p: Point, q: Point, poly: &[Point]) -> f64 {
+    let mut depth = f64::INFINITY;
+    let mut axis = |nx: f64, ny: f64| {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for v in poly {
+            let s = nx * v.x + ny * v.y;
+            lo = lo.min(s);
+            hi = hi.max(s);
+        }
+        let (a, b) = (nx * p.x + ny * p.y, nx * q.x + ny * q.y);
+        let d = (hi - a.min(b)).min(a.max(b) - lo);
+        depth = depth.min(d);
+    };
+    for i in 0..poly.len() {
+        let d = poly[(i + 1) % poly.len()] - poly[i];
+        let len = d.norm();
+        if len > 0.0 {
+            axis(d.y / len, -d.x / len);
+        }
+    }
+    let d = q - p;
+    let len = d.norm();
+    if len > 0.0 {
+        axis(d.y / len, -d.x / len);
+    }
+    depth
+}
+
+/// A lower bound on the distance between the convex point sets `a` and `b`
+/// (polygons, segments or points): the largest gap between their
+/// projections on the edge normals of both. ≤ 0 when no such axis
+/// separates them.
+fn separation(a: &[Point], b: &[Point]) -> f64 {
+    let mut best = f64::NEG_INFINITY;
+    let mut axis = |nx: f64, ny: f64| {
+        let proj = |pts: &[Point]| {
+            pts.iter()
+                .map(|v| nx * v.x + ny * v.y)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+                    (lo.min(s), hi.max(s))
+                })
+        };
+        let ((alo, ahi), (blo, bhi)) = (proj(a), proj(b));
+        best = best.max(blo - ahi).max(alo - bhi);
+    };
+    for pts in [a, b] {
+        let n = pts.len();
+        if n < 2 {
+            continue;
+        }
+        let edges = if n == 2 { 1 } else { n };
+        for i in 0..edges {
+            let d = pts[(i + 1) % n] - pts[i];
+            let len = d.norm();
+            if len > 0.0 {
+                axis(d.y / len, -d.x / len);
+            }
+        }
+    }
+    best
+}
+
+fn bbox(pts: &[Point]) -> Aabb {
+    let mut b = Aabb {
+        min: pts[0],
+        max: pts[0],
+    };
+    for p in pts {
+        b.min = Point::new(b.min.x.min(p.x), b.min.y.min(p.y));
+        b.max = Point::new(b.max.x.max(p.x), b.max.y.max(p.y));
+    }
+    b
+}
+
+fn boxes_meet(a: &Aabb, b: &Aabb, margin: f64) -> bool {
+    a.min.x <= b.max.x + margin
+        && b.min.x <= a.max.x + margin
+        && a.min.y <= b.max.y + margin
+        && b.min.y <= a.max.y + margin
+}
+
+/// The (x, y, θ) lattice of one plan, its free configurations and the
+/// edge cache.
+struct Lattice<'w> {
+    spec: LatticeSpec,
+    thetas: Vec<f64>,
+    layers: Vec<CLayer>,
+    /// Per layer, the bounding box of each C-obstacle.
+    layer_boxes: Vec<Vec<Aabb>>,
+    /// The obstacle pieces with their bounding boxes (quick rotation test).
+    pieces: Vec<(Vec<Point>, Aabb)>,
+    free: Vec<bool>,
+    moves: Vec<Move>,
+    /// Per node, bit m: the edge along move m was checked / passed.
+    edge_checked: Vec<u32>,
+    edge_ok: Vec<u32>,
+    shape: RobotShape,
+    radius: f64,
+    validator: Validator<'w>,
+}
+
+impl Lattice<'_> {
+    fn layer_len(&self) -> usize {
+        self.spec.layer_len()
+    }
+
+    fn coords(&self, node: usize) -> (usize, usize, usize) {
+        let n = self.layer_len();
+        let (i, j) = self.spec.coords(node % n);
+        (i, j, node / n)
+    }
+
+    fn config(&self, node: usize) -> Config {
+        let (i, j, k) = self.coords(node);
+        let p = self.spec.point(i, j);
+        Config::new(p.x, p.y, self.thetas[k])
+    }
+
+    /// Whether the translation from `p` to `q` in layer `k` passes.
+    fn translation_free(&self, k: usize, p: Point, q: Point) -> bool {
+        let seg = bbox(&[p, q]);
+        let layer = &self.layers[k];
+        layer
+            .c_obstacles
+            .iter()
+            .zip(&self.layer_boxes[k])
+            .all(|(c, b)| {
+                !boxes_meet(b, &seg, 0.0) || segment_depth(p, q, &c.vertices) <= 0.5 * TOUCH_EPS
+            })
+    }
+
+    /// Whether the motion from `a` to `b` (a rotation, maybe with a
+    /// translation) passes the validator; the quick test first.
+    fn rotation_free(&self, a: Config, b: Config) -> bool {
+        let alpha = angle_diff(a.theta, b.theta).abs();
+        let r = self.radius * alpha * alpha / 8.0;
+        let mut pts = self.shape.placed_vertices(a);
+        pts.extend(self.shape.placed_vertices(b));
+        let hull = polygon::convex_hull(&pts);
+        if hull.len() >= 3 {
+            let hb = bbox(&hull);
+            let clear = self
+                .pieces
+                .iter()
+                .all(|(piece, pb)| !boxes_meet(pb, &hb, r + 1e-6) || separation(&hull, piece) >= r);
+            if clear {
+                return true;
+            }
+        }
+        self.validator
+            .validate_path(&self.shape, &[a, b], DEFAULT_TOLERANCE)
+            .is_ok()
+    }
+
+    /// Whether the edge along move `m` from `node` to `to` is usable.
+    fn edge_free(&mut self, node: usize, m: usize, to: usize) -> bool {
+        let bit = 1u32 << m;
+        if self.edge_checked[node] & bit == 0 {
+            let (a, b) = (self.config(node), self.config(to));
+            let ok = if self.moves[m].dk == 0 {
+                let (_, _, k) = self.coords(node);
+                self.translation_free(k, a.xy(), b.xy())
+            } else {
+                self.rotation_free(a, b)
+            };
+            self.edge_checked[node] |= bit;
+            if ok {
+                self.edge_ok[node] |= bit;
+            }
+        }
+        self.edge_ok[node] & bit != 0
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Open {
+    f: f64,
+    g: f64,
+    node: u32,
+}
+
+impl PartialEq for Open {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Open {}
+impl PartialOrd for Open {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Open {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // Lowest f first, then highest g, then lowest index.
+        other
+            .f
+            .total_cmp(&self.f)
+            .then(self.g.total_cmp(&other.g))
+            .then(other.node.cmp(&self.node))
+    }
+}
+
+/// Runs an `astar` plan for a convex polygon robot.
+pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcome {
+    let began = Instant::now();
+    let shape = RobotShape::Polygon(robot.clone());
+    let radius = shape.radius();
+    let rotating = params.word("rotate") != Some("no");
+    let spec = LatticeSpec::from_params(world, &shape, params);
+    let start = params.start;
+    let goal = params.goal.unwrap_or(start);
+    let n_layers = spec.layers.max(1);
+    let thetas: Vec<f64> = if rotating {
+        (0..n_layers).map(|k| layer_angle(k, n_layers)).collect()
+    } else {
+        vec![start.theta]
+    };
+    let cost = match params.word("cost") {
+        Some("l1") => CostMetric::L1,
+        _ => CostMetric::Euclid,
+    };
+    let turn_cost = params.num("turn_cost").unwrap_or(radius);
+    let weight = params.num("weight").unwrap_or(1.0);
+    let use_h = params.word("heuristic") != Some("zero");
+    let connect = match params.num("connect").map(|c| c as u8) {
+        Some(c) if rotating => c,
+        Some(6) | Some(4) => 4,
+        Some(_) => 8,
+        None if rotating => 26,
+        None => 8,
+    };
+    let step = if rotating { TAU / n_layers as f64 } else { 0.0 };
+    // The rotation of |dk| = 1: the shorter arc (π for two layers).
+    let dtheta = step.min(TAU - step);
+    let cell = spec.cell;
+    let moves: Vec<Move> = moves(connect, n_layers, rotating)
+        .into_iter()
+        .map(|(dx, dy, dk)| Move {
+            dx,
+            dy,
+            dk,
+            cost: metric(
+                cost,
+                dx as f64 * cell,
+                dy as f64 * cell,
+                turn_cost * dk.abs() as f64 * dtheta,
+            ),
+        })
+        .collect();
+
+    let mut out = PlanOutcome::default();
+    out.extra
+        .insert("cells".into(), MetricValue::Num(spec.cells_f64()));
+    out.extra
+        .insert("layers".into(), MetricValue::Num(thetas.len() as f64));
+    let pieces = ObstaclePieces::new(world);
+    let layers: Vec<CLayer> = if rotating {
+        pieces.layers(robot, n_layers)
+    } else {
+        vec![pieces.layer(robot, start.theta)]
+    };
+    if !rotating {
+        out.trace.grown_obstacles = layers[0]
+            .c_obstacles
+            .iter()
+            .map(|c| c.vertices.clone())
+            .collect();
+    }
+    let n = spec.layer_len();
+    let total = n * layers.len();
+    let mut free = vec![false; total];
+    {
+        use rayon::prelude::*;
+        free.par_chunks_mut(n.max(1))
+            .zip(layers.par_iter())
+            .for_each(|(chunk, layer)| {
+                for (idx, f) in chunk.iter_mut().enumerate() {
+                    let (i, j) = spec.coords(idx);
+                    *f = !layer.contains_interior(spec.point(i, j));
+                }
+            });
+    }
+    let free_count = free.iter().filter(|f| **f).count();
+    out.extra
+        .insert("free_cells".into(), MetricValue::Num(free_count as f64));
+    out.extra.insert("generated".into(), MetricValue::Num(0.0));
+    let layer_boxes = layers
+        .iter()
+        .map(|l| l.c_obstacles.iter().map(|c| bbox(&c.vertices)).collect())
+        .collect();
+    let piece_list = pieces
+        .pieces
+        .iter()
+        .map(|p| (p.points.clone(), bbox(&p.points)))
+        .collect();
+    let mut lat = Lattice {
+        spec,
+        thetas,
+        layers,
+        layer_boxes,
+        pieces: piece_list,
+        free,
+        moves,
+        edge_checked: vec![0; total],
+        edge_ok: vec![0; total],
+        shape,
+        radius,
+        validator: Validator::new(world),
+    };
+
+    let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
+        out.notes
+            .push("the lattice is empty: `cell` is larger than the bounds".into());
+        return out;
+    };
+    let nearest_layer = |theta: f64| -> usize {
+        if rotating {
+            ((theta.rem_euclid(TAU) / step).round() as usize) % n_layers
+        } else {
+            0
+        }
+    };
+    let s_node = nearest_layer(start.theta) * n + spec.index(s.0, s.1);
+    let g_node = nearest_layer(goal.theta) * n + spec.index(g.0, g.1);
+    let (s_cfg, g_cfg) = (lat.config(s_node), lat.config(g_node));
+    let connects = |lat: &Lattice, a: Config, b: Config| {
+        lat.validator
+            .validate_path(&lat.shape, &[a, b], DEFAULT_TOLERANCE)
+            .is_ok()
+    };
+    let mut blocked_end = None;
+    if !lat.free[s_node] || !connects(&lat, start, s_cfg) {
+        blocked_end = Some("start");
+    } else if !lat.free[g_node] || !connects(&lat, g_cfg, goal) {
+        blocked_end = Some("goal");
+    }
+    if let Some(end) = blocked_end {
+        out.notes.push(format!(
+            "the {end} could not be connected to its nearest lattice configuration: make `cell` smaller, use more `layers`, or move the {end}"
+        ));
+        return out;
+    }
+    // The cost of the motion between two configurations, in the metric.
+    let cost_between = |a: Config, b: Config| {
+        metric(
+            cost,
+            b.x - a.x,
+            b.y - a.y,
+            turn_cost * angle_diff(a.theta, b.theta).abs(),
+        )
+    };
+
+    // ------------------------------------------------------------ search
+    let (gi, gj, gk) = lat.coords(g_node);
+    let gpt = spec.point(gi, gj);
+    let h = |i: i64, j: i64, k: usize| -> f64 {
+        if !use_h {
+            return 0.0;
+        }
+        let dk = k.abs_diff(gk);
+        let dk = dk.min(n_layers - dk);
+        let dt = if rotating {
+            turn_cost * (dk as f64 * step).min(TAU - dk as f64 * step)
+        } else {
+            0.0
+        };
+        weight
+            * metric(
+                cost,
+                spec.x0 + i as f64 * cell - gpt.x,
+                spec.y0 + j as f64 * cell - gpt.y,
+                dt,
+            )
+    };
+    let (nx, ny, nl) = (spec.nx as i64, spec.ny as i64, lat.layers.len() as i64);
+    let mut gs = vec![f64::INFINITY; total];
+    let mut parent = vec![u32::MAX; total];
+    // 0 unseen, 1 open, 2 closed.
+    let mut mark = vec![0u8; total];
+    let mut heap = BinaryHeap::new();
+    gs[s_node] = 0.0;
+    mark[s_node] = 1;
+    {
+        let (i, j, k) = lat.coords(s_node);
+        heap.push(Open {
+            f: h(i as i64, j as i64, k),
+            g: 0.0,
+            node: s_node as u32,
+        });
+    }
+    let mut expanded = 0u64;
+    let mut generated = 1u64;
+    let mut gave_up = false;
+    let mut found = None;
+    let limits = params.limits;
+    while let Some(Open { g, node, .. }) = heap.pop() {
+        let node = node as usize;
+        if mark[node] == 2 || g > gs[node] {
+            continue;
+        }
+        if limits.expansions.is_some_and(|max| expanded >= max) {
+            gave_up = true;
+            break;
+        }
+        if let Some(t) = limits.time
+            && expanded.is_multiple_of(256)
+            && began.elapsed().as_secs_f64() > t
+        {
+            gave_up = true;
+            break;
+        }
+        mark[node] = 2;
+        expanded += 1;
+        out.trace.expansions.push(lat.config(node));
+        if node == g_node {
+            found = Some(g);
+            break;
+        }
+        let (i, j, k) = lat.coords(node);
+        let (i, j, k) = (i as i64, j as i64, k as i64);
+        for m in 0..lat.moves.len() {
+            let mv = lat.moves[m];
+            let (ni, nj) = (i + mv.dx, j + mv.dy);
+            if ni < 0 || nj < 0 || ni >= nx || nj >= ny {
+                continue;
+            }
+            let nk = (k + mv.dk).rem_euclid(nl);
+            let at = |i: i64, j: i64, k: i64| (k * nx * ny + j * nx + i) as usize;
+            let to = at(ni, nj, nk);
+            if !lat.free[to] || mark[to] == 2 {
+                continue;
+            }
+            if mv.dx != 0
+                && mv.dy != 0
+                && !(lat.free[at(ni, j, k)]
+                    && lat.free[at(i, nj, k)]
+                    && lat.free[at(ni, j, nk)]
+                    && lat.free[at(i, nj, nk)])
+            {
+                continue;
+            }
+            let ng = g + mv.cost;
+            if mark[to] == 1 && ng >= gs[to] {
+                continue;
+            }
+            if !lat.edge_free(node, m, to) {
+                continue;
+            }
+            if mark[to] == 0 {
+                generated += 1;
+            }
+            mark[to] = 1;
+            gs[to] = ng;
+            parent[to] = node as u32;
+            heap.push(Open {
+                f: ng + h(ni, nj, nk as usize),
+                g: ng,
+                node: to as u32,
+            });
+        }
+    }
+    out.expanded = expanded;
+    out.gave_up = gave_up;
+    out.extra
+        .insert("generated".into(), MetricValue::Num(generated as f64));
+    match found {
+        Some(g) => {
+            let mut nodes = vec![g_node];
+            let mut cur = g_node;
+            while parent[cur] != u32::MAX {
+                cur = parent[cur] as usize;
+                nodes.push(cur);
+            }
+            nodes.reverse();
+            let mut path = vec![start];
+            path.extend(nodes.iter().map(|&n| lat.config(n)));
+            path.push(goal);
+            path.dedup();
+            out.cost = Some(cost_between(start, s_cfg) + g + cost_between(g_cfg, goal));
+            out.path = Some(path);
+        }
+        None if gave_up => out.notes.push("a limit was reached before the goal".into()),
+        None => {}
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::validator::validate_path;
+    use crate::geometry::{Obstacle, Shape};
+    use crate::scenario::{Scenario, loader};
+    use proptest::prelude::*;
+    use std::sync::atomic::{AtomicUsize, Ordering as AtomicOrdering};
+
+    const APARTMENT: &str = "world {
+  bounds (0, 0) (32, 30)
+  rect B01 (0, 29) (32, 30)
+  rect B02 (0, 0)  (1, 30)
+  rect B03 (0, 0)  (32, 1)
+  rect B04 (31, 0) (32, 30)
+  rect B1  (0, 18) (10, 19)
+  rect B2  (17, 17) (18, 29)
+  rect B3  (25, 18) (32, 19)
+  rect B4  (0, 14) (19, 15)
+  rect B5  (24, 13) (32, 15)
+  rect B6  (10, 19) (12, 20)
+  rect B7  (23, 19) (25, 20)
+}
+robot rod polygon [(0,0), (8,0), (8,1), (0,1)]
+";
+
+    /// Loads a scenario from text (written to a fresh temporary file).
+    fn load(text: &str) -> Scenario {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, AtomicOrdering::SeqCst);
+        let path = std::env::temp_dir().join(format!(
+            "scen-astar-rotating-{}-{n}.scen",
+            std::process::id()
+        ));
+        std::fs::write(&path, text).expect("write the scenario");
+        let s = loader::load(&path);
+        let _ = std::fs::remove_file(&path);
+        match s {
+            Ok(s) => s,
+            Err(f) => panic!("{:?}", f.diags),
+        }
+    }
+
+    /// Runs every plan of the scenario; every path must pass the validator.
+    fn run(text: &str) -> Vec<PlanOutcome> {
+        let s = load(text);
+        s.plans
+            .iter()
+            .map(|p| {
+                let robot = &s.robots[p.robot].shape;
+                let RobotShape::Polygon(poly) = robot else {
+                    panic!("a polygon robot");
+                };
+                let out = plan(&s.world, poly, &p.params);
+                if let Some(path) = &out.path {
+                    assert_eq!(path.first(), Some(&p.params.start));
+                    assert_eq!(path.last(), p.params.goal.as_ref());
+                    if let Err(e) = validate_path(&s.world, robot, path, DEFAULT_TOLERANCE) {
+                        panic!("plan {}: the path fails the validator: {e:?}", p.name);
+                    }
+                }
+                out
+            })
+            .collect()
+    }
+
+    fn apartment_plan(name: &str, extra: &str) -> String {
+        format!(
+            "scenario \"t\"\n{APARTMENT}plan {name} astar rod {{\n  start (4, 24, 0deg)\n  goal (4, 8, 0deg)\n  {extra}\n}}\n"
+        )
+    }
+
+    #[test]
+    fn apartment_paths_pass_the_validator() {
+        let mut text = format!("scenario \"t\"\n{APARTMENT}");
+        let variants = [
+            "layers 51 connect 6 cost l1 turn_cost 1",
+            "layers 70 connect 6 cost l1 turn_cost 1",
+            "layers 51 connect 6 cost l1 turn_cost 1 sample corner",
+            "layers 51",
+            "layers 40 sample corner cost l1",
+            "layers 60 connect 26 weight 3",
+            "cell 0.6666666666666666 layers 76 connect 26",
+            "cell 0.5 layers 7 connect 26",
+            "cell 0.5 layers 2 connect 26",
+            "layers 51 heuristic zero connect 6",
+        ];
+        for (i, v) in variants.iter().enumerate() {
+            text += &format!(
+                "plan p{i} astar rod {{\n start (4, 24, 0deg)\n goal (4, 8, 0deg)\n {v}\n}}\n"
+            );
+        }
+        let outs = run(&text);
+        assert!(
+            outs[0].path.is_none(),
+            "SEEDS: no path with centres and 51 layers"
+        );
+        assert!(outs[1].path.is_some());
+        assert!(outs[2].path.is_some());
+        for o in &outs {
+            assert!(o.expanded > 0);
+        }
+    }
+
+    #[test]
+    fn heuristic_zero_finds_the_same_cost() {
+        let outs = run(&format!(
+            "scenario \"t\"\n{APARTMENT}{}{}",
+            "plan a astar rod { start (4, 24, 0deg) goal (4, 8, 0deg) layers 70 connect 6 cost l1 turn_cost 1 }\n",
+            "plan b astar rod { start (4, 24, 0deg) goal (4, 8, 0deg) layers 70 connect 6 cost l1 turn_cost 1 heuristic zero }\n",
+        ));
+        let (a, b) = (outs[0].cost.unwrap(), outs[1].cost.unwrap());
+        assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+        assert!(outs[1].expanded > outs[0].expanded);
+    }
+
+    #[test]
+    fn rotate_no_is_a_search_in_one_layer() {
+        // The rod at 0deg in a room with a pillar: `rotate no` (4 or 8
+        // neighbours) equals one layer at θ = 0 (6 / 26 neighbours without
+        // θ moves).
+        let world = "world {
+  bounds (0, 0) (30, 20)
+  rect P (10, 5) (14, 16)
+  rect Q (18, 0) (20, 9)
+}
+robot rod polygon [(0,0), (8,0), (8,1), (0,1)]
+";
+        for (a, b) in [("4", "6"), ("8", "26")] {
+            let outs = run(&format!(
+                "scenario \"t\"\n{world}plan a astar rod {{ start (1, 2, 0deg) goal (21, 17, 0deg) rotate no connect {a} }}\nplan b astar rod {{ start (1, 2, 0deg) goal (21, 17, 0deg) layers 1 connect {b} }}\n"
+            ));
+            let (ca, cb) = (outs[0].cost.unwrap(), outs[1].cost.unwrap());
+            assert_eq!(ca, cb);
+            assert_eq!(outs[0].expanded, outs[1].expanded);
+            assert_eq!(outs[0].extra["layers"], MetricValue::Num(1.0));
+            let path = outs[0].path.as_ref().unwrap();
+            assert!(path.iter().all(|c| c.theta == 0.0));
+        }
+        // At another fixed θ the path keeps that θ.
+        let outs = run(&format!(
+            "scenario \"t\"\n{world}plan a astar rod {{ start (1, 10, 10deg) goal (22, 10, 10deg) rotate no }}\n"
+        ));
+        let path = outs[0].path.as_ref().unwrap();
+        let theta = 10f64.to_radians();
+        assert!(path.iter().all(|c| (c.theta - theta).abs() < 1e-12));
+    }
+
+    /// A wall with a gap of `gap` around x = 10: the rod (8 long) must stand
+    /// up to pass.
+    fn corridor(gap: f64) -> String {
+        let (l, r) = (10.0 - gap / 2.0, 10.0 + gap / 2.0);
+        format!(
+            "scenario \"t\"
+world {{
+  bounds (0, 0) (20, 30)
+  rect L (0, 14.5) ({l}, 15.5)
+  rect R ({r}, 14.5) (20, 15.5)
+}}
+robot rod polygon [(0,0), (8,0), (8,1), (0,1)]
+plan p astar rod {{ start (4, 4, 0deg) goal (4, 24, 0deg) layers 32 }}
+plan q astar rod {{ start (4, 4, 0deg) goal (4, 24, 0deg) layers 32 rotate no }}
+"
+        )
+    }
+
+    #[test]
+    fn the_rod_must_rotate_to_pass_the_gap() {
+        let outs = run(&corridor(3.0));
+        let path = outs[0].path.as_ref().expect("a path through the gap");
+        let turn: f64 = path
+            .windows(2)
+            .map(|w| angle_diff(w[0].theta, w[1].theta).abs())
+            .sum();
+        assert!(turn > 2.0, "turn {turn}");
+        assert!(
+            outs[1].path.is_none(),
+            "without rotating the rod cannot pass"
+        );
+        assert!(outs[1].notes.is_empty());
+    }
+
+    #[test]
+    fn a_gap_narrower_than_the_rod_is_unreachable() {
+        let outs = run(&corridor(0.9));
+        assert!(outs[0].path.is_none());
+        assert!(!outs[0].gave_up);
+        assert!(outs[0].notes.is_empty());
+        assert!(outs[0].expanded > 1000);
+    }
+
+    #[test]
+    fn limits_give_up() {
+        let outs = run(&apartment_plan("p", "layers 51 limit expansions 100"));
+        assert!(outs[0].path.is_none());
+        assert!(outs[0].gave_up);
+        assert_eq!(outs[0].expanded, 100);
+    }
+
+    #[test]
+    fn a_blocked_snapped_start_is_named() {
+        // The rod lies just below the ceiling piece C; the nearest lattice
+        // point (y = 2.5) would put it into C.
+        let text = "scenario \"t\"
+world {
+  bounds (0, 0) (20, 10)
+  rect C (0, 3.2) (20, 5)
+}
+robot rod polygon [(0,0), (8,0), (8,1), (0,1)]
+plan p astar rod { start (5, 2.1, 0deg) goal (10, 1, 0deg) layers 8 }
+plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
+";
+        let outs = run(text);
+        assert!(outs[0].path.is_none());
+        assert!(outs[0].notes[0].contains("the start could not be connected"));
+        assert!(outs[1].path.is_none());
+        assert!(outs[1].notes[0].contains("the goal could not be connected"));
+        assert_eq!(outs[0].expanded, 0);
+    }
+
+    #[test]
+    fn moves_of_each_connectivity() {
+        assert_eq!(moves(6, 10, true).len(), 6);
+        assert_eq!(moves(26, 10, true).len(), 26);
+        assert_eq!(moves(26, 2, true).len(), 17);
+        assert_eq!(moves(26, 1, true).len(), 8);
+        assert_eq!(moves(4, 1, false).len(), 4);
+        assert_eq!(moves(8, 1, false).len(), 8);
+    }
+
+    #[test]
+    fn segment_depth_known_cases() {
+        let sq = [
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 0.0),
+            Point::new(2.0, 2.0),
+            Point::new(0.0, 2.0),
+        ];
+        let p = Point::new;
+        // Through the middle: 1 either way.
+        assert_eq!(segment_depth(p(-1.0, 1.0), p(3.0, 1.0), &sq), 1.0);
+        // Along an edge: touching.
+        assert_eq!(segment_depth(p(-1.0, 0.0), p(3.0, 0.0), &sq), 0.0);
+        // Apart.
+        assert!(segment_depth(p(-1.0, 3.0), p(3.0, 3.0), &sq) < 0.0);
+        // Cutting the corner at (2, 2) at distance d from it along the
+        // diagonal: every point is at most d/√2 deep, the segment d.
+        let d = 0.1;
+        let c = 2.0 - d / 2f64.sqrt();
+        let depth = segment_depth(p(c - 1.0, c + 1.0), p(c + 1.0, c - 1.0), &sq);
+        assert!((depth - d).abs() < 1e-12, "{depth}");
+    }
+
+    fn rect_world(rects: &[(f64, f64, f64, f64)]) -> World {
+        World {
+            bounds: Aabb::from_corners(Point::new(-20.0, -20.0), Point::new(20.0, 20.0)),
+            obstacles: rects
+                .iter()
+                .enumerate()
+                .map(|(i, &(x, y, w, h))| Obstacle {
+                    name: format!("o{i}"),
+                    shape: Shape::Rect(Aabb::from_corners(
+                        Point::new(x, y),
+                        Point::new(x + w, y + h),
+                    )),
+                })
+                .collect(),
+        }
+    }
+
+    fn lattice_for<'w>(world: &'w World, robot: &ConvexPolygon, thetas: &[f64]) -> Lattice<'w> {
+        let shape = RobotShape::Polygon(robot.clone());
+        let pieces = ObstaclePieces::new(world);
+        let layers: Vec<CLayer> = thetas.iter().map(|&t| pieces.layer(robot, t)).collect();
+        let layer_boxes = layers
+            .iter()
+            .map(|l| l.c_obstacles.iter().map(|c| bbox(&c.vertices)).collect())
+            .collect();
+        Lattice {
+            spec: LatticeSpec::new(world, 1.0, super::super::lattice::Sample::Center, 1.0),
+            thetas: thetas.to_vec(),
+            layers,
+            layer_boxes,
+            pieces: pieces
+                .pieces
+                .iter()
+                .map(|p| (p.points.clone(), bbox(&p.points)))
+                .collect(),
+            free: Vec::new(),
+            moves: Vec::new(),
+            edge_checked: Vec::new(),
+            edge_ok: Vec::new(),
+            radius: shape.radius(),
+            shape,
+            validator: Validator::new(world),
+        }
+    }
+
+    fn robot_strategy() -> impl Strategy<Value = ConvexPolygon> {
+        (0.2f64..4.0, 0.2f64..2.0, -1.0f64..0.5, -1.0f64..0.5).prop_map(|(w, h, ox, oy)| {
+            ConvexPolygon {
+                vertices: vec![
+                    Point::new(ox, oy),
+                    Point::new(ox + w, oy),
+                    Point::new(ox + w, oy + h),
+                    Point::new(ox, oy + h),
+                ],
+            }
+        })
+    }
+
+    fn rects_strategy() -> impl Strategy<Value = Vec<(f64, f64, f64, f64)>> {
+        prop::collection::vec((-6.0f64..6.0, -6.0f64..6.0, 0.1f64..4.0, 0.1f64..4.0), 1..4)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        /// The exact translation test agrees with the validator (free ⇒
+        /// valid; blocked ⇒ invalid unless within rounding of touching).
+        #[test]
+        fn translations_agree_with_the_validator(
+            robot in robot_strategy(),
+            rects in rects_strategy(),
+            theta in 0.0f64..TAU,
+            (x0, y0, x1, y1) in (-8.0f64..8.0, -8.0f64..8.0, -8.0f64..8.0, -8.0f64..8.0),
+        ) {
+            let world = rect_world(&rects);
+            let lat = lattice_for(&world, &robot, &[theta]);
+            let (a, b) = (Config::new(x0, y0, theta), Config::new(x1, y1, theta));
+            let ours = lat.translation_free(0, a.xy(), b.xy());
+            let valid = validate_path(&world, &lat.shape, &[a, b], DEFAULT_TOLERANCE).is_ok();
+            if ours {
+                prop_assert!(valid, "free by the segment test, invalid: {a:?} {b:?}");
+            } else if valid {
+                // Only where the depth is within rounding of TOUCH_EPS.
+                let depth = lat.layers[0].c_obstacles.iter()
+                    .map(|c| segment_depth(a.xy(), b.xy(), &c.vertices))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                prop_assert!(depth <= TOUCH_EPS * 1.01, "depth {depth}");
+            }
+        }
+
+        /// The rotation test (quick test, then the validator) never accepts
+        /// a motion the validator rejects.
+        #[test]
+        fn rotations_are_sound(
+            robot in robot_strategy(),
+            rects in rects_strategy(),
+            theta in 0.0f64..TAU,
+            dtheta in -0.8f64..0.8,
+            (x0, y0, dx, dy) in (-8.0f64..8.0, -8.0f64..8.0, -1.0f64..1.0, -1.0f64..1.0),
+        ) {
+            let world = rect_world(&rects);
+            let lat = lattice_for(&world, &robot, &[theta]);
+            let (a, b) = (Config::new(x0, y0, theta), Config::new(x0 + dx, y0 + dy, theta + dtheta));
+            if lat.rotation_free(a, b) {
+                prop_assert!(validate_path(&world, &lat.shape, &[a, b], DEFAULT_TOLERANCE).is_ok());
+            }
+        }
+    }
+}
