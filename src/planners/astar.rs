@@ -143,10 +143,10 @@ impl GridLattice {
 /// An open-list entry: lowest f first, then highest g (deeper nodes first),
 /// then lowest index, so that searches are deterministic.
 #[derive(Clone, Copy, Debug)]
-struct Open {
-    f: f64,
-    g: f64,
-    node: u32,
+pub(crate) struct Open {
+    pub(crate) f: f64,
+    pub(crate) g: f64,
+    pub(crate) node: u32,
 }
 
 impl PartialEq for Open {

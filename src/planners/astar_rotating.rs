@@ -32,7 +32,6 @@
 //!   obstacle piece (a separating axis with a gap ≥ r), the motion passes.
 //!   Otherwise the validator itself decides on the 2-configuration path.
 
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 use std::time::Instant;
@@ -43,7 +42,7 @@ use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS,
 use crate::geometry::{angle_diff, polygon};
 use crate::scenario::Params;
 
-use super::astar::CostMetric;
+use super::astar::{CostMetric, Open};
 use super::lattice::LatticeSpec;
 use super::{MetricValue, PlanOutcome};
 
@@ -275,35 +274,6 @@ impl Lattice<'_> {
             }
         }
         self.edge_ok[node] & bit != 0
-    }
-}
-
-#[derive(Clone, Copy, Debug)]
-struct Open {
-    f: f64,
-    g: f64,
-    node: u32,
-}
-
-impl PartialEq for Open {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Open {}
-impl PartialOrd for Open {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Open {
-    fn cmp(&self, other: &Self) -> Ordering {
-        // Lowest f first, then highest g, then lowest index.
-        other
-            .f
-            .total_cmp(&self.f)
-            .then(self.g.total_cmp(&other.g))
-            .then(other.node.cmp(&self.node))
     }
 }
 
