@@ -177,3 +177,65 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
         );
     }
 }
+
+#[test]
+fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
+    let Some(rerun) = rerun_binary() else {
+        assert_ne!(
+            std::env::var("CI").as_deref(),
+            Ok("true"),
+            "CI must have the rerun binary (scripts/test.sh installs rerun-sdk==0.36.3)"
+        );
+        eprintln!(
+            "skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)"
+        );
+        return;
+    };
+    let dir = TempDir::new("rrd-rod");
+    let rrd = dir.path().join("rod.rrd");
+    let scenario = repo().join("scenarios/apartment_rod.scen");
+    let out = run_with_timeout(
+        Command::new(scen_bin())
+            .arg("run")
+            .arg(&scenario)
+            .arg("--save")
+            .arg(&rrd),
+        Duration::from_secs(120),
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let verify = run_with_timeout(
+        Command::new(&rerun).args(["rrd", "verify"]).arg(&rrd),
+        Duration::from_secs(120),
+    );
+    assert!(
+        verify.status.success(),
+        "rerun rrd verify failed: {}",
+        String::from_utf8_lossy(&verify.stderr)
+    );
+    let print = run_with_timeout(
+        Command::new(&rerun).args(["rrd", "print"]).arg(&rrd),
+        Duration::from_secs(120),
+    );
+    let text = String::from_utf8_lossy(&print.stdout);
+    // 70 layers for `center70`: one entity per layer, and the path in 3D.
+    for entity in [
+        "/plans/center70/cspace/layer_0 ",
+        "/plans/center70/cspace/layer_69 ",
+        "/plans/center70/cspace/path ",
+        "/plans/center70/robot ",
+    ] {
+        assert!(
+            text.contains(entity),
+            "`rerun rrd print` does not list {entity}"
+        );
+    }
+    assert!(
+        !text.contains("/plans/center70/cspace/layer_70 "),
+        "one entity per layer, no more"
+    );
+}

@@ -383,8 +383,8 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     out.extra
         .insert("layers".into(), MetricValue::Num(spec.layers as f64));
     out.trace = Trace {
-        expansions: Vec::new(),
         grown_obstacles: grown_obstacles(world, radius),
+        ..Trace::default()
     };
     let start = params.start;
     let goal = params.goal.unwrap_or(start);

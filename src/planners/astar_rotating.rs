@@ -342,6 +342,16 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
             .iter()
             .map(|c| c.vertices.clone())
             .collect();
+    } else if layers.iter().map(|l| l.c_obstacles.len()).sum::<usize>()
+        <= super::MAX_TRACED_C_OBSTACLES
+    {
+        out.trace.cspace_layers = layers
+            .iter()
+            .map(|l| {
+                let outlines = l.c_obstacles.iter().map(|c| c.vertices.clone()).collect();
+                (l.theta, outlines)
+            })
+            .collect();
     }
     let n = spec.layer_len();
     let total = n * layers.len();

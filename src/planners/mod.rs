@@ -53,7 +53,14 @@ pub struct Trace {
     /// Obstacles grown by the robot (C-obstacles of a translating robot),
     /// as closed polygons, for drawing.
     pub grown_obstacles: Vec<Vec<Point>>,
+    /// For rotating robots: each θ layer (radians) with the boundaries of
+    /// its C-obstacles, for drawing the configuration space in 3D.
+    pub cspace_layers: Vec<(f64, Vec<Vec<Point>>)>,
 }
+
+/// The most C-obstacle outlines a trace keeps over all layers; beyond it
+/// (e.g. large grids) layers are left out of the picture, not the search.
+pub const MAX_TRACED_C_OBSTACLES: usize = 200_000;
 
 pub mod astar;
 pub mod astar_rotating;

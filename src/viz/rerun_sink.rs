@@ -10,6 +10,7 @@
 //! | `plans/NAME/grown` | LineStrips2D, closed: the planner's grown obstacles | static |
 //! | `plans/NAME/path` | LineStrips2D: the path in (x, y) | static |
 //! | `plans/NAME/cspace/path` | LineStrips3D: the path in (x, y, θ), θ in radians as z (rotating robots) | static |
+//! | `plans/NAME/cspace/layer_K` | LineStrips3D: the C-obstacle boundaries of layer K at height θ_K (rotating robots; stacked, one obstacle's layers form the "twisted worm") | static |
 //! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross) | `step` = i |
 //! | `plans/NAME/search` | Points2D: the expansions, in batches | `expansion` |
 //! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
@@ -286,6 +287,7 @@ fn log_plan(
     }
 
     log_search(rec, name, &run.outcome.trace.expansions, faint)?;
+    log_cspace_layers(rec, name, &run.outcome.trace.cspace_layers)?;
 
     let Some(path) = run.outcome.path.as_deref().filter(|p| !p.is_empty()) else {
         return Ok(());
@@ -324,6 +326,32 @@ fn log_plan(
         )?;
     }
     rec.reset_time();
+    Ok(())
+}
+
+/// The C-obstacle boundaries of each θ layer at height θ (radians), one
+/// entity per layer: stacked, one obstacle's layers form the "twisted worm".
+fn log_cspace_layers(
+    rec: &RecordingStream,
+    name: &str,
+    layers: &[(f64, Vec<Vec<Point>>)],
+) -> RecordingStreamResult<()> {
+    for (k, (theta, outlines)) in layers.iter().enumerate() {
+        let z = *theta as f32;
+        let strips: Vec<Vec<[f32; 3]>> = outlines
+            .iter()
+            .map(|poly| {
+                closed(poly.clone())
+                    .iter()
+                    .map(|p| [p.x as f32, p.y as f32, z])
+                    .collect()
+            })
+            .collect();
+        rec.log_static(
+            entity(&["plans", name, "cspace", &format!("layer_{k}")]),
+            &LineStrips3D::new(strips).with_colors([rgb(OBSTACLE_GREY)]),
+        )?;
+    }
     Ok(())
 }
 
