@@ -439,6 +439,7 @@ mod tests {
                         Point::new(6.0, 3.0),
                         Point::new(6.0, 6.0),
                     ]],
+                    cspace_layers: Vec::new(),
                 },
                 ..PlanOutcome::default()
             },

@@ -574,6 +574,7 @@ mod tests {
                         Point::new(5.5, 0.0),
                         Point::new(5.5, 2.5),
                     ]],
+                    cspace_layers: Vec::new(),
                 },
                 ..PlanOutcome::default()
             },
