@@ -841,7 +841,17 @@ mod tests {
                 }
                 _ => {
                     let d = signed_distance(&poly, solid);
-                    (d < -MARGIN, d > band + MARGIN)
+                    // parry's EPA can report a deep penetration for shapes
+                    // that only touch at a vertex (regression: a triangle
+                    // whose vertex lies on a polygon's vertex gave
+                    // dist = -7.6): a hit must also survive eroding the body.
+                    let deep = eroded.as_ref().is_some_and(|e| {
+                        solid.with(|pos, shape| {
+                            query::intersection_test(&Isometry::identity(), e, pos, shape)
+                                .unwrap_or(false)
+                        })
+                    });
+                    (d < -MARGIN && deep, d > band + MARGIN)
                 }
             };
             if hit {
@@ -854,6 +864,41 @@ mod tests {
         } else {
             Verdict::Unsure
         }
+    }
+
+    /// Regression: parry's contact reported a 7.6 deep overlap for a robot
+    /// vertex lying on an obstacle vertex; the layer (rightly) says free.
+    #[test]
+    fn a_vertex_on_a_vertex_is_touching_not_overlapping() {
+        let outline = pts(&[
+            (-8.152794268488528, -7.3664987011573455),
+            (3.9111552653954944, -5.179120850707725),
+            (2.762076054012267, 7.224160966506319),
+            (0.19808708302577485, 8.867036138593537),
+        ]);
+        let shape = Shape::Polygon {
+            outline: outline.clone(),
+            pieces: vec![ConvexPolygon { vertices: outline }],
+        };
+        let robot = ConvexPolygon {
+            vertices: pts(&[
+                (-2.212244966198412, 0.8783582289843117),
+                (2.3289361010856724, -2.185909935840095),
+                (-0.4413660978921253, 0.9594439797861707),
+            ]),
+        };
+        let w = World {
+            bounds: Aabb::from_corners(p(-20.0, -20.0), p(20.0, 20.0)),
+            obstacles: vec![Obstacle {
+                name: "o0".into(),
+                shape: shape.clone(),
+            }],
+        };
+        let (q, theta) = (p(4.335093810004526, 5.437780237706395), 5.812315447064567);
+        assert!(!layer(&w, &robot, theta).contains_interior(q));
+        let c = Config::new(q.x, q.y, theta);
+        let body = RobotShape::Polygon(robot).placed_vertices(c);
+        assert_ne!(verdict(&body, &shape, &solids(&shape)), Verdict::Hit);
     }
 
     fn pts(v: &[(f64, f64)]) -> Vec<Point> {
