@@ -20,3 +20,7 @@ export SCEN_RERUN="$PWD/$venv/bin/rerun"
 export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}"
 
 cargo test --release "$@"
+
+# The scenario suite as a user runs it (also run inside the tests above);
+# it ends with the line `N passed, M failed`.
+cargo run --release --quiet -- test scenarios/

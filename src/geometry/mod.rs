@@ -222,6 +222,15 @@ pub struct World {
 }
 
 /// Shortest signed angular difference `b - a`, in (-π, π].
+///
+/// ```
+/// use scen::geometry::angle_diff;
+/// use std::f64::consts::PI;
+/// // From 350° to 10° is +20°, the shorter way round.
+/// let d = angle_diff(350f64.to_radians(), 10f64.to_radians());
+/// assert!((d - 20f64.to_radians()).abs() < 1e-12);
+/// assert_eq!(angle_diff(0.0, PI), PI);
+/// ```
 pub fn angle_diff(a: f64, b: f64) -> f64 {
     let tau = std::f64::consts::TAU;
     let mut d = (b - a).rem_euclid(tau);
