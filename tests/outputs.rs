@@ -90,8 +90,16 @@ fn rerun_binary() -> Option<PathBuf> {
     })
 }
 
-#[test]
-fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
+/// A verified recording of a scenario: `scen run FILE --save` into a temp
+/// folder, checked with `rerun rrd verify`. `None` (skip) only outside CI
+/// when there is no `rerun` binary.
+struct Recording {
+    rerun: PathBuf,
+    rrd: PathBuf,
+    _dir: TempDir,
+}
+
+fn verified_recording(scenario: &str) -> Option<Recording> {
     let Some(rerun) = rerun_binary() else {
         assert_ne!(
             std::env::var("CI").as_deref(),
@@ -101,15 +109,14 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
         eprintln!(
             "skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)"
         );
-        return;
+        return None;
     };
     let dir = TempDir::new("rrd");
     let rrd = dir.path().join("out.rrd");
-    let scenario = repo().join("scenarios/apartment_disk.scen");
     let out = run_with_timeout(
         Command::new(scen_bin())
             .arg("run")
-            .arg(&scenario)
+            .arg(repo().join(scenario))
             .arg("--save")
             .arg(&rrd),
         Duration::from_secs(120),
@@ -130,10 +137,24 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
         String::from_utf8_lossy(&verify.stdout),
         String::from_utf8_lossy(&verify.stderr)
     );
+    Some(Recording {
+        rerun,
+        rrd,
+        _dir: dir,
+    })
+}
+
+#[test]
+fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
+    // Keep the whole recording: its folder lives as long as it does.
+    let Some(recording) = verified_recording("scenarios/apartment_disk.scen") else {
+        return;
+    };
+    let (rerun, rrd) = (&recording.rerun, &recording.rrd);
     let print = run_with_timeout(
-        Command::new(&rerun)
+        Command::new(rerun)
             .args(["rrd", "print", "--verbose"])
-            .arg(&rrd),
+            .arg(rrd),
         Duration::from_secs(120),
     );
     let text = format!(
@@ -160,7 +181,7 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
     // The robot moves on timeline `step`, the search on `expansion`, with
     // the archetypes of SPEC 6.
     let headers = run_with_timeout(
-        Command::new(&rerun).args(["rrd", "print", "-vv"]).arg(&rrd),
+        Command::new(rerun).args(["rrd", "print", "-vv"]).arg(rrd),
         Duration::from_secs(120),
     );
     let headers = String::from_utf8_lossy(&headers.stdout);
@@ -180,45 +201,13 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
 
 #[test]
 fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
-    let Some(rerun) = rerun_binary() else {
-        assert_ne!(
-            std::env::var("CI").as_deref(),
-            Ok("true"),
-            "CI must have the rerun binary (scripts/test.sh installs rerun-sdk==0.36.3)"
-        );
-        eprintln!(
-            "skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)"
-        );
+    // Keep the whole recording: its folder lives as long as it does.
+    let Some(recording) = verified_recording("scenarios/apartment_rod.scen") else {
         return;
     };
-    let dir = TempDir::new("rrd-rod");
-    let rrd = dir.path().join("rod.rrd");
-    let scenario = repo().join("scenarios/apartment_rod.scen");
-    let out = run_with_timeout(
-        Command::new(scen_bin())
-            .arg("run")
-            .arg(&scenario)
-            .arg("--save")
-            .arg(&rrd),
-        Duration::from_secs(120),
-    );
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let verify = run_with_timeout(
-        Command::new(&rerun).args(["rrd", "verify"]).arg(&rrd),
-        Duration::from_secs(120),
-    );
-    assert!(
-        verify.status.success(),
-        "rerun rrd verify failed: {}",
-        String::from_utf8_lossy(&verify.stderr)
-    );
+    let (rerun, rrd) = (&recording.rerun, &recording.rrd);
     let print = run_with_timeout(
-        Command::new(&rerun).args(["rrd", "print"]).arg(&rrd),
+        Command::new(rerun).args(["rrd", "print"]).arg(rrd),
         Duration::from_secs(120),
     );
     let text = String::from_utf8_lossy(&print.stdout);
