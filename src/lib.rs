@@ -7,6 +7,7 @@
 pub mod checks;
 pub mod cli;
 pub mod diagnostics;
+pub mod drive;
 pub mod geometry;
 pub mod planners;
 pub mod report;

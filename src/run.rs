@@ -8,6 +8,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::checks;
+use crate::drive::DriveOutcome;
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
 use crate::geometry::{Config, RobotShape, angle_diff};
 use crate::planners::{self, MetricValue, Metrics, PlanOutcome};
@@ -23,6 +24,8 @@ pub struct PlanRun {
     pub metrics: Metrics,
     /// Why the path failed the validator, if it did.
     pub validation: Option<ValidationError>,
+    /// The simulated robot driving the path, for plans with `drive`.
+    pub drive: Option<DriveOutcome>,
 }
 
 /// The result of one `expect`.
@@ -106,6 +109,10 @@ fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
     let began = Instant::now();
     let outcome = match plan.kind {
         "astar" => planners::astar::plan(&scenario.world, robot, &plan.params),
+        "online" => planners::online::plan(&scenario.world, robot, &plan.params),
+        "roadmap" => planners::roadmap::plan(&scenario.world, robot, &plan.params),
+        "potential" => planners::potential::plan(&scenario.world, robot, &plan.params),
+        "coverage" => planners::coverage::plan(&scenario.world, robot, &plan.params),
         other => PlanOutcome {
             notes: vec![format!("planner `{other}` is not implemented yet")],
             ..PlanOutcome::default()
@@ -122,6 +129,7 @@ fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
         outcome,
         metrics,
         validation,
+        drive: None,
     }
 }
 

@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::geometry::{Config, Point};
+use crate::geometry::{Aabb, Config, Point, Vector};
 
 /// A metric value: booleans and numbers are the only types of `expect`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,6 +56,64 @@ pub struct Trace {
     /// For rotating robots: each θ layer (radians) with the boundaries of
     /// its C-obstacles, for drawing the configuration space in 3D.
     pub cspace_layers: Vec<(f64, Vec<Vec<Point>>)>,
+    /// Roadmap: the visibility edges (entity `plans/NAME/roadmap`).
+    pub roadmap_edges: Vec<(Point, Point)>,
+    /// Online navigation: what the robot sensed and planned, step by step.
+    pub online: Option<OnlineTrace>,
+    /// Potential field: forces, local minima and escapes.
+    pub field: Option<FieldTrace>,
+    /// Coverage: mega-cells and the spanning tree.
+    pub coverage: Option<CoverageTrace>,
+}
+
+/// What an online robot knew and intended at each step. Step `k` is the
+/// robot standing at `path[k]` (the executed trajectory).
+#[derive(Clone, Debug, Default)]
+pub struct OnlineTrace {
+    /// Side of a lattice cell: sensed cells are drawn as squares this size
+    /// centred on their lattice points.
+    pub cell: f64,
+    /// `sensed[k]`: the lattice points first observed at step `k`, with
+    /// `true` when the point is blocked on the true map.
+    pub sensed: Vec<Vec<(Point, bool)>>,
+    /// `plans[k]`: the plan the robot held at step `k`, from its position
+    /// (empty when the strategy has none, e.g. while backtracking).
+    pub plans: Vec<Vec<Point>>,
+}
+
+/// One sampled step of a potential-field run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForceSample {
+    /// Index into the path.
+    pub step: usize,
+    pub at: Point,
+    pub attract: Vector,
+    pub repulse: Vector,
+    pub total: Vector,
+}
+
+/// What a potential-field run leaves for the viewer.
+#[derive(Clone, Debug, Default)]
+pub struct FieldTrace {
+    /// Forces at sampled steps (not every step: at most a few thousand).
+    pub forces: Vec<ForceSample>,
+    /// Local minima detected: the path index and the position.
+    pub minima: Vec<(usize, Point)>,
+    /// Escape jumps taken: the path index where the jump starts, from, to.
+    pub escapes: Vec<(usize, Point, Point)>,
+}
+
+/// What spanning tree coverage leaves for the viewer.
+#[derive(Clone, Debug, Default)]
+pub struct CoverageTrace {
+    /// The side D of a D-cell.
+    pub tool: f64,
+    /// The free mega-cells of the tree (squares of side 2D).
+    pub mega_cells: Vec<Aabb>,
+    /// Free D-cells that STC cannot cover (in partly blocked mega-cells).
+    pub uncovered: Vec<Aabb>,
+    /// Spanning-tree edges between mega-cell centres.
+    pub tree: Vec<(Point, Point)>,
 }
 
 /// The most C-obstacle outlines a trace keeps over all layers; beyond it
@@ -64,4 +122,8 @@ pub const MAX_TRACED_C_OBSTACLES: usize = 200_000;
 
 pub mod astar;
 pub mod astar_rotating;
+pub mod coverage;
 pub mod lattice;
+pub mod online;
+pub mod potential;
+pub mod roadmap;

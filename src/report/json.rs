@@ -209,12 +209,14 @@ mod tests {
                 ("offset", MetricValue::Num(-3.0)),
             ]),
             validation: None,
+            drive: None,
         };
         let alpha = PlanRun {
             plan: 1,
             outcome: PlanOutcome::default(),
             metrics: metrics(&[("found", MetricValue::Bool(false))]),
             validation: None,
+            drive: None,
         };
         RunReport {
             scenario,

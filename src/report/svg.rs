@@ -449,6 +449,7 @@ mod tests {
             ]
             .into(),
             validation: None,
+            drive: None,
         }
     }
 

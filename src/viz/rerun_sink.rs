@@ -580,6 +580,7 @@ mod tests {
             },
             metrics: BTreeMap::new(),
             validation: None,
+            drive: None,
         };
         RunReport {
             scenario,

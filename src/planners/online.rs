@@ -1,0 +1,15 @@
+//! Online navigation in an unknown world (SPEC 3.2).
+//!
+//! Not implemented yet: the schema marks `online` as not implemented, so the
+//! analyzer refuses such plans before this is ever called.
+
+use crate::geometry::{RobotShape, World};
+use crate::planners::PlanOutcome;
+use crate::scenario::Params;
+
+pub fn plan(_world: &World, _robot: &RobotShape, _params: &Params) -> PlanOutcome {
+    PlanOutcome {
+        notes: vec!["planner `online` is not implemented yet".into()],
+        ..PlanOutcome::default()
+    }
+}
