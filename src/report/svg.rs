@@ -440,6 +440,7 @@ mod tests {
                         Point::new(6.0, 6.0),
                     ]],
                     cspace_layers: Vec::new(),
+                    ..Trace::default()
                 },
                 ..PlanOutcome::default()
             },

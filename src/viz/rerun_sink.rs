@@ -575,6 +575,7 @@ mod tests {
                         Point::new(5.5, 2.5),
                     ]],
                     cspace_layers: Vec::new(),
+                    ..Trace::default()
                 },
                 ..PlanOutcome::default()
             },
