@@ -3,6 +3,9 @@
 //! configurations): the C-space build alone, and the whole plan (C-space,
 //! lattice classification, search with lazily validated edges).
 //!
+//! It also prints where the time of one plan goes (C-space build, display
+//! trace, classification, search and the edge validation inside it).
+//!
 //! `cargo bench --bench astar_rotating`; figures in BENCHMARKS.md.
 
 use std::path::Path;
@@ -32,6 +35,30 @@ fn bench(c: &mut Criterion) {
         spec.ny,
         spec.layers,
         once.expanded
+    );
+
+    // The split of one plan, measured (edge checks timed one by one) over
+    // a few runs; the median run by total time is printed.
+    let mut runs: Vec<_> = (0..7)
+        .map(|_| astar_rotating::plan_profiled(world, robot, &plan.params).1)
+        .collect();
+    runs.sort_by_key(|p| p.cspace + p.trace + p.classify + p.search);
+    let p = runs[runs.len() / 2];
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    eprintln!(
+        "split (median of 7): C-space build {:.1} ms, display trace {:.1} ms, \
+         classification {:.1} ms ({:.1} M configurations/s), search {:.1} ms \
+         ({:.2} M expansions/s) of which edge validation {:.1} ms ({} edges, \
+         {} rotations left to the validator)",
+        ms(p.cspace),
+        ms(p.trace),
+        ms(p.classify),
+        spec.cells_f64() / p.classify.as_secs_f64() / 1e6,
+        ms(p.search),
+        once.expanded as f64 / p.search.as_secs_f64() / 1e6,
+        ms(p.edge_validation),
+        p.edges_checked,
+        p.rotation_fallbacks,
     );
 
     let mut group = c.benchmark_group("apartment_rod_fine");

@@ -216,6 +216,7 @@ fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
         "/plans/center70/cspace/layer_0 ",
         "/plans/center70/cspace/layer_69 ",
         "/plans/center70/cspace/path ",
+        "/plans/center70/cspace/obstacles/B2 ",
         "/plans/center70/robot ",
     ] {
         assert!(

@@ -9,6 +9,7 @@ pub mod cspace;
 mod fixtures;
 pub mod minkowski;
 pub mod polygon;
+pub mod union;
 pub mod validator;
 
 pub use nalgebra::{Point2, Vector2};

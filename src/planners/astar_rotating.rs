@@ -32,11 +32,13 @@
 //!   obstacle piece (a separating axis with a gap ≥ r), the motion passes.
 //!   Otherwise the validator itself decides on the 2-configuration path.
 
+use std::cell::Cell;
 use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
+use crate::geometry::union::union_boundary;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World};
 use crate::geometry::{angle_diff, polygon};
@@ -44,7 +46,7 @@ use crate::scenario::Params;
 
 use super::astar::{CostMetric, Open};
 use super::lattice::LatticeSpec;
-use super::{MetricValue, PlanOutcome};
+use super::{CLayerTrace, MetricValue, PlanOutcome};
 
 /// One lattice move.
 #[derive(Clone, Copy, Debug)]
@@ -184,6 +186,26 @@ fn boxes_meet(a: &Aabb, b: &Aabb, margin: f64) -> bool {
         && b.min.y <= a.max.y + margin
 }
 
+/// Where the time of one plan went (for benchmarks: timing every edge
+/// check costs time, so only [`plan_profiled`] measures).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Profile {
+    /// Building the C-obstacles of every layer.
+    pub cspace: Duration,
+    /// The drawing trace of the C-space (union outlines per layer).
+    pub trace: Duration,
+    /// Classifying every lattice configuration free or blocked.
+    pub classify: Duration,
+    /// The search, edge validation included.
+    pub search: Duration,
+    /// The part of `search` spent validating edges.
+    pub edge_validation: Duration,
+    /// Edges validated (each at most once).
+    pub edges_checked: u64,
+    /// Rotation edges the quick test could not clear, left to the validator.
+    pub rotation_fallbacks: u64,
+}
+
 /// The (x, y, θ) lattice of one plan, its free configurations and the
 /// edge cache.
 struct Lattice<'w> {
@@ -202,6 +224,11 @@ struct Lattice<'w> {
     shape: RobotShape,
     radius: f64,
     validator: Validator<'w>,
+    /// Measure edge validation into `profile` (see [`plan_profiled`]).
+    profiling: bool,
+    profile: Profile,
+    /// Rotations the quick test left to the validator (when profiling).
+    fallbacks: Cell<u64>,
 }
 
 impl Lattice<'_> {
@@ -252,6 +279,9 @@ impl Lattice<'_> {
                 return true;
             }
         }
+        if self.profiling {
+            self.fallbacks.set(self.fallbacks.get() + 1);
+        }
         self.validator
             .validate_path(&self.shape, &[a, b], DEFAULT_TOLERANCE)
             .is_ok()
@@ -261,6 +291,7 @@ impl Lattice<'_> {
     fn edge_free(&mut self, node: usize, m: usize, to: usize) -> bool {
         let bit = 1u32 << m;
         if self.edge_checked[node] & bit == 0 {
+            let began = self.profiling.then(Instant::now);
             let (a, b) = (self.config(node), self.config(to));
             let ok = if self.moves[m].dk == 0 {
                 let (_, _, k) = self.coords(node);
@@ -272,6 +303,10 @@ impl Lattice<'_> {
             if ok {
                 self.edge_ok[node] |= bit;
             }
+            if let Some(t) = began {
+                self.profile.edge_validation += t.elapsed();
+                self.profile.edges_checked += 1;
+            }
         }
         self.edge_ok[node] & bit != 0
     }
@@ -279,7 +314,26 @@ impl Lattice<'_> {
 
 /// Runs an `astar` plan for a convex polygon robot.
 pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcome {
+    run(world, robot, params, false).0
+}
+
+/// [`plan`], measuring where the time goes (for benchmarks).
+pub fn plan_profiled(
+    world: &World,
+    robot: &ConvexPolygon,
+    params: &Params,
+) -> (PlanOutcome, Profile) {
+    run(world, robot, params, true)
+}
+
+fn run(
+    world: &World,
+    robot: &ConvexPolygon,
+    params: &Params,
+    profiling: bool,
+) -> (PlanOutcome, Profile) {
     let began = Instant::now();
+    let mut profile = Profile::default();
     let shape = RobotShape::Polygon(robot.clone());
     let radius = shape.radius();
     let rotating = params.word("rotate") != Some("no");
@@ -330,12 +384,15 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
         .insert("cells".into(), MetricValue::Num(spec.cells_f64()));
     out.extra
         .insert("layers".into(), MetricValue::Num(thetas.len() as f64));
+    let lap = Instant::now();
     let pieces = ObstaclePieces::new(world);
     let layers: Vec<CLayer> = if rotating {
         pieces.layers(robot, n_layers)
     } else {
         vec![pieces.layer(robot, start.theta)]
     };
+    profile.cspace = lap.elapsed();
+    let lap = Instant::now();
     if !rotating {
         out.trace.grown_obstacles = layers[0]
             .c_obstacles
@@ -345,14 +402,22 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
     } else if layers.iter().map(|l| l.c_obstacles.len()).sum::<usize>()
         <= super::MAX_TRACED_C_OBSTACLES
     {
+        use rayon::prelude::*;
         out.trace.cspace_layers = layers
-            .iter()
+            .par_iter()
             .map(|l| {
-                let outlines = l.c_obstacles.iter().map(|c| c.vertices.clone()).collect();
-                (l.theta, outlines)
+                let outlines: Vec<Vec<Point>> =
+                    l.c_obstacles.iter().map(|c| c.vertices.clone()).collect();
+                CLayerTrace {
+                    theta: l.theta,
+                    boundary: union_boundary(&outlines),
+                    c_obstacles: l.sources.iter().copied().zip(outlines).collect(),
+                }
             })
             .collect();
     }
+    profile.trace = lap.elapsed();
+    let lap = Instant::now();
     let n = spec.layer_len();
     let total = n * layers.len();
     let mut free = vec![false; total];
@@ -367,6 +432,7 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
                 }
             });
     }
+    profile.classify = lap.elapsed();
     let free_count = free.iter().filter(|f| **f).count();
     out.extra
         .insert("free_cells".into(), MetricValue::Num(free_count as f64));
@@ -393,12 +459,15 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
         shape,
         radius,
         validator: Validator::new(world),
+        profiling,
+        profile: Profile::default(),
+        fallbacks: Cell::new(0),
     };
 
     let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
         out.notes
             .push("the lattice is empty: `cell` is larger than the bounds".into());
-        return out;
+        return (out, profile);
     };
     let nearest_layer = |theta: f64| -> usize {
         if rotating {
@@ -425,7 +494,7 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
         out.notes.push(format!(
             "the {end} could not be connected to its nearest lattice configuration: make `cell` smaller, use more `layers`, or move the {end}"
         ));
-        return out;
+        return (out, profile);
     }
     // The cost of the motion between two configurations, in the metric.
     let cost_between = |a: Config, b: Config| {
@@ -475,6 +544,7 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
             node: s_node as u32,
         });
     }
+    let search_began = Instant::now();
     let mut expanded = 0u64;
     let mut generated = 1u64;
     let mut gave_up = false;
@@ -569,7 +639,14 @@ pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcom
         None if gave_up => out.notes.push("a limit was reached before the goal".into()),
         None => {}
     }
-    out
+    profile = Profile {
+        search: search_began.elapsed(),
+        edge_validation: lat.profile.edge_validation,
+        edges_checked: lat.profile.edges_checked,
+        rotation_fallbacks: lat.fallbacks.get(),
+        ..profile
+    };
+    (out, profile)
 }
 
 #[cfg(test)]
@@ -867,6 +944,9 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
             radius: shape.radius(),
             shape,
             validator: Validator::new(world),
+            profiling: false,
+            profile: Profile::default(),
+            fallbacks: Cell::new(0),
         }
     }
 

@@ -53,9 +53,9 @@ pub struct Trace {
     /// Obstacles grown by the robot (C-obstacles of a translating robot),
     /// as closed polygons, for drawing.
     pub grown_obstacles: Vec<Vec<Point>>,
-    /// For rotating robots: each θ layer (radians) with the boundaries of
-    /// its C-obstacles, for drawing the configuration space in 3D.
-    pub cspace_layers: Vec<(f64, Vec<Vec<Point>>)>,
+    /// For rotating robots: each θ layer of the configuration space, for
+    /// drawing it in 3D.
+    pub cspace_layers: Vec<CLayerTrace>,
     /// Roadmap: the visibility edges (entity `plans/NAME/roadmap`).
     pub roadmap_edges: Vec<(Point, Point)>,
     /// Online navigation: what the robot sensed and planned, step by step.
@@ -64,6 +64,18 @@ pub struct Trace {
     pub field: Option<FieldTrace>,
     /// Coverage: mega-cells and the spanning tree.
     pub coverage: Option<CoverageTrace>,
+}
+
+/// One θ layer of a rotating robot's configuration space, for drawing.
+#[derive(Clone, Debug, Default)]
+pub struct CLayerTrace {
+    /// θ in radians.
+    pub theta: f64,
+    /// The boundary of the union of the layer's C-obstacles, as segments.
+    pub boundary: Vec<(Point, Point)>,
+    /// Each C-obstacle (closed, counter-clockwise) with the index of the
+    /// world obstacle it comes from.
+    pub c_obstacles: Vec<(usize, Vec<Point>)>,
 }
 
 /// What an online robot knew and intended at each step. Step `k` is the

@@ -240,6 +240,8 @@ fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, ru
         svg.push_str("</g>\n");
     }
 
+    draw_extras(svg, view, run, &colour);
+
     let path = run.outcome.path.as_deref().filter(|p| !p.is_empty());
     if let Some(path) = path {
         let xy: Vec<Point> = path.iter().map(Config::xy).collect();
@@ -278,6 +280,95 @@ fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, ru
         );
     }
     svg.push_str("</g>\n");
+}
+
+/// The planner-specific parts under the path: coverage mega-cells and
+/// tree, roadmap edges, what an online robot found blocked, potential-field
+/// minima and escape jumps, and a driven robot's trajectory.
+fn draw_extras(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
+    let trace = &run.outcome.trace;
+    let segments = |svg: &mut String, segs: &[(Point, Point)], attrs: &str| {
+        let _ = writeln!(svg, "<g {attrs}>");
+        for (a, b) in segs {
+            let _ = writeln!(
+                svg,
+                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
+                num(view.x(a.x)),
+                num(view.y(a.y)),
+                num(view.x(b.x)),
+                num(view.y(b.y))
+            );
+        }
+        svg.push_str("</g>\n");
+    };
+    let boxes = |svg: &mut String, bs: &[Aabb], attrs: &str| {
+        if bs.is_empty() {
+            return;
+        }
+        let d: String = bs.iter().map(|b| view.box_path(b)).collect();
+        let _ = writeln!(svg, "<path {attrs} d=\"{d}\"/>");
+    };
+    if let Some(coverage) = &trace.coverage {
+        let attrs = format!(
+            "fill=\"{colour}\" fill-opacity=\"0.08\" stroke=\"{colour}\" stroke-opacity=\"0.3\" stroke-width=\"0.5\""
+        );
+        boxes(svg, &coverage.mega_cells, &attrs);
+        let grey = hex(OBSTACLE_GREY);
+        boxes(
+            svg,
+            &coverage.uncovered,
+            &format!("fill=\"{grey}\" fill-opacity=\"0.35\""),
+        );
+        let attrs = format!("stroke=\"{colour}\" stroke-width=\"1\" stroke-opacity=\"0.7\"");
+        segments(svg, &coverage.tree, &attrs);
+    }
+    if !trace.roadmap_edges.is_empty() {
+        let attrs = format!("stroke=\"{colour}\" stroke-width=\"0.5\" stroke-opacity=\"0.35\"");
+        segments(svg, &trace.roadmap_edges, &attrs);
+    }
+    if let Some(online) = &trace.online {
+        let half = online.cell / 2.0;
+        let blocked: Vec<Aabb> = online
+            .sensed
+            .iter()
+            .flatten()
+            .filter(|(_, blocked)| *blocked)
+            .map(|&(p, _)| {
+                Aabb::from_corners(
+                    Point::new(p.x - half, p.y - half),
+                    Point::new(p.x + half, p.y + half),
+                )
+            })
+            .collect();
+        let grey = hex(OBSTACLE_GREY);
+        boxes(
+            svg,
+            &blocked,
+            &format!("fill=\"{grey}\" fill-opacity=\"0.6\""),
+        );
+    }
+    if let Some(field) = &trace.field {
+        let jumps: Vec<(Point, Point)> = field.escapes.iter().map(|&(_, a, b)| (a, b)).collect();
+        let attrs = format!("stroke=\"{colour}\" stroke-width=\"1.5\" stroke-dasharray=\"5 3\"");
+        segments(svg, &jumps, &attrs);
+        let red = hex(FAIL_RED);
+        for (_, m) in &field.minima {
+            let _ = writeln!(
+                svg,
+                "<circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"none\" stroke=\"{red}\" stroke-width=\"1.5\"/>",
+                num(view.x(m.x)),
+                num(view.y(m.y))
+            );
+        }
+    }
+    if let Some(drive) = run.drive.as_ref().filter(|d| !d.samples.is_empty()) {
+        let xy: Vec<Point> = drive.samples.iter().map(|(_, c)| c.xy()).collect();
+        let _ = writeln!(
+            svg,
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\" stroke-dasharray=\"2 2\"/>",
+            view.points(&xy)
+        );
+    }
 }
 
 /// The robot's body at `c`; a point robot has none (its marker shows it).

@@ -5,6 +5,7 @@
 //!
 //! All coordinates are world units with y up; angles are radians.
 
+mod rerun_extras;
 pub mod rerun_sink;
 
 pub use rerun_sink::{ViewerError, ViewerTarget, stream};

@@ -10,9 +10,11 @@
 //! | `plans/NAME/grown` | LineStrips2D, closed: the planner's grown obstacles | static |
 //! | `plans/NAME/path` | LineStrips2D: the path in (x, y) | static |
 //! | `plans/NAME/cspace/path` | LineStrips3D: the path in (x, y, θ), θ in radians as z (rotating robots) | static |
-//! | `plans/NAME/cspace/layer_K` | LineStrips3D: the C-obstacle boundaries of layer K at height θ_K (rotating robots; stacked, one obstacle's layers form the "twisted worm") | static |
+//! | `plans/NAME/cspace/layer_K` | LineStrips3D: the boundary of the union of layer K's C-obstacles at height θ_K (rotating robots; stacked, the layered C-space) | static |
+//! | `plans/NAME/cspace/obstacles/OBSTACLE` | LineStrips3D: that obstacle's C-obstacles in every layer, the "twisted worm" | static |
 //! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross) | `step` = i |
 //! | `plans/NAME/search` | Points2D: the expansions, in batches | `expansion` |
+//! | planner-specific entities | see [`super::rerun_extras`] | |
 //! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
 //!
 //! The search is logged in at most [`SEARCH_BATCHES`] batches; each batch
@@ -27,6 +29,7 @@
 //! The automatic `log_time` timeline is switched off, so a recording only
 //! has the timelines above.
 
+use std::collections::BTreeMap;
 use std::net::{TcpStream, ToSocketAddrs};
 use std::path::PathBuf;
 use std::time::Duration;
@@ -38,11 +41,12 @@ use rerun::{
     TextLog, TextLogLevel,
 };
 
+use super::rerun_extras as extras;
 use super::{
     FAIL_RED, OBSTACLE_GREY, blocked_boxes, closed, obstacle_outline, plan_colour, robot_outline,
 };
 use crate::geometry::{Config, Point, Shape};
-use crate::planners::MetricValue;
+use crate::planners::{CLayerTrace, MetricValue};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 
@@ -286,8 +290,25 @@ fn log_plan(
         )?;
     }
 
-    log_search(rec, name, &run.outcome.trace.expansions, faint)?;
-    log_cspace_layers(rec, name, &run.outcome.trace.cspace_layers)?;
+    let trace = &run.outcome.trace;
+    log_search(rec, name, &trace.expansions, faint)?;
+    log_cspace_layers(rec, scenario, name, &trace.cspace_layers)?;
+    extras::log_roadmap(rec, name, &trace.roadmap_edges, faint)?;
+    if let Some(online) = &trace.online {
+        extras::log_online(rec, name, online, colour)?;
+    }
+    if let Some(field) = &trace.field {
+        extras::log_field(rec, name, field, colour)?;
+    }
+    if let Some(coverage) = &trace.coverage {
+        extras::log_coverage(rec, name, coverage, colour, faint)?;
+    }
+    // A point robot is drawn as a cross 1% of the world's size.
+    let bounds = scenario.world.bounds;
+    let mark = 0.01 * bounds.width().max(bounds.height());
+    if let (Some(drive), Some(robot)) = (&run.drive, scenario.robots.get(plan.robot)) {
+        extras::log_drive(rec, name, drive, &robot.shape, mark, colour)?;
+    }
 
     let Some(path) = run.outcome.path.as_deref().filter(|p| !p.is_empty()) else {
         return Ok(());
@@ -310,9 +331,6 @@ fn log_plan(
             &LineStrips3D::new(cspace_strips(path)).with_colors([colour]),
         )?;
     }
-    // A point robot is drawn as a cross 1% of the world's size.
-    let bounds = scenario.world.bounds;
-    let mark = 0.01 * bounds.width().max(bounds.height());
     let body = entity(&["plans", name, "robot"]);
     for (step, &c) in path.iter().enumerate() {
         rec.set_time_sequence("step", step as i64);
@@ -329,26 +347,36 @@ fn log_plan(
     Ok(())
 }
 
-/// The C-obstacle boundaries of each θ layer at height θ (radians), one
-/// entity per layer: stacked, one obstacle's layers form the "twisted worm".
+/// The configuration space of a rotating robot: per θ layer the boundary
+/// of the union of its C-obstacles at height θ (radians), one entity per
+/// layer, stacked into the layered C-space; and per world obstacle its
+/// C-obstacles over all layers, the "twisted worm" of that obstacle.
 fn log_cspace_layers(
     rec: &RecordingStream,
+    scenario: &Scenario,
     name: &str,
-    layers: &[(f64, Vec<Vec<Point>>)],
+    layers: &[CLayerTrace],
 ) -> RecordingStreamResult<()> {
-    for (k, (theta, outlines)) in layers.iter().enumerate() {
-        let z = *theta as f32;
-        let strips: Vec<Vec<[f32; 3]>> = outlines
-            .iter()
-            .map(|poly| {
-                closed(poly.clone())
-                    .iter()
-                    .map(|p| [p.x as f32, p.y as f32, z])
-                    .collect()
-            })
-            .collect();
+    let at = |p: &Point, z: f32| [p.x as f32, p.y as f32, z];
+    let mut worms: BTreeMap<usize, Vec<Vec<[f32; 3]>>> = BTreeMap::new();
+    for (k, layer) in layers.iter().enumerate() {
+        let z = layer.theta as f32;
+        let strips = layer.boundary.iter().map(|(a, b)| vec![at(a, z), at(b, z)]);
         rec.log_static(
             entity(&["plans", name, "cspace", &format!("layer_{k}")]),
+            &LineStrips3D::new(strips).with_colors([rgb(OBSTACLE_GREY)]),
+        )?;
+        for (obstacle, outline) in &layer.c_obstacles {
+            let strip = closed(outline.clone()).iter().map(|p| at(p, z)).collect();
+            worms.entry(*obstacle).or_default().push(strip);
+        }
+    }
+    for (obstacle, strips) in worms {
+        let Some(o) = scenario.world.obstacles.get(obstacle) else {
+            continue;
+        };
+        rec.log_static(
+            entity(&["plans", name, "cspace", "obstacles", &o.name]),
             &LineStrips3D::new(strips).with_colors([rgb(OBSTACLE_GREY)]),
         )?;
     }
@@ -436,15 +464,15 @@ fn log_checks(rec: &RecordingStream, report: &RunReport) -> RecordingStreamResul
 }
 
 /// An entity path from parts taken literally (names need no escaping).
-fn entity(parts: &[&str]) -> EntityPath {
+pub(super) fn entity(parts: &[&str]) -> EntityPath {
     EntityPath::new(parts.iter().map(|&p| EntityPathPart::new(p)).collect())
 }
 
-fn strip(points: &[Point]) -> Vec<[f32; 2]> {
+pub(super) fn strip(points: &[Point]) -> Vec<[f32; 2]> {
     points.iter().map(|p| [p.x as f32, p.y as f32]).collect()
 }
 
-fn rgb([r, g, b]: [u8; 3]) -> Color {
+pub(super) fn rgb([r, g, b]: [u8; 3]) -> Color {
     Color::from_rgb(r, g, b)
 }
 
@@ -613,6 +641,103 @@ mod tests {
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         let _ = std::fs::remove_file(&path);
         assert!(size > 0, "empty recording");
+    }
+
+    /// Every planner-specific trace and a driven robot go into the
+    /// recording (the entities are checked with `rerun rrd print` in
+    /// tests/outputs.rs on the real scenarios).
+    #[test]
+    fn saves_every_kind_of_trace() {
+        use crate::drive::DriveOutcome;
+        use crate::geometry::Vector;
+        use crate::planners::{CoverageTrace, FieldTrace, ForceSample, OnlineTrace};
+        let mut r = report();
+        let p = |x: f64, y: f64| Point::new(x, y);
+        let trace = &mut r.plans[0].outcome.trace;
+        trace.roadmap_edges = vec![(p(0.0, 0.0), p(1.0, 1.0))];
+        trace.online = Some(OnlineTrace {
+            cell: 1.0,
+            sensed: (0..250)
+                .map(|k| vec![(p(f64::from(k % 10), 1.0), k % 3 == 0)])
+                .collect(),
+            plans: vec![vec![p(0.0, 0.0), p(2.0, 2.0)]; 250],
+        });
+        trace.field = Some(FieldTrace {
+            forces: vec![ForceSample {
+                step: 3,
+                at: p(1.0, 1.0),
+                attract: Vector::new(1.0, 0.0),
+                repulse: Vector::new(0.0, 1.0),
+                total: Vector::new(1.0, 1.0),
+            }],
+            minima: vec![(3, p(1.0, 1.0))],
+            escapes: vec![(3, p(1.0, 1.0), p(2.0, 1.0))],
+        });
+        trace.coverage = Some(CoverageTrace {
+            tool: 1.0,
+            mega_cells: vec![Aabb::from_corners(p(0.0, 0.0), p(2.0, 2.0))],
+            uncovered: vec![Aabb::from_corners(p(2.0, 0.0), p(3.0, 1.0))],
+            tree: vec![(p(1.0, 1.0), p(3.0, 1.0))],
+        });
+        r.plans[0].drive = Some(DriveOutcome {
+            samples: (0..5000)
+                .map(|i| {
+                    (
+                        f64::from(i) * 0.01,
+                        Config::new(f64::from(i) * 1e-3, 0.5, 0.0),
+                    )
+                })
+                .collect(),
+            time: 49.99,
+            max_deviation: 0.0,
+        });
+        let path = temp_rrd("extras");
+        let result = stream(&r, &ViewerTarget::Save(path.clone()));
+        assert!(result.is_ok(), "{result:?}");
+        // The viewer's own reader lists the entities (when it is installed:
+        // scripts/test.sh puts it in target/rerun-venv; CI must have it).
+        let rerun = std::env::var_os("SCEN_RERUN")
+            .map(PathBuf::from)
+            .unwrap_or_else(|| {
+                PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/rerun-venv/bin/rerun")
+            });
+        if !rerun.exists() {
+            assert_ne!(
+                std::env::var("CI").as_deref(),
+                Ok("true"),
+                "CI must have rerun"
+            );
+            let _ = std::fs::remove_file(&path);
+            return;
+        }
+        let print = std::process::Command::new(&rerun)
+            .args(["rrd", "print"])
+            .arg(&path)
+            .output()
+            .expect("rerun runs");
+        let _ = std::fs::remove_file(&path);
+        let text = String::from_utf8_lossy(&print.stdout);
+        for e in [
+            "/plans/dot/roadmap ",
+            "/plans/dot/known/free/0000 ",
+            "/plans/dot/known/blocked/0000 ",
+            "/plans/dot/known/blocked/0083 ",
+            "/plans/dot/plan ",
+            "/plans/dot/field/attract ",
+            "/plans/dot/field/repulse ",
+            "/plans/dot/field/total ",
+            "/plans/dot/field/minima ",
+            "/plans/dot/field/escapes ",
+            "/plans/dot/mega_cells ",
+            "/plans/dot/uncovered ",
+            "/plans/dot/tree ",
+            "/plans/dot/drive/path ",
+            "/plans/dot/drive/robot ",
+        ] {
+            assert!(text.contains(e), "no {e} in:\n{text}");
+        }
+        // 250 steps of sensing in batches of 3 steps (at most 100 batches).
+        assert!(!text.contains("/plans/dot/known/blocked/0084 "));
     }
 
     #[test]
