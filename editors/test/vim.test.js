@@ -1,0 +1,88 @@
+// The Vim syntax (editors/vim) gives every scenario in scenarios/ and every
+// grammar test file the same colouring classes as the VS Code grammar,
+// character by character, and marks no error in the scenarios. Runs Vim
+// headless; skipped when `vim` is not installed.
+'use strict';
+
+const test = require('node:test');
+const assert = require('node:assert');
+const fs = require('fs');
+const os = require('os');
+const path = require('path');
+const { execFileSync } = require('child_process');
+const { loadGrammar, tokenize, scenFiles, ROOT } = require('./tokenize');
+const { textmateClass, vimClass } = require('./classes');
+
+function hasVim() {
+  try {
+    execFileSync('vim', ['--version'], { stdio: 'ignore' });
+    return true;
+  } catch {
+    return false;
+  }
+}
+
+/** Vim's groups: file → Map("line:byteColumn" → [group, linked]). */
+function vimGroups(files) {
+  const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'scen-vim-')), 'groups.txt');
+  execFileSync('vim', ['-Nu', 'NONE', '-i', 'NONE', '-es', '--cmd', `let g:out=${JSON.stringify(out)}`,
+    '-S', path.join(__dirname, 'vim_dump.vim'), ...files], { stdio: 'inherit', timeout: 120000 });
+  const groups = new Map();
+  let current = null;
+  for (const line of fs.readFileSync(out, 'utf8').split('\n')) {
+    if (line.startsWith('FILE ')) {
+      const [, file, filetype] = line.match(/^FILE (.*) (\S*)$/);
+      assert.strictEqual(filetype, 'scen', `${file}: Vim did not detect the filetype`);
+      current = new Map();
+      groups.set(file, current);
+    } else if (line) {
+      const [l, c, group, linked] = line.split(':');
+      current.set(`${l}:${c}`, [group, linked]);
+    }
+  }
+  return groups;
+}
+
+/** Differences between the two editors' classes, one line each. */
+function compare(grammar, file, groups) {
+  const problems = [];
+  for (const t of tokenize(grammar, fs.readFileSync(file, 'utf8'))) {
+    const lineText = fs.readFileSync(file, 'utf8').split(/\r?\n/)[t.line - 1];
+    const tmClass = textmateClass(t.scopes);
+    let column = t.column - 1;
+    for (const ch of t.text) {
+      if (ch.trim() !== '') {
+        const byte = Buffer.byteLength(lineText.slice(0, column)) + 1;
+        const [group, linked] = groups.get(`${t.line}:${byte}`) || ['?', '?'];
+        const vClass = vimClass(group, linked);
+        if (vClass !== tmClass) {
+          problems.push(`${t.line}:${column + 1} ${JSON.stringify(ch)} in ${JSON.stringify(t.text)}: ` +
+            `VS Code ${tmClass} (${t.scopes.slice(1).join(' ')}), Vim ${vClass} (${group})`);
+        }
+      }
+      column += ch.length;
+    }
+  }
+  return problems;
+}
+
+const skip = hasVim() ? false : 'vim is not installed';
+
+test('Vim colours like VS Code', { skip }, async () => {
+  const grammar = await loadGrammar();
+  const scenarios = scenFiles(path.join(ROOT, 'scenarios'));
+  const grammarTests = scenFiles(path.join(__dirname, 'grammar'));
+  const files = [...scenarios, ...grammarTests];
+  const groups = vimGroups(files);
+  const report = [];
+  for (const file of files) {
+    const problems = compare(grammar, file, groups.get(file));
+    if (scenarios.includes(file)) {
+      for (const [where, [group, linked]] of groups.get(file)) {
+        if (linked === 'Error') problems.push(`${where}: Vim marks an error (${group})`);
+      }
+    }
+    if (problems.length) report.push(`${path.relative(ROOT, file)}:\n  ${problems.join('\n  ')}`);
+  }
+  assert.strictEqual(report.length, 0, `Vim and VS Code disagree:\n${report.join('\n')}`);
+});
