@@ -44,6 +44,7 @@ function vimClass(group, linked) {
     scenBoolean: 'boolean',
     scenNumber: 'number', scenAngle: 'number', scenPercent: 'number',
     scenDuration: 'number', scenUnit: 'number',
+    scenExprNumber: 'number', scenExprAngle: 'number', scenExprPercent: 'number',
     scenMetric: 'metric',
     scenOperator: 'operator', scenLogical: 'operator',
   };

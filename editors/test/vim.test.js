@@ -22,19 +22,19 @@ function hasVim() {
   }
 }
 
-/** Vim's groups: file → Map("line:byteColumn" → [group, linked]). */
+/** Vim's groups, for each file in order: Map("line:byteColumn" → [group, linked]). */
 function vimGroups(files) {
   const out = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'scen-vim-')), 'groups.txt');
   execFileSync('vim', ['-Nu', 'NONE', '-i', 'NONE', '-es', '--cmd', `let g:out=${JSON.stringify(out)}`,
     '-S', path.join(__dirname, 'vim_dump.vim'), ...files], { stdio: 'inherit', timeout: 120000 });
-  const groups = new Map();
+  const groups = [];
   let current = null;
   for (const line of fs.readFileSync(out, 'utf8').split('\n')) {
     if (line.startsWith('FILE ')) {
       const [, file, filetype] = line.match(/^FILE (.*) (\S*)$/);
       assert.strictEqual(filetype, 'scen', `${file}: Vim did not detect the filetype`);
       current = new Map();
-      groups.set(file, current);
+      groups.push(current);
     } else if (line) {
       const [l, c, group, linked] = line.split(':');
       current.set(`${l}:${c}`, [group, linked]);
@@ -46,8 +46,10 @@ function vimGroups(files) {
 /** Differences between the two editors' classes, one line each. */
 function compare(grammar, file, groups) {
   const problems = [];
-  for (const t of tokenize(grammar, fs.readFileSync(file, 'utf8'))) {
-    const lineText = fs.readFileSync(file, 'utf8').split(/\r?\n/)[t.line - 1];
+  const text = fs.readFileSync(file, 'utf8');
+  const lines = text.split(/\r?\n/);
+  for (const t of tokenize(grammar, text)) {
+    const lineText = lines[t.line - 1];
     const tmClass = textmateClass(t.scopes);
     let column = t.column - 1;
     for (const ch of t.text) {
@@ -75,14 +77,15 @@ test('Vim colours like VS Code', { skip }, async () => {
   const files = [...scenarios, ...grammarTests];
   const groups = vimGroups(files);
   const report = [];
-  for (const file of files) {
-    const problems = compare(grammar, file, groups.get(file));
+  assert.strictEqual(groups.length, files.length, 'Vim did not read every file');
+  files.forEach((file, k) => {
+    const problems = compare(grammar, file, groups[k]);
     if (scenarios.includes(file)) {
-      for (const [where, [group, linked]] of groups.get(file)) {
+      for (const [where, [group, linked]] of groups[k]) {
         if (linked === 'Error') problems.push(`${where}: Vim marks an error (${group})`);
       }
     }
     if (problems.length) report.push(`${path.relative(ROOT, file)}:\n  ${problems.join('\n  ')}`);
-  }
+  });
   assert.strictEqual(report.length, 0, `Vim and VS Code disagree:\n${report.join('\n')}`);
 });

@@ -16,6 +16,12 @@ set cpo&vim
 syn case match
 syn iskeyword @,48-57,_
 
+" ------------------------------------------------ stray text, punctuation
+" Defined first: every later item that starts at the same place wins.
+syn match   scenStray /\S/
+syn match   scenPunct /[()[\],]/
+syn match   scenOtherWord /\<\h\w*/
+
 " ------------------------------------------------------------- comments
 syn keyword scenTodo contained TODO FIXME XXX NOTE
 syn match   scenComment /#.*$/ contains=scenTodo,@Spell
@@ -29,15 +35,23 @@ syn match   scenEscape contained /\\["\\]/
 
 " -------------------------------------------------------------- numbers
 " `12`, `-3.5`, `1e-3`, `.5`, and with a unit: `90deg`, `1.5rad`, `100%`,
-" `500ms`, `2s`. Anything else glued to a number is a malformed number.
-syn match   scenBadNumber /\%([[:alnum:]_.]\)\@1<!-\=\.\=\d[[:alnum:]_.%]*/
-syn match   scenNumber    /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%([[:alnum:]_.%]\)\@!/
-syn match   scenAngle     /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%(deg\|rad\)\%([[:alnum:]_.%]\)\@!/ contains=scenUnit
-syn match   scenPercent   /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=%\%([[:alnum:]_.%]\)\@!/ contains=scenUnit
-syn match   scenDuration  /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%(ms\|s\)\%([[:alnum:]_.%]\)\@!/ contains=scenUnit
-syn match   scenUnit contained /\%(deg\|rad\|ms\|s\|%\)$/
+" `500ms`, `2s`. Anything else glued to a number is a malformed number
+" (`1.2.3`, `90degx`, `5-3`).
+syn match   scenBadNumber /\%([[:alnum:]_.]\)\@1<!-\=\.\=\d[[:alnum:]_.%+-]*/
+syn match   scenNumber    /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%([[:alnum:]_.%+-]\)\@!/
+syn match   scenAngle     /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%(deg\|rad\)\%([[:alnum:]_.%+-]\)\@!/ contains=scenUnit
+syn match   scenPercent   /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=%\%([[:alnum:]_.%+-]\)\@!/ contains=scenUnit
+syn match   scenDuration  /\%([[:alnum:]_.]\)\@1<!-\=\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%(ms\|s\)\%([[:alnum:]_.%+-]\)\@!/ contains=scenUnit
 syn match   scenUnit contained /\%(deg\|rad\|ms\|s\|%\)\%([[:alnum:]_]\)\@!/
 syn cluster scenNumbers contains=scenBadNumber,scenNumber,scenAngle,scenPercent,scenDuration
+" In `expect`, `-` is an operator (`2-1`) and a duration is an error:
+" metrics are plain numbers.
+syn match   scenExprBadNumber contained /\%([[:alnum:]_.]\)\@1<!\.\=\d\%([eE][-+]\=\|[[:alnum:]_.%]\)*/
+syn match   scenExprNumber contained    /\%([[:alnum:]_.]\)\@1<!\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%([[:alnum:]_.%]\)\@!/
+syn match   scenExprAngle contained     /\%([[:alnum:]_.]\)\@1<!\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%(deg\|rad\)\%([[:alnum:]_.%]\)\@!/ contains=scenUnit
+syn match   scenExprPercent contained   /\%([[:alnum:]_.]\)\@1<!\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=%\%([[:alnum:]_.%]\)\@!/ contains=scenUnit
+syn match   scenExprDuration contained /\%([[:alnum:]_.]\)\@1<!\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%(ms\|s\)\%([[:alnum:]_.%]\)\@!/
+syn cluster scenExprNumbers contains=scenExprBadNumber,scenExprNumber,scenExprAngle,scenExprPercent,scenExprDuration
 
 " ----------------------------------------------------------- statements
 " A statement keyword followed by `.` is a plan name (`plan.found`).
@@ -60,7 +74,7 @@ syn match   scenObstacleName contained /\%(\%(cell\|origin\)\s*[-.0-9(\["]\)\@!\
 
 " ------------------------------------------------- world and plan blocks
 syn region  scenBlock matchgroup=scenBrace start=/{/ end=/}/ fold
-      \ contains=scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord
+      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord
 syn keyword scenWorldKeyword contained bounds origin
 " Parameter keys: the common ones, every planner's, and `drive { ... }`'s.
 syn keyword scenParamKey contained start goal limit seed drive
@@ -81,7 +95,11 @@ syn keyword scenWord contained unicycle
 " An expression runs until the next statement.
 syn region  scenExpect matchgroup=scenStatement start=/\<expect\>\%(\s*\.\)\@!/
       \ end=/\ze\<\%(scenario\|include\|world\|robot\|plan\|expect\)\>\%(\s*\.\)\@!/
-      \ contains=scenComment,scenPlanRef,scenOtherMetric,scenMetric,scenOperator,scenLogical,scenBoolean,scenNumber,scenAngle,scenPercent,scenBadNumber,scenUnitInExpect
+      \ contains=scenStray,scenBareWord,scenParen,scenAccessor,scenComment,scenPlanRef,scenOtherMetric,scenMetric,scenOperator,scenLogical,scenBoolean,@scenExprNumbers
+" A bare word is not an operand: write `PLAN.METRIC`.
+syn match   scenBareWord contained /\<\h\w*/
+syn match   scenParen contained /[()]/
+syn match   scenAccessor contained /\.\ze\h/
 syn match   scenPlanRef contained /\<\h\w*\ze\.\h/
 syn match   scenOtherMetric contained /\.\@1<=\h\w*/
 syn match   scenMetric contained /\.\@1<=\%(found\|gave_up\|cost\|length\|turn\|nodes\|expanded\|time_ms\|collision_free\|reaches_goal\)\>/
@@ -93,9 +111,6 @@ syn match   scenMetric contained /\.\@1<=\%(coverage\|cells_total\|cells_visited
 syn match   scenOperator contained /<=\|>=\|==\|!=\|<\|>\|\~\|+-\|±\|[-+*\/]/
 syn keyword scenLogical contained and or not
 syn keyword scenBoolean contained true false
-" Metrics are plain numbers: a duration in `expect` is an error.
-syn match   scenUnitInExpect contained /\%([[:alnum:]_.]\)\@1<!\%(\d\+\%(\.\d\+\)\=\|\.\d\+\)\%([eE][-+]\=\d\+\)\=\%(ms\|s\)\%([[:alnum:]_.%]\)\@!/
-
 syn sync minlines=200
 
 " ---------------------------------------------------------------- links
@@ -111,7 +126,13 @@ hi def link scenPercent       Number
 hi def link scenDuration      Number
 hi def link scenUnit          Special
 hi def link scenBadNumber     Error
-hi def link scenUnitInExpect  Error
+hi def link scenExprNumber    Number
+hi def link scenExprAngle     Number
+hi def link scenExprPercent   Number
+hi def link scenExprBadNumber Error
+hi def link scenExprDuration  Error
+hi def link scenStray         Error
+hi def link scenBareWord      Error
 hi def link scenStatement     Statement
 hi def link scenShape         Type
 hi def link scenWorldKeyword  Keyword
