@@ -89,3 +89,29 @@ test('Vim colours like VS Code', { skip }, async () => {
   });
   assert.strictEqual(report.length, 0, `Vim and VS Code disagree:\n${report.join('\n')}`);
 });
+
+test("Vim's errorformat reads `scen check --format json`", { skip }, () => {
+  const scen = process.env.SCEN || path.join(ROOT, 'target', 'release', 'scen');
+  assert.ok(fs.existsSync(scen), `no scen binary at ${scen}: run \`cargo build --release\` or set SCEN`);
+  const corpus = path.join(ROOT, 'tests', 'bad_inputs');
+  const files = fs.readdirSync(corpus).filter((f) => f.endsWith('.scen')).sort();
+  let json;
+  try {
+    json = execFileSync(scen, ['check', '--format', 'json', ...files], { cwd: corpus, encoding: 'utf8' });
+  } catch (e) {
+    json = e.stdout; // exit status 2: the files are bad
+  }
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'scen-vim-'));
+  fs.writeFileSync(path.join(dir, 'out.json'), json);
+  const out = path.join(dir, 'qf.txt');
+  execFileSync('vim', ['-Nu', 'NONE', '-i', 'NONE', '-es', '--cmd', `let g:json=${JSON.stringify(path.join(dir, 'out.json'))}`,
+    '--cmd', `let g:out=${JSON.stringify(out)}`, '-S', path.join(__dirname, 'vim_quickfix.vim')],
+  { cwd: corpus, stdio: 'inherit', timeout: 60000 });
+  const entries = fs.readFileSync(out, 'utf8').split('\n').filter((l) => l);
+  const diags = json.split('\n').filter((l) => l).map((l) => JSON.parse(l));
+  assert.strictEqual(entries.length, diags.length);
+  diags.forEach((d, k) => {
+    const want = [d.file, d.line, d.column, d.severity[0], JSON.stringify(d.message).slice(1, -1), 1].join('|');
+    assert.strictEqual(entries[k], want);
+  });
+});

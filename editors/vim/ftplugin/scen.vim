@@ -12,5 +12,5 @@ setlocal iskeyword=@,48-57,_
 " `:make` checks the file with `scen check --format json` (one JSON object
 " per diagnostic) and fills the quickfix list.
 setlocal makeprg=scen\ check\ --format\ json\ %:S
-let &l:errorformat = '{"severity":"%t%[a-z]%#"\,"code":"%[^"]%#"\,"message":"%m"\,%.%#"file":"%f"\,"line":%l\,"column":%c\,%.%#'
+let &l:errorformat = '{"severity":"%t%.%#"\,"code":%.%#"message":"%m"\,"label"%.%#"file":"%f"\,"line":%l\,"column":%c\,%.%#'
 let b:undo_ftplugin = 'setlocal commentstring< comments< formatoptions< iskeyword< makeprg< errorformat<'
