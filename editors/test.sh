@@ -21,6 +21,6 @@ if [ -z "${SCEN:-}" ]; then
   [ -x "$SCEN" ] || (cd .. && cargo build --release --quiet)
 fi
 
-npx --no-install vscode-tmgrammar-test --config vscode/package.json \
+node_modules/.bin/vscode-tmgrammar-test --config vscode/package.json \
   -g vscode/syntaxes/scen.tmLanguage.json 'test/grammar/*.scen'
 node --test test/*.test.js
