@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs the whole test suite on a fresh machine: installs the Rerun viewer
 # (rerun-sdk==0.36.3, whose `rerun` binary the .rrd tests use) into a
-# virtual environment under target/, then runs `cargo test --release`.
+# virtual environment under target/, then runs `cargo test --release`, then
+# the editor support's tests (editors/test.sh: Node.js; npm installs the
+# pinned test tools into editors/node_modules).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,6 +22,10 @@ export SCEN_RERUN="$PWD/$venv/bin/rerun"
 export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}"
 
 cargo test --release "$@"
+
+# The VS Code grammar and the Vim syntax (after cargo test, which built
+# target/release/scen for the problem matcher's test).
+SCEN="$PWD/target/release/scen" bash editors/test.sh
 
 # The scenario suite as a user runs it (also run inside the tests above);
 # it ends with the line `N passed, M failed`.

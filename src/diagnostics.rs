@@ -243,7 +243,10 @@ impl Diag {
         }
     }
 
-    /// The JSON form used by `scen check --format json`.
+    /// The JSON form used by `scen check --format json`. Editors read it
+    /// line by line with regular expressions (editors/vscode/package.json's
+    /// problem matcher, editors/vim's errorformat) that expect the keys in
+    /// this order; editors/test.sh checks them on the bad-input corpus.
     pub fn to_json(&self, sources: &SourceMap) -> serde_json::Value {
         let mut obj = serde_json::json!({
             "severity": match self.level { Level::Error => "error", Level::Warning => "warning" },

@@ -6,7 +6,9 @@
 //! Every `tests/bad_inputs/*.scen` (helper files live in `support/`) and a
 //! few inputs generated here (empty, binary, too large, too deep) are run
 //! through the real binary as `scen check FILE`, `scen check --format json
-//! FILE` and `scen run FILE`. Each file starts with comment headers:
+//! FILE` (every object with the fields editors read: file, line, column,
+//! end_line, end_column, severity, code, message, label, help) and
+//! `scen run FILE`. Each file starts with comment headers:
 //!
 //! ```text
 //! # error: scen::analyze::unknown_key   the code expected (one line per code)
@@ -272,10 +274,29 @@ fn check_case(case: &Case) -> Vec<String> {
         problems.push("`--format json` printed no diagnostics".to_string());
     }
     for d in &diags {
-        let missing: Vec<&str> = ["file", "line", "column", "code", "message"]
+        // The fields of SPEC 4 that editors read (editors/vscode's problem
+        // matcher, editors/vim's errorformat).
+        let fields = [
+            "file",
+            "line",
+            "column",
+            "end_line",
+            "end_column",
+            "severity",
+            "code",
+            "message",
+            "label",
+            "help",
+        ];
+        let missing: Vec<&str> = fields
             .into_iter()
             .filter(|k| match *k {
-                "line" | "column" => d[*k].as_u64().is_none_or(|n| n == 0),
+                "line" | "column" | "end_line" | "end_column" => {
+                    d[*k].as_u64().is_none_or(|n| n == 0)
+                }
+                "severity" => d[*k] != "error" && d[*k] != "warning",
+                // `null` when there is no help line.
+                "help" => !(d[*k].is_string() || d[*k].is_null()) || d.get(*k).is_none(),
                 _ => !d[*k].is_string(),
             })
             .collect();
@@ -283,6 +304,13 @@ fn check_case(case: &Case) -> Vec<String> {
             problems.push(format!(
                 "`--format json`: {} missing or invalid in {d}",
                 missing.join(", ")
+            ));
+        }
+        let start = (d["line"].as_u64(), d["column"].as_u64());
+        let end = (d["end_line"].as_u64(), d["end_column"].as_u64());
+        if end < start {
+            problems.push(format!(
+                "`--format json`: the end is before the start in {d}"
             ));
         }
         // Every help line of the JSON is also printed for people.

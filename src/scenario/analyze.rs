@@ -1005,8 +1005,7 @@ impl Analyzer {
                         continue;
                     };
                     let amount = tokens.get(i);
-                    let kinds = ["expansions", "steps", "time", "cells"];
-                    let Some(k) = kinds.iter().find(|k| **k == which.value) else {
+                    let Some(k) = schema::LIMIT_KINDS.iter().find(|k| **k == which.value) else {
                         self.error(
                             Diag::error(
                                 "scen::analyze::bad_limit",

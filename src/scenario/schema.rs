@@ -138,6 +138,10 @@ const fn at_least(min: f64, integer: bool) -> ValueSpec {
     }
 }
 
+/// The kinds of `limit` (SPEC 2.5): `limit expansions N`, `steps N`,
+/// `time DURATION`, `cells N`.
+pub const LIMIT_KINDS: &[&str] = &["expansions", "steps", "time", "cells"];
+
 /// Parameters every planner accepts (SPEC 2.5).
 pub const COMMON_PARAMS: &[ParamSpec] = &[
     p("start", ValueSpec::Pose, "", "start configuration"),

@@ -1,0 +1,54 @@
+// Colouring classes shared by the VS Code grammar and the Vim syntax: the
+// class of a TextMate token (from its scopes) and of a Vim syntax group.
+'use strict';
+
+/** The class of a TextMate token, from its innermost meaningful scope. */
+function textmateClass(scopes) {
+  const rules = [
+    [/^invalid\./, 'error'],
+    [/^comment\./, 'comment'],
+    [/^(string\.|constant\.character\.escape|punctuation\.definition\.string)/, 'string'],
+    [/^keyword\.control\./, 'statement'],
+    [/^storage\.type\.shape\./, 'shape'],
+    [/^entity\.name\./, 'name'],
+    [/^support\.type\.planner\./, 'planner'],
+    [/^variable\.other\.robot\./, 'ref'],
+    [/^(variable\.parameter\.|keyword\.other\.(bounds|grid-option)\.)/, 'key'],
+    [/^constant\.language\.word\./, 'word'],
+    [/^constant\.language\.boolean\./, 'boolean'],
+    [/^(constant\.numeric\.|keyword\.other\.unit\.)/, 'number'],
+    [/^support\.variable\.metric\./, 'metric'],
+    [/^keyword\.operator\./, 'operator'],
+  ];
+  for (let k = scopes.length - 1; k >= 0; k--) {
+    for (const [re, cls] of rules) {
+      if (re.test(scopes[k])) return cls;
+    }
+  }
+  return 'plain';
+}
+
+/** The class of a Vim syntax group (its name and the group it links to). */
+function vimClass(group, linked) {
+  if (linked === 'Error') return 'error';
+  const map = {
+    scenComment: 'comment', scenTodo: 'comment',
+    scenString: 'string', scenEscape: 'string',
+    scenStatement: 'statement',
+    scenShape: 'shape',
+    scenName: 'name', scenPlanName: 'name', scenObstacleName: 'name',
+    scenPlanner: 'planner',
+    scenRobotRef: 'ref',
+    scenParamKey: 'key', scenLimitKind: 'key', scenWorldKeyword: 'key',
+    scenWord: 'word',
+    scenBoolean: 'boolean',
+    scenNumber: 'number', scenAngle: 'number', scenPercent: 'number',
+    scenDuration: 'number', scenUnit: 'number',
+    scenExprNumber: 'number', scenExprAngle: 'number', scenExprPercent: 'number',
+    scenMetric: 'metric',
+    scenOperator: 'operator', scenLogical: 'operator',
+  };
+  return map[group] || 'plain';
+}
+
+module.exports = { textmateClass, vimClass };

@@ -1,0 +1,2 @@
+" .scen files: scenarios for the `scen` robot motion planning interpreter.
+autocmd BufRead,BufNewFile *.scen setfiletype scen

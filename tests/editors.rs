@@ -1,0 +1,377 @@
+//! The editor support (editors/) knows the whole language: every keyword of
+//! the pest grammar and every planner kind, parameter key, word value,
+//! limit kind and metric that the schemas (src/scenario/schema.rs) accept
+//! is coloured by the VS Code grammar and by the Vim syntax, in the right
+//! class, and every planner kind has a snippet listing its parameters. The
+//! lists come from the schemas, so a new parameter cannot be forgotten.
+//!
+//! This test only reads files; editors/test.sh (run by scripts/test.sh)
+//! runs the grammars themselves.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+use scen::scenario::schema::{
+    COMMON_METRICS, COMMON_PARAMS, LIMIT_KINDS, PLANNERS, ParamSpec, ValueSpec,
+};
+use serde_json::Value;
+
+/// The keys of `drive unicycle { ... }` (SPEC 3). Not in the schemas yet:
+/// replace with the drive schema's table when it lands.
+const DRIVE_KEYS: &[&str] = &[
+    "dt",
+    "max_speed",
+    "max_turn_rate",
+    "gain",
+    "turn_gain",
+    "reach",
+    "align",
+];
+
+/// The models of `drive` (`ValueSpec::Drive`).
+const DRIVE_MODELS: &[&str] = &["unicycle"];
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(root().join(path)).unwrap_or_else(|e| panic!("reading {path}: {e}"))
+}
+
+fn read_json(path: &str) -> Value {
+    serde_json::from_str(&read(path)).unwrap_or_else(|e| panic!("{path} is not JSON: {e}"))
+}
+
+/// The identifiers that a regular expression spells out: `\b(?:a|b_c)\b`
+/// gives `a` and `b_c` (escapes such as `\b`, `\s`, `\ze` are dropped).
+fn regex_words(regex: &str, out: &mut BTreeSet<String>) {
+    let mut cleaned = String::new();
+    let mut chars = regex.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == '\\' {
+            // Vim's `\zs`/`\ze` take two letters, the others one.
+            if chars.next() == Some('z') {
+                chars.next();
+            }
+            cleaned.push(' ');
+        } else {
+            cleaned.push(c);
+        }
+    }
+    out.extend(
+        cleaned
+            .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .filter(|w| !w.is_empty())
+            .map(str::to_string),
+    );
+}
+
+/// The words of every `match`/`begin`/`end` regex in a grammar node.
+fn grammar_words(node: &Value, out: &mut BTreeSet<String>) {
+    match node {
+        Value::Object(map) => {
+            for (key, value) in map {
+                match (key.as_str(), value) {
+                    ("match" | "begin" | "end", Value::String(re)) => regex_words(re, out),
+                    _ => grammar_words(value, out),
+                }
+            }
+        }
+        Value::Array(items) => items.iter().for_each(|v| grammar_words(v, out)),
+        _ => {}
+    }
+}
+
+/// The VS Code grammar: the words of each repository rule, and of all rules
+/// under the key `*`.
+fn textmate() -> BTreeMap<String, BTreeSet<String>> {
+    let grammar = read_json("editors/vscode/syntaxes/scen.tmLanguage.json");
+    let mut rules = BTreeMap::new();
+    for (name, rule) in grammar["repository"]
+        .as_object()
+        .expect("the grammar has a repository")
+    {
+        let mut words = BTreeSet::new();
+        grammar_words(rule, &mut words);
+        rules.insert(name.clone(), words);
+    }
+    let mut all = BTreeSet::new();
+    grammar_words(&grammar, &mut all);
+    rules.insert("*".to_string(), all);
+    rules
+}
+
+/// The Vim syntax: the words of each group's `syn keyword` and `syn match`
+/// lines, and of the whole file under the key `*`.
+fn vim() -> BTreeMap<String, BTreeSet<String>> {
+    let text = read("editors/vim/syntax/scen.vim");
+    let mut groups: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    let mut all = BTreeSet::new();
+    for line in text.lines().map(str::trim) {
+        if line.starts_with('"') {
+            continue;
+        }
+        let mut parts = line.split_whitespace();
+        let (Some("syn"), Some(kind), Some(group)) = (parts.next(), parts.next(), parts.next())
+        else {
+            continue;
+        };
+        let words = groups.entry(group.to_string()).or_default();
+        let rest: Vec<&str> = parts.collect();
+        match kind {
+            "keyword" => {
+                for w in rest {
+                    let option = w == "contained" || w.starts_with("skip") || w.contains('=');
+                    if !option {
+                        words.insert(w.to_string());
+                        all.insert(w.to_string());
+                    }
+                }
+            }
+            "match" | "region" => {
+                let rest = rest.join(" ");
+                regex_words(&rest, words);
+                regex_words(&rest, &mut all);
+            }
+            _ => {}
+        }
+    }
+    groups.insert("*".to_string(), all);
+    groups
+}
+
+/// Checks that every word is in `rule` of `words`; returns what is missing.
+fn missing<'a>(
+    what: &str,
+    words: impl IntoIterator<Item = &'a str>,
+    table: &BTreeMap<String, BTreeSet<String>>,
+    rule: &str,
+    file: &str,
+) -> Vec<String> {
+    let known = table
+        .get(rule)
+        .unwrap_or_else(|| panic!("{file} has no `{rule}`"));
+    words
+        .into_iter()
+        .filter(|w| !known.contains(*w))
+        .map(|w| format!("{file}: {what} `{w}` is not in `{rule}`"))
+        .collect()
+}
+
+fn all_params() -> impl Iterator<Item = &'static ParamSpec> {
+    COMMON_PARAMS
+        .iter()
+        .chain(PLANNERS.iter().flat_map(|p| p.params.iter()))
+}
+
+fn param_keys() -> BTreeSet<&'static str> {
+    all_params()
+        .map(|p| p.key)
+        .chain(DRIVE_KEYS.iter().copied())
+        .collect()
+}
+
+fn word_values() -> BTreeSet<&'static str> {
+    let mut words: BTreeSet<&str> = DRIVE_MODELS.iter().copied().collect();
+    for p in all_params() {
+        if let ValueSpec::Word(ws) | ValueSpec::IntOrWord(ws) = p.value {
+            words.extend(ws.iter().copied());
+        }
+    }
+    words
+}
+
+fn metrics() -> BTreeSet<&'static str> {
+    COMMON_METRICS
+        .iter()
+        .chain(PLANNERS.iter().flat_map(|p| p.metrics.iter()))
+        .map(|(m, _)| *m)
+        .collect()
+}
+
+/// The keywords of the pest grammar: every quoted word of two letters or
+/// more (`"scenario"`, `"and"`; the exponent's `"e"` is not a keyword).
+fn pest_keywords() -> BTreeSet<String> {
+    let text = read("grammar/scen.pest");
+    let mut words = BTreeSet::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        for (k, quoted) in code.split('"').enumerate() {
+            let is_word = quoted.len() >= 2
+                && quoted
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_');
+            if k % 2 == 1 && is_word {
+                words.insert(quoted.to_string());
+            }
+        }
+    }
+    words
+}
+
+#[test]
+fn the_lists_are_not_empty() {
+    // A broken extraction must not make the other tests pass vacuously.
+    let keywords = pest_keywords();
+    for kw in [
+        "scenario", "world", "robot", "plan", "expect", "grid", "and",
+    ] {
+        assert!(
+            keywords.contains(kw),
+            "`{kw}` not found in the pest grammar"
+        );
+    }
+    assert!(param_keys().len() >= 20);
+    assert!(word_values().len() >= 10);
+    assert!(metrics().len() >= 20);
+    assert!(textmate()["param-keys"].contains("start"));
+    assert!(vim()["scenParamKey"].contains("start"));
+    assert!(!vim()["scenParamKey"].contains("contained"));
+}
+
+#[test]
+fn textmate_grammar_knows_the_language() {
+    let tm = textmate();
+    let file = "scen.tmLanguage.json";
+    let kinds = PLANNERS.iter().map(|p| p.kind);
+    let keywords = pest_keywords();
+    let mut problems = Vec::new();
+    problems.extend(missing("planner kind", kinds, &tm, "planner-kinds", file));
+    problems.extend(missing("key", param_keys(), &tm, "param-keys", file));
+    problems.extend(missing("word", word_values(), &tm, "word-values", file));
+    problems.extend(missing(
+        "limit",
+        LIMIT_KINDS.iter().copied(),
+        &tm,
+        "limit-kinds",
+        file,
+    ));
+    problems.extend(missing("metric", metrics(), &tm, "metrics", file));
+    problems.extend(missing(
+        "keyword",
+        keywords.iter().map(String::as_str),
+        &tm,
+        "*",
+        file,
+    ));
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}
+
+#[test]
+fn vim_syntax_knows_the_language() {
+    let vim = vim();
+    let file = "editors/vim/syntax/scen.vim";
+    let kinds = PLANNERS.iter().map(|p| p.kind);
+    let keywords = pest_keywords();
+    let mut problems = Vec::new();
+    problems.extend(missing("planner kind", kinds, &vim, "scenPlanner", file));
+    problems.extend(missing("key", param_keys(), &vim, "scenParamKey", file));
+    problems.extend(missing("word", word_values(), &vim, "scenWord", file));
+    problems.extend(missing(
+        "limit",
+        LIMIT_KINDS.iter().copied(),
+        &vim,
+        "scenLimitKind",
+        file,
+    ));
+    problems.extend(missing("metric", metrics(), &vim, "scenMetric", file));
+    problems.extend(missing(
+        "keyword",
+        keywords.iter().map(String::as_str),
+        &vim,
+        "*",
+        file,
+    ));
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}
+
+/// The whole words of a snippet's body.
+fn snippet_words(snippet: &Value) -> BTreeSet<String> {
+    let body: Vec<&str> = snippet["body"]
+        .as_array()
+        .expect("a snippet has a body")
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    let mut words = BTreeSet::new();
+    regex_words(&body.join("\n"), &mut words);
+    words
+}
+
+#[test]
+fn snippets_cover_each_planner_and_its_parameters() {
+    let snippets = read_json("editors/vscode/snippets/scen.json");
+    let by_prefix: BTreeMap<&str, &Value> = snippets
+        .as_object()
+        .expect("snippets are an object")
+        .values()
+        .filter_map(|s| Some((s["prefix"].as_str()?, s)))
+        .collect();
+    let mut problems = Vec::new();
+    for prefix in [
+        "world", "robot", "expect", "scenario", "include", "grid", "limit", "drive",
+    ] {
+        if !by_prefix.contains_key(prefix) {
+            problems.push(format!("no snippet `{prefix}`"));
+        }
+    }
+    for planner in PLANNERS {
+        let prefix = format!("plan-{}", planner.kind);
+        let Some(snippet) = by_prefix.get(prefix.as_str()) else {
+            problems.push(format!("no snippet `{prefix}`"));
+            continue;
+        };
+        let words = snippet_words(snippet);
+        let required = ["plan", planner.kind, "start"].into_iter();
+        let goal = planner.needs_goal.then_some("goal");
+        let params = planner.params.iter().map(|p| p.key);
+        for word in required.chain(goal).chain(params) {
+            if !words.contains(word) {
+                problems.push(format!("snippet `{prefix}` does not mention `{word}`"));
+            }
+        }
+    }
+    let drive = snippet_words(by_prefix["drive"]);
+    for key in DRIVE_KEYS {
+        if !drive.contains(*key) {
+            problems.push(format!("snippet `drive` does not mention `{key}`"));
+        }
+    }
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}
+
+#[test]
+fn extension_manifest_points_at_its_files() {
+    let manifest = read_json("editors/vscode/package.json");
+    let dir = Path::new("editors/vscode");
+    let grammar = &manifest["contributes"]["grammars"][0];
+    let tm = read_json(
+        dir.join(grammar["path"].as_str().expect("a grammar path"))
+            .to_str()
+            .expect("a UTF-8 path"),
+    );
+    assert_eq!(grammar["scopeName"], tm["scopeName"]);
+    let language = &manifest["contributes"]["languages"][0];
+    assert_eq!(language["id"], "scen");
+    assert_eq!(language["extensions"][0], ".scen");
+    for path in [
+        language["configuration"].as_str(),
+        manifest["contributes"]["snippets"][0]["path"].as_str(),
+        manifest["main"].as_str(),
+    ] {
+        let path = dir.join(path.expect("a path in the manifest"));
+        assert!(
+            root().join(&path).is_file(),
+            "{} is missing",
+            path.display()
+        );
+    }
+    read_json("editors/vscode/language-configuration.json");
+    for file in [
+        "editors/vim/ftdetect/scen.vim",
+        "editors/vim/ftplugin/scen.vim",
+    ] {
+        assert!(read(file).contains("scen"), "{file}");
+    }
+}
