@@ -279,11 +279,10 @@ pub fn prim(
         tree.order.push(m);
         if m != root {
             let p = (mr - 1 - prow as usize) * mc + pcol as usize;
-            let dir = if p + 1 == m {
-                (WEST, EAST) // child east of parent: child links west
-            } else if m + 1 == p {
-                (EAST, WEST)
-            } else if p + mc == m {
+            // (child's link, parent's link), by where the child lies.
+            let dir = if m / mc == p / mc {
+                if m > p { (WEST, EAST) } else { (EAST, WEST) }
+            } else if m > p {
                 (SOUTH, NORTH)
             } else {
                 (NORTH, SOUTH)
@@ -488,4 +487,414 @@ fn mega_center(cells: &Cells, m: usize) -> Point {
     let (a, b) = (m % cells.mcols, m / cells.mcols);
     let p = cells.dcell_box(2 * a, 2 * b).max;
     Point::new(p.x, p.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::Span;
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+    use crate::geometry::{ConvexPolygon, Obstacle};
+    use crate::scenario::{Limits, Param, ParamValue};
+    use petgraph::data::Element;
+    use petgraph::graph::UnGraph;
+    use proptest::prelude::*;
+    use std::collections::{BTreeMap, HashMap, VecDeque};
+
+    /// A random grid: `density` of its cells blocked, the others weighted
+    /// 1..=9 (SplitMix64 on `seed`).
+    fn random_grid(w: usize, h: usize, density: f64, seed: u64) -> Grid {
+        let mut s = seed;
+        let mut next = move || {
+            s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = s;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        };
+        let cells = (0..w * h)
+            .map(|_| {
+                let r = next();
+                if (r >> 11) as f64 / (1u64 << 53) as f64 <= density {
+                    0
+                } else {
+                    (r % 9) as u8 + 1
+                }
+            })
+            .collect();
+        Grid {
+            cell: 0.5,
+            origin: Point::new(-1.0, 2.0),
+            width: w,
+            height: h,
+            cells,
+        }
+    }
+
+    fn world_of(grid: &Grid) -> World {
+        World {
+            bounds: grid.extent(),
+            obstacles: vec![Obstacle {
+                name: "G".into(),
+                shape: Shape::Grid(grid.clone()),
+            }],
+        }
+    }
+
+    fn params(start: Config, tool: f64, weights: &str, limits: Limits) -> Params {
+        let param = |value| Param {
+            value,
+            span: Span::default(),
+        };
+        let mut values = BTreeMap::new();
+        values.insert("on", param(ParamValue::Word("G".into())));
+        values.insert("tool", param(ParamValue::Num(tool)));
+        values.insert("weights", param(ParamValue::Word(weights.into())));
+        Params {
+            start,
+            start_span: Span::default(),
+            goal: None,
+            goal_span: None,
+            limits,
+            seed: 0,
+            values,
+        }
+    }
+
+    /// The model the planner must agree with, computed directly from the
+    /// grid's cells (no code shared with the planner).
+    struct Model {
+        k: usize,
+        cols: usize,
+        rows: usize,
+    }
+
+    impl Model {
+        fn new(grid: &Grid, k: usize) -> Self {
+            Model {
+                k,
+                cols: grid.width / k,
+                rows: grid.height / k,
+            }
+        }
+
+        /// The grid cells under D-cell (i, j) (j from the bottom).
+        fn under(&self, grid: &Grid, i: usize, j: usize) -> Vec<u8> {
+            let mut v = Vec::new();
+            for c in i * self.k..(i + 1) * self.k {
+                for b in j * self.k..(j + 1) * self.k {
+                    v.push(grid.weight(c, grid.height - 1 - b));
+                }
+            }
+            v
+        }
+
+        fn free(&self, grid: &Grid, i: usize, j: usize) -> bool {
+            i < self.cols && j < self.rows && !self.under(grid, i, j).contains(&0)
+        }
+
+        fn quad(a: usize, b: usize) -> [(usize, usize); 4] {
+            [
+                (2 * a, 2 * b),
+                (2 * a + 1, 2 * b),
+                (2 * a, 2 * b + 1),
+                (2 * a + 1, 2 * b + 1),
+            ]
+        }
+
+        fn mega_free(&self, grid: &Grid, a: usize, b: usize) -> bool {
+            Self::quad(a, b).iter().all(|&(i, j)| self.free(grid, i, j))
+        }
+
+        fn mega_weight(&self, grid: &Grid, a: usize, b: usize) -> u32 {
+            Self::quad(a, b)
+                .iter()
+                .flat_map(|&(i, j)| self.under(grid, i, j))
+                .max()
+                .map_or(0, u32::from)
+        }
+
+        /// Free mega-cells 4-connected to `root`, by breadth-first search.
+        fn component(&self, grid: &Grid, root: (usize, usize)) -> Vec<(usize, usize)> {
+            let mut seen = vec![root];
+            let mut queue = VecDeque::from([root]);
+            while let Some((a, b)) = queue.pop_front() {
+                let nbrs = [
+                    (a.wrapping_add(1), b),
+                    (a.wrapping_sub(1), b),
+                    (a, b.wrapping_add(1)),
+                    (a, b.wrapping_sub(1)),
+                ];
+                for n in nbrs {
+                    if n.0 < self.cols / 2
+                        && n.1 < self.rows / 2
+                        && self.mega_free(grid, n.0, n.1)
+                        && !seen.contains(&n)
+                    {
+                        seen.push(n);
+                        queue.push_back(n);
+                    }
+                }
+            }
+            seen
+        }
+
+        /// Weight of a minimum spanning tree of `megas` (petgraph's Kruskal).
+        fn mst_weight(&self, grid: &Grid, megas: &[(usize, usize)], sum: bool) -> u32 {
+            let mut g = UnGraph::<(), u32>::new_undirected();
+            let nodes: HashMap<(usize, usize), _> =
+                megas.iter().map(|&m| (m, g.add_node(()))).collect();
+            for &(a, b) in megas {
+                for n in [(a + 1, b), (a, b + 1)] {
+                    if let Some(&to) = nodes.get(&n) {
+                        let (x, y) = (self.mega_weight(grid, a, b), self.mega_weight(grid, n.0, n.1));
+                        let w = if sum { x + y } else { x.max(y) };
+                        g.add_edge(nodes[&(a, b)], to, w);
+                    }
+                }
+            }
+            petgraph::algo::min_spanning_tree(&g)
+                .map(|e| match e {
+                    Element::Edge { weight, .. } => weight,
+                    Element::Node { .. } => 0,
+                })
+                .sum()
+        }
+
+        /// Free D-cells in partly blocked or incomplete mega-cells.
+        fn uncovered(&self, grid: &Grid) -> usize {
+            let mut n = 0;
+            for j in 0..self.rows {
+                for i in 0..self.cols {
+                    let (a, b) = (i / 2, j / 2);
+                    let mega_ok = a < self.cols / 2 && b < self.rows / 2 && self.mega_free(grid, a, b);
+                    if self.free(grid, i, j) && !mega_ok {
+                        n += 1;
+                    }
+                }
+            }
+            n
+        }
+    }
+
+    fn num(out: &PlanOutcome, key: &str) -> f64 {
+        out.extra[key].as_f64()
+    }
+
+    /// A random grid with a valid start (by the model), or `None`.
+    fn case(
+        w: usize,
+        h: usize,
+        k: usize,
+        density: f64,
+        seed: u64,
+        pick: usize,
+    ) -> Option<(Grid, Model, (usize, usize))> {
+        let grid = random_grid(w, h, density, seed);
+        let model = Model::new(&grid, k);
+        let starts: Vec<(usize, usize)> = (0..model.rows)
+            .flat_map(|j| (0..model.cols).map(move |i| (i, j)))
+            .filter(|&(i, j)| model.mega_free(&grid, i / 2, j / 2))
+            .collect();
+        let s = *starts.get(pick % starts.len().max(1))?;
+        Some((grid, model, s))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+
+        /// On random grids: the tour is closed, moves between 4-adjacent
+        /// free D-cells only, visits every D-cell of every free mega-cell
+        /// reachable from the start exactly once, and its tree is minimum.
+        #[test]
+        fn tour_covers_the_component_once(
+            w in 2usize..40, h in 2usize..40, k in 1usize..3,
+            density in 0.0..0.3f64, seed in any::<u64>(), pick in any::<usize>(),
+            fx in 0.05..0.95f64, fy in 0.05..0.95f64, sum in any::<bool>(),
+        ) {
+            let Some((grid, model, s)) = case(w, h, k, density, seed, pick) else {
+                return Ok(());
+            };
+            let d = grid.cell * k as f64;
+            let start = Config::new(
+                grid.origin.x + (s.0 as f64 + fx) * d,
+                grid.origin.y + (s.1 as f64 + fy) * d,
+                0.0,
+            );
+            let weights = if sum { "sum" } else { "max" };
+            let robot = RobotShape::Disk(d / 2.0);
+            let out = plan(&world_of(&grid), &robot, &params(start, d, weights, Limits::default()));
+            let path = out.path.clone().expect("a tour");
+            // Closed: it ends where it began.
+            prop_assert_eq!(path.first(), path.last());
+            prop_assert_eq!(out.extra["returns_to_start"], MetricValue::Bool(true));
+            // The off-centre start is joined to its D-cell's centre.
+            let cells: Vec<(usize, usize)> = path[1..path.len() - 1]
+                .iter()
+                .map(|c| {
+                    let i = ((c.x - grid.origin.x) / d - 0.5).round();
+                    let j = ((c.y - grid.origin.y) / d - 0.5).round();
+                    assert!((grid.origin.x + (i + 0.5) * d - c.x).abs() < 1e-9, "not a centre");
+                    assert!((grid.origin.y + (j + 0.5) * d - c.y).abs() < 1e-9, "not a centre");
+                    (i as usize, j as usize)
+                })
+                .collect();
+            prop_assert_eq!(cells[0], s);
+            prop_assert_eq!(*cells.last().unwrap(), s);
+            for win in cells.windows(2) {
+                let (a, b) = (win[0], win[1]);
+                prop_assert_eq!(a.0.abs_diff(b.0) + a.1.abs_diff(b.1), 1, "{:?} -> {:?}", a, b);
+            }
+            for &(i, j) in &cells {
+                prop_assert!(model.free(&grid, i, j), "blocked D-cell {:?}", (i, j));
+            }
+            let comp = model.component(&grid, (s.0 / 2, s.1 / 2));
+            let mut expected: Vec<(usize, usize)> =
+                comp.iter().flat_map(|&(a, b)| Model::quad(a, b)).collect();
+            expected.sort();
+            let mut visited = cells[..cells.len() - 1].to_vec();
+            visited.sort();
+            prop_assert_eq!(&visited, &expected, "each D-cell of the component exactly once");
+            prop_assert_eq!(num(&out, "cells_total"), expected.len() as f64);
+            prop_assert_eq!(num(&out, "cells_visited"), expected.len() as f64);
+            prop_assert_eq!(num(&out, "revisits"), 0.0);
+            prop_assert_eq!(num(&out, "coverage"), 1.0);
+            prop_assert_eq!(num(&out, "tree_edges"), comp.len() as f64 - 1.0);
+            prop_assert_eq!(num(&out, "tree_weight"), f64::from(model.mst_weight(&grid, &comp, sum)));
+            prop_assert_eq!(num(&out, "uncovered"), model.uncovered(&grid) as f64);
+            let trace = out.trace.coverage.as_ref().unwrap();
+            prop_assert_eq!(trace.mega_cells.len(), comp.len());
+            prop_assert_eq!(trace.tree.len(), comp.len() - 1);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(120))]
+
+        /// The tour from a D-cell centre passes the independent validator
+        /// for a disk of diameter D and for a D × D square.
+        #[test]
+        fn tour_passes_the_validator(
+            w in 2usize..16, h in 2usize..16, k in 1usize..3,
+            density in 0.0..0.4f64, seed in any::<u64>(), pick in any::<usize>(),
+        ) {
+            let Some((grid, _, s)) = case(w, h, k, density, seed, pick) else {
+                return Ok(());
+            };
+            let d = grid.cell * k as f64;
+            let start = Config::new(
+                grid.origin.x + (s.0 as f64 + 0.5) * d,
+                grid.origin.y + (s.1 as f64 + 0.5) * d,
+                0.0,
+            );
+            let world = world_of(&grid);
+            let half = d / 2.0;
+            let square = RobotShape::Polygon(ConvexPolygon {
+                vertices: vec![
+                    Point::new(-half, -half),
+                    Point::new(half, -half),
+                    Point::new(half, half),
+                    Point::new(-half, half),
+                ],
+            });
+            for robot in [RobotShape::Disk(half), square] {
+                let out = plan(&world, &robot, &params(start, d, "max", Limits::default()));
+                let path = out.path.expect("a tour");
+                prop_assert_eq!(path[0], start);
+                let v = validate_path(&world, &robot, &path, DEFAULT_TOLERANCE);
+                prop_assert!(v.is_ok(), "{:?}", v);
+            }
+        }
+    }
+
+    fn open_grid(w: usize, h: usize) -> Grid {
+        Grid {
+            cell: 1.0,
+            origin: Point::new(0.0, 0.0),
+            width: w,
+            height: h,
+            cells: vec![1; w * h],
+        }
+    }
+
+    #[test]
+    fn ties_break_on_the_lowest_row_then_column() {
+        // 2 × 2 mega-cells of equal weight, rooted bottom-left. Rows count
+        // from the top: the root is (row 1, col 0).
+        let cells = Cells::new(&open_grid(4, 4), 1);
+        let m = |row: usize, col: usize| (1 - row) * 2 + col;
+        let tree = prim(&cells, m(1, 0), EdgeWeights::Max, None, None);
+        // From the root, north (row 0) beats east (row 1); from there
+        // (row 0, col 1); the last cell's two candidate parents tie and the
+        // one in the lower row wins.
+        assert_eq!(
+            tree.edges,
+            vec![(m(1, 0), m(0, 0)), (m(0, 0), m(0, 1)), (m(0, 1), m(1, 1))]
+        );
+    }
+
+    #[test]
+    fn lighter_edges_enter_the_tree_first() {
+        // A heavy column splits the map: the tree reaches around it.
+        let mut g = open_grid(6, 4);
+        for r in 0..4 {
+            g.cells[r * 6 + 2] = 9;
+            g.cells[r * 6 + 3] = 9;
+        }
+        let cells = Cells::new(&g, 1);
+        let tree = prim(&cells, 0, EdgeWeights::Max, None, None);
+        // 6 mega-cells; the two light ones of the left column join first.
+        assert_eq!(tree.order[..2], [0, 3]);
+        assert_eq!(tree.weight, 1 + 1 + 9 + 9 + 9);
+        let tree = prim(&cells, 0, EdgeWeights::Sum, None, None);
+        assert_eq!(tree.weight, 2 + 2 + 10 + 10 + 10);
+    }
+
+    #[test]
+    fn resampling_aligns_with_the_bottom_left_corner() {
+        // 5 × 3 cells with tool 2: two D-cells across, one up, from the
+        // bottom-left; the top row and the right column are cut off.
+        let mut g = open_grid(5, 3);
+        g.cells[0] = 0; // top-left cell: outside every whole D-cell
+        g.cells[2 * 5 + 1] = 7; // bottom row, column 1
+        let cells = Cells::new(&g, 2);
+        assert_eq!((cells.cols, cells.rows), (2, 1));
+        assert_eq!(cells.dcells, vec![7, 1]);
+        assert_eq!((cells.mcols, cells.mrows), (1, 0));
+        assert_eq!(cells.uncovered().count(), 2);
+        assert_eq!(start_cell(&g, 2, Point::new(0.5, 0.5)), Err(StartProblem::MegaCellBlocked));
+        assert_eq!(start_cell(&g, 2, Point::new(0.5, 2.5)), Err(StartProblem::OutsideGrid));
+        assert_eq!(start_cell(&g, 1, Point::new(0.5, 2.5)), Err(StartProblem::Blocked));
+        assert_eq!(start_cell(&g, 1, Point::new(-0.5, 0.5)), Err(StartProblem::OutsideGrid));
+        assert_eq!(start_cell(&g, 1, Point::new(1.5, 0.5)), Ok((1, 0)));
+    }
+
+    #[test]
+    fn a_lone_mega_cell_is_toured_counter_clockwise() {
+        let g = open_grid(2, 2);
+        let out = plan(
+            &world_of(&g),
+            &RobotShape::Disk(0.5),
+            &params(Config::new(0.5, 0.5, 0.0), 1.0, "max", Limits::default()),
+        );
+        let xy: Vec<(f64, f64)> = out.path.unwrap().iter().map(|c| (c.x, c.y)).collect();
+        assert_eq!(xy, [(0.5, 0.5), (1.5, 0.5), (1.5, 1.5), (0.5, 1.5), (0.5, 0.5)]);
+    }
+
+    #[test]
+    fn an_expansion_limit_gives_up() {
+        let g = open_grid(20, 20);
+        let limits = Limits {
+            expansions: Some(5),
+            ..Limits::default()
+        };
+        let out = plan(
+            &world_of(&g),
+            &RobotShape::Disk(0.5),
+            &params(Config::new(0.5, 0.5, 0.0), 1.0, "max", limits),
+        );
+        assert!(out.gave_up);
+        assert!(out.path.is_none());
+        assert_eq!(out.expanded, 5);
+    }
 }
