@@ -81,7 +81,7 @@ pub enum StartProblem {
 impl StartProblem {
     pub fn message(self) -> &'static str {
         match self {
-            StartProblem::OutsideGrid => "lies outside the grid's whole D-cells",
+            StartProblem::OutsideGrid => "lies outside the whole D-cells",
             StartProblem::Blocked => "lies in a blocked D-cell",
             StartProblem::MegaCellBlocked => {
                 "lies in a free D-cell of a partly blocked mega-cell, which STC cannot cover"

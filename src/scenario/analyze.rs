@@ -1862,7 +1862,13 @@ impl Analyzer {
                             ),
                         )
                         .at(metric.span, "unknown metric");
+                        let drive_metric =
+                            schema::DRIVE_METRICS.iter().any(|(m, _)| *m == metric.value);
                         d = match did_you_mean(&metric.value, names.iter().copied()) {
+                            _ if drive_metric => d.help(format!(
+                                "`{}` is measured when the plan drives its path: add `drive unicycle` to plan `{}`",
+                                metric.value, info.name
+                            )),
                             Some(n) => d.help(format!(
                                 "did you mean `{n}`? metrics of `{}`: {}",
                                 info.schema.kind,
