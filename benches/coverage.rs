@@ -48,7 +48,7 @@ fn map(block: usize, seed: u64) -> Grid {
     for by in (0..SIDE).step_by(block) {
         for bx in (0..SIDE).step_by(block) {
             let start = by == SIDE - block && bx == 0;
-            if next() % 5 == 0 && !start {
+            if next().is_multiple_of(5) && !start {
                 for r in by..by + block {
                     for c in bx..bx + block {
                         cells[r * SIDE + c] = 0;
@@ -104,7 +104,9 @@ fn bench(c: &mut Criterion) {
         g.bench_function("prim", |b| {
             b.iter(|| black_box(prim(&cells, 0, EdgeWeights::Max, None, None)))
         });
-        g.bench_function("tour", |b| b.iter(|| black_box(tour(&cells, &tree, (0, 0)))));
+        g.bench_function("tour", |b| {
+            b.iter(|| black_box(tour(&cells, &tree, (0, 0))))
+        });
         let world = World {
             bounds: grid.extent(),
             obstacles: vec![Obstacle {

@@ -87,8 +87,11 @@ fn a_coverage_tour_is_driven() {
 
 #[test]
 fn a_faster_robot_arrives_sooner() {
-    let slow = run("plan a astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive unicycle { max_speed 0.5 } }");
-    let fast = run("plan a astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive unicycle { max_speed 2 } }");
+    let slow = run(
+        "plan a astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive unicycle { max_speed 0.5 } }",
+    );
+    let fast =
+        run("plan a astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive unicycle { max_speed 2 } }");
     assert!(check_driven(&fast, "a") < check_driven(&slow, "a"));
 }
 

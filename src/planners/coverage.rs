@@ -270,7 +270,8 @@ pub fn prim(
             continue;
         }
         if max_pops.is_some_and(|n| tree.order.len() as u64 >= n)
-            || (tree.order.len() % 4096 == 0 && deadline.is_some_and(|d| Instant::now() >= d))
+            || (tree.order.len().is_multiple_of(4096)
+                && deadline.is_some_and(|d| Instant::now() >= d))
         {
             tree.gave_up = true;
             break;
@@ -647,7 +648,10 @@ mod tests {
             for &(a, b) in megas {
                 for n in [(a + 1, b), (a, b + 1)] {
                     if let Some(&to) = nodes.get(&n) {
-                        let (x, y) = (self.mega_weight(grid, a, b), self.mega_weight(grid, n.0, n.1));
+                        let (x, y) = (
+                            self.mega_weight(grid, a, b),
+                            self.mega_weight(grid, n.0, n.1),
+                        );
                         let w = if sum { x + y } else { x.max(y) };
                         g.add_edge(nodes[&(a, b)], to, w);
                     }
@@ -667,7 +671,8 @@ mod tests {
             for j in 0..self.rows {
                 for i in 0..self.cols {
                     let (a, b) = (i / 2, j / 2);
-                    let mega_ok = a < self.cols / 2 && b < self.rows / 2 && self.mega_free(grid, a, b);
+                    let mega_ok =
+                        a < self.cols / 2 && b < self.rows / 2 && self.mega_free(grid, a, b);
                     if self.free(grid, i, j) && !mega_ok {
                         n += 1;
                     }
@@ -862,10 +867,22 @@ mod tests {
         assert_eq!(cells.dcells, vec![7, 1]);
         assert_eq!((cells.mcols, cells.mrows), (1, 0));
         assert_eq!(cells.uncovered().count(), 2);
-        assert_eq!(start_cell(&g, 2, Point::new(0.5, 0.5)), Err(StartProblem::MegaCellBlocked));
-        assert_eq!(start_cell(&g, 2, Point::new(0.5, 2.5)), Err(StartProblem::OutsideGrid));
-        assert_eq!(start_cell(&g, 1, Point::new(0.5, 2.5)), Err(StartProblem::Blocked));
-        assert_eq!(start_cell(&g, 1, Point::new(-0.5, 0.5)), Err(StartProblem::OutsideGrid));
+        assert_eq!(
+            start_cell(&g, 2, Point::new(0.5, 0.5)),
+            Err(StartProblem::MegaCellBlocked)
+        );
+        assert_eq!(
+            start_cell(&g, 2, Point::new(0.5, 2.5)),
+            Err(StartProblem::OutsideGrid)
+        );
+        assert_eq!(
+            start_cell(&g, 1, Point::new(0.5, 2.5)),
+            Err(StartProblem::Blocked)
+        );
+        assert_eq!(
+            start_cell(&g, 1, Point::new(-0.5, 0.5)),
+            Err(StartProblem::OutsideGrid)
+        );
         assert_eq!(start_cell(&g, 1, Point::new(1.5, 0.5)), Ok((1, 0)));
     }
 
@@ -878,7 +895,10 @@ mod tests {
             &params(Config::new(0.5, 0.5, 0.0), 1.0, "max", Limits::default()),
         );
         let xy: Vec<(f64, f64)> = out.path.unwrap().iter().map(|c| (c.x, c.y)).collect();
-        assert_eq!(xy, [(0.5, 0.5), (1.5, 0.5), (1.5, 1.5), (0.5, 1.5), (0.5, 0.5)]);
+        assert_eq!(
+            xy,
+            [(0.5, 0.5), (1.5, 0.5), (1.5, 1.5), (0.5, 1.5), (0.5, 0.5)]
+        );
     }
 
     #[test]

@@ -1662,6 +1662,25 @@ impl Analyzer {
         plan_head: Span,
     ) {
         use crate::planners::coverage;
+        if !params.values.contains_key("on") {
+            let grids: Vec<&str> = world
+                .obstacles
+                .iter()
+                .filter(|o| matches!(o.shape, Shape::Grid(_)))
+                .map(|o| o.name.as_str())
+                .collect();
+            self.error(
+                Diag::error(
+                    "scen::analyze::missing_key",
+                    "a `coverage` plan needs `on`, the grid to cover",
+                )
+                .at(plan_head, "needs `on`")
+                .help(match grids.first() {
+                    Some(g) => format!("add `on {g}` to the plan's block"),
+                    None => "add a `grid` obstacle to the world and name it with `on NAME`".into(),
+                }),
+            );
+        }
         if let Some(Param {
             value: ParamValue::Word(name),
             span,
@@ -1862,8 +1881,9 @@ impl Analyzer {
                             ),
                         )
                         .at(metric.span, "unknown metric");
-                        let drive_metric =
-                            schema::DRIVE_METRICS.iter().any(|(m, _)| *m == metric.value);
+                        let drive_metric = schema::DRIVE_METRICS
+                            .iter()
+                            .any(|(m, _)| *m == metric.value);
                         d = match did_you_mean(&metric.value, names.iter().copied()) {
                             _ if drive_metric => d.help(format!(
                                 "`{}` is measured when the plan drives its path: add `drive unicycle` to plan `{}`",
