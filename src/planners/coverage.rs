@@ -902,6 +902,35 @@ mod tests {
     }
 
     #[test]
+    fn the_same_input_gives_the_same_tour() {
+        let g = random_grid(30, 24, 0.15, 42);
+        let model = Model::new(&g, 1);
+        let s = (0..model.rows)
+            .flat_map(|j| (0..model.cols).map(move |i| (i, j)))
+            .find(|&(i, j)| model.mega_free(&g, i / 2, j / 2))
+            .unwrap();
+        let start = Config::new(
+            g.origin.x + (s.0 as f64 + 0.5) * g.cell,
+            g.origin.y + (s.1 as f64 + 0.5) * g.cell,
+            0.0,
+        );
+        let run = || {
+            plan(
+                &world_of(&g),
+                &RobotShape::Disk(0.25),
+                &params(start, g.cell, "sum", Limits::default()),
+            )
+        };
+        let (a, b) = (run(), run());
+        assert_eq!(a.path, b.path);
+        assert_eq!(a.extra, b.extra);
+        assert_eq!(
+            a.trace.coverage.unwrap().tree,
+            b.trace.coverage.unwrap().tree
+        );
+    }
+
+    #[test]
     fn an_expansion_limit_gives_up() {
         let g = open_grid(20, 20);
         let limits = Limits {
