@@ -1,10 +1,141 @@
 //! Driving a path (SPEC 3.6): a simulated differential-drive robot follows
-//! any planner's path with a go-to-orientation and a go-to-cell loop.
-//! Independent of the planner that made the path.
+//! any planner's path with a go-to-orientation and a go-to-cell loop
+//! (SEEDS.md §F). Independent of the planner that made the path: it sees
+//! only the list of configurations.
 //!
-//! Not implemented yet: the analyzer refuses `drive`, so nothing calls this.
+//! For each path point after the first, the robot first turns in place
+//! (ω = turn_gain · heading error, at most `max_turn_rate`) until its
+//! heading points at the target within `align`; then it drives with
+//! v = min(gain · distance, max_speed) · max(cos(heading error), 0) while
+//! steering with the same turn law, until it is within `reach` of the
+//! target. The state (x, y, θ) is integrated with forward Euler at a fixed
+//! `dt`.
 
-use crate::geometry::Config;
+use std::collections::BTreeMap;
+
+use crate::geometry::{Config, Point, angle_diff};
+use crate::scenario::{Param, ParamValue};
+
+/// The unit a drive parameter is written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unit {
+    /// A plain number (world units, 1/s).
+    Number,
+    /// Seconds: a number or a duration (`10ms`).
+    Seconds,
+    /// An angle with its unit (`0.5deg`); stored in radians.
+    Angle,
+}
+
+/// One sub-parameter of `drive unicycle { ... }`.
+#[derive(Clone, Copy, Debug)]
+pub struct DriveParamSpec {
+    pub key: &'static str,
+    pub unit: Unit,
+    /// The default, in stored units (radians for angles).
+    pub default: f64,
+    /// Accepted values: `0 < x <= max`.
+    pub max: f64,
+    pub help: &'static str,
+}
+
+/// The sub-parameters of `drive unicycle`, with their defaults.
+pub const DRIVE_PARAMS: &[DriveParamSpec] = &[
+    DriveParamSpec {
+        key: "dt",
+        unit: Unit::Seconds,
+        default: 0.01,
+        max: 1.0,
+        help: "integration step in seconds (a number or a duration such as `10ms`)",
+    },
+    DriveParamSpec {
+        key: "max_speed",
+        unit: Unit::Number,
+        default: 1.0,
+        max: 1e6,
+        help: "largest linear speed, world units per second",
+    },
+    DriveParamSpec {
+        key: "max_turn_rate",
+        unit: Unit::Angle,
+        default: 2.0,
+        max: 1e6,
+        help: "largest turn rate, an angle per second (e.g. `120deg`)",
+    },
+    DriveParamSpec {
+        key: "gain",
+        unit: Unit::Number,
+        default: 2.0,
+        max: 1e6,
+        help: "go-to-cell gain: speed = gain × distance (1/s)",
+    },
+    DriveParamSpec {
+        key: "turn_gain",
+        unit: Unit::Number,
+        default: 8.0,
+        max: 1e6,
+        help: "go-to-orientation gain: turn rate = turn_gain × heading error (1/s)",
+    },
+    DriveParamSpec {
+        key: "reach",
+        unit: Unit::Number,
+        default: 0.0009,
+        max: 1e6,
+        help: "distance to a path point at which it counts as reached",
+    },
+    DriveParamSpec {
+        key: "align",
+        unit: Unit::Angle,
+        default: 0.5 * std::f64::consts::PI / 180.0,
+        max: std::f64::consts::FRAC_PI_2,
+        help: "heading error under which the robot stops turning in place and drives",
+    },
+];
+
+/// The most simulated steps of one drive; a drive that needs more stops
+/// there, unfinished.
+pub const MAX_DRIVE_STEPS: usize = 2_000_000;
+
+/// Settings of the simulated robot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Unicycle {
+    pub dt: f64,
+    pub max_speed: f64,
+    pub max_turn_rate: f64,
+    pub gain: f64,
+    pub turn_gain: f64,
+    pub reach: f64,
+    pub align: f64,
+}
+
+impl Default for Unicycle {
+    fn default() -> Self {
+        Unicycle::from_block(&BTreeMap::new())
+    }
+}
+
+impl Unicycle {
+    /// The settings of a validated `drive unicycle { ... }` block, with
+    /// defaults for keys not given.
+    pub fn from_block(block: &BTreeMap<&'static str, Param>) -> Self {
+        let get = |key: &str| {
+            let spec = DRIVE_PARAMS.iter().find(|s| s.key == key);
+            match block.get(key).map(|p| &p.value) {
+                Some(ParamValue::Num(x)) => *x,
+                _ => spec.map_or(0.0, |s| s.default),
+            }
+        };
+        Unicycle {
+            dt: get("dt"),
+            max_speed: get("max_speed"),
+            max_turn_rate: get("max_turn_rate"),
+            gain: get("gain"),
+            turn_gain: get("turn_gain"),
+            reach: get("reach"),
+            align: get("align"),
+        }
+    }
+}
 
 /// A driven trajectory.
 #[derive(Clone, Debug, Default)]
@@ -12,8 +143,176 @@ pub struct DriveOutcome {
     /// The simulated poses with their times in seconds, from the path's
     /// start; consecutive samples are `dt` apart.
     pub samples: Vec<(f64, Config)>,
-    /// Time to reach the path's last point, in seconds.
+    /// Time to reach the path's last point, in seconds (+∞ when the drive
+    /// stopped at [`MAX_DRIVE_STEPS`] first).
     pub time: f64,
-    /// Largest distance of the driven reference point from the path.
+    /// Largest distance of the driven reference point from the path
+    /// segment it was following.
     pub max_deviation: f64,
+    /// The robot reached the path's last point.
+    pub completed: bool,
+}
+
+/// Distance from `p` to the segment `a`–`b`.
+fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+    let ab = b - a;
+    let len2 = ab.norm_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + ab * t)).norm()
+}
+
+/// Drives `path` from its first configuration (heading = its θ).
+pub fn drive(path: &[Config], u: &Unicycle) -> DriveOutcome {
+    let Some(first) = path.first() else {
+        return DriveOutcome {
+            completed: true,
+            ..DriveOutcome::default()
+        };
+    };
+    let mut state = *first;
+    let mut t = 0.0;
+    let mut steps = 0usize;
+    let mut samples = vec![(0.0, state)];
+    let mut max_dev = 0.0f64;
+    let turn = |err: f64| (u.turn_gain * err).clamp(-u.max_turn_rate, u.max_turn_rate);
+    for w in path.windows(2) {
+        let (from, to) = (w[0].xy(), w[1].xy());
+        let mut step = |state: &mut Config, v: f64, omega: f64| -> bool {
+            if steps >= MAX_DRIVE_STEPS {
+                return false;
+            }
+            state.x += v * state.theta.cos() * u.dt;
+            state.y += v * state.theta.sin() * u.dt;
+            state.theta += omega * u.dt;
+            steps += 1;
+            t = steps as f64 * u.dt;
+            samples.push((t, *state));
+            max_dev = max_dev.max(segment_distance(state.xy(), from, to));
+            true
+        };
+        if (to - state.xy()).norm() <= u.reach {
+            continue;
+        }
+        // Go-to-orientation: turn in place.
+        loop {
+            let d = to - state.xy();
+            let err = angle_diff(state.theta, d.y.atan2(d.x));
+            if err.abs() < u.align {
+                break;
+            }
+            if !step(&mut state, 0.0, turn(err)) {
+                return unfinished(samples, max_dev);
+            }
+        }
+        // Go-to-cell: proportional speed, steering on the way.
+        loop {
+            let d = to - state.xy();
+            let dist = d.norm();
+            if dist <= u.reach {
+                break;
+            }
+            let err = angle_diff(state.theta, d.y.atan2(d.x));
+            let v = (u.gain * dist).min(u.max_speed) * err.cos().max(0.0);
+            if !step(&mut state, v, turn(err)) {
+                return unfinished(samples, max_dev);
+            }
+        }
+    }
+    DriveOutcome {
+        samples,
+        time: t,
+        max_deviation: max_dev,
+        completed: true,
+    }
+}
+
+fn unfinished(samples: Vec<(f64, Config)>, max_deviation: f64) -> DriveOutcome {
+    DriveOutcome {
+        samples,
+        time: f64::INFINITY,
+        max_deviation,
+        completed: false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Vec<Config> {
+        [(0.5, 0.5), (1.5, 0.5), (1.5, 1.5), (0.5, 1.5), (0.5, 0.5)]
+            .iter()
+            .map(|&(x, y)| Config::new(x, y, 0.0))
+            .collect()
+    }
+
+    #[test]
+    fn reaches_every_point_within_reach() {
+        let u = Unicycle::default();
+        let path = square();
+        let out = drive(&path, &u);
+        assert!(out.completed);
+        let last = out.samples.last().unwrap().1;
+        assert!((last.xy() - path[4].xy()).norm() <= u.reach);
+        // Every path point is passed within `reach` by some sample.
+        for c in &path {
+            let near = out
+                .samples
+                .iter()
+                .any(|(_, s)| (s.xy() - c.xy()).norm() <= u.reach);
+            assert!(near, "never reached {c:?}");
+        }
+        // Samples are dt apart and the time is the last sample's.
+        for w in out.samples.windows(2) {
+            assert!((w[1].0 - w[0].0 - u.dt).abs() < 1e-9);
+        }
+        assert_eq!(out.time, out.samples.last().unwrap().0);
+        // Turning in place before each move keeps the robot on the path.
+        assert!(out.max_deviation < 0.01, "{}", out.max_deviation);
+    }
+
+    #[test]
+    fn speed_and_turn_rate_are_bounded() {
+        let u = Unicycle {
+            max_speed: 0.3,
+            max_turn_rate: 1.0,
+            ..Unicycle::default()
+        };
+        let out = drive(&square(), &u);
+        for w in out.samples.windows(2) {
+            let (a, b) = (w[0].1, w[1].1);
+            assert!((b.xy() - a.xy()).norm() <= u.max_speed * u.dt + 1e-12);
+            assert!((b.theta - a.theta).abs() <= u.max_turn_rate * u.dt + 1e-12);
+        }
+        // 4 unit moves at ≤ 0.3 per second take more than 4 / 0.3 seconds.
+        assert!(out.time > 4.0 / 0.3);
+    }
+
+    #[test]
+    fn a_step_cap_stops_a_hopeless_drive() {
+        // A tiny dt with a slow robot would need far more steps than allowed.
+        let u = Unicycle {
+            dt: 1e-6,
+            max_speed: 1e-3,
+            ..Unicycle::default()
+        };
+        let out = drive(&square(), &u);
+        assert!(!out.completed);
+        assert!(out.time.is_infinite());
+        assert_eq!(out.samples.len(), MAX_DRIVE_STEPS + 1);
+    }
+
+    #[test]
+    fn an_empty_or_single_point_path_needs_no_driving() {
+        let u = Unicycle::default();
+        assert!(drive(&[], &u).completed);
+        let one = drive(&[Config::new(1.0, 2.0, 0.3)], &u);
+        assert!(one.completed);
+        assert_eq!(one.time, 0.0);
+        assert_eq!(one.samples.len(), 1);
+    }
 }

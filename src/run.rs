@@ -8,11 +8,11 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::checks;
-use crate::drive::DriveOutcome;
+use crate::drive::{self, DriveOutcome, Unicycle};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
 use crate::geometry::{Config, RobotShape, angle_diff};
 use crate::planners::{self, MetricValue, Metrics, PlanOutcome};
-use crate::scenario::{Plan, Scenario};
+use crate::scenario::{ParamValue, Plan, Scenario};
 
 /// The result of one plan.
 #[derive(Clone, Debug)]
@@ -123,14 +123,45 @@ fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
         .path
         .as_ref()
         .and_then(|p| validator::validate_path(&scenario.world, robot, p, DEFAULT_TOLERANCE).err());
-    let metrics = common_metrics(&outcome, robot, plan, time_ms, validation.is_none());
+    let mut metrics = common_metrics(&outcome, robot, plan, time_ms, validation.is_none());
+    let drive = drive_plan(scenario, plan, &outcome, &mut metrics);
     PlanRun {
         plan: index,
         outcome,
         metrics,
         validation,
-        drive: None,
+        drive,
     }
+}
+
+/// For a plan with `drive unicycle`: drives its path (SPEC 3.6), validates
+/// the driven trajectory like a path, and adds the drive metrics. Without a
+/// path there is nothing to drive: `drive_time` and `drive_max_deviation`
+/// are +∞ and `drive_collision_free` false.
+fn drive_plan(
+    scenario: &Scenario,
+    plan: &Plan,
+    outcome: &PlanOutcome,
+    metrics: &mut Metrics,
+) -> Option<DriveOutcome> {
+    use MetricValue::{Bool, Num};
+    let Some(ParamValue::Block(_, block)) = plan.params.get("drive") else {
+        return None;
+    };
+    let Some(path) = &outcome.path else {
+        metrics.insert("drive_time".into(), Num(f64::INFINITY));
+        metrics.insert("drive_max_deviation".into(), Num(f64::INFINITY));
+        metrics.insert("drive_collision_free".into(), Bool(false));
+        return None;
+    };
+    let driven = drive::drive(path, &Unicycle::from_block(block));
+    let poses: Vec<Config> = driven.samples.iter().map(|(_, c)| *c).collect();
+    let robot = &scenario.robots[plan.robot].shape;
+    let valid = validator::validate_path(&scenario.world, robot, &poses, DEFAULT_TOLERANCE).is_ok();
+    metrics.insert("drive_time".into(), Num(driven.time));
+    metrics.insert("drive_max_deviation".into(), Num(driven.max_deviation));
+    metrics.insert("drive_collision_free".into(), Bool(valid));
+    Some(driven)
 }
 
 /// The metrics of SPEC 3 that every planner has, plus the planner's own.

@@ -1,15 +1,950 @@
-//! Spanning Tree Coverage (SPEC 3.5).
+//! Spanning Tree Coverage (SPEC 3.5, SEEDS.md §F).
 //!
-//! Not implemented yet: the schema marks `coverage` as not implemented, so the
-//! analyzer refuses such plans before this is ever called.
+//! The `on` grid is resampled to D-cells (side D = `tool`, a multiple `k` of
+//! the grid's cell) and then to mega-cells of 2 × 2 D-cells, both aligned
+//! with the grid's bottom-left corner; cells cut by the top or right edge
+//! count as blocked. Prim's algorithm grows a minimum spanning tree of the
+//! 4-connected free mega-cells from the start's mega-cell (ties: lowest
+//! row, rows counted from the top as in the grid, then lowest column). The
+//! tour circumnavigates the tree counter-clockwise, keeping the tree on its
+//! left: inside a mega-cell the robot goes round its four D-cells
+//! counter-clockwise, and where a tree edge leaves the side it would walk
+//! along, it crosses into the neighbour instead. Every D-cell of every tree
+//! mega-cell is visited exactly once and the tour ends where it began.
+//!
+//! D-cells are indexed `(i, j)` with `i` the column from the left and `j`
+//! the row from the bottom.
 
-use crate::geometry::{RobotShape, World};
-use crate::planners::PlanOutcome;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+use std::time::Instant;
+
+use crate::geometry::{Aabb, Config, Grid, Point, RobotShape, Shape, World};
 use crate::scenario::Params;
 
-pub fn plan(_world: &World, _robot: &RobotShape, _params: &Params) -> PlanOutcome {
-    PlanOutcome {
-        notes: vec!["planner `coverage` is not implemented yet".into()],
-        ..PlanOutcome::default()
+use super::{CoverageTrace, MetricValue, PlanOutcome, Trace};
+
+/// The most boxes or edges of each kind kept in the trace for drawing; the
+/// metrics always count everything.
+pub const MAX_TRACED: usize = 100_000;
+
+/// How mega-cell weights combine into an edge weight (`weights`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeWeights {
+    /// max(w_i, w_j), as in the seed.
+    Max,
+    /// w_i + w_j.
+    Sum,
+}
+
+impl EdgeWeights {
+    pub fn edge(self, a: u8, b: u8) -> u32 {
+        match self {
+            EdgeWeights::Max => u32::from(a.max(b)),
+            EdgeWeights::Sum => u32::from(a) + u32::from(b),
+        }
+    }
+}
+
+/// The weight of D-cell `(i, j)` of `grid` resampled by `k` grid cells per
+/// D-cell side: 0 when any underlying cell is blocked or the D-cell is cut
+/// by the grid's edge, else the largest underlying weight.
+pub fn dcell_weight(grid: &Grid, k: usize, i: usize, j: usize) -> u8 {
+    let (c0, b0) = (i * k, j * k); // b counts grid rows from the bottom
+    if c0 + k > grid.width || b0 + k > grid.height {
+        return 0;
+    }
+    let mut w = u8::MAX;
+    let mut heaviest = 0;
+    for b in b0..b0 + k {
+        let row = grid.height - 1 - b;
+        for &x in &grid.cells[row * grid.width + c0..row * grid.width + c0 + k] {
+            w = w.min(x);
+            heaviest = heaviest.max(x);
+        }
+    }
+    if w == 0 { 0 } else { heaviest }
+}
+
+/// Why a point cannot start a coverage tour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StartProblem {
+    /// Not inside a whole D-cell of the grid.
+    OutsideGrid,
+    /// Its D-cell has a blocked cell.
+    Blocked,
+    /// Its D-cell is free but its mega-cell is not (partly blocked, or cut
+    /// by the grid's edge): STC cannot cover from there.
+    MegaCellBlocked,
+}
+
+impl StartProblem {
+    pub fn message(self) -> &'static str {
+        match self {
+            StartProblem::OutsideGrid => "lies outside the whole D-cells",
+            StartProblem::Blocked => "lies in a blocked D-cell",
+            StartProblem::MegaCellBlocked => {
+                "lies in a free D-cell of a partly blocked mega-cell, which STC cannot cover"
+            }
+        }
+    }
+}
+
+/// The D-cell `(i, j)` of side `k` grid cells that contains `p`, if it
+/// starts a tour: inside the grid, free, and in a free mega-cell.
+pub fn start_cell(grid: &Grid, k: usize, p: Point) -> Result<(usize, usize), StartProblem> {
+    let d = grid.cell * k as f64;
+    let (fi, fj) = (
+        ((p.x - grid.origin.x) / d).floor(),
+        ((p.y - grid.origin.y) / d).floor(),
+    );
+    let (cols, rows) = (grid.width / k, grid.height / k);
+    if !(fi >= 0.0 && fj >= 0.0 && fi < cols as f64 && fj < rows as f64) {
+        return Err(StartProblem::OutsideGrid);
+    }
+    let (i, j) = (fi as usize, fj as usize);
+    if dcell_weight(grid, k, i, j) == 0 {
+        return Err(StartProblem::Blocked);
+    }
+    let (a, b) = (i / 2 * 2, j / 2 * 2);
+    let whole = [(0, 0), (1, 0), (0, 1), (1, 1)].iter().all(|&(di, dj)| {
+        a + di < cols && b + dj < rows && dcell_weight(grid, k, a + di, b + dj) > 0
+    });
+    if !whole {
+        return Err(StartProblem::MegaCellBlocked);
+    }
+    Ok((i, j))
+}
+
+/// The number of grid cells per D-cell side for `tool` (the analyzer checks
+/// that `tool` is a multiple of the cell).
+pub fn cells_per_tool(grid: &Grid, tool: f64) -> usize {
+    ((tool / grid.cell).round() as usize).max(1)
+}
+
+/// A grid resampled to D-cells and mega-cells.
+#[derive(Clone, Debug)]
+pub struct Cells {
+    /// D-cell side.
+    pub d: f64,
+    pub origin: Point,
+    /// D-cells across and up.
+    pub cols: usize,
+    pub rows: usize,
+    /// D-cell weights, `j * cols + i`; 0 blocked.
+    pub dcells: Vec<u8>,
+    /// Mega-cells across and up (`cols / 2`, `rows / 2`).
+    pub mcols: usize,
+    pub mrows: usize,
+    /// Mega-cell weights, `b * mcols + a`; 0 blocked.
+    pub mega: Vec<u8>,
+}
+
+impl Cells {
+    /// Resamples `grid` with `k` grid cells per D-cell side.
+    pub fn new(grid: &Grid, k: usize) -> Self {
+        let (cols, rows) = (grid.width / k, grid.height / k);
+        let mut dcells = vec![0u8; cols * rows];
+        for j in 0..rows {
+            for i in 0..cols {
+                dcells[j * cols + i] = dcell_weight(grid, k, i, j);
+            }
+        }
+        let (mcols, mrows) = (cols / 2, rows / 2);
+        let mut mega = vec![0u8; mcols * mrows];
+        for b in 0..mrows {
+            for a in 0..mcols {
+                let at = |i: usize, j: usize| dcells[j * cols + i];
+                let ws = [
+                    at(2 * a, 2 * b),
+                    at(2 * a + 1, 2 * b),
+                    at(2 * a, 2 * b + 1),
+                    at(2 * a + 1, 2 * b + 1),
+                ];
+                mega[b * mcols + a] = if ws.contains(&0) {
+                    0
+                } else {
+                    ws.into_iter().max().unwrap_or(0)
+                };
+            }
+        }
+        Cells {
+            d: grid.cell * k as f64,
+            origin: grid.origin,
+            cols,
+            rows,
+            dcells,
+            mcols,
+            mrows,
+            mega,
+        }
+    }
+
+    /// The box of D-cell `(i, j)`.
+    pub fn dcell_box(&self, i: usize, j: usize) -> Aabb {
+        let p = |i: usize, j: usize| {
+            Point::new(
+                self.origin.x + i as f64 * self.d,
+                self.origin.y + j as f64 * self.d,
+            )
+        };
+        Aabb::from_corners(p(i, j), p(i + 1, j + 1))
+    }
+
+    /// The centre of D-cell `(i, j)`.
+    pub fn dcell_center(&self, i: usize, j: usize) -> Point {
+        Point::new(
+            self.origin.x + (i as f64 + 0.5) * self.d,
+            self.origin.y + (j as f64 + 0.5) * self.d,
+        )
+    }
+
+    /// Free D-cells STC cannot cover: those whose mega-cell is partly
+    /// blocked or cut by the grid's top or right edge.
+    pub fn uncovered(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (0..self.rows)
+            .flat_map(move |j| (0..self.cols).map(move |i| (i, j)))
+            .filter(move |&(i, j)| {
+                let (a, b) = (i / 2, j / 2);
+                self.dcells[j * self.cols + i] > 0
+                    && (a >= self.mcols || b >= self.mrows || self.mega[b * self.mcols + a] == 0)
+            })
+    }
+}
+
+/// Directions of tree links, as bits of [`Tree::links`].
+const EAST: u8 = 1;
+const NORTH: u8 = 2;
+const WEST: u8 = 4;
+const SOUTH: u8 = 8;
+
+/// A spanning tree of mega-cells.
+#[derive(Clone, Debug, Default)]
+pub struct Tree {
+    /// Mega-cells in the order Prim added them (index `b * mcols + a`).
+    pub order: Vec<usize>,
+    /// Per mega-cell: which neighbours it is linked to (bits EAST, NORTH,
+    /// WEST, SOUTH).
+    pub links: Vec<u8>,
+    /// Edges as (parent, child) mega-cell indices.
+    pub edges: Vec<(usize, usize)>,
+    /// Sum of the edge weights.
+    pub weight: u64,
+    /// A limit stopped the growth.
+    pub gave_up: bool,
+}
+
+/// Prim's algorithm over the free mega-cells from `root`. The heap orders
+/// candidate edges by (weight, child row from the top, child column, parent
+/// row from the top, parent column), so ties break on the lowest row, then
+/// column. Stops when `max_pops` cells were added or `deadline` passed.
+pub fn prim(
+    cells: &Cells,
+    root: usize,
+    weights: EdgeWeights,
+    max_pops: Option<u64>,
+    deadline: Option<Instant>,
+) -> Tree {
+    let (mc, mr) = (cells.mcols, cells.mrows);
+    let top_row = |m: usize| (mr - 1 - m / mc) as u32;
+    let key = |w: u32, child: usize, parent: usize| {
+        Reverse((
+            w,
+            top_row(child),
+            (child % mc) as u32,
+            top_row(parent),
+            (parent % mc) as u32,
+        ))
+    };
+    let mut tree = Tree {
+        links: vec![0; cells.mega.len()],
+        ..Tree::default()
+    };
+    let mut in_tree = vec![false; cells.mega.len()];
+    let mut heap = BinaryHeap::new();
+    // The root enters with a zero-weight edge to itself.
+    heap.push(key(0, root, root));
+    while let Some(Reverse((w, row, col, prow, pcol))) = heap.pop() {
+        let m = (mr - 1 - row as usize) * mc + col as usize;
+        if in_tree[m] {
+            continue;
+        }
+        if max_pops.is_some_and(|n| tree.order.len() as u64 >= n)
+            || (tree.order.len().is_multiple_of(4096)
+                && deadline.is_some_and(|d| Instant::now() >= d))
+        {
+            tree.gave_up = true;
+            break;
+        }
+        in_tree[m] = true;
+        tree.order.push(m);
+        if m != root {
+            let p = (mr - 1 - prow as usize) * mc + pcol as usize;
+            // (child's link, parent's link), by where the child lies.
+            let dir = if m / mc == p / mc {
+                if m > p { (WEST, EAST) } else { (EAST, WEST) }
+            } else if m > p {
+                (SOUTH, NORTH)
+            } else {
+                (NORTH, SOUTH)
+            };
+            tree.links[m] |= dir.0;
+            tree.links[p] |= dir.1;
+            tree.edges.push((p, m));
+            tree.weight += u64::from(w);
+        }
+        let (a, b) = (m % mc, m / mc);
+        let mut push = |n: usize| {
+            if !in_tree[n] && cells.mega[n] > 0 {
+                heap.push(key(weights.edge(cells.mega[m], cells.mega[n]), n, m));
+            }
+        };
+        if a + 1 < mc {
+            push(m + 1);
+        }
+        if b + 1 < mr {
+            push(m + mc);
+        }
+        if a > 0 {
+            push(m - 1);
+        }
+        if b > 0 {
+            push(m - mc);
+        }
+    }
+    tree
+}
+
+/// The D-cell after `(i, j)` on the counter-clockwise circumnavigation of
+/// the tree (see the module documentation).
+fn successor(cells: &Cells, links: &[u8], i: usize, j: usize) -> (usize, usize) {
+    let l = links[(j / 2) * cells.mcols + i / 2];
+    match (i % 2, j % 2) {
+        (0, 0) if l & SOUTH != 0 => (i, j - 1),
+        (0, 0) => (i + 1, j),
+        (1, 0) if l & EAST != 0 => (i + 1, j),
+        (1, 0) => (i, j + 1),
+        (1, 1) if l & NORTH != 0 => (i, j + 1),
+        (1, 1) => (i - 1, j),
+        (_, _) if l & WEST != 0 => (i - 1, j),
+        (_, _) => (i, j - 1),
+    }
+}
+
+/// The closed tour of D-cells around `tree`, from `start` back to it:
+/// `4 × |tree| + 1` cells.
+pub fn tour(cells: &Cells, tree: &Tree, start: (usize, usize)) -> Vec<(usize, usize)> {
+    let n = 4 * tree.order.len();
+    let mut out = Vec::with_capacity(n + 1);
+    let mut c = start;
+    out.push(c);
+    for _ in 0..n {
+        c = successor(cells, &tree.links, c.0, c.1);
+        out.push(c);
+    }
+    out
+}
+
+/// Plans a coverage tour (SPEC 3.5). The robot does not change the tour:
+/// the analyzer checked that its footprint fits a D-cell centred on its
+/// frame origin.
+pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome {
+    let mut out = PlanOutcome::default();
+    let grid = params.word("on").and_then(|name| {
+        world.obstacles.iter().find_map(|o| match &o.shape {
+            Shape::Grid(g) if o.name == name => Some(g),
+            _ => None,
+        })
+    });
+    let Some(grid) = grid else {
+        out.notes.push("`on` names no grid".into());
+        return out;
+    };
+    let k = cells_per_tool(grid, params.num("tool").unwrap_or(grid.cell));
+    let weights = match params.word("weights") {
+        Some("sum") => EdgeWeights::Sum,
+        _ => EdgeWeights::Max,
+    };
+    let start = match start_cell(grid, k, params.start.xy()) {
+        Ok(s) => s,
+        Err(e) => {
+            out.notes.push(format!("the start {}", e.message()));
+            return out;
+        }
+    };
+    let began = Instant::now();
+    let cells = Cells::new(grid, k);
+    let root = (start.1 / 2) * cells.mcols + start.0 / 2;
+    let deadline = params
+        .limits
+        .time
+        .map(|s| began + std::time::Duration::from_secs_f64(s));
+    let tree = prim(&cells, root, weights, params.limits.expansions, deadline);
+    out.expanded = tree.order.len() as u64;
+    out.gave_up = tree.gave_up;
+    let uncovered: Vec<(usize, usize)> = cells.uncovered().collect();
+    let num = |x: usize| MetricValue::Num(x as f64);
+    out.extra.insert("uncovered".into(), num(uncovered.len()));
+    out.extra.insert("tree_edges".into(), num(tree.edges.len()));
+    out.extra
+        .insert("tree_weight".into(), MetricValue::Num(tree.weight as f64));
+    let total = 4 * tree.order.len();
+    out.extra.insert("cells_total".into(), num(total));
+    let mut trace = CoverageTrace {
+        tool: cells.d,
+        mega_cells: tree
+            .order
+            .iter()
+            .take(MAX_TRACED)
+            .map(|&m| {
+                let (a, b) = (m % cells.mcols, m / cells.mcols);
+                Aabb::from_corners(
+                    cells.dcell_box(2 * a, 2 * b).min,
+                    cells.dcell_box(2 * a + 1, 2 * b + 1).max,
+                )
+            })
+            .collect(),
+        uncovered: uncovered
+            .iter()
+            .take(MAX_TRACED)
+            .map(|&(i, j)| cells.dcell_box(i, j))
+            .collect(),
+        tree: tree
+            .edges
+            .iter()
+            .take(MAX_TRACED)
+            .map(|&(p, c)| (mega_center(&cells, p), mega_center(&cells, c)))
+            .collect(),
+    };
+    if tree.order.len() > MAX_TRACED || uncovered.len() > MAX_TRACED {
+        out.notes.push(format!(
+            "the picture shows the first {MAX_TRACED} mega-cells, tree edges and uncovered cells"
+        ));
+    }
+    if tree.gave_up {
+        for m in ["cells_visited", "revisits", "coverage"] {
+            out.extra.insert(m.into(), MetricValue::Num(0.0));
+        }
+        out.extra
+            .insert("returns_to_start".into(), MetricValue::Bool(false));
+        out.notes
+            .push("a limit stopped the spanning tree before it spanned the free mega-cells".into());
+        trace.tree.clear();
+        out.trace = Trace {
+            coverage: Some(trace),
+            ..Trace::default()
+        };
+        return out;
+    }
+    let cycle = tour(&cells, &tree, start);
+    let mut seen = vec![false; cells.dcells.len()];
+    let mut visited = 0usize;
+    let mut revisits = 0usize;
+    // The last cell closes the tour: it is the return to the start, not a visit.
+    for &(i, j) in &cycle[..cycle.len() - 1] {
+        let s = &mut seen[j * cells.cols + i];
+        if *s {
+            revisits += 1;
+        } else {
+            *s = true;
+            visited += 1;
+        }
+    }
+    out.extra.insert("cells_visited".into(), num(visited));
+    out.extra.insert("revisits".into(), num(revisits));
+    out.extra.insert(
+        "coverage".into(),
+        MetricValue::Num(if total == 0 {
+            0.0
+        } else {
+            visited as f64 / total as f64
+        }),
+    );
+    out.extra.insert(
+        "returns_to_start".into(),
+        MetricValue::Bool(cycle.last() == Some(&start)),
+    );
+    let theta = params.start.theta;
+    let at = |p: Point| Config::new(p.x, p.y, theta);
+    let mut path: Vec<Config> = Vec::with_capacity(cycle.len() + 2);
+    let s = params.start;
+    let centre = cells.dcell_center(start.0, start.1);
+    let off_centre = s.x != centre.x || s.y != centre.y;
+    if off_centre {
+        path.push(s);
+    }
+    path.extend(cycle.iter().map(|&(i, j)| at(cells.dcell_center(i, j))));
+    if off_centre {
+        path.push(s);
+    }
+    out.path = Some(path);
+    out.trace = Trace {
+        coverage: Some(trace),
+        ..Trace::default()
+    };
+    out
+}
+
+fn mega_center(cells: &Cells, m: usize) -> Point {
+    let (a, b) = (m % cells.mcols, m / cells.mcols);
+    let p = cells.dcell_box(2 * a, 2 * b).max;
+    Point::new(p.x, p.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::Span;
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+    use crate::geometry::{ConvexPolygon, Obstacle};
+    use crate::scenario::{Limits, Param, ParamValue};
+    use petgraph::data::Element;
+    use petgraph::graph::UnGraph;
+    use proptest::prelude::*;
+    use std::collections::{BTreeMap, HashMap, VecDeque};
+
+    /// A random grid: `density` of its cells blocked, the others weighted
+    /// 1..=9 (SplitMix64 on `seed`).
+    fn random_grid(w: usize, h: usize, density: f64, seed: u64) -> Grid {
+        let mut s = seed;
+        let mut next = move || {
+            s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = s;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        };
+        let cells = (0..w * h)
+            .map(|_| {
+                let r = next();
+                if (r >> 11) as f64 / (1u64 << 53) as f64 <= density {
+                    0
+                } else {
+                    (r % 9) as u8 + 1
+                }
+            })
+            .collect();
+        Grid {
+            cell: 0.5,
+            origin: Point::new(-1.0, 2.0),
+            width: w,
+            height: h,
+            cells,
+        }
+    }
+
+    fn world_of(grid: &Grid) -> World {
+        World {
+            bounds: grid.extent(),
+            obstacles: vec![Obstacle {
+                name: "G".into(),
+                shape: Shape::Grid(grid.clone()),
+            }],
+        }
+    }
+
+    fn params(start: Config, tool: f64, weights: &str, limits: Limits) -> Params {
+        let param = |value| Param {
+            value,
+            span: Span::default(),
+        };
+        let mut values = BTreeMap::new();
+        values.insert("on", param(ParamValue::Word("G".into())));
+        values.insert("tool", param(ParamValue::Num(tool)));
+        values.insert("weights", param(ParamValue::Word(weights.into())));
+        Params {
+            start,
+            start_span: Span::default(),
+            goal: None,
+            goal_span: None,
+            limits,
+            seed: 0,
+            values,
+        }
+    }
+
+    /// The model the planner must agree with, computed directly from the
+    /// grid's cells (no code shared with the planner).
+    struct Model {
+        k: usize,
+        cols: usize,
+        rows: usize,
+    }
+
+    impl Model {
+        fn new(grid: &Grid, k: usize) -> Self {
+            Model {
+                k,
+                cols: grid.width / k,
+                rows: grid.height / k,
+            }
+        }
+
+        /// The grid cells under D-cell (i, j) (j from the bottom).
+        fn under(&self, grid: &Grid, i: usize, j: usize) -> Vec<u8> {
+            let mut v = Vec::new();
+            for c in i * self.k..(i + 1) * self.k {
+                for b in j * self.k..(j + 1) * self.k {
+                    v.push(grid.weight(c, grid.height - 1 - b));
+                }
+            }
+            v
+        }
+
+        fn free(&self, grid: &Grid, i: usize, j: usize) -> bool {
+            i < self.cols && j < self.rows && !self.under(grid, i, j).contains(&0)
+        }
+
+        fn quad(a: usize, b: usize) -> [(usize, usize); 4] {
+            [
+                (2 * a, 2 * b),
+                (2 * a + 1, 2 * b),
+                (2 * a, 2 * b + 1),
+                (2 * a + 1, 2 * b + 1),
+            ]
+        }
+
+        fn mega_free(&self, grid: &Grid, a: usize, b: usize) -> bool {
+            Self::quad(a, b).iter().all(|&(i, j)| self.free(grid, i, j))
+        }
+
+        fn mega_weight(&self, grid: &Grid, a: usize, b: usize) -> u32 {
+            Self::quad(a, b)
+                .iter()
+                .flat_map(|&(i, j)| self.under(grid, i, j))
+                .max()
+                .map_or(0, u32::from)
+        }
+
+        /// Free mega-cells 4-connected to `root`, by breadth-first search.
+        fn component(&self, grid: &Grid, root: (usize, usize)) -> Vec<(usize, usize)> {
+            let mut seen = vec![root];
+            let mut queue = VecDeque::from([root]);
+            while let Some((a, b)) = queue.pop_front() {
+                let nbrs = [
+                    (a.wrapping_add(1), b),
+                    (a.wrapping_sub(1), b),
+                    (a, b.wrapping_add(1)),
+                    (a, b.wrapping_sub(1)),
+                ];
+                for n in nbrs {
+                    if n.0 < self.cols / 2
+                        && n.1 < self.rows / 2
+                        && self.mega_free(grid, n.0, n.1)
+                        && !seen.contains(&n)
+                    {
+                        seen.push(n);
+                        queue.push_back(n);
+                    }
+                }
+            }
+            seen
+        }
+
+        /// Weight of a minimum spanning tree of `megas` (petgraph's Kruskal).
+        fn mst_weight(&self, grid: &Grid, megas: &[(usize, usize)], sum: bool) -> u32 {
+            let mut g = UnGraph::<(), u32>::new_undirected();
+            let nodes: HashMap<(usize, usize), _> =
+                megas.iter().map(|&m| (m, g.add_node(()))).collect();
+            for &(a, b) in megas {
+                for n in [(a + 1, b), (a, b + 1)] {
+                    if let Some(&to) = nodes.get(&n) {
+                        let (x, y) = (
+                            self.mega_weight(grid, a, b),
+                            self.mega_weight(grid, n.0, n.1),
+                        );
+                        let w = if sum { x + y } else { x.max(y) };
+                        g.add_edge(nodes[&(a, b)], to, w);
+                    }
+                }
+            }
+            petgraph::algo::min_spanning_tree(&g)
+                .map(|e| match e {
+                    Element::Edge { weight, .. } => weight,
+                    Element::Node { .. } => 0,
+                })
+                .sum()
+        }
+
+        /// Free D-cells in partly blocked or incomplete mega-cells.
+        fn uncovered(&self, grid: &Grid) -> usize {
+            let mut n = 0;
+            for j in 0..self.rows {
+                for i in 0..self.cols {
+                    let (a, b) = (i / 2, j / 2);
+                    let mega_ok =
+                        a < self.cols / 2 && b < self.rows / 2 && self.mega_free(grid, a, b);
+                    if self.free(grid, i, j) && !mega_ok {
+                        n += 1;
+                    }
+                }
+            }
+            n
+        }
+    }
+
+    fn num(out: &PlanOutcome, key: &str) -> f64 {
+        out.extra[key].as_f64()
+    }
+
+    /// A random grid with a valid start (by the model), or `None`.
+    fn case(
+        w: usize,
+        h: usize,
+        k: usize,
+        density: f64,
+        seed: u64,
+        pick: usize,
+    ) -> Option<(Grid, Model, (usize, usize))> {
+        let grid = random_grid(w, h, density, seed);
+        let model = Model::new(&grid, k);
+        let starts: Vec<(usize, usize)> = (0..model.rows)
+            .flat_map(|j| (0..model.cols).map(move |i| (i, j)))
+            .filter(|&(i, j)| model.mega_free(&grid, i / 2, j / 2))
+            .collect();
+        let s = *starts.get(pick % starts.len().max(1))?;
+        Some((grid, model, s))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+
+        /// On random grids: the tour is closed, moves between 4-adjacent
+        /// free D-cells only, visits every D-cell of every free mega-cell
+        /// reachable from the start exactly once, and its tree is minimum.
+        #[test]
+        fn tour_covers_the_component_once(
+            w in 2usize..40, h in 2usize..40, k in 1usize..3,
+            density in 0.0..0.3f64, seed in any::<u64>(), pick in any::<usize>(),
+            fx in 0.05..0.95f64, fy in 0.05..0.95f64, sum in any::<bool>(),
+        ) {
+            let Some((grid, model, s)) = case(w, h, k, density, seed, pick) else {
+                return Ok(());
+            };
+            let d = grid.cell * k as f64;
+            let start = Config::new(
+                grid.origin.x + (s.0 as f64 + fx) * d,
+                grid.origin.y + (s.1 as f64 + fy) * d,
+                0.0,
+            );
+            let weights = if sum { "sum" } else { "max" };
+            let robot = RobotShape::Disk(d / 2.0);
+            let out = plan(&world_of(&grid), &robot, &params(start, d, weights, Limits::default()));
+            let path = out.path.clone().expect("a tour");
+            // Closed: it ends where it began.
+            prop_assert_eq!(path.first(), path.last());
+            prop_assert_eq!(out.extra["returns_to_start"], MetricValue::Bool(true));
+            // The off-centre start is joined to its D-cell's centre.
+            let cells: Vec<(usize, usize)> = path[1..path.len() - 1]
+                .iter()
+                .map(|c| {
+                    let i = ((c.x - grid.origin.x) / d - 0.5).round();
+                    let j = ((c.y - grid.origin.y) / d - 0.5).round();
+                    assert!((grid.origin.x + (i + 0.5) * d - c.x).abs() < 1e-9, "not a centre");
+                    assert!((grid.origin.y + (j + 0.5) * d - c.y).abs() < 1e-9, "not a centre");
+                    (i as usize, j as usize)
+                })
+                .collect();
+            prop_assert_eq!(cells[0], s);
+            prop_assert_eq!(*cells.last().unwrap(), s);
+            for win in cells.windows(2) {
+                let (a, b) = (win[0], win[1]);
+                prop_assert_eq!(a.0.abs_diff(b.0) + a.1.abs_diff(b.1), 1, "{:?} -> {:?}", a, b);
+            }
+            for &(i, j) in &cells {
+                prop_assert!(model.free(&grid, i, j), "blocked D-cell {:?}", (i, j));
+            }
+            let comp = model.component(&grid, (s.0 / 2, s.1 / 2));
+            let mut expected: Vec<(usize, usize)> =
+                comp.iter().flat_map(|&(a, b)| Model::quad(a, b)).collect();
+            expected.sort();
+            let mut visited = cells[..cells.len() - 1].to_vec();
+            visited.sort();
+            prop_assert_eq!(&visited, &expected, "each D-cell of the component exactly once");
+            prop_assert_eq!(num(&out, "cells_total"), expected.len() as f64);
+            prop_assert_eq!(num(&out, "cells_visited"), expected.len() as f64);
+            prop_assert_eq!(num(&out, "revisits"), 0.0);
+            prop_assert_eq!(num(&out, "coverage"), 1.0);
+            prop_assert_eq!(num(&out, "tree_edges"), comp.len() as f64 - 1.0);
+            prop_assert_eq!(num(&out, "tree_weight"), f64::from(model.mst_weight(&grid, &comp, sum)));
+            prop_assert_eq!(num(&out, "uncovered"), model.uncovered(&grid) as f64);
+            let trace = out.trace.coverage.as_ref().unwrap();
+            prop_assert_eq!(trace.mega_cells.len(), comp.len());
+            prop_assert_eq!(trace.tree.len(), comp.len() - 1);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(120))]
+
+        /// The tour from a D-cell centre passes the independent validator
+        /// for a disk of diameter D and for a D × D square.
+        #[test]
+        fn tour_passes_the_validator(
+            w in 2usize..16, h in 2usize..16, k in 1usize..3,
+            density in 0.0..0.4f64, seed in any::<u64>(), pick in any::<usize>(),
+        ) {
+            let Some((grid, _, s)) = case(w, h, k, density, seed, pick) else {
+                return Ok(());
+            };
+            let d = grid.cell * k as f64;
+            let start = Config::new(
+                grid.origin.x + (s.0 as f64 + 0.5) * d,
+                grid.origin.y + (s.1 as f64 + 0.5) * d,
+                0.0,
+            );
+            let world = world_of(&grid);
+            let half = d / 2.0;
+            let square = RobotShape::Polygon(ConvexPolygon {
+                vertices: vec![
+                    Point::new(-half, -half),
+                    Point::new(half, -half),
+                    Point::new(half, half),
+                    Point::new(-half, half),
+                ],
+            });
+            for robot in [RobotShape::Disk(half), square] {
+                let out = plan(&world, &robot, &params(start, d, "max", Limits::default()));
+                let path = out.path.expect("a tour");
+                prop_assert_eq!(path[0], start);
+                let v = validate_path(&world, &robot, &path, DEFAULT_TOLERANCE);
+                prop_assert!(v.is_ok(), "{:?}", v);
+            }
+        }
+    }
+
+    fn open_grid(w: usize, h: usize) -> Grid {
+        Grid {
+            cell: 1.0,
+            origin: Point::new(0.0, 0.0),
+            width: w,
+            height: h,
+            cells: vec![1; w * h],
+        }
+    }
+
+    #[test]
+    fn ties_break_on_the_lowest_row_then_column() {
+        // 2 × 2 mega-cells of equal weight, rooted bottom-left. Rows count
+        // from the top: the root is (row 1, col 0).
+        let cells = Cells::new(&open_grid(4, 4), 1);
+        let m = |row: usize, col: usize| (1 - row) * 2 + col;
+        let tree = prim(&cells, m(1, 0), EdgeWeights::Max, None, None);
+        // From the root, north (row 0) beats east (row 1); from there
+        // (row 0, col 1); the last cell's two candidate parents tie and the
+        // one in the lower row wins.
+        assert_eq!(
+            tree.edges,
+            vec![(m(1, 0), m(0, 0)), (m(0, 0), m(0, 1)), (m(0, 1), m(1, 1))]
+        );
+    }
+
+    #[test]
+    fn lighter_edges_enter_the_tree_first() {
+        // A heavy column splits the map: the tree reaches around it.
+        let mut g = open_grid(6, 4);
+        for r in 0..4 {
+            g.cells[r * 6 + 2] = 9;
+            g.cells[r * 6 + 3] = 9;
+        }
+        let cells = Cells::new(&g, 1);
+        let tree = prim(&cells, 0, EdgeWeights::Max, None, None);
+        // 6 mega-cells; the two light ones of the left column join first.
+        assert_eq!(tree.order[..2], [0, 3]);
+        assert_eq!(tree.weight, 1 + 1 + 9 + 9 + 9);
+        let tree = prim(&cells, 0, EdgeWeights::Sum, None, None);
+        assert_eq!(tree.weight, 2 + 2 + 10 + 10 + 10);
+    }
+
+    #[test]
+    fn resampling_aligns_with_the_bottom_left_corner() {
+        // 5 × 3 cells with tool 2: two D-cells across, one up, from the
+        // bottom-left; the top row and the right column are cut off.
+        let mut g = open_grid(5, 3);
+        g.cells[0] = 0; // top-left cell: outside every whole D-cell
+        g.cells[2 * 5 + 1] = 7; // bottom row, column 1
+        let cells = Cells::new(&g, 2);
+        assert_eq!((cells.cols, cells.rows), (2, 1));
+        assert_eq!(cells.dcells, vec![7, 1]);
+        assert_eq!((cells.mcols, cells.mrows), (1, 0));
+        assert_eq!(cells.uncovered().count(), 2);
+        assert_eq!(
+            start_cell(&g, 2, Point::new(0.5, 0.5)),
+            Err(StartProblem::MegaCellBlocked)
+        );
+        assert_eq!(
+            start_cell(&g, 2, Point::new(0.5, 2.5)),
+            Err(StartProblem::OutsideGrid)
+        );
+        assert_eq!(
+            start_cell(&g, 1, Point::new(0.5, 2.5)),
+            Err(StartProblem::Blocked)
+        );
+        assert_eq!(
+            start_cell(&g, 1, Point::new(-0.5, 0.5)),
+            Err(StartProblem::OutsideGrid)
+        );
+        assert_eq!(start_cell(&g, 1, Point::new(1.5, 0.5)), Ok((1, 0)));
+    }
+
+    #[test]
+    fn a_lone_mega_cell_is_toured_counter_clockwise() {
+        let g = open_grid(2, 2);
+        let out = plan(
+            &world_of(&g),
+            &RobotShape::Disk(0.5),
+            &params(Config::new(0.5, 0.5, 0.0), 1.0, "max", Limits::default()),
+        );
+        let xy: Vec<(f64, f64)> = out.path.unwrap().iter().map(|c| (c.x, c.y)).collect();
+        assert_eq!(
+            xy,
+            [(0.5, 0.5), (1.5, 0.5), (1.5, 1.5), (0.5, 1.5), (0.5, 0.5)]
+        );
+    }
+
+    #[test]
+    fn the_same_input_gives_the_same_tour() {
+        let g = random_grid(30, 24, 0.15, 42);
+        let model = Model::new(&g, 1);
+        let s = (0..model.rows)
+            .flat_map(|j| (0..model.cols).map(move |i| (i, j)))
+            .find(|&(i, j)| model.mega_free(&g, i / 2, j / 2))
+            .unwrap();
+        let start = Config::new(
+            g.origin.x + (s.0 as f64 + 0.5) * g.cell,
+            g.origin.y + (s.1 as f64 + 0.5) * g.cell,
+            0.0,
+        );
+        let run = || {
+            plan(
+                &world_of(&g),
+                &RobotShape::Disk(0.25),
+                &params(start, g.cell, "sum", Limits::default()),
+            )
+        };
+        let (a, b) = (run(), run());
+        assert_eq!(a.path, b.path);
+        assert_eq!(a.extra, b.extra);
+        assert_eq!(
+            a.trace.coverage.unwrap().tree,
+            b.trace.coverage.unwrap().tree
+        );
+    }
+
+    #[test]
+    fn an_expansion_limit_gives_up() {
+        let g = open_grid(20, 20);
+        let limits = Limits {
+            expansions: Some(5),
+            ..Limits::default()
+        };
+        let out = plan(
+            &world_of(&g),
+            &RobotShape::Disk(0.5),
+            &params(Config::new(0.5, 0.5, 0.0), 1.0, "max", limits),
+        );
+        assert!(out.gave_up);
+        assert!(out.path.is_none());
+        assert_eq!(out.expanded, 5);
     }
 }

@@ -66,6 +66,28 @@ struct Analyzer {
 struct PlanInfo<'s> {
     name: &'s str,
     schema: &'static PlannerSchema,
+    /// The plan has `drive`: it has the drive metrics too.
+    drives: bool,
+}
+
+impl PlanInfo<'_> {
+    fn metric(&self, name: &str) -> Option<MetricType> {
+        self.schema.metric(name).or_else(|| {
+            self.drives
+                .then(|| schema::DRIVE_METRICS.iter().find(|(m, _)| *m == name))
+                .flatten()
+                .map(|(_, t)| *t)
+        })
+    }
+
+    fn metric_names(&self) -> Vec<&'static str> {
+        let drive = schema::DRIVE_METRICS.iter().filter(|_| self.drives);
+        self.schema
+            .all_metrics()
+            .chain(drive)
+            .map(|(m, _)| *m)
+            .collect()
+    }
 }
 
 fn robot_kind(shape: &RobotShape) -> RobotKind {
@@ -1087,21 +1109,20 @@ impl Analyzer {
                         ok = false;
                         continue;
                     };
-                    if let Some(ParamToken::Block { .. }) = tokens.get(i) {
-                        i += 1;
+                    let block = match tokens.get(i) {
+                        Some(ParamToken::Block { tokens, .. }) => {
+                            i += 1;
+                            Some(tokens.as_slice())
+                        }
+                        _ => None,
+                    };
+                    match self.drive_block(w, block) {
+                        Some(v) => v,
+                        None => {
+                            ok = false;
+                            continue;
+                        }
                     }
-                    self.error(
-                        Diag::error(
-                            "scen::analyze::not_implemented",
-                            "`drive` is not implemented yet in this version of scen",
-                        )
-                        .at(key.span.to(w.span), "not implemented yet")
-                        .help(
-                            "remove the `drive` parameter; plans are checked without driving them",
-                        ),
-                    );
-                    ok = false;
-                    continue;
                 }
                 _ => match self.param_value(spec, next, robot) {
                     Some(v) => v,
@@ -1175,7 +1196,9 @@ impl Analyzer {
             values,
         };
         if let (Some(world), Some(robot)) = (world, robot) {
+            let before = self.diags.len();
             self.check_pose(world, robot, start_c, start.span, "start");
+            let start_ok = self.diags.len() == before;
             if let (Some(g), Some(gs)) = (goal_c, &goal) {
                 self.check_pose(world, robot, g, gs.span, "goal");
             }
@@ -1184,10 +1207,159 @@ impl Analyzer {
                 self.check_lattice_size(world, robot, &params, p)?;
             }
             if schema.kind == "coverage" {
-                self.check_coverage_grid(world, &params);
+                self.check_coverage(world, robot, &params, start_ok, plan_head);
             }
         }
         Some(params)
+    }
+
+    /// `drive unicycle { key value ... }`: the model word and the block's
+    /// sub-parameters (SPEC 3.6), each at most once, each positive and at
+    /// most its maximum, angles with a unit.
+    fn drive_block(
+        &mut self,
+        model: &Spanned<String>,
+        block: Option<&[ParamToken]>,
+    ) -> Option<ParamValue> {
+        use crate::drive::{DRIVE_PARAMS, Unit};
+        let keys: Vec<&str> = DRIVE_PARAMS.iter().map(|s| s.key).collect();
+        let mut ok = true;
+        if model.value != "unicycle" {
+            let mut d = Diag::error(
+                "scen::analyze::out_of_range",
+                format!("`drive` does not accept `{}`", model.value),
+            )
+            .at(model.span, "not a drive model");
+            d = d.help("the only drive model is `unicycle`: `drive unicycle { dt 0.01 }`");
+            self.error(d);
+            ok = false;
+        }
+        let mut values: BTreeMap<&'static str, Param> = BTreeMap::new();
+        let tokens = block.unwrap_or(&[]);
+        let mut i = 0;
+        while i < tokens.len() {
+            let tok = &tokens[i];
+            i += 1;
+            let ParamToken::Word(key) = tok else {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::expected_key",
+                        "expected a `drive` parameter name",
+                    )
+                    .at(tok.span(), "a value without a key")
+                    .help(format!(
+                        "parameters of `drive unicycle`: {}",
+                        schema::backticked(&keys)
+                    )),
+                );
+                ok = false;
+                continue;
+            };
+            let Some(spec) = DRIVE_PARAMS.iter().find(|s| s.key == key.value) else {
+                let mut d = Diag::error(
+                    "scen::analyze::unknown_key",
+                    format!("unknown parameter `{}` for `drive unicycle`", key.value),
+                )
+                .at(key.span, "unknown key");
+                d = match did_you_mean(&key.value, keys.iter().copied()) {
+                    Some(k) => d.help(format!(
+                        "did you mean `{k}`? accepted: {}",
+                        schema::backticked(&keys)
+                    )),
+                    None => d.help(format!("accepted: {}", schema::backticked(&keys))),
+                };
+                self.error(d);
+                ok = false;
+                if let Some(ParamToken::Value(_)) = tokens.get(i) {
+                    i += 1; // its value
+                }
+                continue;
+            };
+            let what = match spec.unit {
+                Unit::Number => "a positive number",
+                Unit::Seconds => "a positive number of seconds or a duration (`10ms`)",
+                Unit::Angle => "a positive angle (`0.5deg`)",
+            };
+            let Some(ParamToken::Value(v)) = tokens.get(i) else {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::missing_value",
+                        format!("`{}` needs a value", spec.key),
+                    )
+                    .at(key.span, "no value")
+                    .help(format!("`{}` takes {what}: {}", spec.key, spec.help)),
+                );
+                ok = false;
+                continue;
+            };
+            i += 1;
+            let x = match (spec.unit, &v.kind) {
+                (Unit::Number | Unit::Seconds, ValueKind::Number(x))
+                | (Unit::Seconds, ValueKind::Duration(x))
+                | (Unit::Angle, ValueKind::Angle(x)) => *x,
+                (Unit::Angle, ValueKind::Number(n)) => {
+                    self.error(
+                        Diag::error(
+                            "scen::analyze::angle_unit",
+                            format!("`{}` is an angle and needs a unit", spec.key),
+                        )
+                        .at(v.span, "a bare number")
+                        .help(format!("write `{n}deg` or `{n}rad`")),
+                    );
+                    ok = false;
+                    continue;
+                }
+                (_, other) => {
+                    self.error(
+                        Diag::error(
+                            "scen::analyze::wrong_type",
+                            format!("`{}` takes {what}, found {}", spec.key, other.describe()),
+                        )
+                        .at(v.span, "unexpected value")
+                        .help(format!("`{}`: {}", spec.key, spec.help)),
+                    );
+                    ok = false;
+                    continue;
+                }
+            };
+            if !(x > 0.0 && x <= spec.max) {
+                let max = match spec.unit {
+                    Unit::Angle => format!("{}deg", spec.max.to_degrees()),
+                    _ => format!("{}", spec.max),
+                };
+                self.error(
+                    Diag::error(
+                        "scen::analyze::out_of_range",
+                        format!("`{}` must be > 0 and <= {max}", spec.key),
+                    )
+                    .at(v.span, "out of range")
+                    .help(format!("`{}`: {}", spec.key, spec.help)),
+                );
+                ok = false;
+                continue;
+            }
+            if let Some(first) = values.get(spec.key) {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::duplicate_key",
+                        format!("`{}` is given twice", spec.key),
+                    )
+                    .at(key.span, "second time")
+                    .with_related(first.span, "first given here")
+                    .help("give each parameter once"),
+                );
+                ok = false;
+                continue;
+            }
+            values.insert(
+                spec.key,
+                Param {
+                    value: ParamValue::Num(x),
+                    span: v.span,
+                },
+            );
+        }
+        ok.then(|| ParamValue::Block(model.value.clone(), values))
     }
 
     fn wrong_value(&mut self, spec: &schema::ParamSpec, tok: &ParamToken) {
@@ -1476,7 +1648,38 @@ impl Analyzer {
         Some(())
     }
 
-    fn check_coverage_grid(&mut self, world: &World, params: &Params) {
+    /// `coverage`: `on` names a grid, `tool` is a multiple of its cell and
+    /// holds the robot's footprint, and the start (when `start_ok`: clear
+    /// of obstacles and inside the bounds) lies in a free D-cell of a free
+    /// mega-cell (SPEC 3.5).
+    fn check_coverage(
+        &mut self,
+        world: &World,
+        robot: &Robot,
+        params: &Params,
+        start_ok: bool,
+        plan_head: Span,
+    ) {
+        use crate::planners::coverage;
+        if !params.values.contains_key("on") {
+            let grids: Vec<&str> = world
+                .obstacles
+                .iter()
+                .filter(|o| matches!(o.shape, Shape::Grid(_)))
+                .map(|o| o.name.as_str())
+                .collect();
+            self.error(
+                Diag::error(
+                    "scen::analyze::missing_key",
+                    "a `coverage` plan needs `on`, the grid to cover",
+                )
+                .at(plan_head, "needs `on`")
+                .help(match grids.first() {
+                    Some(g) => format!("add `on {g}` to the plan's block"),
+                    None => "add a `grid` obstacle to the world and name it with `on NAME`".into(),
+                }),
+            );
+        }
         if let Some(Param {
             value: ParamValue::Word(name),
             span,
@@ -1485,9 +1688,73 @@ impl Analyzer {
             let found = world.obstacles.iter().find(|o| &o.name == name);
             match found {
                 Some(Obstacle {
-                    shape: Shape::Grid(_),
+                    shape: Shape::Grid(grid),
                     ..
-                }) => {}
+                }) => {
+                    let tool = params.num("tool").unwrap_or(grid.cell);
+                    let tool_span = params.values.get("tool").map_or(plan_head, |p| p.span);
+                    let k = (tool / grid.cell).round();
+                    if (tool / grid.cell - k).abs() > 1e-9 * k.max(1.0) || k < 1.0 {
+                        self.error(
+                            Diag::error(
+                                "scen::analyze::tool_not_multiple",
+                                format!(
+                                    "`tool` {tool} is not a multiple of grid `{name}`'s cell {}",
+                                    grid.cell
+                                ),
+                            )
+                            .at(tool_span, "not a multiple of the cell")
+                            .help(format!(
+                                "use a whole number of cells, e.g. `tool {}`",
+                                grid.cell * k.max(1.0)
+                            )),
+                        );
+                        return;
+                    }
+                    let half = tool / 2.0 + 1e-9;
+                    let fits = match &robot.shape {
+                        RobotShape::Disk(r) => *r <= half,
+                        shape => shape
+                            .placed_vertices(Config::new(0.0, 0.0, params.start.theta))
+                            .iter()
+                            .all(|v| v.x.abs() <= half && v.y.abs() <= half),
+                    };
+                    if !fits {
+                        self.error(
+                            Diag::error(
+                                "scen::analyze::robot_exceeds_tool",
+                                format!(
+                                    "robot `{}` does not fit in a {tool} × {tool} D-cell centred on its frame origin",
+                                    robot.name
+                                ),
+                            )
+                            .at(tool_span, "the D-cell side")
+                            .with_related(robot.span, "the robot")
+                            .help("the tour puts the robot's frame origin at D-cell centres: use a larger `tool`, or a smaller robot centred on its origin"),
+                        );
+                        return;
+                    }
+                    if !start_ok {
+                        return;
+                    }
+                    let k = k as usize;
+                    if let Err(e) = coverage::start_cell(grid, k, params.start.xy()) {
+                        self.error(
+                            Diag::error(
+                                "scen::analyze::coverage_start",
+                                format!("the start {} of grid `{name}`", e.message()),
+                            )
+                            .at(params.start_span, "cannot start a coverage tour here")
+                            .help(format!(
+                                "put the start inside a free {tool} × {tool} D-cell whose 2 × 2 mega-cell is free, within the grid from ({}, {}) to ({}, {})",
+                                grid.origin.x,
+                                grid.origin.y,
+                                grid.extent().max.x,
+                                grid.extent().max.y
+                            )),
+                        );
+                    }
+                }
                 Some(_) => self.error(
                     Diag::error(
                         "scen::analyze::not_a_grid",
@@ -1516,9 +1783,14 @@ impl Analyzer {
         let mut known: HashMap<String, Option<PlanInfo<'_>>> = HashMap::new();
         for s in statements {
             if let ast::Stmt::Plan(p) = &s.stmt {
+                let drives = p
+                    .body
+                    .iter()
+                    .any(|t| matches!(t, ParamToken::Word(w) if w.value == "drive"));
                 let info = schema::planner(&p.kind.value).map(|schema| PlanInfo {
                     name: &p.name.value,
                     schema,
+                    drives,
                 });
                 known.entry(p.name.value.clone()).or_insert(info);
             }
@@ -1596,10 +1868,10 @@ impl Analyzer {
                     return None;
                 };
                 let info = info.as_ref()?;
-                match info.schema.metric(&metric.value) {
+                match info.metric(&metric.value) {
                     Some(t) => Some(t),
                     None => {
-                        let names: Vec<&str> = info.schema.all_metrics().map(|(m, _)| *m).collect();
+                        let names = info.metric_names();
                         let mut d = Diag::error(
                             "scen::analyze::unknown_metric",
                             format!(
@@ -1608,7 +1880,14 @@ impl Analyzer {
                             ),
                         )
                         .at(metric.span, "unknown metric");
+                        let drive_metric = schema::DRIVE_METRICS
+                            .iter()
+                            .any(|(m, _)| *m == metric.value);
                         d = match did_you_mean(&metric.value, names.iter().copied()) {
+                            _ if drive_metric => d.help(format!(
+                                "`{}` is measured when the plan drives its path: add `drive unicycle` to plan `{}`",
+                                metric.value, info.name
+                            )),
                             Some(n) => d.help(format!(
                                 "did you mean `{n}`? metrics of `{}`: {}",
                                 info.schema.kind,

@@ -195,6 +195,13 @@ pub const COMMON_METRICS: &[(&str, MetricType)] = &[
     ("reaches_goal", Bool),
 ];
 
+/// Metrics of a plan with `drive` (SPEC 3.6), whatever its planner.
+pub const DRIVE_METRICS: &[(&str, MetricType)] = &[
+    ("drive_time", Num),
+    ("drive_max_deviation", Num),
+    ("drive_collision_free", Bool),
+];
+
 /// A planner kind.
 #[derive(Clone, Copy, Debug)]
 pub struct PlannerSchema {
@@ -404,8 +411,8 @@ pub const COVERAGE: PlannerSchema = PlannerSchema {
     kind: "coverage",
     summary: "spanning tree coverage of a grid",
     robots: &[
-        (RobotKind::Disk, Support::NotYet),
-        (RobotKind::Polygon, Support::NotYet),
+        (RobotKind::Disk, Support::Yes),
+        (RobotKind::Polygon, Support::Yes),
     ],
     params: &[
         p(
