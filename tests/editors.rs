@@ -16,17 +16,10 @@ use scen::scenario::schema::{
 };
 use serde_json::Value;
 
-/// The keys of `drive unicycle { ... }` (SPEC 3). Not in the schemas yet:
-/// replace with the drive schema's table when it lands.
-const DRIVE_KEYS: &[&str] = &[
-    "dt",
-    "max_speed",
-    "max_turn_rate",
-    "gain",
-    "turn_gain",
-    "reach",
-    "align",
-];
+/// The keys of `drive unicycle { ... }` (SPEC 3.6), from the drive schema.
+fn drive_keys() -> impl Iterator<Item = &'static str> {
+    scen::drive::DRIVE_PARAMS.iter().map(|p| p.key)
+}
 
 /// The models of `drive` (`ValueSpec::Drive`).
 const DRIVE_MODELS: &[&str] = &["unicycle"];
@@ -166,10 +159,7 @@ fn all_params() -> impl Iterator<Item = &'static ParamSpec> {
 }
 
 fn param_keys() -> BTreeSet<&'static str> {
-    all_params()
-        .map(|p| p.key)
-        .chain(DRIVE_KEYS.iter().copied())
-        .collect()
+    all_params().map(|p| p.key).chain(drive_keys()).collect()
 }
 
 fn word_values() -> BTreeSet<&'static str> {
@@ -186,6 +176,7 @@ fn metrics() -> BTreeSet<&'static str> {
     COMMON_METRICS
         .iter()
         .chain(PLANNERS.iter().flat_map(|p| p.metrics.iter()))
+        .chain(scen::scenario::schema::DRIVE_METRICS.iter())
         .map(|(m, _)| *m)
         .collect()
 }
@@ -333,8 +324,8 @@ fn snippets_cover_each_planner_and_its_parameters() {
         }
     }
     let drive = snippet_words(by_prefix["drive"]);
-    for key in DRIVE_KEYS {
-        if !drive.contains(*key) {
+    for key in drive_keys() {
+        if !drive.contains(key) {
             problems.push(format!("snippet `drive` does not mention `{key}`"));
         }
     }

@@ -108,6 +108,7 @@ syn match   scenMetric contained /\.\@1<=\%(traveled\|steps\|replans\|sensed\)\>
 syn match   scenMetric contained /\.\@1<=\%(graph_nodes\|graph_edges\)\>/
 syn match   scenMetric contained /\.\@1<=\%(minima\|escapes\)\>/
 syn match   scenMetric contained /\.\@1<=\%(coverage\|cells_total\|cells_visited\|revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
+syn match   scenMetric contained /\.\@1<=\%(drive_time\|drive_max_deviation\|drive_collision_free\)\>/
 syn match   scenOperator contained /<=\|>=\|==\|!=\|<\|>\|\~\|+-\|±\|[-+*\/]/
 syn keyword scenLogical contained and or not
 syn keyword scenBoolean contained true false
