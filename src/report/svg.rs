@@ -12,7 +12,9 @@ use std::fmt::Write as _;
 use crate::geometry::{Aabb, Config, Point, RobotShape, Shape};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
-use crate::viz::{FAIL_RED, OBSTACLE_GREY, blocked_boxes, plan_colour};
+use crate::viz::{
+    FAIL_RED, OBSTACLE_GREY, blocked_boxes, plan_colour, weight_boxes, weight_colour,
+};
 
 /// Pixels along the longer side of the drawn world.
 const PLOT_SIZE: f64 = 800.0;
@@ -209,6 +211,24 @@ fn draw_obstacles(svg: &mut String, view: &View, scenario: &Scenario) {
                 );
             }
             Shape::Grid(grid) => {
+                // Weights 2–9 under the blocked cells, one path per weight.
+                let weights = weight_boxes(grid);
+                for w in 2..=9u8 {
+                    let d: String = weights
+                        .iter()
+                        .filter(|(k, _)| *k == w)
+                        .map(|(_, b)| view.box_path(b))
+                        .collect();
+                    if !d.is_empty() {
+                        let [r, g, b, a] = weight_colour(w);
+                        let _ = writeln!(
+                            svg,
+                            "<path class=\"weight-{w}\" stroke=\"none\" fill=\"{}\" fill-opacity=\"{}\" d=\"{d}\"/>",
+                            hex([r, g, b]),
+                            num(f64::from(a) / 255.0)
+                        );
+                    }
+                }
                 // One path of merged boxes keeps a 512×512 map small.
                 let d: String = blocked_boxes(grid)
                     .iter()

@@ -105,6 +105,38 @@ pub(crate) fn robot_outline(shape: &RobotShape, c: Config, mark: f64) -> Vec<Vec
 /// quarter of a million cells. The order is deterministic (by the row
 /// where a box ends, then by column).
 pub(crate) fn blocked_boxes(grid: &Grid) -> Vec<Aabb> {
+    cell_boxes(grid, |w| w == 0)
+}
+
+/// The free cells of weight 2–9 as few boxes (as [`blocked_boxes`]), with
+/// their weight; weight 1, the default, is left out. Empty for grids of
+/// more than [`MAX_WEIGHT_CELLS`] cells.
+pub(crate) fn weight_boxes(grid: &Grid) -> Vec<(u8, Aabb)> {
+    if grid.cells.len() > MAX_WEIGHT_CELLS {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for w in 2..=9u8 {
+        if grid.cells.contains(&w) {
+            out.extend(cell_boxes(grid, |c| c == w).into_iter().map(|b| (w, b)));
+        }
+    }
+    out
+}
+
+/// The largest grid whose weights are drawn (cell by cell they would cost
+/// more than the rest of the picture).
+pub(crate) const MAX_WEIGHT_CELLS: usize = 1 << 20;
+
+/// The colour of cell weight `w` (2–9): one warm hue, more opaque for
+/// heavier cells.
+pub(crate) fn weight_colour(w: u8) -> [u8; 4] {
+    [230, 150, 50, 30 + 25 * w.saturating_sub(1).min(8)]
+}
+
+/// The cells for which `pick(weight)` holds as few boxes (see
+/// [`blocked_boxes`]).
+fn cell_boxes(grid: &Grid, pick: impl Fn(u8) -> bool) -> Vec<Aabb> {
     let mut boxes = Vec::new();
     // Open boxes: column range → first row (rows grow downwards).
     let mut open: BTreeMap<(usize, usize), usize> = BTreeMap::new();
@@ -118,7 +150,7 @@ pub(crate) fn blocked_boxes(grid: &Grid) -> Vec<Aabb> {
         )
     };
     for row in 0..grid.height {
-        let runs = row_runs(grid, row);
+        let runs = row_runs(grid, row, &pick);
         let ended: Vec<_> = open
             .iter()
             .filter(|(run, _)| runs.binary_search(run).is_err())
@@ -138,14 +170,15 @@ pub(crate) fn blocked_boxes(grid: &Grid) -> Vec<Aabb> {
     boxes
 }
 
-/// Half-open column ranges of the blocked runs of one row, left to right.
-fn row_runs(grid: &Grid, row: usize) -> Vec<(usize, usize)> {
+/// Half-open column ranges of the runs of picked cells of one row, left to
+/// right.
+fn row_runs(grid: &Grid, row: usize, pick: &impl Fn(u8) -> bool) -> Vec<(usize, usize)> {
     let mut runs = Vec::new();
     let mut col = 0;
     while col < grid.width {
-        if grid.is_blocked(col, row) {
+        if pick(grid.weight(col, row)) {
             let start = col;
-            while col < grid.width && grid.is_blocked(col, row) {
+            while col < grid.width && pick(grid.weight(col, row)) {
                 col += 1;
             }
             runs.push((start, col));
@@ -168,7 +201,13 @@ mod tests {
             height: rows.len(),
             cells: rows
                 .iter()
-                .flat_map(|r| r.bytes().map(|b| if b == b'#' { 0 } else { 1 }))
+                .flat_map(|r| {
+                    r.bytes().map(|b| match b {
+                        b'#' => 0,
+                        b'0'..=b'9' => b - b'0',
+                        _ => 1,
+                    })
+                })
                 .collect(),
         }
     }
@@ -204,6 +243,22 @@ mod tests {
                 assert_eq!(covered, g.is_blocked(col, row), "cell ({col}, {row})");
             }
         }
+    }
+
+    #[test]
+    fn weight_boxes_cover_exactly_the_weighted_cells() {
+        let g = grid(&["1290", "2299", "1111"]);
+        let boxes = weight_boxes(&g);
+        for w in 2..=9u8 {
+            let count = g.cells.iter().filter(|&&c| c == w).count() as f64;
+            let covered: Vec<Aabb> = boxes
+                .iter()
+                .filter(|(k, _)| *k == w)
+                .map(|(_, b)| *b)
+                .collect();
+            assert_eq!(area(&covered), count, "weight {w}");
+        }
+        assert!(boxes.iter().all(|(w, _)| *w >= 2));
     }
 
     #[test]

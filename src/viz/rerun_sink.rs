@@ -43,7 +43,8 @@ use rerun::{
 
 use super::rerun_extras as extras;
 use super::{
-    FAIL_RED, OBSTACLE_GREY, blocked_boxes, closed, obstacle_outline, plan_colour, robot_outline,
+    FAIL_RED, MAX_WEIGHT_CELLS, OBSTACLE_GREY, blocked_boxes, closed, obstacle_outline,
+    plan_colour, robot_outline, weight_colour,
 };
 use crate::geometry::{Config, Point, Shape};
 use crate::planners::{CLayerTrace, MetricValue};
@@ -237,7 +238,7 @@ fn log_world(rec: &RecordingStream, scenario: &Scenario) -> RecordingStreamResul
             .with_draw_order(5.0),
     )?;
     for obstacle in &scenario.world.obstacles {
-        let entity = entity(&["world", "obstacles", &obstacle.name]);
+        let path = entity(&["world", "obstacles", &obstacle.name]);
         if let Shape::Grid(grid) = &obstacle.shape {
             let boxes = blocked_boxes(grid);
             let centres = boxes.iter().map(|b| {
@@ -250,15 +251,44 @@ fn log_world(rec: &RecordingStream, scenario: &Scenario) -> RecordingStreamResul
                 .iter()
                 .map(|b| [(b.width() / 2.0) as f32, (b.height() / 2.0) as f32]);
             rec.log_static(
-                entity,
+                path,
                 &Boxes2D::from_centers_and_half_sizes(centres, halves)
                     .with_colors([grey])
                     .with_draw_order(10.0),
             )?;
+            // Weights as coloured discs, one per cell (Boxes2D has no fill).
+            let weighted: Vec<([f32; 2], u8)> = if grid.cells.len() <= MAX_WEIGHT_CELLS {
+                (0..grid.height)
+                    .flat_map(|row| (0..grid.width).map(move |col| (col, row)))
+                    .filter(|&(col, row)| grid.weight(col, row) >= 2)
+                    .map(|(col, row)| {
+                        let b = grid.cell_box(col, row);
+                        let c = [
+                            ((b.min.x + b.max.x) / 2.0) as f32,
+                            ((b.min.y + b.max.y) / 2.0) as f32,
+                        ];
+                        (c, grid.weight(col, row))
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            if !weighted.is_empty() {
+                rec.log_static(
+                    entity(&["world", "weights", &obstacle.name]),
+                    &Points2D::new(weighted.iter().map(|(c, _)| *c))
+                        .with_colors(weighted.iter().map(|(_, w)| {
+                            let [r, g, b, a] = weight_colour(*w);
+                            Color::from_unmultiplied_rgba(r, g, b, a)
+                        }))
+                        .with_radii([Radius::new_scene_units((grid.cell / 2.0) as f32)])
+                        .with_draw_order(1.0),
+                )?;
+            }
         } else {
             let strips = obstacle_outline(&obstacle.shape);
             rec.log_static(
-                entity,
+                path,
                 &LineStrips2D::new(strips.iter().map(|s| strip(s)))
                     .with_colors([grey])
                     .with_radii([Radius::new_ui_points(1.5)])
