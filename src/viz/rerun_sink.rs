@@ -720,6 +720,7 @@ mod tests {
                 .collect(),
             time: 49.99,
             max_deviation: 0.0,
+            completed: true,
         });
         let path = temp_rrd("extras");
         let result = stream(&r, &ViewerTarget::Save(path.clone()));
