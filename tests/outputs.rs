@@ -229,3 +229,46 @@ fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
         "one entity per layer, no more"
     );
 }
+
+/// The entities `rerun rrd print` lists for a scenario's recording.
+fn recorded_entities(scenario: &str) -> Option<String> {
+    let recording = verified_recording(scenario)?;
+    let print = run_with_timeout(
+        Command::new(&recording.rerun)
+            .args(["rrd", "print"])
+            .arg(&recording.rrd),
+        Duration::from_secs(120),
+    );
+    assert!(print.status.success(), "rerun rrd print failed");
+    Some(String::from_utf8_lossy(&print.stdout).into_owned())
+}
+
+fn assert_lists(text: &str, entities: &[&str]) {
+    for entity in entities {
+        assert!(
+            text.contains(&format!("{entity} ")),
+            "`rerun rrd print` does not list {entity}"
+        );
+    }
+}
+
+#[test]
+fn the_recording_of_coverage_has_the_tree_the_growing_tour_and_the_driven_robot() {
+    let Some(text) = recorded_entities("scenarios/coverage_rooms.scen") else {
+        return;
+    };
+    assert_lists(
+        &text,
+        &[
+            "/plans/cover/mega_cells",
+            "/plans/cover/tree",
+            "/plans/cover/trail/0000",
+            "/plans/cover/drive/path",
+            "/plans/cover/drive/robot",
+        ],
+    );
+    let Some(text) = recorded_entities("scenarios/coverage_weights.scen") else {
+        return;
+    };
+    assert_lists(&text, &["/world/weights/W"]);
+}

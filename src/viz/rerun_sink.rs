@@ -12,7 +12,8 @@
 //! | `plans/NAME/cspace/path` | LineStrips3D: the path in (x, y, θ), θ in radians as z (rotating robots) | static |
 //! | `plans/NAME/cspace/layer_K` | LineStrips3D: the boundary of the union of layer K's C-obstacles at height θ_K (rotating robots; stacked, the layered C-space) | static |
 //! | `plans/NAME/cspace/obstacles/OBSTACLE` | LineStrips3D: that obstacle's C-obstacles in every layer, the "twisted worm" | static |
-//! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross) | `step` = i |
+//! | `plans/NAME/trail/B` | LineStrips2D: piece B of the path, drawn from the step where it starts (at most 100 pieces), so the path grows with the robot | `step` |
+//! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross; at most 10 000 poses, evenly spread) | `step` = i |
 //! | `plans/NAME/search` | Points2D: the expansions, in batches | `expansion` |
 //! | planner-specific entities | see [`super::rerun_extras`] | |
 //! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
@@ -95,6 +96,13 @@ pub enum ViewerError {
 
 /// Batches of the search stream, at most.
 pub(crate) const SEARCH_BATCHES: usize = 100;
+
+/// The most pieces the progressively drawn path (`plans/NAME/trail/B`) is
+/// sent in.
+pub(crate) const TRAIL_BATCHES: usize = 100;
+
+/// The most poses of the robot's body sent on timeline `step`.
+pub(crate) const ROBOT_POSES: usize = 10_000;
 
 /// How long a TCP connection to the viewer may take before it counts as
 /// unreachable.
@@ -361,8 +369,30 @@ fn log_plan(
             &LineStrips3D::new(cspace_strips(path)).with_colors([colour]),
         )?;
     }
+    // The path drawn progressively: batch B is its own entity, logged at
+    // the step where it starts, so at step k everything up to k shows.
+    let batch = path.len().div_ceil(TRAIL_BATCHES).max(1);
+    for start in (0..path.len().saturating_sub(1)).step_by(batch) {
+        let end = (start + batch).min(path.len() - 1);
+        rec.set_time_sequence("step", start as i64);
+        rec.log(
+            entity(&["plans", name, "trail", &format!("{:04}", start / batch)]),
+            &LineStrips2D::new([strip(&xy[start..=end])])
+                .with_colors([colour])
+                .with_radii([Radius::new_ui_points(2.0)])
+                .with_draw_order(29.0),
+        )?;
+    }
     let body = entity(&["plans", name, "robot"]);
-    for (step, &c) in path.iter().enumerate() {
+    // Every step of the path, or evenly spread ones (the last included)
+    // when it has more than ROBOT_POSES.
+    let every = path.len().div_ceil(ROBOT_POSES).max(1);
+    let last = path.len() - 1;
+    let steps = (0..path.len())
+        .step_by(every)
+        .chain((!last.is_multiple_of(every)).then_some(last));
+    for step in steps {
+        let c = path[step];
         rec.set_time_sequence("step", step as i64);
         let strips = robot_outline(&robot.shape, c, mark);
         rec.log(
