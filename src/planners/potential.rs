@@ -177,8 +177,9 @@ impl Walker<'_> {
 #[derive(Clone, Debug)]
 struct Descent {
     x: Point,
-    /// The last positions, `recent[n % 8]` = position after move n.
-    recent: [Point; OSCILLATION_WINDOW],
+    /// `recent[n % 9]` = the position after move n (move 0: the start), so
+    /// that the position 8 moves back is at hand.
+    recent: [Point; OSCILLATION_WINDOW + 1],
     moves: usize,
 }
 
@@ -186,7 +187,7 @@ impl Descent {
     fn new(x: Point) -> Self {
         Descent {
             x,
-            recent: [x; OSCILLATION_WINDOW],
+            recent: [x; OSCILLATION_WINDOW + 1],
             moves: 0,
         }
     }
@@ -201,6 +202,12 @@ impl Descent {
                 return Advance::Arrived;
             }
             return Advance::Stuck(Why::Blocked);
+        }
+        const SLOTS: usize = OSCILLATION_WINDOW + 1;
+        if self.moves >= OSCILLATION_WINDOW
+            && (x - self.recent[(self.moves - OSCILLATION_WINDOW) % SLOTS]).norm() < 0.5 * w.s.step
+        {
+            return Advance::Stuck(Why::Oscillation);
         }
         let f = w.field.forces(x, w.goal);
         let (na, nr) = (f.attract.norm(), f.repulse.norm());
@@ -217,13 +224,8 @@ impl Descent {
             return Advance::Stuck(Why::Blocked);
         }
         self.x = next;
-        let slot = self.moves % OSCILLATION_WINDOW;
-        let eight_ago = self.recent[slot];
-        self.recent[slot] = next;
         self.moves += 1;
-        if self.moves > OSCILLATION_WINDOW && (next - eight_ago).norm() < 0.5 * w.s.step {
-            return Advance::Stuck(Why::Oscillation);
-        }
+        self.recent[self.moves % SLOTS] = next;
         Advance::Moved(x, f)
     }
 }
@@ -307,6 +309,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         }
         match descent.advance(w) {
             Advance::Arrived => {
+                steps += 1;
                 path.push(goal);
                 found = true;
                 break;
