@@ -12,7 +12,8 @@
 //! # Local minima
 //! A position is a local minimum when
 //! - the angle between F_att and ΣF_rep is within 1° of 180° (the seed's
-//!   cos = −1 test),
+//!   cos = −1 test; not when ΣF_rep is a cancellation down to rounding
+//!   noise, e.g. midway between two parallel walls),
 //! - the position moved less than ε/2 over the last 8 steps (oscillation),
 //! - the step would collide or leave the bounds (SPEC: never taken), or
 //! - F = 0.
@@ -59,6 +60,11 @@ pub const DEFAULT_STEP_LIMIT: u64 = 1_000_000;
 /// escapes cost many steps each, and a walk that keeps escaping must end too.
 const LOOK_AHEAD_PER_STEP: u64 = 20;
 const MIN_LOOK_AHEAD_BUDGET: u64 = 2_000_000;
+
+/// ΣF_rep shorter than this fraction of Σ|F_rep| is taken for cancelled
+/// forces (rounding noise, whose direction means nothing) by the opposition
+/// test.
+const CANCELLED: f64 = 1e-9;
 
 /// The steps compared by the oscillation test.
 const OSCILLATION_WINDOW: usize = 8;
@@ -211,7 +217,10 @@ impl Descent {
         }
         let f = w.field.forces(x, w.goal);
         let (na, nr) = (f.attract.norm(), f.repulse.norm());
-        if na > 0.0 && nr > 0.0 && f.attract.dot(&f.repulse) <= w.cos_opposed * na * nr {
+        if na > 0.0
+            && nr > CANCELLED * f.repulse_sum
+            && f.attract.dot(&f.repulse) <= w.cos_opposed * na * nr
+        {
             return Advance::Stuck(Why::Opposed);
         }
         let total = f.total();

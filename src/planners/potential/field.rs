@@ -96,6 +96,10 @@ pub struct Near {
 pub struct Forces {
     pub attract: Vector,
     pub repulse: Vector,
+    /// Σ|F_rep| over the sources: `repulse` is only rounding noise when it
+    /// is tiny next to this (forces that cancel, as between two parallel
+    /// walls).
+    pub repulse_sum: f64,
     /// The source nearest to the robot, if any is within the influence ρ0.
     pub nearest: Option<Near>,
 }
@@ -301,6 +305,7 @@ impl FieldIndex {
     pub fn forces(&self, x: Point, goal: Point) -> Forces {
         let g = self.gains;
         let mut repulse = Vector::zeros();
+        let mut repulse_sum = 0.0;
         let mut nearest: Option<Near> = None;
         let mut push = |source: u32, b: Point, dist: f64| {
             let rho = dist - self.radius;
@@ -310,6 +315,7 @@ impl FieldIndex {
             let rc = rho.max(MIN_RHO);
             let magnitude = g.repulse / (rc * rc * rc) * (1.0 / rc - 1.0 / g.influence) * rc;
             repulse += (x - b) * (magnitude / dist);
+            repulse_sum += magnitude;
             if nearest.is_none_or(|n| rho < n.rho) {
                 nearest = Some(Near {
                     source: source as usize,
@@ -340,6 +346,7 @@ impl FieldIndex {
         Forces {
             attract: (goal - x) * g.attract,
             repulse,
+            repulse_sum,
             nearest,
         }
     }

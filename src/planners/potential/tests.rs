@@ -402,3 +402,20 @@ plan c potential p { start (18, 2) goal (1, 1) }
         assert!(o.path.is_some(), "{:?}", o.notes);
     }
 }
+
+#[test]
+fn cancelled_repulsion_is_not_an_opposed_minimum() {
+    // Midway between two parallel walls the repulsions cancel; what is left
+    // is rounding noise, pointing anywhere (here, at times, straight back):
+    // the opposition test must not take it for a minimum.
+    let outs = run("world {
+  bounds (0, 0) (100, 10)
+  segment (0, 3) (200, 3)
+  segment (0, 7) (200, 7)
+}
+robot p point
+plan a potential p { start (1, 5) goal (99, 5) influence 3 escape none }
+");
+    assert!(outs[0].path.is_some(), "{:?}", outs[0].notes);
+    assert_eq!(metric(&outs[0], "minima"), 0.0);
+}
