@@ -20,9 +20,10 @@
 //!
 //! # Escape (`escape random_walk`)
 //! Candidate jumps, in this order: the seed's "smart" jumps past the
-//! vertices of the nearest obstacle (nearest vertex first, length = distance
-//! + 0.1 + robot radius, direction offset by a random 2°–7° plus the angle
-//! the robot's radius needs, on a random side first), then jumps parallel to
+//! vertices of the nearest obstacle (nearest vertex first, as long as the
+//! distance plus 0.1 plus the robot's radius, direction offset by a random
+//! 2°–7° plus the angle the robot's radius needs, on a random side first),
+//! then jumps parallel to
 //! the nearest obstacle (both ways, random length in [jump/2, jump]), then
 //! uniformly random jumps (angle in [0, 2π), length in [ε, jump]). A
 //! candidate must be at most `jump` long and collision-free. It is taken
@@ -308,12 +309,17 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
     loop {
         if steps >= s.max_steps {
             out.gave_up = true;
-            out.notes.push(limit_note(format!("the step limit ({})", s.max_steps), closest, s));
+            out.notes.push(limit_note(
+                format!("the step limit ({})", s.max_steps),
+                closest,
+                s,
+            ));
             break;
         }
         if steps % 1024 == 0 && out_of_time(began, s) {
             out.gave_up = true;
-            out.notes.push(limit_note("the time limit".into(), closest, s));
+            out.notes
+                .push(limit_note("the time limit".into(), closest, s));
             break;
         }
         match descent.advance(w) {
@@ -372,7 +378,8 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
                     }
                     Escape::OutOfTime => {
                         out.gave_up = true;
-                        out.notes.push(limit_note("the time limit".into(), closest, s));
+                        out.notes
+                            .push(limit_note("the time limit".into(), closest, s));
                         break;
                     }
                     Escape::OutOfWork => {
@@ -390,9 +397,12 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         }
     }
     out.expanded = steps;
-    out.extra.insert("steps".into(), MetricValue::Num(steps as f64));
-    out.extra.insert("minima".into(), MetricValue::Num(minima as f64));
-    out.extra.insert("escapes".into(), MetricValue::Num(escapes as f64));
+    out.extra
+        .insert("steps".into(), MetricValue::Num(steps as f64));
+    out.extra
+        .insert("minima".into(), MetricValue::Num(minima as f64));
+    out.extra
+        .insert("escapes".into(), MetricValue::Num(escapes as f64));
     out.path = found.then_some(path);
     out.trace = Trace {
         field: Some(trace),
@@ -402,19 +412,17 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
 }
 
 fn out_of_time(began: Instant, s: &Settings) -> bool {
-    s.max_time.is_some_and(|t| began.elapsed().as_secs_f64() > t)
+    s.max_time
+        .is_some_and(|t| began.elapsed().as_secs_f64() > t)
 }
 
 /// The note of a run stopped by a limit; it says when the walk came close
 /// to the goal without landing (overshooting, SEEDS §E).
 fn limit_note(limit: String, closest: f64, s: &Settings) -> String {
-    let mut note = format!(
-        "{limit} was reached before the goal; the walk came within {closest:.3} of it"
-    );
+    let mut note =
+        format!("{limit} was reached before the goal; the walk came within {closest:.3} of it");
     if closest <= 2.0 * s.step {
-        note.push_str(
-            " (it overshoots and circles the goal: raise `tolerance` or lower `step`)",
-        );
+        note.push_str(" (it overshoots and circles the goal: raise `tolerance` or lower `step`)");
     }
     note
 }
@@ -426,13 +434,7 @@ fn thin_samples(samples: &mut Vec<ForceSample>, stride: &mut usize) {
 }
 
 /// Draws jumps out of the local minimum at `m` (see the module docs).
-fn escape(
-    w: &Walker,
-    m: Point,
-    rng: &mut SplitMix64,
-    began: Instant,
-    budget: &mut u64,
-) -> Escape {
+fn escape(w: &Walker, m: Point, rng: &mut SplitMix64, began: Instant, budget: &mut u64) -> Escape {
     let s = w.s;
     let candidates = jump_candidates(w, m, rng);
     let basin = s.gains.influence + w.radius + 2.0 * s.step;
@@ -510,7 +512,9 @@ fn jump_candidates(w: &Walker, m: Point, rng: &mut SplitMix64) -> Vec<Point> {
 /// to the minimum at `m`?
 fn look_ahead(w: &Walker, e: Point, m: Point, budget: &mut u64) -> Outlook {
     let s = w.s;
-    let max = (2.0 * (s.jump + s.gains.influence) / s.step).ceil().clamp(50.0, 1000.0) as u64;
+    let max = (2.0 * (s.jump + s.gains.influence) / s.step)
+        .ceil()
+        .clamp(50.0, 1000.0) as u64;
     let max = max.min(*budget);
     let mut d = Descent::new(e);
     let mut used = 0;

@@ -153,18 +153,21 @@ impl FieldIndex {
         let mut sources = Vec::new();
         let mut prims = Vec::new();
         let mut prim_source = Vec::new();
-        let mut add = |obstacle: usize, vertices: Vec<Point>, ps: &mut dyn Iterator<Item = Prim>| {
-            let s = sources.len() as u32;
-            let before = prims.len();
-            prims.extend(ps);
-            prim_source.resize(prims.len(), s);
-            if prims.len() > before {
-                sources.push(Source { obstacle, vertices });
-            }
-        };
+        let mut add =
+            |obstacle: usize, vertices: Vec<Point>, ps: &mut dyn Iterator<Item = Prim>| {
+                let s = sources.len() as u32;
+                let before = prims.len();
+                prims.extend(ps);
+                prim_source.resize(prims.len(), s);
+                if prims.len() > before {
+                    sources.push(Source { obstacle, vertices });
+                }
+            };
         for (i, o) in world.obstacles.iter().enumerate() {
             match &o.shape {
-                Shape::Segment(a, b) => add(i, vec![*a, *b], &mut std::iter::once(Prim::Segment(*a, *b))),
+                Shape::Segment(a, b) => {
+                    add(i, vec![*a, *b], &mut std::iter::once(Prim::Segment(*a, *b)))
+                }
                 Shape::Rect(b) => add(i, b.corners().to_vec(), &mut std::iter::once(Prim::Box(*b))),
                 Shape::Polygon { outline, .. } => {
                     let n = outline.len();
@@ -174,9 +177,11 @@ impl FieldIndex {
                         &mut (0..n).map(|k| Prim::Segment(outline[k], outline[(k + 1) % n])),
                     )
                 }
-                Shape::Disk { center, radius } => {
-                    add(i, Vec::new(), &mut std::iter::once(Prim::Disk(*center, *radius)))
-                }
+                Shape::Disk { center, radius } => add(
+                    i,
+                    Vec::new(),
+                    &mut std::iter::once(Prim::Disk(*center, *radius)),
+                ),
                 Shape::Grid(g) => {
                     for group in grid_groups(g) {
                         add(i, Vec::new(), &mut group.into_iter().map(Prim::Box));
@@ -209,7 +214,11 @@ impl FieldIndex {
     fn build_buckets(&mut self, bounds: Aabb) {
         let reach = self.reach();
         let side = (bounds.width().max(bounds.height()) / MAX_BUCKETS_PER_SIDE as f64).max(reach);
-        let side = if side.is_finite() && side > 0.0 { side } else { 1.0 };
+        let side = if side.is_finite() && side > 0.0 {
+            side
+        } else {
+            1.0
+        };
         self.inv = 1.0 / side;
         self.origin = bounds.min;
         self.nx = ((bounds.width() / side).ceil() as usize).clamp(1, MAX_BUCKETS_PER_SIDE);
@@ -244,7 +253,13 @@ impl FieldIndex {
         let col = |x: f64| ((x - self.origin.x) * self.inv).floor();
         let row = |y: f64| ((y - self.origin.y) * self.inv).floor();
         let clamp = |v: f64, n: usize| -> Option<usize> {
-            if v < 0.0 { Some(0) } else if v >= n as f64 { None } else { Some(v as usize) }
+            if v < 0.0 {
+                Some(0)
+            } else if v >= n as f64 {
+                None
+            } else {
+                Some(v as usize)
+            }
         };
         let b = p.aabb();
         let (c_lo, c_hi) = (col(b.min.x - reach), col(b.max.x + reach));
@@ -291,7 +306,10 @@ impl FieldIndex {
         if !(cx >= 0.0 && cy >= 0.0) {
             return &[];
         }
-        let (c, r) = ((cx as usize).min(self.nx - 1), (cy as usize).min(self.ny - 1));
+        let (c, r) = (
+            (cx as usize).min(self.nx - 1),
+            (cy as usize).min(self.ny - 1),
+        );
         let i = r * self.nx + c;
         &self.items[self.start[i] as usize..self.start[i + 1] as usize]
     }
@@ -359,7 +377,11 @@ impl FieldIndex {
 fn grid_groups(g: &Grid) -> Vec<Vec<Aabb>> {
     let (w, h) = (g.width, g.height);
     let blocked = |c: isize, r: isize| -> bool {
-        c >= 0 && r >= 0 && (c as usize) < w && (r as usize) < h && g.is_blocked(c as usize, r as usize)
+        c >= 0
+            && r >= 0
+            && (c as usize) < w
+            && (r as usize) < h
+            && g.is_blocked(c as usize, r as usize)
     };
     // Label groups by flood fill (rows top first, as in the grid).
     let mut label = vec![u32::MAX; w * h];

@@ -9,10 +9,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 fn load(text: &str) -> Scenario {
     static COUNTER: AtomicUsize = AtomicUsize::new(0);
     let n = COUNTER.fetch_add(1, Ordering::SeqCst);
-    let path = std::env::temp_dir().join(format!(
-        "scen-potential-{}-{n}.scen",
-        std::process::id()
-    ));
+    let path = std::env::temp_dir().join(format!("scen-potential-{}-{n}.scen", std::process::id()));
     std::fs::write(&path, text).expect("write the scenario");
     let s = loader::load(&path);
     let _ = std::fs::remove_file(&path);
@@ -224,7 +221,9 @@ fn brute_closest(shape: &Shape, x: Point) -> Vec<Point> {
         a + (b - a) * t
     };
     let ring = |v: &[Point]| -> Vec<Point> {
-        (0..v.len()).map(|k| seg(v[k], v[(k + 1) % v.len()])).collect()
+        (0..v.len())
+            .map(|k| seg(v[k], v[(k + 1) % v.len()]))
+            .collect()
     };
     match shape {
         Shape::Segment(a, b) => vec![seg(*a, *b)],
@@ -376,7 +375,11 @@ fn grid_cells_repel_by_groups() {
     // Below the middle of the two-cell block, 0.5 away: straight down.
     let f = field.forces(Point::new(2.0, 1.5), Point::new(2.0, 1.5));
     let expected = 1.0 / 0.125 * (2.0 - 1.0) * 0.5;
-    assert!((f.repulse - Vector::new(0.0, -expected)).norm() < 1e-9, "{:?}", f.repulse);
+    assert!(
+        (f.repulse - Vector::new(0.0, -expected)).norm() < 1e-9,
+        "{:?}",
+        f.repulse
+    );
 }
 
 #[test]
