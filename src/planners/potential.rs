@@ -93,6 +93,8 @@ pub struct Settings {
     pub jump: f64,
     /// Moves (steps and jumps) before giving up.
     pub max_steps: u64,
+    /// `max_steps` is [`DEFAULT_STEP_LIMIT`], the plan set no limit.
+    pub default_steps: bool,
     /// Seconds before giving up.
     pub max_time: Option<f64>,
     pub seed: u64,
@@ -119,6 +121,7 @@ impl Settings {
             escape: params.word("escape") != Some("none"),
             jump: params.num("jump").unwrap_or(5.0 * influence),
             max_steps,
+            default_steps: limits.steps.is_none() && limits.expansions.is_none(),
             max_time: limits.time,
             seed: params.seed,
         }
@@ -310,7 +313,14 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         if steps >= s.max_steps {
             out.gave_up = true;
             out.notes.push(limit_note(
-                format!("the step limit ({})", s.max_steps),
+                if s.default_steps {
+                    format!(
+                        "the default step limit ({}; set another with `limit steps N`)",
+                        s.max_steps
+                    )
+                } else {
+                    format!("the step limit ({})", s.max_steps)
+                },
                 closest,
                 s,
             ));

@@ -308,6 +308,8 @@ proptest! {
         walls in prop::collection::vec(
             ((1.0..19.0f64, 1.0..19.0f64), (-6.0..6.0f64, -6.0..6.0f64)), 1..8),
         disks in prop::collection::vec(((1.0..19.0f64, 1.0..19.0f64), 0.2..2.0f64), 0..3),
+        rects in prop::collection::vec(((1.0..19.0f64, 1.0..19.0f64), (0.2..3.0f64, 0.2..3.0f64)), 0..3),
+        triangle in any::<bool>(),
         start in (0.0..20.0f64, 0.0..20.0f64),
         goal in (0.0..20.0f64, 0.0..20.0f64),
         disk_robot in any::<bool>(),
@@ -320,6 +322,12 @@ proptest! {
         }
         for ((x, y), r) in &disks {
             text += &format!(" disk ({x}, {y}) {r}\n");
+        }
+        for ((x, y), (w, h)) in &rects {
+            text += &format!(" rect ({x}, {y}) ({}, {})\n", x + w, y + h);
+        }
+        if triangle {
+            text += " polygon [(12, 12), (16, 12), (14, 15), (14, 13)]\n";
         }
         text += "}\nrobot p point\nrobot d disk 0.3\n";
         // Start and goal must be free: check with the validator's own test.
