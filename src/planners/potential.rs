@@ -4,8 +4,8 @@
 //!
 //! # The walk
 //! From the start, each step moves ε along F = F_att + ΣF_rep (forces of
-//! [`field`]). When the goal is within `tolerance`, one last motion lands on
-//! it exactly. Every motion (steps, the last one, jumps) is checked with the
+//! [`FieldIndex::forces`]). When the goal is within `tolerance`, one last
+//! motion lands on it exactly. Every motion (steps, the last one, jumps) is checked with the
 //! planners' collision queries ([`ObstacleIndex::sweep_free`]) and must keep
 //! the reference point in `bounds`, so the trajectory passes the validator.
 //!
@@ -23,9 +23,9 @@
 //! vertices of the nearest obstacle (nearest vertex first, as long as the
 //! distance plus 0.1 plus the robot's radius, direction offset by a random
 //! 2°–7° plus the angle the robot's radius needs, on a random side first),
-//! then jumps parallel to
-//! the nearest obstacle (both ways, random length in [jump/2, jump]), then
-//! uniformly random jumps (angle in [0, 2π), length in [ε, jump]). A
+//! then jumps parallel to the nearest obstacle (both ways, random length in
+//! [jump/2, jump]), then uniformly random jumps (angle in [0, 2π), length in
+//! [ε, jump]). A
 //! candidate must be at most `jump` long and collision-free. It is taken
 //! when a short look-ahead descent from its end (without escapes) reaches
 //! the goal, or ends more than ρ0 + radius + 2ε away from the minimum (not
@@ -34,10 +34,12 @@
 //! if no candidate is even collision-free, the run stops (not found).
 //!
 //! # Limits
-//! `limit steps N` (or `limit expansions N`) caps the moves (steps and
-//! jumps); without one, [`DEFAULT_STEP_LIMIT`] applies, so a run that
+//! `limit steps N` (or `limit expansions N`) caps the moves (steps, jumps
+//! and the final landing; `steps` counts them); without one, [`DEFAULT_STEP_LIMIT`] applies, so a run that
 //! overshoots and circles the goal (SEEDS §E) always ends. `limit time`
-//! is checked every 1024 steps and between escape candidates.
+//! is checked every 1024 steps and between escape candidates. The escapes'
+//! look-ahead descents have a budget of their own (a multiple of the step
+//! limit), so a walk that keeps escaping ends too.
 
 mod field;
 
