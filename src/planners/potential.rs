@@ -29,9 +29,11 @@
 //! candidate must be at most `jump` long and collision-free. It is taken
 //! when a short look-ahead descent from its end (without escapes) reaches
 //! the goal, or ends more than ρ0 + radius + 2ε away from the minimum (not
-//! back in the same basin). If no candidate passes, the one whose
-//! look-ahead ended farthest from the minimum is taken, so the walk goes on;
-//! if no candidate is even collision-free, the run stops (not found).
+//! back in the same basin). If no candidate passes, the walk jumps to the
+//! collision-free candidate farthest from the minimum and draws again from
+//! there (a random walk of up to 8 jumps, each tested the same way against
+//! the original minimum's basin), then descends; if no candidate is even
+//! collision-free at the minimum, the run stops (not found).
 //!
 //! # Limits
 //! `limit steps N` (or `limit expansions N`) caps the moves (steps, jumps
@@ -74,6 +76,11 @@ const OSCILLATION_WINDOW: usize = 8;
 
 /// Uniformly random candidates drawn per escape, after the smart ones.
 const RANDOM_CANDIDATES: usize = 64;
+
+/// Most jumps in one escape: when no candidate leaves the minimum's basin,
+/// the walk jumps on from the candidate that ended farthest from the
+/// minimum, up to this many times.
+const MAX_CHAIN: usize = 8;
 
 /// Most obstacle vertices aimed at by smart jumps, nearest first.
 const SMART_VERTICES: usize = 4;
@@ -256,7 +263,9 @@ enum Outlook {
 
 /// What an escape attempt found.
 enum Escape {
-    Jump(Point),
+    /// The jumps' ends, in order (the last one out of the basin, unless the
+    /// chain reached [`MAX_CHAIN`] jumps first).
+    Jumps(Vec<Point>),
     /// No candidate was collision-free.
     NoJump,
     /// The time limit passed.
@@ -373,13 +382,20 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
                     break;
                 }
                 match escape(w, at, &mut rng, began, &mut budget) {
-                    Escape::Jump(to) => {
-                        trace.escapes.push((path.len() - 1, at, to));
-                        escapes += 1;
-                        steps += 1;
-                        path.push(Config::new(to.x, to.y, theta));
-                        closest = closest.min((to - w.goal).norm());
-                        descent = Descent::new(to);
+                    Escape::Jumps(ends) => {
+                        let mut from = at;
+                        for to in ends {
+                            if steps >= s.max_steps {
+                                break; // the loop's limit check gives up
+                            }
+                            trace.escapes.push((path.len() - 1, from, to));
+                            escapes += 1;
+                            steps += 1;
+                            path.push(Config::new(to.x, to.y, theta));
+                            closest = closest.min((to - w.goal).norm());
+                            from = to;
+                        }
+                        descent = Descent::new(from);
                     }
                     Escape::NoJump => {
                         out.notes.push(format!(
@@ -448,32 +464,52 @@ fn thin_samples(samples: &mut Vec<ForceSample>, stride: &mut usize) {
 /// Draws jumps out of the local minimum at `m` (see the module docs).
 fn escape(w: &Walker, m: Point, rng: &mut SplitMix64, began: Instant, budget: &mut u64) -> Escape {
     let s = w.s;
-    let candidates = jump_candidates(w, m, rng);
     let basin = s.gains.influence + w.radius + 2.0 * s.step;
-    let mut fallback: Option<(f64, Point)> = None;
-    for e in candidates {
-        if out_of_time(began, s) {
-            return Escape::OutOfTime;
-        }
-        if *budget == 0 {
-            return Escape::OutOfWork;
-        }
-        if (e - m).norm() > s.jump * (1.0 + 1e-12) || !w.motion_free(m, e) {
-            continue;
-        }
-        match look_ahead(w, e, m, budget) {
-            Outlook::Arrives => return Escape::Jump(e),
-            Outlook::EndsAt(d) if d > basin => return Escape::Jump(e),
-            Outlook::EndsAt(d) => {
-                if fallback.is_none_or(|(best, _)| d > best) {
-                    fallback = Some((d, e));
+    let mut chain = Vec::new();
+    let mut from = m;
+    for _ in 0..MAX_CHAIN {
+        // The candidate that passed, or else the one ending farthest from
+        // the minimum, to walk on from.
+        let mut fallback: Option<(f64, Point)> = None;
+        for e in jump_candidates(w, from, rng) {
+            if out_of_time(began, s) {
+                return Escape::OutOfTime;
+            }
+            if *budget == 0 {
+                return Escape::OutOfWork;
+            }
+            if (e - from).norm() > s.jump * (1.0 + 1e-12) || !w.motion_free(from, e) {
+                continue;
+            }
+            match look_ahead(w, e, m, budget) {
+                Outlook::Arrives => {
+                    chain.push(e);
+                    return Escape::Jumps(chain);
+                }
+                Outlook::EndsAt(d) if d > basin => {
+                    chain.push(e);
+                    return Escape::Jumps(chain);
+                }
+                Outlook::EndsAt(_) => {
+                    let away = (e - m).norm();
+                    if fallback.is_none_or(|(best, _)| away > best) {
+                        fallback = Some((away, e));
+                    }
                 }
             }
         }
+        match fallback {
+            Some((_, e)) => {
+                chain.push(e);
+                from = e;
+            }
+            None => break,
+        }
     }
-    match fallback {
-        Some((_, e)) => Escape::Jump(e),
-        None => Escape::NoJump,
+    if chain.is_empty() {
+        Escape::NoJump
+    } else {
+        Escape::Jumps(chain)
     }
 }
 
