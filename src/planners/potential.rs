@@ -174,6 +174,7 @@ enum Advance {
 
 /// The fixed context of a walk: the world's indexes and the settings.
 struct Walker<'a> {
+    world: &'a World,
     field: &'a FieldIndex,
     obstacles: &'a ObstacleIndex,
     bounds: Aabb,
@@ -291,6 +292,7 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     let obstacles = ObstacleIndex::new(world);
     let goal = params.goal.unwrap_or(params.start);
     let walker = Walker {
+        world,
         field: &field,
         obstacles: &obstacles,
         bounds: world.bounds,
@@ -333,14 +335,14 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
                     format!("the step limit ({})", s.max_steps)
                 },
                 closest,
-                s,
+                w,
             ));
             break;
         }
         if steps % 1024 == 0 && out_of_time(began, s) {
             out.gave_up = true;
             out.notes
-                .push(limit_note("the time limit".into(), closest, s));
+                .push(limit_note("the time limit".into(), closest, w));
             break;
         }
         match descent.advance(w) {
@@ -407,7 +409,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
                     Escape::OutOfTime => {
                         out.gave_up = true;
                         out.notes
-                            .push(limit_note("the time limit".into(), closest, s));
+                            .push(limit_note("the time limit".into(), closest, w));
                         break;
                     }
                     Escape::OutOfWork => {
@@ -416,7 +418,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
                             "the escapes' look-ahead budget (20 descent steps per allowed step)"
                                 .into(),
                             closest,
-                            s,
+                            w,
                         ));
                         break;
                     }
@@ -446,11 +448,20 @@ fn out_of_time(began: Instant, s: &Settings) -> bool {
 
 /// The note of a run stopped by a limit; it says when the walk came close
 /// to the goal without landing (overshooting, SEEDS §E).
-fn limit_note(limit: String, closest: f64, s: &Settings) -> String {
+/// When the goal is within reach of an obstacle's repulsion, the forces do
+/// not vanish there and the walk may settle off the goal: the note says so.
+fn limit_note(limit: String, closest: f64, w: &Walker) -> String {
     let mut note =
         format!("{limit} was reached before the goal; the walk came within {closest:.3} of it");
-    if closest <= 2.0 * s.step {
+    if closest <= 2.0 * w.s.step {
         note.push_str(" (it overshoots and circles the goal: raise `tolerance` or lower `step`)");
+    }
+    if let Some(near) = w.field.forces(w.goal, w.goal).nearest {
+        let name = &w.world.obstacles[w.field.sources[near.source].obstacle].name;
+        note.push_str(&format!(
+            "; obstacle `{name}` lies within `influence` of the goal, so the forces do not vanish \
+             there (lower `influence` or `repulse`, or raise `tolerance`)"
+        ));
     }
     note
 }
