@@ -245,56 +245,85 @@ impl FieldIndex {
     }
 
     /// Calls `visit` with each bucket that the primitive grown by `reach`
-    /// meets (a superset for slanted segments: per bucket column, the rows
-    /// spanned by the part of the segment within reach of the column).
+    /// meets, once each. Supersets are fine (a listed primitive out of reach
+    /// adds no force); per bucket column: for a segment, the rows spanned by
+    /// its part within reach of the column; for a box, only the rows near
+    /// its boundary (the closest point of a box to a robot outside it is on
+    /// its boundary), so that a large box is not listed all over its inside.
     fn visit_buckets(&self, p: &Prim, mut visit: impl FnMut(usize)) {
         let reach = self.reach();
         let side = 1.0 / self.inv;
         let col = |x: f64| ((x - self.origin.x) * self.inv).floor();
-        let row = |y: f64| ((y - self.origin.y) * self.inv).floor();
-        let clamp = |v: f64, n: usize| -> Option<usize> {
-            if v < 0.0 {
-                Some(0)
-            } else if v >= n as f64 {
-                None
-            } else {
-                Some(v as usize)
-            }
-        };
         let b = p.aabb();
         let (c_lo, c_hi) = (col(b.min.x - reach), col(b.max.x + reach));
         if c_hi < 0.0 || c_lo >= self.nx as f64 {
             return;
         }
-        let c0 = clamp(c_lo, self.nx).unwrap_or(0);
+        let c0 = c_lo.max(0.0) as usize;
         let c1 = (c_hi as usize).min(self.nx - 1);
         for c in c0..=c1 {
-            // The y-extent of the primitive's part within reach of column c.
-            let (y_lo, y_hi) = match *p {
+            // The column's x-range grown by reach.
+            let xa = self.origin.x + c as f64 * side - reach;
+            let xb = xa + side + 2.0 * reach;
+            match *p {
                 Prim::Segment(a, q) if a.x != q.x => {
-                    let xa = self.origin.x + c as f64 * side - reach;
-                    let xb = xa + side + 2.0 * reach;
                     let ta = (xa - a.x) / (q.x - a.x);
                     let tb = (xb - a.x) / (q.x - a.x);
                     let (t0, t1) = (ta.min(tb).max(0.0), ta.max(tb).min(1.0));
-                    if t0 > t1 {
-                        continue;
+                    if t0 <= t1 {
+                        let (ya, yb) = (a.y + t0 * (q.y - a.y), a.y + t1 * (q.y - a.y));
+                        self.visit_rows(c, ya.min(yb), ya.max(yb), &mut visit);
                     }
-                    let (ya, yb) = (a.y + t0 * (q.y - a.y), a.y + t1 * (q.y - a.y));
-                    (ya.min(yb), ya.max(yb))
                 }
-                _ => (b.min.y, b.max.y),
-            };
-            let (r_lo, r_hi) = (row(y_lo - reach), row(y_hi + reach));
-            if r_hi < 0.0 || r_lo >= self.ny as f64 {
-                continue;
-            }
-            let r0 = clamp(r_lo, self.ny).unwrap_or(0);
-            let r1 = (r_hi as usize).min(self.ny - 1);
-            for r in r0..=r1 {
-                visit(r * self.nx + c);
+                Prim::Box(bx) => {
+                    let near_side = |x: f64| xa <= x && x <= xb;
+                    let band = 2.0 * reach;
+                    if near_side(bx.min.x) || near_side(bx.max.x) || bx.height() <= band {
+                        self.visit_rows(c, bx.min.y, bx.max.y, &mut visit);
+                    } else {
+                        // The bands along the bottom and top edges; they
+                        // are apart since the box is taller than 2·reach,
+                        // but may share a bucket row.
+                        let (lo, hi) = (self.row_range(bx.min.y), self.row_range(bx.max.y));
+                        if let Some((r0, r1)) = lo {
+                            (r0..=r1).for_each(|r| visit(r * self.nx + c));
+                        }
+                        if let Some((r0, r1)) = hi {
+                            let from = lo.map_or(r0, |(_, l1)| r0.max(l1 + 1));
+                            (from..=r1).for_each(|r| visit(r * self.nx + c));
+                        }
+                    }
+                }
+                _ => self.visit_rows(c, b.min.y, b.max.y, &mut visit),
             }
         }
+    }
+
+    /// Visits the buckets of column `c` whose rows meet [y_lo − reach,
+    /// y_hi + reach].
+    fn visit_rows(&self, c: usize, y_lo: f64, y_hi: f64, visit: &mut impl FnMut(usize)) {
+        let reach = self.reach();
+        let row = |y: f64| ((y - self.origin.y) * self.inv).floor();
+        let (r_lo, r_hi) = (row(y_lo - reach), row(y_hi + reach));
+        if r_hi < 0.0 || r_lo >= self.ny as f64 {
+            return;
+        }
+        let r0 = r_lo.max(0.0) as usize;
+        let r1 = (r_hi as usize).min(self.ny - 1);
+        for r in r0..=r1 {
+            visit(r * self.nx + c);
+        }
+    }
+
+    /// The inclusive bucket rows that meet [y − reach, y + reach], if any.
+    fn row_range(&self, y: f64) -> Option<(usize, usize)> {
+        let reach = self.reach();
+        let row = |y: f64| ((y - self.origin.y) * self.inv).floor();
+        let (r_lo, r_hi) = (row(y - reach), row(y + reach));
+        if r_hi < 0.0 || r_lo >= self.ny as f64 {
+            return None;
+        }
+        Some((r_lo.max(0.0) as usize, (r_hi as usize).min(self.ny - 1)))
     }
 
     /// The primitives listed for the bucket holding `x` (none outside the

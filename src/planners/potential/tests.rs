@@ -241,6 +241,9 @@ fn arb_shape() -> impl Strategy<Value = Shape> {
             .prop_map(|(a, dx, dy)| Shape::Segment(a, a + Vector::new(dx + 0.01, dy))),
         (pt(), 0.1..2.0f64, 0.1..2.0f64)
             .prop_map(|(a, w, h)| Shape::Rect(Aabb::from_corners(a, a + Vector::new(w, h)))),
+        // Large boxes: listed only in the buckets near their boundary.
+        (pt(), 0.1..25.0f64, 0.1..25.0f64)
+            .prop_map(|(a, w, h)| Shape::Rect(Aabb::from_corners(a, a + Vector::new(w, h)))),
         (pt(), 0.1..1.5f64).prop_map(|(c, r)| Shape::Disk {
             center: c,
             radius: r
