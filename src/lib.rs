@@ -11,6 +11,7 @@ pub mod drive;
 pub mod geometry;
 pub mod planners;
 pub mod report;
+pub mod rng;
 pub mod run;
 pub mod scenario;
 pub mod syntax;

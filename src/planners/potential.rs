@@ -1,15 +1,600 @@
-//! Potential field with random-walk escape (SPEC 3.4).
+//! `potential` (SPEC 3.4, SEEDS §E): gradient descent on an attractive and
+//! repulsive potential, with local-minimum detection and a seeded
+//! random-walk escape, for point and disk robots.
 //!
-//! Not implemented yet: the schema marks `potential` as not implemented, so the
-//! analyzer refuses such plans before this is ever called.
+//! # The walk
+//! From the start, each step moves ε along F = F_att + ΣF_rep (forces of
+//! [`FieldIndex::forces`]). When the goal is within `tolerance`, one last
+//! motion lands on it exactly. Every motion (steps, the last one, jumps) is checked with the
+//! planners' collision queries ([`ObstacleIndex::sweep_free`]) and must keep
+//! the reference point in `bounds`, so the trajectory passes the validator.
+//!
+//! # Local minima
+//! A position is a local minimum when
+//! - the angle between F_att and ΣF_rep is within 1° of 180° (the seed's
+//!   cos = −1 test; not when ΣF_rep is a cancellation down to rounding
+//!   noise, e.g. midway between two parallel walls),
+//! - the position moved less than ε/2 over the last 8 steps (oscillation),
+//! - the step would collide or leave the bounds (SPEC: never taken), or
+//! - F = 0.
+//!
+//! # Escape (`escape random_walk`)
+//! Candidate jumps, in this order: the seed's "smart" jumps past the
+//! vertices of the nearest obstacle (nearest vertex first, as long as the
+//! distance plus 0.1 plus the robot's radius, direction offset by a random
+//! 2°–7° plus the angle the robot's radius needs, on a random side first),
+//! then jumps parallel to the nearest obstacle (both ways, random length in
+//! [jump/2, jump]), then uniformly random jumps (angle in [0, 2π), length in
+//! [ε, jump]). A
+//! candidate must be at most `jump` long and collision-free. It is taken
+//! when a short look-ahead descent from its end (without escapes) reaches
+//! the goal, or ends more than ρ0 + radius + 2ε away from the minimum (not
+//! back in the same basin). If no candidate passes, the walk jumps to the
+//! collision-free candidate farthest from the minimum and draws again from
+//! there (a random walk of up to 8 jumps, each tested the same way against
+//! the original minimum's basin), then descends; if no candidate is even
+//! collision-free at the minimum, the run stops (not found).
+//!
+//! # Limits
+//! `limit steps N` (or `limit expansions N`) caps the moves (steps, jumps
+//! and the final landing; `steps` counts them); without one, [`DEFAULT_STEP_LIMIT`] applies, so a run that
+//! overshoots and circles the goal (SEEDS §E) always ends. `limit time`
+//! is checked every 1024 steps and between escape candidates. The escapes'
+//! look-ahead descents have a budget of their own (a multiple of the step
+//! limit), so a walk that keeps escaping ends too.
 
-use crate::geometry::{RobotShape, World};
-use crate::planners::PlanOutcome;
+mod field;
+
+use std::f64::consts::TAU;
+use std::time::Instant;
+
+pub use field::{FieldIndex, Forces, Gains, Near, Source};
+
+use crate::geometry::collide::ObstacleIndex;
+use crate::geometry::{Aabb, Config, Point, RobotShape, Vector, World};
+use crate::rng::SplitMix64;
 use crate::scenario::Params;
 
-pub fn plan(_world: &World, _robot: &RobotShape, _params: &Params) -> PlanOutcome {
-    PlanOutcome {
-        notes: vec!["planner `potential` is not implemented yet".into()],
-        ..PlanOutcome::default()
+use super::{FieldTrace, ForceSample, MetricValue, PlanOutcome, Trace};
+
+/// Moves allowed when the plan sets no `limit steps` (SPEC: nothing hangs).
+pub const DEFAULT_STEP_LIMIT: u64 = 1_000_000;
+
+/// Look-ahead descent steps (escape candidates' basin tests) allowed per
+/// move of the step limit, and at least [`MIN_LOOK_AHEAD_BUDGET`] in all:
+/// escapes cost many steps each, and a walk that keeps escaping must end too.
+const LOOK_AHEAD_PER_STEP: u64 = 20;
+const MIN_LOOK_AHEAD_BUDGET: u64 = 2_000_000;
+
+/// ΣF_rep shorter than this fraction of Σ|F_rep| is taken for cancelled
+/// forces (rounding noise, whose direction means nothing) by the opposition
+/// test.
+const CANCELLED: f64 = 1e-9;
+
+/// The steps compared by the oscillation test.
+const OSCILLATION_WINDOW: usize = 8;
+
+/// Uniformly random candidates drawn per escape, after the smart ones.
+const RANDOM_CANDIDATES: usize = 64;
+
+/// Most jumps in one escape: when no candidate leaves the minimum's basin,
+/// the walk jumps on from the candidate that ended farthest from the
+/// minimum, up to this many times.
+const MAX_CHAIN: usize = 8;
+
+/// Most obstacle vertices aimed at by smart jumps, nearest first.
+const SMART_VERTICES: usize = 4;
+
+/// The trace keeps at most this many force samples (then every other one
+/// is dropped and the sampling stride doubles).
+const MAX_FORCE_SAMPLES: usize = 4096;
+
+/// A plan's settings, with SPEC 3.4's defaults applied.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    pub gains: Gains,
+    /// ε.
+    pub step: f64,
+    pub tolerance: f64,
+    /// `escape random_walk`.
+    pub escape: bool,
+    /// Longest jump.
+    pub jump: f64,
+    /// Moves (steps and jumps) before giving up.
+    pub max_steps: u64,
+    /// `max_steps` is [`DEFAULT_STEP_LIMIT`], the plan set no limit.
+    pub default_steps: bool,
+    /// Seconds before giving up.
+    pub max_time: Option<f64>,
+    pub seed: u64,
+}
+
+impl Settings {
+    pub fn from_params(params: &Params) -> Self {
+        let influence = params.num("influence").unwrap_or(2.0);
+        let step = params.num("step").unwrap_or(0.05);
+        let limits = params.limits;
+        let max_steps = match (limits.steps, limits.expansions) {
+            (Some(a), Some(b)) => a.min(b),
+            (Some(a), None) | (None, Some(a)) => a,
+            (None, None) => DEFAULT_STEP_LIMIT,
+        };
+        Settings {
+            gains: Gains {
+                attract: params.num("attract").unwrap_or(1.0),
+                repulse: params.num("repulse").unwrap_or(1.0),
+                influence,
+            },
+            step,
+            tolerance: params.num("tolerance").unwrap_or(step),
+            escape: params.word("escape") != Some("none"),
+            jump: params.num("jump").unwrap_or(5.0 * influence),
+            max_steps,
+            default_steps: limits.steps.is_none() && limits.expansions.is_none(),
+            max_time: limits.time,
+            seed: params.seed,
+        }
     }
 }
+
+/// Why a position is a local minimum.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Why {
+    /// F_att and ΣF_rep within 1° of opposite.
+    Opposed,
+    /// Moved less than ε/2 over the last 8 steps.
+    Oscillation,
+    /// The step would collide or leave the bounds.
+    Blocked,
+    /// F = 0.
+    Balanced,
+}
+
+impl Why {
+    fn describe(self) -> &'static str {
+        match self {
+            Why::Opposed => "attraction and repulsion opposed within 1°",
+            Why::Oscillation => "oscillating: moved less than ε/2 in 8 steps",
+            Why::Blocked => "the next step would collide",
+            Why::Balanced => "the forces cancel",
+        }
+    }
+}
+
+/// What one call of [`Descent::advance`] did.
+#[derive(Clone, Copy, Debug)]
+enum Advance {
+    /// Stepped from the previous position, under these forces.
+    Moved(Point, Forces),
+    /// Landed on the goal.
+    Arrived,
+    /// A local minimum at the current position.
+    Stuck(Why),
+}
+
+/// The fixed context of a walk: the world's indexes and the settings.
+struct Walker<'a> {
+    world: &'a World,
+    field: &'a FieldIndex,
+    obstacles: &'a ObstacleIndex,
+    bounds: Aabb,
+    radius: f64,
+    goal: Point,
+    s: &'a Settings,
+    /// cos 179°: the opposition test's threshold.
+    cos_opposed: f64,
+}
+
+impl Walker<'_> {
+    /// Whether the straight motion a → b is collision-free and ends inside
+    /// the bounds (which are convex, so the motion stays inside).
+    fn motion_free(&self, a: Point, b: Point) -> bool {
+        self.bounds.contains(b) && self.obstacles.sweep_free(a, b, self.radius)
+    }
+}
+
+/// A gradient descent in progress: the position and the recent ones.
+#[derive(Clone, Debug)]
+struct Descent {
+    x: Point,
+    /// `recent[n % 9]` = the position after move n (move 0: the start), so
+    /// that the position 8 moves back is at hand.
+    recent: [Point; OSCILLATION_WINDOW + 1],
+    moves: usize,
+}
+
+impl Descent {
+    fn new(x: Point) -> Self {
+        Descent {
+            x,
+            recent: [x; OSCILLATION_WINDOW + 1],
+            moves: 0,
+        }
+    }
+
+    /// One step of pure descent from the current position.
+    #[inline]
+    fn advance(&mut self, w: &Walker) -> Advance {
+        let x = self.x;
+        if (x - w.goal).norm() <= w.s.tolerance {
+            if w.motion_free(x, w.goal) {
+                self.x = w.goal;
+                return Advance::Arrived;
+            }
+            return Advance::Stuck(Why::Blocked);
+        }
+        const SLOTS: usize = OSCILLATION_WINDOW + 1;
+        if self.moves >= OSCILLATION_WINDOW
+            && (x - self.recent[(self.moves - OSCILLATION_WINDOW) % SLOTS]).norm() < 0.5 * w.s.step
+        {
+            return Advance::Stuck(Why::Oscillation);
+        }
+        let f = w.field.forces(x, w.goal);
+        let (na, nr) = (f.attract.norm(), f.repulse.norm());
+        if na > 0.0
+            && nr > CANCELLED * f.repulse_sum
+            && f.attract.dot(&f.repulse) <= w.cos_opposed * na * nr
+        {
+            return Advance::Stuck(Why::Opposed);
+        }
+        let total = f.total();
+        let n = total.norm();
+        if !(n > 0.0 && n.is_finite()) {
+            return Advance::Stuck(Why::Balanced);
+        }
+        let next = x + total * (w.s.step / n);
+        if !w.motion_free(x, next) {
+            return Advance::Stuck(Why::Blocked);
+        }
+        self.x = next;
+        self.moves += 1;
+        self.recent[self.moves % SLOTS] = next;
+        Advance::Moved(x, f)
+    }
+}
+
+/// How a look-ahead descent from a jump's end went.
+enum Outlook {
+    /// It reached the goal.
+    Arrives,
+    /// It ended (stuck, or out of look-ahead steps) this far from the
+    /// minimum being escaped.
+    EndsAt(f64),
+}
+
+/// What an escape attempt found.
+enum Escape {
+    /// The jumps' ends, in order (the last one out of the basin, unless the
+    /// chain reached [`MAX_CHAIN`] jumps first).
+    Jumps(Vec<Point>),
+    /// No candidate was collision-free.
+    NoJump,
+    /// The time limit passed.
+    OutOfTime,
+    /// The look-ahead budget is spent.
+    OutOfWork,
+}
+
+/// Runs a `potential` plan for a point or disk robot.
+pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
+    let radius = match robot {
+        RobotShape::Point => 0.0,
+        RobotShape::Disk(r) => *r,
+        RobotShape::Polygon(_) => {
+            return PlanOutcome {
+                notes: vec!["`potential` plans for point and disk robots only".into()],
+                ..PlanOutcome::default()
+            };
+        }
+    };
+    let s = Settings::from_params(params);
+    let field = FieldIndex::new(world, radius, s.gains);
+    let obstacles = ObstacleIndex::new(world);
+    let goal = params.goal.unwrap_or(params.start);
+    let walker = Walker {
+        world,
+        field: &field,
+        obstacles: &obstacles,
+        bounds: world.bounds,
+        radius,
+        goal: goal.xy(),
+        s: &s,
+        cos_opposed: 179f64.to_radians().cos(),
+    };
+    walk(&walker, params.start, goal)
+}
+
+/// The main loop: descend, detect minima, escape, until the goal or a limit.
+fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
+    let began = Instant::now();
+    let s = w.s;
+    let theta = start.theta;
+    let mut rng = SplitMix64::new(s.seed);
+    let mut out = PlanOutcome::default();
+    let mut trace = FieldTrace::default();
+    let mut path = vec![start];
+    let mut descent = Descent::new(start.xy());
+    let (mut steps, mut minima, mut escapes) = (0u64, 0u64, 0u64);
+    let mut stride = 1usize;
+    let mut closest = (start.xy() - w.goal).norm();
+    let mut found = false;
+    let mut budget = s
+        .max_steps
+        .saturating_mul(LOOK_AHEAD_PER_STEP)
+        .max(MIN_LOOK_AHEAD_BUDGET);
+    loop {
+        if steps >= s.max_steps {
+            out.gave_up = true;
+            out.notes.push(limit_note(
+                if s.default_steps {
+                    format!(
+                        "the default step limit ({}; set another with `limit steps N`)",
+                        s.max_steps
+                    )
+                } else {
+                    format!("the step limit ({})", s.max_steps)
+                },
+                closest,
+                w,
+            ));
+            break;
+        }
+        if steps % 1024 == 0 && out_of_time(began, s) {
+            out.gave_up = true;
+            out.notes
+                .push(limit_note("the time limit".into(), closest, w));
+            break;
+        }
+        match descent.advance(w) {
+            Advance::Arrived => {
+                steps += 1;
+                path.push(goal);
+                found = true;
+                break;
+            }
+            Advance::Moved(from, f) => {
+                let step = path.len() - 1;
+                if step % stride == 0 {
+                    trace.forces.push(ForceSample {
+                        step,
+                        at: from,
+                        attract: f.attract,
+                        repulse: f.repulse,
+                        total: f.total(),
+                    });
+                    if trace.forces.len() >= MAX_FORCE_SAMPLES {
+                        thin_samples(&mut trace.forces, &mut stride);
+                    }
+                }
+                steps += 1;
+                path.push(Config::new(descent.x.x, descent.x.y, theta));
+                closest = closest.min((descent.x - w.goal).norm());
+            }
+            Advance::Stuck(why) => {
+                let at = descent.x;
+                minima += 1;
+                trace.minima.push((path.len() - 1, at));
+                if !s.escape {
+                    out.notes.push(format!(
+                        "stopped in a local minimum at ({:.3}, {:.3}) ({}) with `escape none`",
+                        at.x,
+                        at.y,
+                        why.describe()
+                    ));
+                    break;
+                }
+                match escape(w, at, &mut rng, began, &mut budget) {
+                    Escape::Jumps(ends) => {
+                        let mut from = at;
+                        for to in ends {
+                            if steps >= s.max_steps {
+                                break; // the loop's limit check gives up
+                            }
+                            trace.escapes.push((path.len() - 1, from, to));
+                            escapes += 1;
+                            steps += 1;
+                            path.push(Config::new(to.x, to.y, theta));
+                            closest = closest.min((to - w.goal).norm());
+                            from = to;
+                        }
+                        descent = Descent::new(from);
+                    }
+                    Escape::NoJump => {
+                        out.notes.push(format!(
+                            "no collision-free jump out of the local minimum at ({:.3}, {:.3})",
+                            at.x, at.y
+                        ));
+                        break;
+                    }
+                    Escape::OutOfTime => {
+                        out.gave_up = true;
+                        out.notes
+                            .push(limit_note("the time limit".into(), closest, w));
+                        break;
+                    }
+                    Escape::OutOfWork => {
+                        out.gave_up = true;
+                        out.notes.push(limit_note(
+                            "the escapes' look-ahead budget (20 descent steps per allowed step)"
+                                .into(),
+                            closest,
+                            w,
+                        ));
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    out.expanded = steps;
+    out.extra
+        .insert("steps".into(), MetricValue::Num(steps as f64));
+    out.extra
+        .insert("minima".into(), MetricValue::Num(minima as f64));
+    out.extra
+        .insert("escapes".into(), MetricValue::Num(escapes as f64));
+    out.path = found.then_some(path);
+    out.trace = Trace {
+        field: Some(trace),
+        ..Trace::default()
+    };
+    out
+}
+
+fn out_of_time(began: Instant, s: &Settings) -> bool {
+    s.max_time
+        .is_some_and(|t| began.elapsed().as_secs_f64() > t)
+}
+
+/// The note of a run stopped by a limit; it says when the walk came close
+/// to the goal without landing (overshooting, SEEDS §E).
+/// When the goal is within reach of an obstacle's repulsion, the forces do
+/// not vanish there and the walk may settle off the goal: the note says so.
+fn limit_note(limit: String, closest: f64, w: &Walker) -> String {
+    let mut note =
+        format!("{limit} was reached before the goal; the walk came within {closest:.3} of it");
+    if closest <= 2.0 * w.s.step {
+        note.push_str(" (it overshoots and circles the goal: raise `tolerance` or lower `step`)");
+    }
+    if let Some(near) = w.field.forces(w.goal, w.goal).nearest {
+        let name = &w.world.obstacles[w.field.sources[near.source].obstacle].name;
+        note.push_str(&format!(
+            "; obstacle `{name}` lies within `influence` of the goal, so the forces do not vanish \
+             there (lower `influence` or `repulse`, or raise `tolerance`)"
+        ));
+    }
+    note
+}
+
+/// Keeps every other force sample and doubles the sampling stride.
+fn thin_samples(samples: &mut Vec<ForceSample>, stride: &mut usize) {
+    *stride *= 2;
+    samples.retain(|f| f.step % *stride == 0);
+}
+
+/// Draws jumps out of the local minimum at `m` (see the module docs).
+fn escape(w: &Walker, m: Point, rng: &mut SplitMix64, began: Instant, budget: &mut u64) -> Escape {
+    let s = w.s;
+    let basin = s.gains.influence + w.radius + 2.0 * s.step;
+    let mut chain = Vec::new();
+    let mut from = m;
+    for _ in 0..MAX_CHAIN {
+        // The candidate that passed, or else the one ending farthest from
+        // the minimum, to walk on from.
+        let mut fallback: Option<(f64, Point)> = None;
+        for e in jump_candidates(w, from, rng) {
+            if out_of_time(began, s) {
+                return Escape::OutOfTime;
+            }
+            if *budget == 0 {
+                return Escape::OutOfWork;
+            }
+            if (e - from).norm() > s.jump * (1.0 + 1e-12) || !w.motion_free(from, e) {
+                continue;
+            }
+            match look_ahead(w, e, m, budget) {
+                Outlook::Arrives => {
+                    chain.push(e);
+                    return Escape::Jumps(chain);
+                }
+                Outlook::EndsAt(d) if d > basin => {
+                    chain.push(e);
+                    return Escape::Jumps(chain);
+                }
+                Outlook::EndsAt(_) => {
+                    let away = (e - m).norm();
+                    if fallback.is_none_or(|(best, _)| away > best) {
+                        fallback = Some((away, e));
+                    }
+                }
+            }
+        }
+        match fallback {
+            Some((_, e)) => {
+                chain.push(e);
+                from = e;
+            }
+            None => break,
+        }
+    }
+    if chain.is_empty() {
+        Escape::NoJump
+    } else {
+        Escape::Jumps(chain)
+    }
+}
+
+/// The candidate jump ends from `m`, in the order they are tried.
+fn jump_candidates(w: &Walker, m: Point, rng: &mut SplitMix64) -> Vec<Point> {
+    let s = w.s;
+    let mut out = Vec::new();
+    let at = |angle: f64, len: f64| m + Vector::new(angle.cos(), angle.sin()) * len;
+    if let Some(near) = w.field.forces(m, w.goal).nearest {
+        // Smart jumps (SEEDS §E): past the nearest obstacle's vertices.
+        let mut vertices = w.field.sources[near.source].vertices.clone();
+        vertices.sort_by(|a, b| (a - m).norm().total_cmp(&(b - m).norm()));
+        for v in vertices.into_iter().take(SMART_VERTICES) {
+            let dist = (v - m).norm();
+            if dist <= 1e-12 {
+                continue;
+            }
+            let base = (v.y - m.y).atan2(v.x - m.x);
+            let clearance = (w.radius / dist).min(1.0).asin();
+            let len = dist + 0.1 + w.radius;
+            let first = if rng.coin() { 1.0 } else { -1.0 };
+            for side in [first, -first] {
+                let offset = rng.range(2.0, 7.0).to_radians() + clearance;
+                out.push(at(base + side * offset, len));
+            }
+        }
+        // Parallel to the obstacle, both ways.
+        let away = m - near.point;
+        if away.norm() > 0.0 {
+            let along = Vector::new(-away.y, away.x).normalize();
+            let first = if rng.coin() { 1.0 } else { -1.0 };
+            for side in [first, -first] {
+                let len = rng.range(0.5 * s.jump, s.jump);
+                out.push(m + along * (side * len));
+            }
+        }
+    }
+    let shortest = s.step.min(s.jump);
+    for _ in 0..RANDOM_CANDIDATES {
+        let angle = rng.range(0.0, TAU);
+        let len = rng.range(shortest, s.jump);
+        out.push(at(angle, len));
+    }
+    out
+}
+
+/// Pure descent from `e` for a bounded number of steps: does it come back
+/// to the minimum at `m`?
+fn look_ahead(w: &Walker, e: Point, m: Point, budget: &mut u64) -> Outlook {
+    let s = w.s;
+    let max = (2.0 * (s.jump + s.gains.influence) / s.step)
+        .ceil()
+        .clamp(50.0, 1000.0) as u64;
+    let max = max.min(*budget);
+    let mut d = Descent::new(e);
+    let mut used = 0;
+    let mut outlook = None;
+    while used < max {
+        used += 1;
+        match d.advance(w) {
+            Advance::Arrived => {
+                outlook = Some(Outlook::Arrives);
+                break;
+            }
+            Advance::Moved(..) => {}
+            Advance::Stuck(_) => break,
+        }
+    }
+    *budget -= used;
+    if let Some(o) = outlook {
+        return o;
+    }
+    Outlook::EndsAt((d.x - m).norm())
+}
+
+#[cfg(test)]
+mod tests;

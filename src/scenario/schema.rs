@@ -381,8 +381,8 @@ pub const POTENTIAL: PlannerSchema = PlannerSchema {
     kind: "potential",
     summary: "potential field with random-walk escape",
     robots: &[
-        (RobotKind::Point, Support::NotYet),
-        (RobotKind::Disk, Support::NotYet),
+        (RobotKind::Point, Support::Yes),
+        (RobotKind::Disk, Support::Yes),
     ],
     params: &[
         p("attract", positive(false), "1", "attractive gain η"),

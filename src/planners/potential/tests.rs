@@ -1,0 +1,435 @@
+use super::*;
+use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+use crate::geometry::{Obstacle, Shape};
+use crate::scenario::{Scenario, loader};
+use proptest::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Loads a scenario from text (written to a fresh temporary file).
+fn load(text: &str) -> Scenario {
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let n = COUNTER.fetch_add(1, Ordering::SeqCst);
+    let path = std::env::temp_dir().join(format!("scen-potential-{}-{n}.scen", std::process::id()));
+    std::fs::write(&path, text).expect("write the scenario");
+    let s = loader::load(&path);
+    let _ = std::fs::remove_file(&path);
+    match s {
+        Ok(s) => s,
+        Err(f) => panic!("{:?}", f.diags),
+    }
+}
+
+/// Runs every plan; a found path must start at the start, end at the goal
+/// and pass the validator.
+fn run(text: &str) -> Vec<PlanOutcome> {
+    let s = load(text);
+    s.plans
+        .iter()
+        .map(|p| {
+            let robot = &s.robots[p.robot].shape;
+            let out = plan(&s.world, robot, &p.params);
+            if let Some(path) = &out.path {
+                assert_eq!(path.first(), Some(&p.params.start));
+                assert_eq!(path.last(), p.params.goal.as_ref());
+                if let Err(e) = validate_path(&s.world, robot, path, DEFAULT_TOLERANCE) {
+                    panic!("plan {}: the path fails the validator: {e:?}", p.name);
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+fn metric(out: &PlanOutcome, name: &str) -> f64 {
+    out.extra[name].as_f64()
+}
+
+/// A U of segment walls around (8, 5) whose bottom faces the goal at
+/// (15, 5): pure descent from inside is trapped against the bottom.
+const U_TRAP: &str = "world {
+  bounds (0, 0) (20, 10)
+  segment bottom (10, 2) (10, 8)
+  segment upper (5, 8) (10, 8)
+  segment lower (5, 2) (10, 2)
+}
+robot p point
+robot d disk 0.3
+";
+
+fn u_plan(name: &str, robot: &str, extra: &str) -> String {
+    format!("plan {name} potential {robot} {{ start (7, 5) goal (15, 5) {extra} }}\n")
+}
+
+#[test]
+fn free_world_is_a_straight_line() {
+    let outs = run("world { bounds (0, 0) (10, 10) }
+robot p point
+plan a potential p { start (1, 1) goal (9.1, 7) }
+plan b potential p { start (2, 8) goal (8.3, 8.3) step 0.3 }
+");
+    for (o, (start, goal, step)) in outs.iter().zip([
+        (Point::new(1.0, 1.0), Point::new(9.1, 7.0), 0.05),
+        (Point::new(2.0, 8.0), Point::new(8.3, 8.3), 0.3),
+    ]) {
+        let path = o.path.as_ref().expect("found");
+        let dir = (goal - start).normalize();
+        for (k, c) in path.iter().enumerate() {
+            let v = c.xy() - start;
+            // On the line from start to goal, ε apart (the last move shorter).
+            assert!(dir.perp(&v).abs() < 1e-9, "off the line at {k}");
+            if k > 0 && k < path.len() - 1 {
+                assert!((v.norm() - k as f64 * step).abs() < 1e-9);
+            }
+        }
+        let last = (path[path.len() - 1].xy() - path[path.len() - 2].xy()).norm();
+        assert!(last <= step + 1e-12);
+        let steps = ((goal - start).norm() / step).ceil();
+        assert_eq!(metric(o, "steps"), steps);
+        assert_eq!(o.expanded as f64, steps);
+        assert_eq!(path.len() as f64, steps + 1.0);
+        assert_eq!(metric(o, "minima"), 0.0);
+        assert_eq!(metric(o, "escapes"), 0.0);
+        assert!(!o.gave_up);
+    }
+}
+
+#[test]
+fn u_trap_stops_pure_descent_and_the_random_walk_escapes() {
+    let text = format!(
+        "{U_TRAP}{}{}{}{}",
+        u_plan("descent", "p", "escape none"),
+        u_plan("walk", "p", ""),
+        u_plan("disk_descent", "d", "escape none"),
+        u_plan("disk_walk", "d", "seed 5"),
+    );
+    let outs = run(&text);
+    for o in [&outs[0], &outs[2]] {
+        assert!(o.path.is_none());
+        assert!(!o.gave_up);
+        assert!(metric(o, "minima") >= 1.0);
+        assert_eq!(metric(o, "escapes"), 0.0);
+        let field = o.trace.field.as_ref().unwrap();
+        // The minimum is against the bottom of the U, inside it.
+        let (_, m) = field.minima[0];
+        assert!(m.x > 7.0 && m.x < 10.0 && (m.y - 5.0).abs() < 1.0, "{m:?}");
+        assert!(o.notes[0].contains("local minimum"));
+    }
+    for o in [&outs[1], &outs[3]] {
+        assert!(o.path.is_some(), "{:?}", o.notes);
+        assert!(metric(o, "minima") >= 1.0);
+        assert!(metric(o, "escapes") >= 1.0);
+        let field = o.trace.field.as_ref().unwrap();
+        assert_eq!(field.escapes.len() as f64, metric(o, "escapes"));
+        assert_eq!(field.minima.len() as f64, metric(o, "minima"));
+        // Each escape starts where the path is, and the next point is its end.
+        let path = o.path.as_ref().unwrap();
+        for &(i, from, to) in &field.escapes {
+            assert_eq!(path[i].xy(), from);
+            assert_eq!(path[i + 1].xy(), to);
+        }
+        assert!(!field.forces.is_empty());
+    }
+}
+
+#[test]
+fn same_seed_same_walk_other_seed_other_walk() {
+    let text = format!(
+        "{U_TRAP}{}{}{}",
+        u_plan("a", "p", "seed 1"),
+        u_plan("b", "p", "seed 1"),
+        u_plan("c", "p", "seed 2"),
+    );
+    let (x, y) = (run(&text), run(&text));
+    let paths: Vec<_> = x.iter().map(|o| o.path.clone().expect("found")).collect();
+    assert_eq!(paths[0], paths[1]);
+    assert_eq!(paths[0], y[0].path.clone().unwrap());
+    assert_ne!(paths[0], paths[2], "another seed, another walk");
+}
+
+#[test]
+fn limits_end_the_walk() {
+    let text = format!(
+        "{U_TRAP}{}{}{}",
+        u_plan("steps", "p", "limit steps 40"),
+        u_plan("expansions", "p", "limit expansions 30"),
+        // Overshooting (SEEDS §E): steps of 0.5 with a tolerance of 0.001
+        // rarely land; the default step limit is not needed to end it.
+        u_plan("time", "p", "limit time 1ms limit steps 1000000"),
+    );
+    let outs = run(&text);
+    assert!(outs[0].gave_up && outs[0].path.is_none());
+    assert_eq!(metric(&outs[0], "steps"), 40.0);
+    assert!(outs[0].notes[0].contains("step limit (40)"));
+    assert_eq!(metric(&outs[1], "steps"), 30.0);
+    // 1 ms may or may not be enough on a loaded machine; either way the run
+    // ends and reports honestly.
+    assert!(outs[2].gave_up || outs[2].path.is_some());
+}
+
+#[test]
+fn overshooting_walk_ends_by_its_limit_and_says_so() {
+    // Steps of 0.7 with a tolerance of 1e-6 (SEEDS §E: ε too large): the
+    // walk reaches the goal's neighbourhood in 8 steps, then bounces across
+    // the goal; the step limit ends it before the oscillation test would.
+    let outs = run("world { bounds (0, 0) (10, 10) }
+robot p point
+plan over potential p { start (1, 1) goal (5.05, 5.05) step 0.7 tolerance 0.000001 limit steps 14 }
+");
+    let o = &outs[0];
+    assert!(o.path.is_none() && o.gave_up);
+    assert_eq!(metric(o, "steps"), 14.0);
+    assert!(o.notes[0].contains("overshoots"), "{:?}", o.notes);
+}
+
+#[test]
+fn forces_follow_the_formula() {
+    // One wall at x = 2, the robot at x = 1.5 (ρ = 0.5 for a point, 0.3 for
+    // a disk of radius 0.2), goal straight up.
+    let world = World {
+        bounds: Aabb::from_corners(Point::new(0.0, 0.0), Point::new(10.0, 10.0)),
+        obstacles: vec![Obstacle {
+            name: "w".into(),
+            shape: Shape::Segment(Point::new(2.0, 0.0), Point::new(2.0, 10.0)),
+        }],
+    };
+    let gains = Gains {
+        attract: 2.0,
+        repulse: 3.0,
+        influence: 1.0,
+    };
+    for (r, rho) in [(0.0, 0.5), (0.2, 0.3)] {
+        let field = FieldIndex::new(&world, r, gains);
+        let x = Point::new(1.5, 5.0);
+        let f = field.forces(x, Point::new(1.5, 9.0));
+        assert_eq!(f.attract, Vector::new(0.0, 8.0));
+        let expected = 3.0 / (rho * rho * rho) * (1.0 / rho - 1.0) * rho;
+        assert!((f.repulse.x + expected).abs() < 1e-9 && f.repulse.y == 0.0);
+        let near = f.nearest.unwrap();
+        assert!((near.rho - rho).abs() < 1e-12);
+        assert_eq!(near.point, Point::new(2.0, 5.0));
+        // Out of influence: no repulsion.
+        let far = field.forces(Point::new(0.5, 5.0), Point::new(1.5, 9.0));
+        assert_eq!(far.repulse, Vector::zeros());
+        assert!(far.nearest.is_none());
+    }
+}
+
+/// The closest point of a shape, by brute force over its outline.
+fn brute_closest(shape: &Shape, x: Point) -> Vec<Point> {
+    let seg = |a: Point, b: Point| {
+        let t = ((x - a).dot(&(b - a)) / (b - a).norm_squared()).clamp(0.0, 1.0);
+        a + (b - a) * t
+    };
+    let ring = |v: &[Point]| -> Vec<Point> {
+        (0..v.len())
+            .map(|k| seg(v[k], v[(k + 1) % v.len()]))
+            .collect()
+    };
+    match shape {
+        Shape::Segment(a, b) => vec![seg(*a, *b)],
+        Shape::Rect(b) => ring(&b.corners()),
+        Shape::Polygon { outline, .. } => ring(outline),
+        Shape::Disk { center, radius } => vec![center + (x - center).normalize() * *radius],
+        Shape::Grid(_) => unreachable!(),
+    }
+}
+
+fn arb_shape() -> impl Strategy<Value = Shape> {
+    let pt = || (0.0..30.0f64, 0.0..30.0f64).prop_map(|(x, y)| Point::new(x, y));
+    prop_oneof![
+        (pt(), -3.0..3.0f64, -3.0..3.0f64)
+            .prop_map(|(a, dx, dy)| Shape::Segment(a, a + Vector::new(dx + 0.01, dy))),
+        (pt(), 0.1..2.0f64, 0.1..2.0f64)
+            .prop_map(|(a, w, h)| Shape::Rect(Aabb::from_corners(a, a + Vector::new(w, h)))),
+        // Large boxes: listed only in the buckets near their boundary.
+        (pt(), 0.1..25.0f64, 0.1..25.0f64)
+            .prop_map(|(a, w, h)| Shape::Rect(Aabb::from_corners(a, a + Vector::new(w, h)))),
+        (pt(), 0.1..1.5f64).prop_map(|(c, r)| Shape::Disk {
+            center: c,
+            radius: r
+        }),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The bucket index gives the same forces as summing over every
+    /// obstacle with brute-force closest points.
+    #[test]
+    fn indexed_forces_equal_brute_force(
+        shapes in prop::collection::vec(arb_shape(), 1..60),
+        probes in prop::collection::vec((0.0..30.0f64, 0.0..30.0f64), 20),
+        radius in prop_oneof![Just(0.0), 0.05..0.5f64],
+        influence in 0.2..4.0f64,
+    ) {
+        let world = World {
+            bounds: Aabb::from_corners(Point::new(0.0, 0.0), Point::new(30.0, 30.0)),
+            obstacles: shapes
+                .iter()
+                .enumerate()
+                .map(|(i, s)| Obstacle { name: format!("o{i}"), shape: s.clone() })
+                .collect(),
+        };
+        let gains = Gains { attract: 1.0, repulse: 1.0, influence };
+        let field = FieldIndex::new(&world, radius, gains);
+        for (px, py) in probes {
+            let x = Point::new(px, py);
+            let mut expected = Vector::zeros();
+            let mut inside = false;
+            for s in &shapes {
+                let b = brute_closest(s, x)
+                    .into_iter()
+                    .min_by(|a, b| (a - x).norm().total_cmp(&(b - x).norm()))
+                    .unwrap();
+                let dist = (x - b).norm();
+                let contains = match s {
+                    Shape::Rect(r) => r.contains(x),
+                    Shape::Disk { center, radius } => (x - center).norm() <= *radius,
+                    _ => false,
+                };
+                inside |= contains || dist - radius < 1e-3;
+                let rho = dist - radius;
+                if rho <= influence && dist > 0.0 {
+                    let m = 1.0 / rho.powi(3) * (1.0 / rho - 1.0 / influence) * rho;
+                    expected += (x - b) * (m / dist);
+                }
+            }
+            if inside {
+                continue; // the walk never stands there
+            }
+            let got = field.forces(x, x).repulse;
+            let tol = 1e-9 * (1.0 + expected.norm());
+            prop_assert!((got - expected).norm() <= tol, "at {:?}: {:?} vs {:?}", x, got, expected);
+        }
+    }
+
+    /// Whatever the obstacles and ends, the walk ends within its limit and
+    /// every trajectory it returns passes the validator (checked in `run`).
+    #[test]
+    fn walks_pass_the_validator(
+        walls in prop::collection::vec(
+            ((1.0..19.0f64, 1.0..19.0f64), (-6.0..6.0f64, -6.0..6.0f64)), 1..8),
+        disks in prop::collection::vec(((1.0..19.0f64, 1.0..19.0f64), 0.2..2.0f64), 0..3),
+        rects in prop::collection::vec(((1.0..19.0f64, 1.0..19.0f64), (0.2..3.0f64, 0.2..3.0f64)), 0..3),
+        triangle in any::<bool>(),
+        start in (0.0..20.0f64, 0.0..20.0f64),
+        goal in (0.0..20.0f64, 0.0..20.0f64),
+        disk_robot in any::<bool>(),
+        seed in 0u64..1000,
+        step in prop_oneof![Just(0.05), 0.05..0.6f64],
+    ) {
+        let mut text = String::from("world {\n bounds (0, 0) (20, 20)\n");
+        for ((x, y), (dx, dy)) in &walls {
+            text += &format!(" segment ({x}, {y}) ({}, {})\n", x + dx + 0.01, y + dy);
+        }
+        for ((x, y), r) in &disks {
+            text += &format!(" disk ({x}, {y}) {r}\n");
+        }
+        for ((x, y), (w, h)) in &rects {
+            text += &format!(" rect ({x}, {y}) ({}, {})\n", x + w, y + h);
+        }
+        if triangle {
+            text += " polygon [(12, 12), (16, 12), (14, 15), (14, 13)]\n";
+        }
+        text += "}\nrobot p point\nrobot d disk 0.3\n";
+        // Start and goal must be free: check with the validator's own test.
+        let probe = load(&text);
+        let robot = if disk_robot { RobotShape::Disk(0.3) } else { RobotShape::Point };
+        let free = |(x, y): (f64, f64)| {
+            crate::geometry::validator::config_collision(&probe.world, &robot, Config::new(x, y, 0.0))
+                .is_none()
+        };
+        prop_assume!(free(start) && free(goal));
+        let name = if disk_robot { "d" } else { "p" };
+        text += &format!(
+            "plan w potential {name} {{ start ({}, {}) goal ({}, {}) step {step} seed {seed} limit steps 20000 }}\n",
+            start.0, start.1, goal.0, goal.1
+        );
+        let outs = run(&text);
+        prop_assert!(metric(&outs[0], "steps") <= 20000.0);
+    }
+}
+
+/// A grid of unit cells at the origin from rows of `#` and `.`.
+fn grid(rows: &[&str]) -> Shape {
+    Shape::Grid(crate::geometry::Grid {
+        cell: 1.0,
+        origin: Point::new(0.0, 0.0),
+        width: rows[0].len(),
+        height: rows.len(),
+        cells: rows
+            .iter()
+            .flat_map(|r| r.chars().map(|c| u8::from(c != '#')))
+            .collect(),
+    })
+}
+
+#[test]
+fn grid_cells_repel_by_groups() {
+    // Two separate blocks of a grid are two sources; a wall of three cells
+    // is one (one force, not three).
+    let world = World {
+        bounds: Aabb::from_corners(Point::new(0.0, 0.0), Point::new(10.0, 5.0)),
+        obstacles: vec![Obstacle {
+            name: "g".into(),
+            shape: grid(&["..........", ".##...#...", "..........", ".........."]),
+        }],
+    };
+    let gains = Gains {
+        attract: 1.0,
+        repulse: 1.0,
+        influence: 1.0,
+    };
+    let field = FieldIndex::new(&world, 0.0, gains);
+    assert_eq!(field.sources.len(), 2);
+    // Below the middle of the two-cell block, 0.5 away: straight down.
+    let f = field.forces(Point::new(2.0, 1.5), Point::new(2.0, 1.5));
+    let expected = 1.0 / 0.125 * (2.0 - 1.0) * 0.5;
+    assert!(
+        (f.repulse - Vector::new(0.0, -expected)).norm() < 1e-9,
+        "{:?}",
+        f.repulse
+    );
+}
+
+#[test]
+fn walks_among_grid_cells_and_polygons_pass_the_validator() {
+    let outs = run("world {
+  bounds (0, 0) (20, 10)
+  polygon P [(8, 2), (12, 2), (12, 8), (11, 8), (11, 3), (8, 3)]
+  grid G cell 1 origin (14, 0) {
+    \"......\"
+    \"..##..\"
+    \"..##..\"
+    \"......\"
+  }
+  rect R (4, 6) (5, 9)
+}
+robot p point
+robot d disk 0.4
+plan a potential p { start (1, 5) goal (18, 5) seed 1 }
+plan b potential d { start (1, 5) goal (18, 5) seed 2 }
+plan c potential p { start (18, 2) goal (1, 1) }
+");
+    for o in &outs {
+        assert!(o.path.is_some(), "{:?}", o.notes);
+    }
+}
+
+#[test]
+fn cancelled_repulsion_is_not_an_opposed_minimum() {
+    // Midway between two parallel walls the repulsions cancel; what is left
+    // is rounding noise, pointing anywhere (here, at times, straight back):
+    // the opposition test must not take it for a minimum.
+    let outs = run("world {
+  bounds (0, 0) (100, 10)
+  segment (0, 3) (200, 3)
+  segment (0, 7) (200, 7)
+}
+robot p point
+plan a potential p { start (1, 5) goal (99, 5) influence 3 escape none }
+");
+    assert!(outs[0].path.is_some(), "{:?}", outs[0].notes);
+    assert_eq!(metric(&outs[0], "minima"), 0.0);
+}
