@@ -272,3 +272,24 @@ fn the_recording_of_coverage_has_the_tree_the_growing_tour_and_the_driven_robot(
     };
     assert_lists(&text, &["/world/weights/W"]);
 }
+
+#[test]
+fn the_recording_of_a_potential_field_has_forces_minima_escapes_and_the_stuck_run() {
+    let Some(text) = recorded_entities("scenarios/potential_walls.scen") else {
+        return;
+    };
+    assert_lists(
+        &text,
+        &[
+            "/plans/walk/field/attract",
+            "/plans/walk/field/repulse",
+            "/plans/walk/field/total",
+            "/plans/walk/field/minima",
+            "/plans/walk/field/escapes",
+            "/plans/walk/path",
+            // Pure descent stops in the minimum: its motion is drawn, not as a path.
+            "/plans/descent/unfinished",
+        ],
+    );
+    assert!(!text.contains("/plans/descent/path "));
+}

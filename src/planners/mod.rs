@@ -56,6 +56,11 @@ pub struct Trace {
     /// For rotating robots: each θ layer of the configuration space, for
     /// drawing it in 3D.
     pub cspace_layers: Vec<CLayerTrace>,
+    /// The motion executed before the planner stopped short of the goal
+    /// (a potential-field run stuck in a minimum or out of steps, an online
+    /// robot that proved the goal unreachable); empty when a path was found.
+    /// Drawn, never validated or measured: it is not a path to the goal.
+    pub unfinished: Vec<Config>,
     /// Roadmap: the visibility edges (entity `plans/NAME/roadmap`).
     pub roadmap_edges: Vec<(Point, Point)>,
     /// Online navigation: what the robot sensed and planned, step by step.

@@ -433,9 +433,11 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         .insert("minima".into(), MetricValue::Num(minima as f64));
     out.extra
         .insert("escapes".into(), MetricValue::Num(escapes as f64));
+    let unfinished = if found { Vec::new() } else { path.clone() };
     out.path = found.then_some(path);
     out.trace = Trace {
         field: Some(trace),
+        unfinished,
         ..Trace::default()
     };
     out

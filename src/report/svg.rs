@@ -381,6 +381,14 @@ fn draw_extras(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
             );
         }
     }
+    if trace.unfinished.len() > 1 {
+        let xy: Vec<Point> = trace.unfinished.iter().map(Config::xy).collect();
+        let _ = writeln!(
+            svg,
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\" stroke-opacity=\"0.6\" stroke-dasharray=\"6 3\"/>",
+            view.points(&xy)
+        );
+    }
     if let Some(drive) = run.drive.as_ref().filter(|d| !d.samples.is_empty()) {
         let xy: Vec<Point> = drive.samples.iter().map(|(_, c)| c.xy()).collect();
         let _ = writeln!(

@@ -8,7 +8,7 @@
 //! | `plans/NAME/roadmap` | LineStrips2D: visibility edges | static |
 //! | `plans/NAME/known/free/B`, `plans/NAME/known/blocked/B` | Boxes2D: cells first sensed in batch B | `step` |
 //! | `plans/NAME/plan` | LineStrips2D: the plan the online robot holds | `step` |
-//! | `plans/NAME/field/{attract,repulse,total}` | Arrows2D: forces at sampled steps | `step` |
+//! | `plans/NAME/field/{attract,repulse,total}` | Arrows2D: directions of the forces at sampled steps (all 3% of the world's size long) | `step` |
 //! | `plans/NAME/field/minima` | Points2D: local minima | static |
 //! | `plans/NAME/field/escapes` | LineStrips2D + Points2D: escape jumps and where they land | static |
 //! | `plans/NAME/mega_cells`, `plans/NAME/uncovered` | Boxes2D: tree mega-cells, D-cells STC cannot cover | static |
@@ -121,9 +121,20 @@ pub(super) fn log_field(
     rec: &RecordingStream,
     name: &str,
     field: &FieldTrace,
+    length: f64,
     colour: Color,
 ) -> RecordingStreamResult<()> {
-    let arrows = |v: Vector| [v.x as f32, v.y as f32];
+    // Forces span orders of magnitude (repulsion grows as 1/ρ³): arrows
+    // show directions, all `length` long; zero forces are left out.
+    let arrows = |v: Vector| {
+        let n = v.norm();
+        if n > 0.0 && n.is_finite() {
+            let u = v * (length / n);
+            [u.x as f32, u.y as f32]
+        } else {
+            [0.0, 0.0]
+        }
+    };
     let kinds: [(&str, [u8; 3]); 3] = [
         ("attract", [44, 160, 44]),
         ("repulse", [214, 39, 40]),

@@ -9,6 +9,7 @@
 //! | `world/obstacles/NAME` | LineStrips2D (closed; disks as 64-gons), Boxes2D for a grid's blocked cells | static |
 //! | `plans/NAME/grown` | LineStrips2D, closed: the planner's grown obstacles | static |
 //! | `plans/NAME/path` | LineStrips2D: the path in (x, y) | static |
+//! | `plans/NAME/unfinished` | LineStrips2D, faint: the motion of a plan that stopped short of the goal | static |
 //! | `plans/NAME/cspace/path` | LineStrips3D: the path in (x, y, θ), θ in radians as z (rotating robots) | static |
 //! | `plans/NAME/cspace/layer_K` | LineStrips3D: the boundary of the union of layer K's C-obstacles at height θ_K (rotating robots; stacked, the layered C-space) | static |
 //! | `plans/NAME/cspace/obstacles/OBSTACLE` | LineStrips3D: that obstacle's C-obstacles in every layer, the "twisted worm" | static |
@@ -335,19 +336,30 @@ fn log_plan(
     if let Some(online) = &trace.online {
         extras::log_online(rec, name, online, colour)?;
     }
+    let bounds = scenario.world.bounds;
     if let Some(field) = &trace.field {
-        extras::log_field(rec, name, field, colour)?;
+        let length = 0.03 * bounds.width().max(bounds.height());
+        extras::log_field(rec, name, field, length, colour)?;
     }
     if let Some(coverage) = &trace.coverage {
         extras::log_coverage(rec, name, coverage, colour, faint)?;
     }
     // A point robot is drawn as a cross 1% of the world's size.
-    let bounds = scenario.world.bounds;
     let mark = 0.01 * bounds.width().max(bounds.height());
     if let (Some(drive), Some(robot)) = (&run.drive, scenario.robots.get(plan.robot)) {
         extras::log_drive(rec, name, drive, &robot.shape, mark, colour)?;
     }
 
+    if trace.unfinished.len() > 1 {
+        let xy: Vec<Point> = trace.unfinished.iter().map(Config::xy).collect();
+        rec.log_static(
+            entity(&["plans", name, "unfinished"]),
+            &LineStrips2D::new([strip(&xy)])
+                .with_colors([faint])
+                .with_radii([Radius::new_ui_points(1.5)])
+                .with_draw_order(30.0),
+        )?;
+    }
     let Some(path) = run.outcome.path.as_deref().filter(|p| !p.is_empty()) else {
         return Ok(());
     };
