@@ -1,15 +1,868 @@
-//! Online navigation in an unknown world (SPEC 3.2).
+//! `online` (SPEC 3.2, SEEDS.md §C): a point or disk robot navigating a
+//! world it does not know, on the (x, y) lattice of `astar`.
 //!
-//! Not implemented yet: the schema marks `online` as not implemented, so the
-//! analyzer refuses such plans before this is ever called.
+//! The true map is `astar`'s [`GridLattice`] for the same robot (the same
+//! free points and the same validated edges). The robot's belief is another
+//! lattice of the same shape on which every point is free and every edge
+//! open until sensed ([`GridLattice::optimistic`]). At the start and after
+//! each move the robot senses every lattice point within `sense` cells
+//! (Chebyshev distance): the point's true state, and the true state of each
+//! edge between two sensed points. Since `sense` ≥ 1, every edge out of the
+//! robot's point is known when it moves, so every executed move is an edge
+//! of the true lattice and the trajectory passes the validator.
+//!
+//! Strategies:
+//! - `backtrack` / `shortcut`: A* ([`search_with`]) on the belief, the robot
+//!   walking to each node before it is expanded (all the way back to the
+//!   start and down again, or only up to the deepest common ancestor).
+//!   Since an expanded node's neighbourhood is sensed before it is
+//!   relaxed, the expansions are those of offline A* on the true map.
+//! - `replan`: A* from the robot's point on the belief; follow the plan
+//!   until something sensed blocks its remainder, then plan again.
+//! - `dstar_lite`: D* Lite (Koenig & Likhachev 2002, the optimized version
+//!   with the key modifier km), repairing the plan after each sensing step
+//!   that changed an edge cost.
+//!
+//! Unknown points are believed free, so costs only ever increase; when the
+//! belief proves the goal unreachable every strategy stops with no path.
 
-use crate::geometry::{RobotShape, World};
-use crate::planners::PlanOutcome;
-use crate::scenario::Params;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::time::Instant;
 
-pub fn plan(_world: &World, _robot: &RobotShape, _params: &Params) -> PlanOutcome {
-    PlanOutcome {
-        notes: vec!["planner `online` is not implemented yet".into()],
-        ..PlanOutcome::default()
+use crate::geometry::collide::ObstacleIndex;
+use crate::geometry::{Config, Point, RobotShape, World};
+use crate::scenario::{Limits, Params};
+
+use super::astar::{
+    CostMetric, DIRS, GridLattice, SearchBuffers, SearchConfig, grown_obstacles, lattice_path,
+    search, search_with, snap_ends,
+};
+use super::lattice::LatticeSpec;
+use super::{MetricValue, OnlineTrace, PlanOutcome};
+
+/// How the robot explores (SPEC 3.2 `strategy`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    Backtrack,
+    Shortcut,
+    Replan,
+    DStarLite,
+}
+
+impl Strategy {
+    fn from_params(params: &Params) -> Self {
+        match params.word("strategy") {
+            Some("backtrack") => Strategy::Backtrack,
+            Some("shortcut") => Strategy::Shortcut,
+            Some("dstar_lite") => Strategy::DStarLite,
+            _ => Strategy::Replan,
+        }
+    }
+}
+
+/// The most points the trace keeps in each of its lists (sensed points,
+/// plans summed over steps, expansions summed over searches). Beyond it
+/// later steps are left out of the picture (with a note), not the run.
+pub const MAX_TRACED_POINTS: usize = 2_000_000;
+
+/// The most moves a run makes when no smaller `limit steps` is given: the
+/// executed trajectory is kept in memory (`backtrack` on a large map would
+/// otherwise walk billions of steps).
+pub const MAX_STEPS: u64 = 4_000_000;
+
+/// Runs an `online` plan (with its trace).
+pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
+    navigate(world, robot, params, true)
+}
+
+/// Runs an `online` plan; `traced: false` leaves the trace empty (for
+/// benchmarks: the trace's plans cost a walk along the plan per step).
+pub fn navigate(world: &World, robot: &RobotShape, params: &Params, traced: bool) -> PlanOutcome {
+    let radius = match robot {
+        RobotShape::Point => 0.0,
+        RobotShape::Disk(r) => *r,
+        RobotShape::Polygon(_) => {
+            return PlanOutcome {
+                notes: vec!["`online` takes point and disk robots".into()],
+                ..PlanOutcome::default()
+            };
+        }
+    };
+    let spec = LatticeSpec::from_params(world, robot, params);
+    let index = ObstacleIndex::new(world);
+    let truth = GridLattice::build(spec, &index, radius);
+    let mut out = PlanOutcome::default();
+    if traced {
+        out.trace.grown_obstacles = grown_obstacles(world, radius);
+    }
+    let start = params.start;
+    let goal = params.goal.unwrap_or(start);
+    let (s_node, g_node) = match snap_ends(&truth, &index, start, goal) {
+        Ok(ends) => ends,
+        Err(note) => {
+            out.notes.push(note);
+            for m in ["traveled", "steps", "replans", "sensed"] {
+                out.extra.insert(m.into(), MetricValue::Num(0.0));
+            }
+            return out;
+        }
+    };
+    let cfg = SearchConfig::from_params(params);
+    let range = params.num("sense").unwrap_or(1.0).clamp(1.0, 1e9) as usize;
+    let mut rover = Rover::new(truth, &index, cfg, range, s_node, traced);
+    let mut belief = GridLattice::optimistic(spec, radius);
+    rover.sense(&mut belief);
+    let end = match Strategy::from_params(params) {
+        Strategy::Backtrack => explore(&mut rover, &mut belief, g_node, false),
+        Strategy::Shortcut => explore(&mut rover, &mut belief, g_node, true),
+        Strategy::Replan => replan(&mut rover, &mut belief, g_node),
+        Strategy::DStarLite => dstar_lite(&mut rover, &mut belief, g_node),
+    };
+    let (s_pt, g_pt) = (spec.point_of(s_node), spec.point_of(g_node));
+    let mut traveled = cfg.cost.between(start.xy(), s_pt) + rover.traveled;
+    match end {
+        End::Reached => {
+            traveled += cfg.cost.between(g_pt, goal.xy());
+            out.path = Some(lattice_path(&spec, &rover.walk, start, goal));
+            out.cost = Some(traveled);
+        }
+        End::Unreachable => out
+            .notes
+            .push("the goal is unreachable: the sensed map leaves no way to it".into()),
+        End::GaveUp => {
+            out.gave_up = true;
+            out.notes.push(if rover.steps() >= MAX_STEPS {
+                format!("stopped after {MAX_STEPS} moves, the most a run makes")
+            } else {
+                "a limit was reached before the goal".into()
+            });
+        }
+    }
+    out.expanded = rover.expanded;
+    let metrics = [
+        ("traveled", traveled),
+        ("steps", rover.steps() as f64),
+        ("replans", rover.replans as f64),
+        ("sensed", rover.sensed_count as f64),
+    ];
+    for (m, v) in metrics {
+        out.extra.insert(m.into(), MetricValue::Num(v));
+    }
+    if let Some(mut log) = rover.log.take() {
+        if log.truncated {
+            out.notes.push(format!(
+                "the trace keeps at most {MAX_TRACED_POINTS} points per list; later steps are left out of it"
+            ));
+        }
+        // Step k of the trace is the robot at path[k]: the raw start and
+        // goal, when they are not lattice points, are steps of their own.
+        if start.xy() != s_pt {
+            log.online.sensed.insert(0, Vec::new());
+            log.online.plans.insert(0, Vec::new());
+        }
+        if end == End::Reached && goal.xy() != g_pt {
+            log.online.sensed.push(Vec::new());
+            log.online.plans.push(Vec::new());
+        }
+        out.trace.online = Some(log.online);
+        out.trace.expansions = log.expansions;
+    }
+    out
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum End {
+    Reached,
+    /// The belief proves that no way leads to the goal.
+    Unreachable,
+    /// A limit was reached.
+    GaveUp,
+}
+
+/// The moves of the lattice: how many directions of [`DIRS`] and their
+/// costs.
+#[derive(Clone, Copy)]
+struct Moves {
+    dirs: usize,
+    cost: [f64; 8],
+}
+
+impl Moves {
+    /// The move from `u` in direction `d` on the belief, if it is believed
+    /// usable: the neighbour and the cost.
+    fn edge(&self, belief: &GridLattice, u: usize, d: usize) -> Option<(usize, f64)> {
+        let v = belief.neighbour(u, d)?;
+        belief
+            .edge_known_usable(u, d, v)
+            .then_some((v, self.cost[d]))
+    }
+}
+
+/// What the trace collects, within [`MAX_TRACED_POINTS`] per list.
+struct Log {
+    online: OnlineTrace,
+    expansions: Vec<Config>,
+    sensed_points: usize,
+    plan_points: usize,
+    truncated: bool,
+}
+
+/// The robot: what it knows of the world (except the belief lattice, which
+/// searches borrow separately), where it is and where it has been.
+struct Rover<'a> {
+    truth: GridLattice,
+    index: &'a ObstacleIndex,
+    spec: LatticeSpec,
+    cfg: SearchConfig,
+    moves: Moves,
+    range: usize,
+    sensed: Vec<bool>,
+    sensed_count: usize,
+    pos: usize,
+    /// The lattice points the robot stood on, in order: `walk[k]` is step k.
+    walk: Vec<usize>,
+    /// Length of the lattice moves so far.
+    traveled: f64,
+    expanded: u64,
+    replans: u64,
+    began: Instant,
+    log: Option<Log>,
+}
+
+impl<'a> Rover<'a> {
+    fn new(
+        truth: GridLattice,
+        index: &'a ObstacleIndex,
+        cfg: SearchConfig,
+        range: usize,
+        start: usize,
+        traced: bool,
+    ) -> Self {
+        let spec = truth.spec;
+        let dirs = if cfg.connect == 4 { 4 } else { 8 };
+        let cost = DIRS.map(|(dx, dy)| {
+            cfg.cost.between(
+                Point::origin(),
+                Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell),
+            )
+        });
+        let log = traced.then(|| Log {
+            online: OnlineTrace {
+                cell: spec.cell,
+                sensed: vec![Vec::new()],
+                plans: vec![Vec::new()],
+            },
+            expansions: Vec::new(),
+            sensed_points: 0,
+            plan_points: 0,
+            truncated: false,
+        });
+        Rover {
+            sensed: vec![false; spec.layer_len()],
+            truth,
+            index,
+            spec,
+            cfg,
+            moves: Moves { dirs, cost },
+            range,
+            sensed_count: 0,
+            pos: start,
+            walk: vec![start],
+            traveled: 0.0,
+            expanded: 0,
+            replans: 0,
+            began: Instant::now(),
+            log,
+        }
+    }
+
+    fn steps(&self) -> u64 {
+        self.walk.len() as u64 - 1
+    }
+
+    fn limits(&self) -> Limits {
+        self.cfg.limits
+    }
+
+    fn out_of_time(&self) -> bool {
+        self.limits()
+            .time
+            .is_some_and(|t| self.began.elapsed().as_secs_f64() > t)
+    }
+
+    /// The search settings for one more A* run: the limits that remain.
+    fn search_cfg(&self) -> SearchConfig {
+        let mut cfg = self.cfg;
+        let limits = self.limits();
+        cfg.limits.expansions = limits.expansions.map(|m| m.saturating_sub(self.expanded));
+        cfg.limits.time = limits
+            .time
+            .map(|t| (t - self.began.elapsed().as_secs_f64()).max(0.0));
+        cfg
+    }
+
+    /// The lattice points within range of the robot not sensed yet, in
+    /// index order.
+    fn scan(&self) -> Vec<usize> {
+        if self.sensed_count == self.sensed.len() {
+            return Vec::new();
+        }
+        let (i, j) = self.spec.coords(self.pos);
+        let r = self.range;
+        let (i0, i1) = (i.saturating_sub(r), i.saturating_add(r).min(self.spec.nx - 1));
+        let (j0, j1) = (j.saturating_sub(r), j.saturating_add(r).min(self.spec.ny - 1));
+        let mut found = Vec::new();
+        for jj in j0..=j1 {
+            for ii in i0..=i1 {
+                let n = self.spec.index(ii, jj);
+                if !self.sensed[n] {
+                    found.push(n);
+                }
+            }
+        }
+        found
+    }
+
+    /// Learns the true state of `nodes` and of every edge between two
+    /// sensed points among them and their neighbours. Returns whether
+    /// anything turned out blocked (a point or an edge).
+    fn reveal(&mut self, belief: &mut GridLattice, nodes: &[usize]) -> bool {
+        let mut blocked = false;
+        for &n in nodes {
+            self.sensed[n] = true;
+            self.sensed_count += 1;
+            let free = self.truth.free[n];
+            belief.free[n] = free;
+            blocked |= !free;
+            if let Some(log) = &mut self.log {
+                if log.sensed_points < MAX_TRACED_POINTS {
+                    log.sensed_points += 1;
+                    if let Some(step) = log.online.sensed.last_mut() {
+                        step.push((self.spec.point_of(n), !free));
+                    }
+                } else {
+                    log.truncated = true;
+                }
+            }
+        }
+        for &n in nodes {
+            if !self.truth.free[n] {
+                continue;
+            }
+            for d in 0..self.moves.dirs {
+                let Some(m) = self.truth.neighbour(n, d) else {
+                    continue;
+                };
+                if self.sensed[m] && self.truth.free[m] {
+                    let ok = self.truth.edge_free(self.index, n, d, m);
+                    belief.set_edge(n, d, m, ok);
+                    blocked |= !ok;
+                }
+            }
+        }
+        blocked
+    }
+
+    /// Senses around the robot; returns whether anything new is blocked.
+    fn sense(&mut self, belief: &mut GridLattice) -> bool {
+        let nodes = self.scan();
+        self.reveal(belief, &nodes)
+    }
+
+    /// Moves to the adjacent point `to` along a believed-usable edge (one
+    /// the robot has sensed, so a true one), unless a limit stops it.
+    fn advance(&mut self, belief: &GridLattice, to: usize) -> Result<(), End> {
+        let max = self.limits().steps.unwrap_or(MAX_STEPS).min(MAX_STEPS);
+        if self.steps() >= max || self.out_of_time() {
+            return Err(End::GaveUp);
+        }
+        let d = (0..self.moves.dirs)
+            .find(|&d| belief.neighbour(self.pos, d) == Some(to))
+            .expect("moves join lattice neighbours");
+        debug_assert!(belief.edge_known_usable(self.pos, d, to));
+        self.traveled += self.moves.cost[d];
+        self.pos = to;
+        self.walk.push(to);
+        if let Some(log) = &mut self.log {
+            log.online.sensed.push(Vec::new());
+            log.online.plans.push(Vec::new());
+        }
+        Ok(())
+    }
+
+    /// Whether the trace still takes plans.
+    fn wants_plan(&self) -> bool {
+        self.log
+            .as_ref()
+            .is_some_and(|l| l.plan_points < MAX_TRACED_POINTS)
+    }
+
+    /// Sets the plan held at the current step (points from the robot on).
+    fn hold_plan(&mut self, plan: impl IntoIterator<Item = usize>) {
+        let spec = self.spec;
+        let Some(log) = &mut self.log else {
+            return;
+        };
+        if log.plan_points >= MAX_TRACED_POINTS {
+            log.truncated = true;
+            return;
+        }
+        let points: Vec<Point> = plan
+            .into_iter()
+            .take(MAX_TRACED_POINTS - log.plan_points)
+            .map(|n| spec.point_of(n))
+            .collect();
+        log.plan_points += points.len();
+        if let Some(step) = log.online.plans.last_mut() {
+            *step = points;
+        }
+    }
+
+    /// Adds expanded nodes to the trace.
+    fn log_expansions(&mut self, nodes: impl IntoIterator<Item = usize>) {
+        let spec = self.spec;
+        let Some(log) = &mut self.log else {
+            return;
+        };
+        for n in nodes {
+            if log.expansions.len() >= MAX_TRACED_POINTS {
+                log.truncated = true;
+                return;
+            }
+            let p = spec.point_of(n);
+            log.expansions.push(Config::new(p.x, p.y, 0.0));
+        }
+    }
+}
+
+/// `backtrack` (`shortcut: false`) and `shortcut`: one A* on the belief,
+/// the robot walking to each node before it is expanded and sensing on the
+/// way.
+fn explore(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize, shortcut: bool) -> End {
+    let mut buf = SearchBuffers::default();
+    let cfg = rover.search_cfg();
+    let start = rover.pos;
+    let index = rover.index;
+    let traced = rover.log.is_some();
+    let mut chain = Vec::new();
+    let r = search_with(
+        belief,
+        index,
+        start,
+        goal,
+        &cfg,
+        traced,
+        &mut buf,
+        |node, buf, belief| {
+            let route = walk_between(rover.pos, node, buf, shortcut, &mut chain);
+            for k in 0..route.len() {
+                rover.hold_plan(std::iter::once(rover.pos).chain(route[k..].iter().copied()));
+                if rover.advance(belief, route[k]).is_err() {
+                    return false;
+                }
+                rover.sense(belief);
+            }
+            true
+        },
+    );
+    rover.expanded = r.expanded;
+    rover.replans = 1;
+    rover.log_expansions(r.expansion_order);
+    match r.nodes {
+        Some(_) => End::Reached,
+        None if r.gave_up => End::GaveUp,
+        None => End::Unreachable,
+    }
+}
+
+/// The points to walk from `from` to `to` in the search tree of `buf`
+/// (excluding `from`): up the back-pointers to the start and down to `to`,
+/// or with `shortcut` only up to their deepest common ancestor. `chain` is
+/// scratch space.
+fn walk_between(
+    from: usize,
+    to: usize,
+    buf: &SearchBuffers,
+    shortcut: bool,
+    chain: &mut Vec<usize>,
+) -> Vec<usize> {
+    let ancestors = |mut n: usize, out: &mut Vec<usize>| {
+        out.clear();
+        out.push(n);
+        while let Some(p) = buf.parent(n) {
+            out.push(p);
+            n = p;
+        }
+    };
+    // Both chains end at the search's start.
+    let mut up = Vec::new();
+    ancestors(from, &mut up);
+    ancestors(to, chain);
+    // Drop the common tail: with `shortcut` all of it but the deepest
+    // common ancestor, without it only the start (walked through once).
+    let mut common = 1;
+    if shortcut {
+        while common < up.len().min(chain.len())
+            && up[up.len() - 1 - common] == chain[chain.len() - 1 - common]
+        {
+            common += 1;
+        }
+    }
+    let turn = up.len() - common;
+    let mut route: Vec<usize> = up[1..=turn].to_vec();
+    route.extend(chain[..chain.len() - common].iter().rev());
+    route
+}
+
+/// `replan`: A* from the robot on the belief; follow the plan while it is
+/// not blocked by what was sensed, else plan again.
+fn replan(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> End {
+    let mut buf = SearchBuffers::default();
+    let traced = rover.log.is_some();
+    loop {
+        if rover.pos == goal {
+            return End::Reached;
+        }
+        let cfg = rover.search_cfg();
+        let r = search(belief, rover.index, rover.pos, goal, &cfg, traced, &mut buf);
+        rover.expanded += r.expanded;
+        rover.replans += 1;
+        rover.log_expansions(r.expansion_order);
+        let plan = match r.nodes {
+            Some(nodes) => nodes,
+            None if r.gave_up => return End::GaveUp,
+            None => return End::Unreachable,
+        };
+        let mut k = 0;
+        loop {
+            rover.hold_plan(plan[k..].iter().copied());
+            if k + 1 == plan.len() {
+                return End::Reached;
+            }
+            if let Err(end) = rover.advance(belief, plan[k + 1]) {
+                return end;
+            }
+            k += 1;
+            if rover.sense(belief) && !plan_usable(belief, &rover.moves, &plan[k..]) {
+                break;
+            }
+        }
+    }
+}
+
+/// Whether every move of `plan` is believed usable.
+fn plan_usable(belief: &GridLattice, moves: &Moves, plan: &[usize]) -> bool {
+    plan.windows(2).all(|w| {
+        (0..moves.dirs).any(|d| moves.edge(belief, w[0], d).is_some_and(|(v, _)| v == w[1]))
+    })
+}
+
+// ------------------------------------------------------------------ D* Lite
+
+/// A D* Lite priority: `[min(g, rhs) + h(s_start, s) + km, min(g, rhs)]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Key(f64, f64);
+
+impl Key {
+    fn cmp(self, other: Key) -> Ordering {
+        self.0.total_cmp(&other.0).then(self.1.total_cmp(&other.1))
+    }
+
+    fn less(self, other: Key) -> bool {
+        self.cmp(other) == Ordering::Less
+    }
+}
+
+/// A queue entry; entries whose key is no longer the node's are stale and
+/// skipped (lazy deletion).
+#[derive(Clone, Copy, Debug)]
+struct Queued {
+    key: Key,
+    node: u32,
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Queued {}
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // A max-heap: the smallest key pops first, then the lowest index.
+        other
+            .key
+            .cmp(self.key)
+            .then(other.node.cmp(&self.node))
+    }
+}
+
+/// D* Lite (Koenig & Likhachev, "D* Lite", AAAI 2002, Figure 4: the
+/// optimized version) searching from the goal, so that g(s) estimates the
+/// cost from s to the goal and the robot's moves only change the key
+/// modifier km.
+struct DStarLite {
+    g: Vec<f64>,
+    rhs: Vec<f64>,
+    /// The node's current key, valid while `queued`.
+    key: Vec<Key>,
+    queued: Vec<bool>,
+    heap: BinaryHeap<Queued>,
+    km: f64,
+    goal: usize,
+    spec: LatticeSpec,
+    metric: CostMetric,
+}
+
+impl DStarLite {
+    fn new(spec: LatticeSpec, metric: CostMetric, goal: usize, start: usize) -> Self {
+        let n = spec.layer_len();
+        let mut d = DStarLite {
+            g: vec![f64::INFINITY; n],
+            rhs: vec![f64::INFINITY; n],
+            key: vec![Key(0.0, 0.0); n],
+            queued: vec![false; n],
+            heap: BinaryHeap::new(),
+            km: 0.0,
+            goal,
+            spec,
+            metric,
+        };
+        d.rhs[goal] = 0.0;
+        let k = Key(d.h(start, goal), 0.0);
+        d.insert(goal, k);
+        d
+    }
+
+    /// The heuristic: the cost metric between the points (admissible,
+    /// consistent, and a metric, as the km trick needs).
+    fn h(&self, a: usize, b: usize) -> f64 {
+        self.metric
+            .between(self.spec.point_of(a), self.spec.point_of(b))
+    }
+
+    fn calculate_key(&self, s: usize, start: usize) -> Key {
+        let m = self.g[s].min(self.rhs[s]);
+        Key(m + self.h(start, s) + self.km, m)
+    }
+
+    fn insert(&mut self, s: usize, k: Key) {
+        self.key[s] = k;
+        self.queued[s] = true;
+        self.heap.push(Queued {
+            key: k,
+            node: s as u32,
+        });
+    }
+
+    /// The smallest valid entry, dropping stale ones.
+    fn top(&mut self) -> Option<(Key, usize)> {
+        while let Some(&Queued { key, node }) = self.heap.peek() {
+            let s = node as usize;
+            if self.queued[s] && self.key[s] == key {
+                return Some((key, s));
+            }
+            self.heap.pop();
+        }
+        None
+    }
+
+    fn update_vertex(&mut self, u: usize, start: usize) {
+        if self.g[u] != self.rhs[u] {
+            let k = self.calculate_key(u, start);
+            self.insert(u, k);
+        } else {
+            self.queued[u] = false;
+        }
+    }
+
+    /// min over successors s' of c(s, s') + g(s').
+    fn best_successor(&self, belief: &GridLattice, moves: &Moves, s: usize) -> f64 {
+        (0..moves.dirs)
+            .filter_map(|d| moves.edge(belief, s, d))
+            .map(|(v, c)| c + self.g[v])
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// ComputeShortestPath. Counts vertex expansions into the rover (and
+    /// its trace); `Err` when a limit stops it.
+    fn compute(&mut self, belief: &GridLattice, rover: &mut Rover<'_>) -> Result<(), End> {
+        let start = rover.pos;
+        let moves = rover.moves;
+        let max = rover.limits().expansions;
+        let mut expanded = Vec::new();
+        let result = loop {
+            let Some((k_old, u)) = self.top() else {
+                break Ok(());
+            };
+            if !(k_old.less(self.calculate_key(start, start)) || self.rhs[start] > self.g[start])
+            {
+                break Ok(());
+            }
+            let k_new = self.calculate_key(u, start);
+            if k_old.less(k_new) {
+                self.insert(u, k_new);
+                continue;
+            }
+            if max.is_some_and(|m| rover.expanded >= m)
+                || (rover.expanded % 256 == 0 && rover.out_of_time())
+            {
+                break Err(End::GaveUp);
+            }
+            rover.expanded += 1;
+            expanded.push(u);
+            if self.g[u] > self.rhs[u] {
+                self.g[u] = self.rhs[u];
+                self.queued[u] = false;
+                for d in 0..moves.dirs {
+                    if let Some((s, c)) = moves.edge(belief, u, d) {
+                        if s != self.goal {
+                            self.rhs[s] = self.rhs[s].min(c + self.g[u]);
+                        }
+                        self.update_vertex(s, start);
+                    }
+                }
+            } else {
+                let g_old = self.g[u];
+                self.g[u] = f64::INFINITY;
+                for d in 0..moves.dirs {
+                    if let Some((s, c)) = moves.edge(belief, u, d) {
+                        if self.rhs[s] == c + g_old && s != self.goal {
+                            self.rhs[s] = self.best_successor(belief, &moves, s);
+                        }
+                        self.update_vertex(s, start);
+                    }
+                }
+                // u itself: rhs(u) does not depend on g(u).
+                self.update_vertex(u, start);
+            }
+        };
+        rover.log_expansions(expanded);
+        result
+    }
+
+    /// The cheapest move from `s`: argmin c(s, s') + g(s'), the first
+    /// direction on ties; `None` when every move costs ∞.
+    fn next_move(&self, belief: &GridLattice, moves: &Moves, s: usize) -> Option<usize> {
+        let mut best: Option<(f64, usize)> = None;
+        for d in 0..moves.dirs {
+            if let Some((v, c)) = moves.edge(belief, s, d) {
+                let f = c + self.g[v];
+                if f.is_finite() && best.is_none_or(|(b, _)| f < b) {
+                    best = Some((f, v));
+                }
+            }
+        }
+        best.map(|(_, v)| v)
+    }
+
+    /// The plan the robot holds: the greedy descent from `s` (for the
+    /// trace), at most `cap` points.
+    fn plan_from(&self, belief: &GridLattice, moves: &Moves, s: usize, cap: usize) -> Vec<usize> {
+        let mut plan = vec![s];
+        let mut cur = s;
+        while cur != self.goal && plan.len() < cap {
+            match self.next_move(belief, moves, cur) {
+                Some(v) => {
+                    plan.push(v);
+                    cur = v;
+                }
+                None => break,
+            }
+        }
+        plan
+    }
+}
+
+/// `dstar_lite`: the main loop of D* Lite, with the robot sensing after
+/// each move and the changed edges repaired incrementally.
+fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> End {
+    let spec = rover.spec;
+    let moves = rover.moves;
+    let mut ds = DStarLite::new(spec, rover.cfg.cost, goal, rover.pos);
+    let mut last = rover.pos;
+    rover.replans = 1;
+    if let Err(end) = ds.compute(belief, rover) {
+        return end;
+    }
+    // Nodes whose out-edges may have changed, deduplicated by a stamp.
+    let mut stamp = vec![0u32; spec.layer_len()];
+    let mut round = 0u32;
+    loop {
+        if rover.pos == goal {
+            return End::Reached;
+        }
+        if ds.rhs[rover.pos].is_infinite() {
+            return End::Unreachable;
+        }
+        if rover.wants_plan() {
+            let plan = ds.plan_from(belief, &moves, rover.pos, spec.layer_len());
+            rover.hold_plan(plan);
+        }
+        let Some(next) = ds.next_move(belief, &moves, rover.pos) else {
+            return End::Unreachable;
+        };
+        if let Err(end) = rover.advance(belief, next) {
+            return end;
+        }
+        let fresh = rover.scan();
+        if fresh.is_empty() {
+            continue;
+        }
+        // The edges a sensed point can change join points within one cell
+        // of it (its own edges and the diagonals that cut its corner).
+        round += 1;
+        let mut touched = Vec::new();
+        for &n in &fresh {
+            for u in std::iter::once(n).chain((0..8).filter_map(|d| belief.neighbour(n, d))) {
+                if stamp[u] != round {
+                    stamp[u] = round;
+                    touched.push(u);
+                }
+            }
+        }
+        let mut edges = Vec::new();
+        for &u in &touched {
+            for d in 0..moves.dirs {
+                if let Some(v) = belief.neighbour(u, d) {
+                    let old = moves.edge(belief, u, d).map_or(f64::INFINITY, |(_, c)| c);
+                    edges.push((u, d, v, old));
+                }
+            }
+        }
+        rover.reveal(belief, &fresh);
+        let mut changed = false;
+        for (u, d, v, c_old) in edges {
+            let c_new = moves.edge(belief, u, d).map_or(f64::INFINITY, |(_, c)| c);
+            if c_new == c_old {
+                continue;
+            }
+            if !changed {
+                changed = true;
+                ds.km += ds.h(last, rover.pos);
+                last = rover.pos;
+            }
+            if c_old > c_new {
+                if u != goal {
+                    ds.rhs[u] = ds.rhs[u].min(c_new + ds.g[v]);
+                }
+            } else if ds.rhs[u] == c_old + ds.g[v] && u != goal {
+                ds.rhs[u] = ds.best_successor(belief, &moves, u);
+            }
+            ds.update_vertex(u, rover.pos);
+        }
+        if changed {
+            rover.replans += 1;
+            if let Err(end) = ds.compute(belief, rover) {
+                return end;
+            }
+        }
     }
 }
