@@ -866,3 +866,414 @@ fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> E
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::Span;
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+    use crate::geometry::{Aabb, Grid, Obstacle, Shape};
+    use crate::scenario::{Param, ParamValue};
+    use proptest::prelude::{ProptestConfig, any, prop_assert, prop_assert_eq, proptest};
+    use proptest::strategy::Strategy as Generator;
+    use std::collections::BTreeMap;
+
+    /// A random grid world: `w × h` cells of side 1 from the origin, a
+    /// start and a goal at free cell centres.
+    #[derive(Clone, Debug)]
+    struct Case {
+        w: usize,
+        h: usize,
+        /// Row-major from the bottom row (lattice order): blocked cells.
+        blocked: Vec<bool>,
+        start: (usize, usize),
+        goal: (usize, usize),
+        disk: bool,
+        connect: u8,
+        sense: usize,
+    }
+
+    /// SplitMix64, for drawing maps from one seed.
+    fn splitmix(state: &mut u64) -> u64 {
+        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = *state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    impl Case {
+        fn draw(w: usize, h: usize, seed: u64, density: f64, disk: bool, eight: bool) -> Case {
+            let mut s = seed;
+            let mut unit = || (splitmix(&mut s) >> 11) as f64 / (1u64 << 53) as f64;
+            let mut blocked: Vec<bool> = (0..w * h).map(|_| unit() < density).collect();
+            let mut pick = |blocked: &mut Vec<bool>| {
+                let k = ((unit() * (w * h) as f64) as usize).min(w * h - 1);
+                blocked[k] = false;
+                (k % w, k / w)
+            };
+            let start = pick(&mut blocked);
+            let goal = pick(&mut blocked);
+            let sense = 1 + (unit() * 3.0) as usize;
+            Case {
+                w,
+                h,
+                blocked,
+                start,
+                goal,
+                disk,
+                connect: if eight { 8 } else { 4 },
+                sense,
+            }
+        }
+
+        fn world(&self) -> World {
+            // Grid rows run from the top.
+            let cells = (0..self.h)
+                .rev()
+                .flat_map(|j| (0..self.w).map(move |i| (i, j)))
+                .map(|(i, j)| u8::from(!self.blocked[j * self.w + i]))
+                .collect();
+            World {
+                bounds: Aabb::from_corners(
+                    Point::new(0.0, 0.0),
+                    Point::new(self.w as f64, self.h as f64),
+                ),
+                obstacles: vec![Obstacle {
+                    name: "G".into(),
+                    shape: Shape::Grid(Grid {
+                        cell: 1.0,
+                        origin: Point::new(0.0, 0.0),
+                        width: self.w,
+                        height: self.h,
+                        cells,
+                    }),
+                }],
+            }
+        }
+
+        fn robot(&self) -> RobotShape {
+            if self.disk {
+                RobotShape::Disk(0.5)
+            } else {
+                RobotShape::Point
+            }
+        }
+
+        fn params(&self, strategy: &str, sense: usize, limits: Limits) -> Params {
+            let centre = |(i, j): (usize, usize)| Config::new(i as f64 + 0.5, j as f64 + 0.5, 0.0);
+            params(
+                centre(self.start),
+                centre(self.goal),
+                &[
+                    ("strategy", ParamValue::Word(strategy.into())),
+                    ("connect", ParamValue::Num(f64::from(self.connect))),
+                    ("sense", ParamValue::Num(sense as f64)),
+                ],
+                limits,
+            )
+        }
+
+        /// Runs one strategy (with the case's `sense`); the path, when
+        /// found, must start and end where asked and pass the validator.
+        fn run(&self, strategy: &str) -> PlanOutcome {
+            self.run_with(strategy, self.sense, Limits::default())
+        }
+
+        fn run_with(&self, strategy: &str, sense: usize, limits: Limits) -> PlanOutcome {
+            let (world, robot) = (self.world(), self.robot());
+            let p = self.params(strategy, sense, limits);
+            let out = plan(&world, &robot, &p);
+            if let Some(path) = &out.path {
+                assert_eq!(path.first(), Some(&p.start));
+                assert_eq!(path.last(), p.goal.as_ref());
+                if let Err(e) = validate_path(&world, &robot, path, DEFAULT_TOLERANCE) {
+                    panic!("{strategy}: the trajectory fails the validator: {e:?}");
+                }
+                let trace = out.trace.online.as_ref().expect("a trace");
+                assert_eq!(trace.sensed.len(), path.len());
+                assert_eq!(trace.plans.len(), path.len());
+                assert_eq!(num(&out, "steps") as usize + 1, path.len());
+                let length: f64 = path
+                    .windows(2)
+                    .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+                    .sum();
+                assert!((num(&out, "traveled") - length).abs() < 1e-9);
+            }
+            out
+        }
+
+        /// Offline `astar` on the same lattice.
+        fn offline(&self) -> PlanOutcome {
+            let p = self.params("replan", 1, Limits::default());
+            super::super::astar::plan(&self.world(), &self.robot(), &p)
+        }
+
+        fn index(&self, (i, j): (usize, usize)) -> usize {
+            j * self.w + i
+        }
+
+        fn cell_of(&self, p: Point) -> usize {
+            self.index((p.x.floor() as usize, p.y.floor() as usize))
+        }
+
+        /// Cost from every cell to the goal (Dijkstra), on a map where
+        /// `blocked(c)` says which cells are blocked: the lattice's rule
+        /// for a grid world, written independently (moves between free
+        /// cells, diagonals only between two free orthogonal cells).
+        fn distances(&self, blocked: &dyn Fn(usize) -> bool) -> Vec<f64> {
+            let n = self.w * self.h;
+            let mut dist = vec![f64::INFINITY; n];
+            let mut done = vec![false; n];
+            let goal = self.index(self.goal);
+            if blocked(goal) {
+                return dist;
+            }
+            dist[goal] = 0.0;
+            let moves: &[(i64, i64)] = if self.connect == 4 {
+                &[(1, 0), (0, 1), (-1, 0), (0, -1)]
+            } else {
+                &[
+                    (1, 0),
+                    (0, 1),
+                    (-1, 0),
+                    (0, -1),
+                    (1, 1),
+                    (-1, 1),
+                    (-1, -1),
+                    (1, -1),
+                ]
+            };
+            let free = |i: i64, j: i64| {
+                i >= 0
+                    && j >= 0
+                    && (i as usize) < self.w
+                    && (j as usize) < self.h
+                    && !blocked(j as usize * self.w + i as usize)
+            };
+            loop {
+                let Some(u) = (0..n)
+                    .filter(|&u| !done[u] && dist[u].is_finite())
+                    .min_by(|&a, &b| dist[a].total_cmp(&dist[b]))
+                else {
+                    return dist;
+                };
+                done[u] = true;
+                let (i, j) = ((u % self.w) as i64, (u / self.w) as i64);
+                for &(dx, dy) in moves {
+                    let (ni, nj) = (i + dx, j + dy);
+                    if !free(ni, nj) || (dx != 0 && dy != 0 && !(free(i + dx, j) && free(i, j + dy))) {
+                        continue;
+                    }
+                    let v = nj as usize * self.w + ni as usize;
+                    let c = ((dx * dx + dy * dy) as f64).sqrt();
+                    if dist[u] + c < dist[v] {
+                        dist[v] = dist[u] + c;
+                    }
+                }
+            }
+        }
+    }
+
+    fn params(start: Config, goal: Config, values: &[(&'static str, ParamValue)], limits: Limits) -> Params {
+        let values: BTreeMap<&'static str, Param> = values
+            .iter()
+            .map(|(k, v)| {
+                (
+                    *k,
+                    Param {
+                        value: v.clone(),
+                        span: Span::default(),
+                    },
+                )
+            })
+            .collect();
+        Params {
+            start,
+            start_span: Span::default(),
+            goal: Some(goal),
+            goal_span: None,
+            limits,
+            seed: 0,
+            values,
+        }
+    }
+
+    fn num(out: &PlanOutcome, metric: &str) -> f64 {
+        match out.extra.get(metric) {
+            Some(MetricValue::Num(x)) => *x,
+            other => panic!("metric {metric}: {other:?}"),
+        }
+    }
+
+    fn case() -> impl Generator<Value = Case> {
+        (
+            3usize..14,
+            3usize..14,
+            any::<u64>(),
+            0.0..0.45f64,
+            any::<bool>(),
+            any::<bool>(),
+        )
+            .prop_map(|(w, h, seed, density, disk, eight)| Case::draw(w, h, seed, density, disk, eight))
+    }
+
+    const STRATEGIES: [&str; 4] = ["backtrack", "shortcut", "replan", "dstar_lite"];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// `shortcut` expands exactly what `backtrack` expands, in the same
+        /// order (offline A*'s order on the true map), and never travels
+        /// more.
+        #[test]
+        fn shortcut_walks_less_over_the_same_expansions(c in case()) {
+            let back = c.run("backtrack");
+            let short = c.run("shortcut");
+            let offline = c.offline();
+            prop_assert_eq!(&back.trace.expansions, &short.trace.expansions);
+            prop_assert_eq!(&back.trace.expansions, &offline.trace.expansions);
+            prop_assert_eq!(back.expanded, short.expanded);
+            prop_assert_eq!(back.path.is_some(), offline.path.is_some());
+            prop_assert_eq!(short.path.is_some(), offline.path.is_some());
+            prop_assert!(num(&short, "traveled") <= num(&back, "traveled") + 1e-9);
+            prop_assert!(num(&short, "steps") <= num(&back, "steps"));
+        }
+
+        /// `replan` and `dstar_lite` reach the goal exactly when it is
+        /// reachable, and each of their moves starts a shortest path on
+        /// the map as believed at that step; with `sense` covering the
+        /// whole map both travel the offline optimum.
+        #[test]
+        fn replan_and_dstar_lite_move_along_believed_shortest_paths(c in case()) {
+            let offline = c.offline();
+            let truth = c.distances(&|k| c.blocked[k]);
+            if let Some(cost) = offline.cost {
+                prop_assert!((cost - truth[c.index(c.start)]).abs() < 1e-9);
+            }
+            for strategy in ["replan", "dstar_lite"] {
+                let out = c.run(strategy);
+                prop_assert_eq!(out.path.is_some(), offline.path.is_some(), "{}", strategy);
+                prop_assert!(!out.gave_up);
+                let Some(path) = &out.path else { continue };
+                let trace = out.trace.online.as_ref().unwrap();
+                let mut known = vec![None; c.w * c.h];
+                for (k, w) in path.windows(2).enumerate() {
+                    for &(p, blocked) in &trace.sensed[k] {
+                        known[c.cell_of(p)] = Some(blocked);
+                    }
+                    let belief = c.distances(&|n| known[n] == Some(true));
+                    let (a, b) = (c.cell_of(w[0].xy()), c.cell_of(w[1].xy()));
+                    let step = (w[1].x - w[0].x).hypot(w[1].y - w[0].y);
+                    prop_assert!(
+                        (belief[a] - (step + belief[b])).abs() < 1e-9,
+                        "{}: step {} from {:?} is not on a believed shortest path",
+                        strategy, k, w[0]
+                    );
+                }
+                let full = c.run_with(strategy, c.w.max(c.h), Limits::default());
+                let length = |o: &PlanOutcome| num(o, "traveled");
+                prop_assert!((length(&full) - truth[c.index(c.start)]).abs() < 1e-9, "{}", strategy);
+            }
+        }
+
+        /// A goal walled in: every strategy ends with no path, without
+        /// giving up.
+        #[test]
+        fn walled_in_goals_are_unreachable_for_every_strategy(c in case()) {
+            let mut c = c;
+            let (gi, gj) = c.goal;
+            for j in gj.saturating_sub(1)..=(gj + 1).min(c.h - 1) {
+                for i in gi.saturating_sub(1)..=(gi + 1).min(c.w - 1) {
+                    c.blocked[j * c.w + i] = (i, j) != c.goal;
+                }
+            }
+            let s = c.index(c.start);
+            c.blocked[s] = false;
+            if c.start == c.goal || c.offline().path.is_some() {
+                // The start was inside the wall.
+                return Ok(());
+            }
+            for strategy in STRATEGIES {
+                let out = c.run(strategy);
+                prop_assert!(out.path.is_none(), "{}", strategy);
+                prop_assert!(!out.gave_up, "{}", strategy);
+            }
+        }
+    }
+
+    /// A room split by a segment wall with a door: lattice points on both
+    /// sides are free, but edges across the wall are not; the robot only
+    /// learns which edges cross it by sensing.
+    #[test]
+    fn segment_walls_are_sensed_as_blocked_edges() {
+        let world = World {
+            bounds: Aabb::from_corners(Point::new(0.0, 0.0), Point::new(12.0, 12.0)),
+            obstacles: vec![
+                Obstacle {
+                    name: "W".into(),
+                    shape: Shape::Segment(Point::new(6.0, 0.0), Point::new(6.0, 10.0)),
+                },
+            ],
+        };
+        for strategy in STRATEGIES {
+            for connect in [4.0, 8.0] {
+                let p = params(
+                    Config::new(1.5, 1.5, 0.0),
+                    Config::new(10.5, 1.5, 0.0),
+                    &[
+                        ("strategy", ParamValue::Word(strategy.into())),
+                        ("connect", ParamValue::Num(connect)),
+                    ],
+                    Limits::default(),
+                );
+                let out = plan(&world, &RobotShape::Point, &p);
+                let path = out.path.as_ref().expect("a way through the door");
+                validate_path(&world, &RobotShape::Point, path, DEFAULT_TOLERANCE)
+                    .unwrap_or_else(|e| panic!("{strategy}: {e:?}"));
+                assert!(path.iter().any(|c| c.y > 10.0), "{strategy} went through the door");
+            }
+        }
+    }
+
+    #[test]
+    fn limits_end_a_run() {
+        let c = Case::draw(12, 12, 7, 0.2, false, true);
+        for strategy in STRATEGIES {
+            let steps = Limits {
+                steps: Some(3),
+                ..Limits::default()
+            };
+            let out = c.run_with(strategy, 1, steps);
+            if out.path.is_none() {
+                assert!(out.gave_up, "{strategy}");
+                assert_eq!(num(&out, "steps"), 3.0, "{strategy}");
+            }
+            let expansions = Limits {
+                expansions: Some(2),
+                ..Limits::default()
+            };
+            let out = c.run_with(strategy, 1, expansions);
+            assert!(out.path.is_none() && out.gave_up, "{strategy}");
+            assert!(out.expanded <= 2, "{strategy}");
+            let time = Limits {
+                time: Some(0.0),
+                ..Limits::default()
+            };
+            let out = c.run_with(strategy, 1, time);
+            assert!(out.path.is_none() && out.gave_up, "{strategy}");
+        }
+    }
+
+    #[test]
+    fn runs_are_deterministic() {
+        let c = Case::draw(13, 11, 42, 0.3, true, true);
+        for strategy in STRATEGIES {
+            let (a, b) = (c.run(strategy), c.run(strategy));
+            assert_eq!(a.path, b.path);
+            assert_eq!(a.extra, b.extra);
+            assert_eq!(a.expanded, b.expanded);
+            assert_eq!(a.trace.expansions, b.trace.expansions);
+        }
+    }
+}
