@@ -554,7 +554,12 @@ pub fn snap_ends(
 
 /// The path start → lattice `nodes` → goal at the start's θ, without
 /// repeated points, ending with the goal pose as given.
-pub fn lattice_path(spec: &LatticeSpec, nodes: &[usize], start: Config, goal: Config) -> Vec<Config> {
+pub fn lattice_path(
+    spec: &LatticeSpec,
+    nodes: &[usize],
+    start: Config,
+    goal: Config,
+) -> Vec<Config> {
     let mut path = vec![start];
     for &n in nodes {
         let p = spec.point_of(n);

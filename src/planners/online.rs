@@ -35,8 +35,8 @@ use crate::geometry::{Config, Point, RobotShape, World};
 use crate::scenario::{Limits, Params};
 
 use super::astar::{
-    CostMetric, DIRS, GridLattice, SearchBuffers, SearchConfig, grown_obstacles, lattice_path,
-    search, search_with, snap_ends,
+    DIRS, GridLattice, SearchBuffers, SearchConfig, grown_obstacles, lattice_path, search,
+    search_with, snap_ends,
 };
 use super::lattice::LatticeSpec;
 use super::{MetricValue, OnlineTrace, PlanOutcome};
@@ -71,14 +71,38 @@ pub const MAX_TRACED_POINTS: usize = 2_000_000;
 /// otherwise walk billions of steps).
 pub const MAX_STEPS: u64 = 4_000_000;
 
-/// Runs an `online` plan (with its trace).
-pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
-    navigate(world, robot, params, true)
+/// How [`navigate`] runs, beyond the plan's parameters (for benchmarks).
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Fill the trace (its plans cost a walk along the plan per step).
+    pub traced: bool,
+    /// Use the heuristics (`false`: h = 0 in A* and in D* Lite, to compare
+    /// the two searches without their different heuristics).
+    pub heuristic: bool,
 }
 
-/// Runs an `online` plan; `traced: false` leaves the trace empty (for
-/// benchmarks: the trace's plans cost a walk along the plan per step).
-pub fn navigate(world: &World, robot: &RobotShape, params: &Params, traced: bool) -> PlanOutcome {
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            traced: true,
+            heuristic: true,
+        }
+    }
+}
+
+/// Runs an `online` plan (with its trace).
+pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
+    navigate(world, robot, params, Options::default())
+}
+
+/// Runs an `online` plan with the given options.
+pub fn navigate(
+    world: &World,
+    robot: &RobotShape,
+    params: &Params,
+    options: Options,
+) -> PlanOutcome {
+    let traced = options.traced;
     let radius = match robot {
         RobotShape::Point => 0.0,
         RobotShape::Disk(r) => *r,
@@ -108,7 +132,10 @@ pub fn navigate(world: &World, robot: &RobotShape, params: &Params, traced: bool
             return out;
         }
     };
-    let cfg = SearchConfig::from_params(params);
+    let cfg = SearchConfig {
+        heuristic: options.heuristic,
+        ..SearchConfig::from_params(params)
+    };
     let range = params.num("sense").unwrap_or(1.0).clamp(1.0, 1e9) as usize;
     let mut rover = Rover::new(truth, &index, cfg, range, s_node, traced);
     let mut belief = GridLattice::optimistic(spec, radius);
@@ -311,8 +338,14 @@ impl<'a> Rover<'a> {
         }
         let (i, j) = self.spec.coords(self.pos);
         let r = self.range;
-        let (i0, i1) = (i.saturating_sub(r), i.saturating_add(r).min(self.spec.nx - 1));
-        let (j0, j1) = (j.saturating_sub(r), j.saturating_add(r).min(self.spec.ny - 1));
+        let (i0, i1) = (
+            i.saturating_sub(r),
+            i.saturating_add(r).min(self.spec.nx - 1),
+        );
+        let (j0, j1) = (
+            j.saturating_sub(r),
+            j.saturating_add(r).min(self.spec.ny - 1),
+        );
         let mut found = Vec::new();
         for jj in j0..=j1 {
             for ii in i0..=i1 {
@@ -561,34 +594,93 @@ fn plan_usable(belief: &GridLattice, moves: &Moves, plan: &[usize]) -> bool {
 
 // ------------------------------------------------------------------ D* Lite
 
-/// A D* Lite priority: `[min(g, rhs) + h(s_start, s) + km, min(g, rhs)]`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Key(f64, f64);
+/// A length a + b·√2 in cells, exact: the cost of any walk on the lattice
+/// (axis moves cost 1, diagonal moves √2) and of the heuristics below.
+/// D* Lite compares keys that equal each other in exact arithmetic all the
+/// time (a state on the shortest path and the start); in floating point
+/// they differ in the last bits depending on the order of the sums, which
+/// reorders the queue and can stop ComputeShortestPath before a state the
+/// robot then steps on is consistent (seen on maze512: the robot went back
+/// and forth between two stale states). Exact lengths make every
+/// comparison, and so every tie, exact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Len {
+    a: i64,
+    b: i64,
+}
 
-impl Key {
-    fn cmp(self, other: Key) -> Ordering {
-        self.0.total_cmp(&other.0).then(self.1.total_cmp(&other.1))
+impl Len {
+    const ZERO: Len = Len { a: 0, b: 0 };
+    const INF: Len = Len { a: i64::MAX, b: 0 };
+
+    fn is_inf(self) -> bool {
+        self.a == i64::MAX
     }
 
-    fn less(self, other: Key) -> bool {
-        self.cmp(other) == Ordering::Less
+    fn add(self, o: Len) -> Len {
+        if self.is_inf() || o.is_inf() {
+            Len::INF
+        } else {
+            Len {
+                a: self.a + o.a,
+                b: self.b + o.b,
+            }
+        }
+    }
+
+    fn min(self, o: Len) -> Len {
+        if o.cmp(&self) == Ordering::Less {
+            o
+        } else {
+            self
+        }
     }
 }
 
+impl PartialOrd for Len {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Len {
+    /// The sign of (a₁ − a₂) + (b₁ − b₂)·√2, decided on integers.
+    fn cmp(&self, o: &Self) -> Ordering {
+        match (self.is_inf(), o.is_inf()) {
+            (true, true) => return Ordering::Equal,
+            (true, false) => return Ordering::Greater,
+            (false, true) => return Ordering::Less,
+            _ => {}
+        }
+        let (da, db) = (i128::from(self.a - o.a), i128::from(self.b - o.b));
+        match (da.cmp(&0), db.cmp(&0)) {
+            (Ordering::Equal, x) | (x, Ordering::Equal) => x,
+            (x, y) if x == y => x,
+            // Opposite signs: compare |da| with |db|·√2 by their squares
+            // (never equal, √2 being irrational).
+            (x, _) => {
+                if da * da > 2 * db * db {
+                    x
+                } else {
+                    x.reverse()
+                }
+            }
+        }
+    }
+}
+
+/// A D* Lite priority: `[min(g, rhs) + h(s_start, s) + km, min(g, rhs)]`,
+/// compared lexicographically.
+type Key = (Len, Len);
+
 /// A queue entry; entries whose key is no longer the node's are stale and
 /// skipped (lazy deletion).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Queued {
     key: Key,
     node: u32,
 }
 
-impl PartialEq for Queued {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Queued {}
 impl PartialOrd for Queued {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
@@ -597,60 +689,90 @@ impl PartialOrd for Queued {
 impl Ord for Queued {
     fn cmp(&self, other: &Self) -> Ordering {
         // A max-heap: the smallest key pops first, then the lowest index.
-        other
-            .key
-            .cmp(self.key)
-            .then(other.node.cmp(&self.node))
+        other.key.cmp(&self.key).then(other.node.cmp(&self.node))
     }
 }
 
 /// D* Lite (Koenig & Likhachev, "D* Lite", AAAI 2002, Figure 4: the
 /// optimized version) searching from the goal, so that g(s) estimates the
 /// cost from s to the goal and the robot's moves only change the key
-/// modifier km.
+/// modifier km. Costs and keys are exact [`Len`]s; the heuristic is the
+/// lattice distance without obstacles (octile for 8 neighbours, Manhattan
+/// for 4): admissible, consistent, and a metric, as km needs.
 struct DStarLite {
-    g: Vec<f64>,
-    rhs: Vec<f64>,
+    g: Vec<Len>,
+    rhs: Vec<Len>,
     /// The node's current key, valid while `queued`.
     key: Vec<Key>,
     queued: Vec<bool>,
     heap: BinaryHeap<Queued>,
-    km: f64,
+    km: Len,
     goal: usize,
     spec: LatticeSpec,
-    metric: CostMetric,
+    eight: bool,
+    /// `false`: h = 0.
+    heuristic: bool,
 }
 
 impl DStarLite {
-    fn new(spec: LatticeSpec, metric: CostMetric, goal: usize, start: usize) -> Self {
+    fn new(spec: LatticeSpec, eight: bool, heuristic: bool, goal: usize, start: usize) -> Self {
         let n = spec.layer_len();
         let mut d = DStarLite {
-            g: vec![f64::INFINITY; n],
-            rhs: vec![f64::INFINITY; n],
-            key: vec![Key(0.0, 0.0); n],
+            g: vec![Len::INF; n],
+            rhs: vec![Len::INF; n],
+            key: vec![(Len::ZERO, Len::ZERO); n],
             queued: vec![false; n],
             heap: BinaryHeap::new(),
-            km: 0.0,
+            km: Len::ZERO,
             goal,
             spec,
-            metric,
+            eight,
+            heuristic,
         };
-        d.rhs[goal] = 0.0;
-        let k = Key(d.h(start, goal), 0.0);
+        d.rhs[goal] = Len::ZERO;
+        let k = (d.h(start, goal), Len::ZERO);
         d.insert(goal, k);
         d
     }
 
-    /// The heuristic: the cost metric between the points (admissible,
-    /// consistent, and a metric, as the km trick needs).
-    fn h(&self, a: usize, b: usize) -> f64 {
-        self.metric
-            .between(self.spec.point_of(a), self.spec.point_of(b))
+    /// The cost of a move in direction `d` of [`DIRS`].
+    fn step(d: usize) -> Len {
+        if d < 4 {
+            Len { a: 1, b: 0 }
+        } else {
+            Len { a: 0, b: 1 }
+        }
+    }
+
+    fn h(&self, p: usize, q: usize) -> Len {
+        if !self.heuristic {
+            return Len::ZERO;
+        }
+        let ((pi, pj), (qi, qj)) = (self.spec.coords(p), self.spec.coords(q));
+        let (dx, dy) = (pi.abs_diff(qi) as i64, pj.abs_diff(qj) as i64);
+        if self.eight {
+            Len {
+                a: dx.max(dy) - dx.min(dy),
+                b: dx.min(dy),
+            }
+        } else {
+            Len { a: dx + dy, b: 0 }
+        }
+    }
+
+    /// The believed cost of the move from `u` in direction `d`, with the
+    /// neighbour.
+    fn edge(belief: &GridLattice, moves: &Moves, u: usize, d: usize) -> Option<(usize, Len)> {
+        moves.edge(belief, u, d).map(|(v, _)| (v, Self::step(d)))
+    }
+
+    fn edge_cost(belief: &GridLattice, moves: &Moves, u: usize, d: usize) -> Len {
+        Self::edge(belief, moves, u, d).map_or(Len::INF, |(_, c)| c)
     }
 
     fn calculate_key(&self, s: usize, start: usize) -> Key {
         let m = self.g[s].min(self.rhs[s]);
-        Key(m + self.h(start, s) + self.km, m)
+        (m.add(self.h(start, s)).add(self.km), m)
     }
 
     fn insert(&mut self, s: usize, k: Key) {
@@ -684,11 +806,11 @@ impl DStarLite {
     }
 
     /// min over successors s' of c(s, s') + g(s').
-    fn best_successor(&self, belief: &GridLattice, moves: &Moves, s: usize) -> f64 {
+    fn best_successor(&self, belief: &GridLattice, moves: &Moves, s: usize) -> Len {
         (0..moves.dirs)
-            .filter_map(|d| moves.edge(belief, s, d))
-            .map(|(v, c)| c + self.g[v])
-            .fold(f64::INFINITY, f64::min)
+            .filter_map(|d| Self::edge(belief, moves, s, d))
+            .map(|(v, c)| c.add(self.g[v]))
+            .fold(Len::INF, Len::min)
     }
 
     /// ComputeShortestPath. Counts vertex expansions into the rover (and
@@ -702,12 +824,11 @@ impl DStarLite {
             let Some((k_old, u)) = self.top() else {
                 break Ok(());
             };
-            if !(k_old.less(self.calculate_key(start, start)) || self.rhs[start] > self.g[start])
-            {
+            if !(k_old < self.calculate_key(start, start) || self.rhs[start] > self.g[start]) {
                 break Ok(());
             }
             let k_new = self.calculate_key(u, start);
-            if k_old.less(k_new) {
+            if k_old < k_new {
                 self.insert(u, k_new);
                 continue;
             }
@@ -722,19 +843,19 @@ impl DStarLite {
                 self.g[u] = self.rhs[u];
                 self.queued[u] = false;
                 for d in 0..moves.dirs {
-                    if let Some((s, c)) = moves.edge(belief, u, d) {
+                    if let Some((s, c)) = Self::edge(belief, &moves, u, d) {
                         if s != self.goal {
-                            self.rhs[s] = self.rhs[s].min(c + self.g[u]);
+                            self.rhs[s] = self.rhs[s].min(c.add(self.g[u]));
                         }
                         self.update_vertex(s, start);
                     }
                 }
             } else {
                 let g_old = self.g[u];
-                self.g[u] = f64::INFINITY;
+                self.g[u] = Len::INF;
                 for d in 0..moves.dirs {
-                    if let Some((s, c)) = moves.edge(belief, u, d) {
-                        if self.rhs[s] == c + g_old && s != self.goal {
+                    if let Some((s, c)) = Self::edge(belief, &moves, u, d) {
+                        if self.rhs[s] == c.add(g_old) && s != self.goal {
                             self.rhs[s] = self.best_successor(belief, &moves, s);
                         }
                         self.update_vertex(s, start);
@@ -751,11 +872,11 @@ impl DStarLite {
     /// The cheapest move from `s`: argmin c(s, s') + g(s'), the first
     /// direction on ties; `None` when every move costs ∞.
     fn next_move(&self, belief: &GridLattice, moves: &Moves, s: usize) -> Option<usize> {
-        let mut best: Option<(f64, usize)> = None;
+        let mut best: Option<(Len, usize)> = None;
         for d in 0..moves.dirs {
-            if let Some((v, c)) = moves.edge(belief, s, d) {
-                let f = c + self.g[v];
-                if f.is_finite() && best.is_none_or(|(b, _)| f < b) {
+            if let Some((v, c)) = Self::edge(belief, moves, s, d) {
+                let f = c.add(self.g[v]);
+                if !f.is_inf() && best.is_none_or(|(b, _)| f < b) {
                     best = Some((f, v));
                 }
             }
@@ -786,7 +907,7 @@ impl DStarLite {
 fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> End {
     let spec = rover.spec;
     let moves = rover.moves;
-    let mut ds = DStarLite::new(spec, rover.cfg.cost, goal, rover.pos);
+    let mut ds = DStarLite::new(spec, moves.dirs == 8, rover.cfg.heuristic, goal, rover.pos);
     let mut last = rover.pos;
     rover.replans = 1;
     if let Err(end) = ds.compute(belief, rover) {
@@ -799,7 +920,7 @@ fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> E
         if rover.pos == goal {
             return End::Reached;
         }
-        if ds.rhs[rover.pos].is_infinite() {
+        if ds.rhs[rover.pos].is_inf() {
             return End::Unreachable;
         }
         if rover.wants_plan() {
@@ -832,28 +953,27 @@ fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> E
         for &u in &touched {
             for d in 0..moves.dirs {
                 if let Some(v) = belief.neighbour(u, d) {
-                    let old = moves.edge(belief, u, d).map_or(f64::INFINITY, |(_, c)| c);
-                    edges.push((u, d, v, old));
+                    edges.push((u, d, v, DStarLite::edge_cost(belief, &moves, u, d)));
                 }
             }
         }
         rover.reveal(belief, &fresh);
         let mut changed = false;
         for (u, d, v, c_old) in edges {
-            let c_new = moves.edge(belief, u, d).map_or(f64::INFINITY, |(_, c)| c);
+            let c_new = DStarLite::edge_cost(belief, &moves, u, d);
             if c_new == c_old {
                 continue;
             }
             if !changed {
                 changed = true;
-                ds.km += ds.h(last, rover.pos);
+                ds.km = ds.km.add(ds.h(last, rover.pos));
                 last = rover.pos;
             }
             if c_old > c_new {
                 if u != goal {
-                    ds.rhs[u] = ds.rhs[u].min(c_new + ds.g[v]);
+                    ds.rhs[u] = ds.rhs[u].min(c_new.add(ds.g[v]));
                 }
-            } else if ds.rhs[u] == c_old + ds.g[v] && u != goal {
+            } else if ds.rhs[u] == c_old.add(ds.g[v]) && u != goal {
                 ds.rhs[u] = ds.best_successor(belief, &moves, u);
             }
             ds.update_vertex(u, rover.pos);
@@ -1051,31 +1171,80 @@ mod tests {
                     && (j as usize) < self.h
                     && !blocked(j as usize * self.w + i as usize)
             };
-            loop {
-                let Some(u) = (0..n)
-                    .filter(|&u| !done[u] && dist[u].is_finite())
-                    .min_by(|&a, &b| dist[a].total_cmp(&dist[b]))
-                else {
-                    return dist;
-                };
+            let mut heap = BinaryHeap::new();
+            heap.push((std::cmp::Reverse(Dist(0.0)), goal));
+            while let Some((std::cmp::Reverse(Dist(du)), u)) = heap.pop() {
+                if done[u] {
+                    continue;
+                }
                 done[u] = true;
                 let (i, j) = ((u % self.w) as i64, (u / self.w) as i64);
                 for &(dx, dy) in moves {
                     let (ni, nj) = (i + dx, j + dy);
-                    if !free(ni, nj) || (dx != 0 && dy != 0 && !(free(i + dx, j) && free(i, j + dy))) {
+                    if !free(ni, nj)
+                        || (dx != 0 && dy != 0 && !(free(i + dx, j) && free(i, j + dy)))
+                    {
                         continue;
                     }
                     let v = nj as usize * self.w + ni as usize;
                     let c = ((dx * dx + dy * dy) as f64).sqrt();
-                    if dist[u] + c < dist[v] {
-                        dist[v] = dist[u] + c;
+                    if du + c < dist[v] {
+                        dist[v] = du + c;
+                        heap.push((std::cmp::Reverse(Dist(dist[v])), v));
                     }
                 }
             }
+            dist
         }
     }
 
-    fn params(start: Config, goal: Config, values: &[(&'static str, ParamValue)], limits: Limits) -> Params {
+    /// An `f64` with a total order, for the test's Dijkstra.
+    #[derive(Clone, Copy, PartialEq)]
+    struct Dist(f64);
+    impl Eq for Dist {}
+    impl PartialOrd for Dist {
+        fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+            Some(self.cmp(other))
+        }
+    }
+    impl Ord for Dist {
+        fn cmp(&self, other: &Self) -> Ordering {
+            self.0.total_cmp(&other.0)
+        }
+    }
+
+    /// Each move of `path` starts a shortest path to the goal on the map
+    /// as the robot believed it at that step (rebuilt from the trace).
+    fn check_believed_shortest(
+        c: &Case,
+        out: &PlanOutcome,
+        path: &[Config],
+    ) -> Result<(), proptest::test_runner::TestCaseError> {
+        let trace = out.trace.online.as_ref().unwrap();
+        let mut known = vec![None; c.w * c.h];
+        for (k, w) in path.windows(2).enumerate() {
+            for &(p, blocked) in &trace.sensed[k] {
+                known[c.cell_of(p)] = Some(blocked);
+            }
+            let belief = c.distances(&|n| known[n] == Some(true));
+            let (a, b) = (c.cell_of(w[0].xy()), c.cell_of(w[1].xy()));
+            let step = (w[1].x - w[0].x).hypot(w[1].y - w[0].y);
+            prop_assert!(
+                (belief[a] - (step + belief[b])).abs() < 1e-9,
+                "step {} from {:?} is not on a believed shortest path",
+                k,
+                w[0]
+            );
+        }
+        Ok(())
+    }
+
+    fn params(
+        start: Config,
+        goal: Config,
+        values: &[(&'static str, ParamValue)],
+        limits: Limits,
+    ) -> Params {
         let values: BTreeMap<&'static str, Param> = values
             .iter()
             .map(|(k, v)| {
@@ -1115,7 +1284,21 @@ mod tests {
             any::<bool>(),
             any::<bool>(),
         )
-            .prop_map(|(w, h, seed, density, disk, eight)| Case::draw(w, h, seed, density, disk, eight))
+            .prop_map(|(w, h, seed, density, disk, eight)| {
+                Case::draw(w, h, seed, density, disk, eight)
+            })
+    }
+
+    /// Larger maps, where long runs of sensing and repairs accumulate.
+    fn large_case() -> impl Generator<Value = Case> {
+        (
+            30usize..70,
+            30usize..70,
+            any::<u64>(),
+            0.2..0.4f64,
+            any::<bool>(),
+        )
+            .prop_map(|(w, h, seed, density, eight)| Case::draw(w, h, seed, density, false, eight))
     }
 
     const STRATEGIES: [&str; 4] = ["backtrack", "shortcut", "replan", "dstar_lite"];
@@ -1156,21 +1339,7 @@ mod tests {
                 prop_assert_eq!(out.path.is_some(), offline.path.is_some(), "{}", strategy);
                 prop_assert!(!out.gave_up);
                 let Some(path) = &out.path else { continue };
-                let trace = out.trace.online.as_ref().unwrap();
-                let mut known = vec![None; c.w * c.h];
-                for (k, w) in path.windows(2).enumerate() {
-                    for &(p, blocked) in &trace.sensed[k] {
-                        known[c.cell_of(p)] = Some(blocked);
-                    }
-                    let belief = c.distances(&|n| known[n] == Some(true));
-                    let (a, b) = (c.cell_of(w[0].xy()), c.cell_of(w[1].xy()));
-                    let step = (w[1].x - w[0].x).hypot(w[1].y - w[0].y);
-                    prop_assert!(
-                        (belief[a] - (step + belief[b])).abs() < 1e-9,
-                        "{}: step {} from {:?} is not on a believed shortest path",
-                        strategy, k, w[0]
-                    );
-                }
+                check_believed_shortest(&c, &out, path)?;
                 let full = c.run_with(strategy, c.w.max(c.h), Limits::default());
                 let length = |o: &PlanOutcome| num(o, "traveled");
                 prop_assert!((length(&full) - truth[c.index(c.start)]).abs() < 1e-9, "{}", strategy);
@@ -1202,6 +1371,25 @@ mod tests {
         }
     }
 
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// On larger maps too, `dstar_lite` and `replan` reach the goal
+        /// exactly when it is reachable, along believed shortest paths.
+        #[test]
+        fn large_maps_are_crossed_along_believed_shortest_paths(c in large_case()) {
+            let offline = c.offline();
+            for strategy in ["replan", "dstar_lite"] {
+                let out = c.run(strategy);
+                prop_assert_eq!(out.path.is_some(), offline.path.is_some(), "{}", strategy);
+                prop_assert!(!out.gave_up);
+                if let Some(path) = &out.path {
+                    check_believed_shortest(&c, &out, path)?;
+                }
+            }
+        }
+    }
+
     /// A room split by a segment wall with a door: lattice points on both
     /// sides are free, but edges across the wall are not; the robot only
     /// learns which edges cross it by sensing.
@@ -1209,12 +1397,10 @@ mod tests {
     fn segment_walls_are_sensed_as_blocked_edges() {
         let world = World {
             bounds: Aabb::from_corners(Point::new(0.0, 0.0), Point::new(12.0, 12.0)),
-            obstacles: vec![
-                Obstacle {
-                    name: "W".into(),
-                    shape: Shape::Segment(Point::new(6.0, 0.0), Point::new(6.0, 10.0)),
-                },
-            ],
+            obstacles: vec![Obstacle {
+                name: "W".into(),
+                shape: Shape::Segment(Point::new(6.0, 0.0), Point::new(6.0, 10.0)),
+            }],
         };
         for strategy in STRATEGIES {
             for connect in [4.0, 8.0] {
@@ -1231,7 +1417,10 @@ mod tests {
                 let path = out.path.as_ref().expect("a way through the door");
                 validate_path(&world, &RobotShape::Point, path, DEFAULT_TOLERANCE)
                     .unwrap_or_else(|e| panic!("{strategy}: {e:?}"));
-                assert!(path.iter().any(|c| c.y > 10.0), "{strategy} went through the door");
+                assert!(
+                    path.iter().any(|c| c.y > 10.0),
+                    "{strategy} went through the door"
+                );
             }
         }
     }
