@@ -833,7 +833,7 @@ impl DStarLite {
                 continue;
             }
             if max.is_some_and(|m| rover.expanded >= m)
-                || (rover.expanded % 256 == 0 && rover.out_of_time())
+                || (rover.expanded.is_multiple_of(256) && rover.out_of_time())
             {
                 break Err(End::GaveUp);
             }
