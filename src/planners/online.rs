@@ -553,13 +553,16 @@ fn walk_between(
 /// not blocked by what was sensed, else plan again.
 fn replan(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> End {
     let mut buf = SearchBuffers::default();
-    let traced = rover.log.is_some();
     loop {
         if rover.pos == goal {
             return End::Reached;
         }
         let cfg = rover.search_cfg();
-        let r = search(belief, rover.index, rover.pos, goal, &cfg, traced, &mut buf);
+        let record = rover
+            .log
+            .as_ref()
+            .is_some_and(|l| l.expansions.len() < MAX_TRACED_POINTS);
+        let r = search(belief, rover.index, rover.pos, goal, &cfg, record, &mut buf);
         rover.expanded += r.expanded;
         rover.replans += 1;
         rover.log_expansions(r.expansion_order);
