@@ -65,8 +65,8 @@ impl SearchConfig {
     }
 }
 
-/// Neighbour offsets: the 4 axis moves first, then the diagonals.
-const DIRS: [(i64, i64); 8] = [
+/// Neighbour offsets (di, dj): the 4 axis moves first, then the diagonals.
+pub const DIRS: [(i64, i64); 8] = [
     (1, 0),
     (0, 1),
     (-1, 0),
@@ -77,7 +77,8 @@ const DIRS: [(i64, i64); 8] = [
     (1, -1),
 ];
 
-fn opposite(d: usize) -> usize {
+/// The direction opposite to `d` in [`DIRS`].
+pub fn opposite(d: usize) -> usize {
     if d < 4 {
         (d + 2) % 4
     } else {
@@ -116,13 +117,81 @@ impl GridLattice {
         }
     }
 
+    /// A lattice on which every point is free and every edge open, as if
+    /// already checked: what a robot that has not sensed anything believes
+    /// ([`super::online`]). Searching it never queries the obstacles; the
+    /// robot overwrites what it senses with [`GridLattice::set_edge`] and
+    /// `free`.
+    pub fn optimistic(spec: LatticeSpec, radius: f64) -> Self {
+        let n = spec.layer_len();
+        GridLattice {
+            spec,
+            radius,
+            free: vec![true; n],
+            edge_checked: vec![u8::MAX; n],
+            edge_ok: vec![u8::MAX; n],
+        }
+    }
+
     pub fn free_count(&self) -> usize {
         self.free.iter().filter(|f| **f).count()
     }
 
+    /// The neighbour of `node` in direction `d` of [`DIRS`], if it lies
+    /// inside the lattice.
+    pub fn neighbour(&self, node: usize, d: usize) -> Option<usize> {
+        let (i, j) = self.spec.coords(node);
+        let (dx, dy) = DIRS[d];
+        let (ni, nj) = (i as i64 + dx, j as i64 + dy);
+        (ni >= 0 && nj >= 0 && (ni as usize) < self.spec.nx && (nj as usize) < self.spec.ny)
+            .then(|| self.spec.index(ni as usize, nj as usize))
+    }
+
+    /// Whether the search may use edge (node, d) to `to`: both ends free, no
+    /// corner cut (a diagonal needs both orthogonally adjacent points free)
+    /// and the motion collision-free. The same rule as [`search`].
+    pub fn edge_usable(&mut self, index: &ObstacleIndex, node: usize, d: usize, to: usize) -> bool {
+        self.ends_and_corners_free(node, d, to) && self.edge_free(index, node, d, to)
+    }
+
+    /// [`GridLattice::edge_usable`] from what is already known, without
+    /// querying the obstacles: an edge not checked yet counts as blocked.
+    pub fn edge_known_usable(&self, node: usize, d: usize, to: usize) -> bool {
+        self.ends_and_corners_free(node, d, to) && self.edge_ok[node] & (1u8 << d) != 0
+    }
+
+    fn ends_and_corners_free(&self, node: usize, d: usize, to: usize) -> bool {
+        if !self.free[node] || !self.free[to] {
+            return false;
+        }
+        if d >= 4 {
+            let nx = self.spec.nx as i64;
+            let (dx, dy) = DIRS[d];
+            let a = (node as i64 + dx) as usize;
+            let b = (node as i64 + dy * nx) as usize;
+            return self.free[a] && self.free[b];
+        }
+        true
+    }
+
+    /// Records whether the motion along edge (node, d) to `to` is free, for
+    /// both directions (e.g. once a robot has sensed both ends).
+    pub fn set_edge(&mut self, node: usize, d: usize, to: usize, ok: bool) {
+        let (bit, back) = (1u8 << d, 1u8 << opposite(d));
+        self.edge_checked[node] |= bit;
+        self.edge_checked[to] |= back;
+        if ok {
+            self.edge_ok[node] |= bit;
+            self.edge_ok[to] |= back;
+        } else {
+            self.edge_ok[node] &= !bit;
+            self.edge_ok[to] &= !back;
+        }
+    }
+
     /// Whether the motion along edge (node, d) is collision-free; `to` is
     /// the neighbour. Checked once per edge and cached for both directions.
-    fn edge_free(&mut self, index: &ObstacleIndex, node: usize, d: usize, to: usize) -> bool {
+    pub fn edge_free(&mut self, index: &ObstacleIndex, node: usize, d: usize, to: usize) -> bool {
         let bit = 1u8 << d;
         if self.edge_checked[node] & bit == 0 {
             let (i, j) = self.spec.coords(node);
@@ -190,6 +259,15 @@ pub struct SearchBuffers {
 }
 
 impl SearchBuffers {
+    /// The back-pointer of `node` in the last search (`None` for its start
+    /// and for nodes it did not reach). Final for nodes already expanded.
+    pub fn parent(&self, node: usize) -> Option<usize> {
+        match self.nodes.get(node) {
+            Some(s) if s.mark >= 2 * self.stamp && s.parent != u32::MAX => Some(s.parent as usize),
+            _ => None,
+        }
+    }
+
     fn reset(&mut self, n: usize) {
         let fresh = NodeState {
             g: f64::INFINITY,
@@ -234,6 +312,25 @@ pub fn search(
     cfg: &SearchConfig,
     record: bool,
     buf: &mut SearchBuffers,
+) -> SearchResult {
+    search_with(lat, index, start, goal, cfg, record, buf, |_, _, _| true)
+}
+
+/// [`search`] with a hook called just before each node is expanded, with
+/// the node, the buffers (for [`SearchBuffers::parent`]) and the lattice,
+/// which the hook may update for points and edges the search has not used
+/// yet (an online robot walks to the node and senses there). The hook
+/// returns `false` to stop the search (it then ends with `gave_up`).
+#[allow(clippy::too_many_arguments)]
+pub fn search_with(
+    lat: &mut GridLattice,
+    index: &ObstacleIndex,
+    start: usize,
+    goal: usize,
+    cfg: &SearchConfig,
+    record: bool,
+    buf: &mut SearchBuffers,
+    mut before_expand: impl FnMut(usize, &SearchBuffers, &mut GridLattice) -> bool,
 ) -> SearchResult {
     let began = Instant::now();
     let n = lat.spec.layer_len();
@@ -297,6 +394,10 @@ pub fn search(
             && out.expanded % 256 == 0
             && began.elapsed().as_secs_f64() > t
         {
+            out.gave_up = true;
+            return out;
+        }
+        if !before_expand(node, buf, lat) {
             out.gave_up = true;
             return out;
         }
@@ -388,27 +489,14 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     };
     let start = params.start;
     let goal = params.goal.unwrap_or(start);
-    let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
-        out.notes
-            .push("the lattice is empty: `cell` is larger than the bounds".into());
-        out.extra.insert("generated".into(), MetricValue::Num(0.0));
-        return out;
+    let (s_node, g_node) = match snap_ends(&lat, &index, start, goal) {
+        Ok(ends) => ends,
+        Err(note) => {
+            out.notes.push(note);
+            out.extra.insert("generated".into(), MetricValue::Num(0.0));
+            return out;
+        }
     };
-    let (s_node, g_node) = (spec.index(s.0, s.1), spec.index(g.0, g.1));
-    let (s_pt, g_pt) = (spec.point(s.0, s.1), spec.point(g.0, g.1));
-    let mut blocked_end = None;
-    if !lat.free[s_node] || !index.sweep_free(start.xy(), s_pt, radius) {
-        blocked_end = Some("start");
-    } else if !lat.free[g_node] || !index.sweep_free(g_pt, goal.xy(), radius) {
-        blocked_end = Some("goal");
-    }
-    if let Some(end) = blocked_end {
-        out.notes.push(format!(
-            "the {end} could not be connected to its nearest lattice point: make `cell` smaller or move the {end}"
-        ));
-        out.extra.insert("generated".into(), MetricValue::Num(0.0));
-        return out;
-    }
     let mut buf = SearchBuffers::default();
     let r = search(&mut lat, &index, s_node, g_node, &cfg, true, &mut buf);
     out.expanded = r.expanded;
@@ -425,30 +513,70 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
         })
         .collect();
     if let Some(nodes) = r.nodes {
-        let mut path = vec![start];
-        for n in nodes {
-            let (i, j) = spec.coords(n);
-            let p = spec.point(i, j);
-            path.push(Config::new(p.x, p.y, start.theta));
-        }
-        path.push(Config::new(goal.x, goal.y, start.theta));
-        path.dedup_by(|a, b| a.x == b.x && a.y == b.y);
-        // The goal pose itself ends the path (its θ as given).
-        if let Some(last) = path.last_mut() {
-            *last = goal;
-        }
+        let (s_pt, g_pt) = (spec.point_of(s_node), spec.point_of(g_node));
         let cost = cfg.cost.between(start.xy(), s_pt) + r.cost + cfg.cost.between(g_pt, goal.xy());
         out.cost = Some(cost);
-        out.path = Some(path);
+        out.path = Some(lattice_path(&spec, &nodes, start, goal));
     } else if r.gave_up {
         out.notes.push("a limit was reached before the goal".into());
     }
     out
 }
 
+/// The lattice points nearest to `start` and `goal` (SPEC 3.1), or a note
+/// saying which end cannot be connected to its point: the point must be
+/// free and the straight motion to it collision-free.
+pub fn snap_ends(
+    lat: &GridLattice,
+    index: &ObstacleIndex,
+    start: Config,
+    goal: Config,
+) -> Result<(usize, usize), String> {
+    let spec = &lat.spec;
+    let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
+        return Err("the lattice is empty: `cell` is larger than the bounds".into());
+    };
+    let (s_node, g_node) = (spec.index(s.0, s.1), spec.index(g.0, g.1));
+    let (s_pt, g_pt) = (spec.point(s.0, s.1), spec.point(g.0, g.1));
+    let mut blocked_end = None;
+    if !lat.free[s_node] || !index.sweep_free(start.xy(), s_pt, lat.radius) {
+        blocked_end = Some("start");
+    } else if !lat.free[g_node] || !index.sweep_free(g_pt, goal.xy(), lat.radius) {
+        blocked_end = Some("goal");
+    }
+    match blocked_end {
+        Some(end) => Err(format!(
+            "the {end} could not be connected to its nearest lattice point: make `cell` smaller or move the {end}"
+        )),
+        None => Ok((s_node, g_node)),
+    }
+}
+
+/// The path start → lattice `nodes` → goal at the start's θ, without
+/// repeated points, ending with the goal pose as given.
+pub fn lattice_path(
+    spec: &LatticeSpec,
+    nodes: &[usize],
+    start: Config,
+    goal: Config,
+) -> Vec<Config> {
+    let mut path = vec![start];
+    for &n in nodes {
+        let p = spec.point_of(n);
+        path.push(Config::new(p.x, p.y, start.theta));
+    }
+    path.push(Config::new(goal.x, goal.y, start.theta));
+    path.dedup_by(|a, b| a.x == b.x && a.y == b.y);
+    // The goal pose itself ends the path (its θ as given).
+    if let Some(last) = path.last_mut() {
+        *last = goal;
+    }
+    path
+}
+
 /// Obstacles grown by a disk robot's radius, for drawing (grids excluded:
 /// their cells are drawn as they are).
-fn grown_obstacles(world: &World, radius: f64) -> Vec<Vec<Point>> {
+pub(crate) fn grown_obstacles(world: &World, radius: f64) -> Vec<Vec<Point>> {
     if radius <= 0.0 {
         return Vec::new();
     }

@@ -116,6 +116,12 @@ impl LatticeSpec {
         )
     }
 
+    /// The point of a node index of one layer.
+    pub fn point_of(&self, index: usize) -> Point {
+        let (i, j) = self.coords(index);
+        self.point(i, j)
+    }
+
     /// The nearest lattice point to `c`, if the lattice is not empty.
     pub fn snap(&self, c: Config) -> Option<(usize, usize)> {
         if self.nx == 0 || self.ny == 0 {

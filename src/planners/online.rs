@@ -1,15 +1,1471 @@
-//! Online navigation in an unknown world (SPEC 3.2).
+//! `online` (SPEC 3.2, SEEDS.md §C): a point or disk robot navigating a
+//! world it does not know, on the (x, y) lattice of `astar`.
 //!
-//! Not implemented yet: the schema marks `online` as not implemented, so the
-//! analyzer refuses such plans before this is ever called.
+//! The true map is `astar`'s [`GridLattice`] for the same robot (the same
+//! free points and the same validated edges). The robot's belief is another
+//! lattice of the same shape on which every point is free and every edge
+//! open until sensed ([`GridLattice::optimistic`]). At the start and after
+//! each move the robot senses every lattice point within `sense` cells
+//! (Chebyshev distance): the point's true state, and the true state of each
+//! edge between two sensed points. Since `sense` ≥ 1, every edge out of the
+//! robot's point is known when it moves, so every executed move is an edge
+//! of the true lattice and the trajectory passes the validator.
+//!
+//! Strategies:
+//! - `backtrack` / `shortcut`: A* ([`search_with`]) on the belief, the robot
+//!   walking to each node before it is expanded (all the way back to the
+//!   start and down again, or only up to the deepest common ancestor).
+//!   Since an expanded node's neighbourhood is sensed before it is
+//!   relaxed, the expansions are those of offline A* on the true map.
+//! - `replan`: A* from the robot's point on the belief; follow the plan
+//!   until something sensed blocks its remainder, then plan again.
+//! - `dstar_lite`: D* Lite (Koenig & Likhachev 2002, the optimized version
+//!   with the key modifier km), repairing the plan after each sensing step
+//!   that changed an edge cost.
+//!
+//! Unknown points are believed free, so costs only ever increase; when the
+//! belief proves the goal unreachable every strategy stops with no path.
 
-use crate::geometry::{RobotShape, World};
-use crate::planners::PlanOutcome;
-use crate::scenario::Params;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::time::Instant;
 
-pub fn plan(_world: &World, _robot: &RobotShape, _params: &Params) -> PlanOutcome {
-    PlanOutcome {
-        notes: vec!["planner `online` is not implemented yet".into()],
-        ..PlanOutcome::default()
+use crate::geometry::collide::ObstacleIndex;
+use crate::geometry::{Config, Point, RobotShape, World};
+use crate::scenario::{Limits, Params};
+
+use super::astar::{
+    DIRS, GridLattice, SearchBuffers, SearchConfig, grown_obstacles, lattice_path, search,
+    search_with, snap_ends,
+};
+use super::lattice::LatticeSpec;
+use super::{MetricValue, OnlineTrace, PlanOutcome};
+
+/// How the robot explores (SPEC 3.2 `strategy`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    Backtrack,
+    Shortcut,
+    Replan,
+    DStarLite,
+}
+
+impl Strategy {
+    fn from_params(params: &Params) -> Self {
+        match params.word("strategy") {
+            Some("backtrack") => Strategy::Backtrack,
+            Some("shortcut") => Strategy::Shortcut,
+            Some("dstar_lite") => Strategy::DStarLite,
+            _ => Strategy::Replan,
+        }
+    }
+}
+
+/// The most points the trace keeps in each of its lists (sensed points,
+/// plans summed over steps, expansions summed over searches). Beyond it
+/// later steps are left out of the picture (with a note), not the run.
+pub const MAX_TRACED_POINTS: usize = 2_000_000;
+
+/// The most moves a run makes when no smaller `limit steps` is given: the
+/// executed trajectory is kept in memory (`backtrack` on a large map would
+/// otherwise walk billions of steps).
+pub const MAX_STEPS: u64 = 4_000_000;
+
+/// How [`navigate`] runs, beyond the plan's parameters (for benchmarks).
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Fill the trace (its plans cost a walk along the plan per step).
+    pub traced: bool,
+    /// Use the heuristics (`false`: h = 0 in A* and in D* Lite, to compare
+    /// the two searches without their different heuristics).
+    pub heuristic: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            traced: true,
+            heuristic: true,
+        }
+    }
+}
+
+/// Runs an `online` plan (with its trace).
+pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
+    navigate(world, robot, params, Options::default())
+}
+
+/// Runs an `online` plan with the given options.
+pub fn navigate(
+    world: &World,
+    robot: &RobotShape,
+    params: &Params,
+    options: Options,
+) -> PlanOutcome {
+    let traced = options.traced;
+    let radius = match robot {
+        RobotShape::Point => 0.0,
+        RobotShape::Disk(r) => *r,
+        RobotShape::Polygon(_) => {
+            return PlanOutcome {
+                notes: vec!["`online` takes point and disk robots".into()],
+                ..PlanOutcome::default()
+            };
+        }
+    };
+    let spec = LatticeSpec::from_params(world, robot, params);
+    let index = ObstacleIndex::new(world);
+    let truth = GridLattice::build(spec, &index, radius);
+    let mut out = PlanOutcome::default();
+    if traced {
+        out.trace.grown_obstacles = grown_obstacles(world, radius);
+    }
+    let start = params.start;
+    let goal = params.goal.unwrap_or(start);
+    let (s_node, g_node) = match snap_ends(&truth, &index, start, goal) {
+        Ok(ends) => ends,
+        Err(note) => {
+            out.notes.push(note);
+            for m in ["traveled", "steps", "replans", "sensed"] {
+                out.extra.insert(m.into(), MetricValue::Num(0.0));
+            }
+            return out;
+        }
+    };
+    let cfg = SearchConfig {
+        heuristic: options.heuristic,
+        ..SearchConfig::from_params(params)
+    };
+    let range = params.num("sense").unwrap_or(1.0).clamp(1.0, 1e9) as usize;
+    let mut rover = Rover::new(truth, &index, cfg, range, s_node, traced);
+    let mut belief = GridLattice::optimistic(spec, radius);
+    rover.sense(&mut belief);
+    let end = match Strategy::from_params(params) {
+        Strategy::Backtrack => explore(&mut rover, &mut belief, g_node, false),
+        Strategy::Shortcut => explore(&mut rover, &mut belief, g_node, true),
+        Strategy::Replan => replan(&mut rover, &mut belief, g_node),
+        Strategy::DStarLite => dstar_lite(&mut rover, &mut belief, g_node),
+    };
+    let (s_pt, g_pt) = (spec.point_of(s_node), spec.point_of(g_node));
+    let mut traveled = cfg.cost.between(start.xy(), s_pt) + rover.traveled;
+    match end {
+        End::Reached => {
+            traveled += cfg.cost.between(g_pt, goal.xy());
+            out.path = Some(lattice_path(&spec, &rover.walk, start, goal));
+            out.cost = Some(traveled);
+        }
+        End::Unreachable => out
+            .notes
+            .push("the goal is unreachable: the sensed map leaves no way to it".into()),
+        End::GaveUp => {
+            out.gave_up = true;
+            out.notes.push(if rover.steps() >= MAX_STEPS {
+                format!("stopped after {MAX_STEPS} moves, the most a run makes")
+            } else {
+                "a limit was reached before the goal".into()
+            });
+        }
+    }
+    out.expanded = rover.expanded;
+    let metrics = [
+        ("traveled", traveled),
+        ("steps", rover.steps() as f64),
+        ("replans", rover.replans as f64),
+        ("sensed", rover.sensed_count as f64),
+    ];
+    for (m, v) in metrics {
+        out.extra.insert(m.into(), MetricValue::Num(v));
+    }
+    if let Some(mut log) = rover.log.take() {
+        if log.truncated {
+            out.notes.push(format!(
+                "the trace keeps at most {MAX_TRACED_POINTS} points per list; later steps are left out of it"
+            ));
+        }
+        // Step k of the trace is the robot at path[k]: the raw start and
+        // goal, when they are not lattice points, are steps of their own.
+        if start.xy() != s_pt {
+            log.online.sensed.insert(0, Vec::new());
+            log.online.plans.insert(0, Vec::new());
+        }
+        if end == End::Reached && goal.xy() != g_pt {
+            log.online.sensed.push(Vec::new());
+            log.online.plans.push(Vec::new());
+        }
+        out.trace.online = Some(log.online);
+        out.trace.expansions = log.expansions;
+    }
+    out
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum End {
+    Reached,
+    /// The belief proves that no way leads to the goal.
+    Unreachable,
+    /// A limit was reached.
+    GaveUp,
+}
+
+/// The moves of the lattice: how many directions of [`DIRS`] and their
+/// costs.
+#[derive(Clone, Copy)]
+struct Moves {
+    dirs: usize,
+    cost: [f64; 8],
+}
+
+impl Moves {
+    /// The move from `u` in direction `d` on the belief, if it is believed
+    /// usable: the neighbour and the cost.
+    fn edge(&self, belief: &GridLattice, u: usize, d: usize) -> Option<(usize, f64)> {
+        let v = belief.neighbour(u, d)?;
+        belief
+            .edge_known_usable(u, d, v)
+            .then_some((v, self.cost[d]))
+    }
+}
+
+/// What the trace collects, within [`MAX_TRACED_POINTS`] per list.
+struct Log {
+    online: OnlineTrace,
+    expansions: Vec<Config>,
+    sensed_points: usize,
+    plan_points: usize,
+    truncated: bool,
+}
+
+/// The robot: what it knows of the world (except the belief lattice, which
+/// searches borrow separately), where it is and where it has been.
+struct Rover<'a> {
+    truth: GridLattice,
+    index: &'a ObstacleIndex,
+    spec: LatticeSpec,
+    cfg: SearchConfig,
+    moves: Moves,
+    range: usize,
+    sensed: Vec<bool>,
+    sensed_count: usize,
+    pos: usize,
+    /// The lattice points the robot stood on, in order: `walk[k]` is step k.
+    walk: Vec<usize>,
+    /// Length of the lattice moves so far.
+    traveled: f64,
+    expanded: u64,
+    replans: u64,
+    began: Instant,
+    log: Option<Log>,
+}
+
+impl<'a> Rover<'a> {
+    fn new(
+        truth: GridLattice,
+        index: &'a ObstacleIndex,
+        cfg: SearchConfig,
+        range: usize,
+        start: usize,
+        traced: bool,
+    ) -> Self {
+        let spec = truth.spec;
+        let dirs = if cfg.connect == 4 { 4 } else { 8 };
+        let cost = DIRS.map(|(dx, dy)| {
+            cfg.cost.between(
+                Point::origin(),
+                Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell),
+            )
+        });
+        let log = traced.then(|| Log {
+            online: OnlineTrace {
+                cell: spec.cell,
+                sensed: vec![Vec::new()],
+                plans: vec![Vec::new()],
+            },
+            expansions: Vec::new(),
+            sensed_points: 0,
+            plan_points: 0,
+            truncated: false,
+        });
+        Rover {
+            sensed: vec![false; spec.layer_len()],
+            truth,
+            index,
+            spec,
+            cfg,
+            moves: Moves { dirs, cost },
+            range,
+            sensed_count: 0,
+            pos: start,
+            walk: vec![start],
+            traveled: 0.0,
+            expanded: 0,
+            replans: 0,
+            began: Instant::now(),
+            log,
+        }
+    }
+
+    fn steps(&self) -> u64 {
+        self.walk.len() as u64 - 1
+    }
+
+    fn limits(&self) -> Limits {
+        self.cfg.limits
+    }
+
+    fn out_of_time(&self) -> bool {
+        self.limits()
+            .time
+            .is_some_and(|t| self.began.elapsed().as_secs_f64() > t)
+    }
+
+    /// The search settings for one more A* run: the limits that remain.
+    fn search_cfg(&self) -> SearchConfig {
+        let mut cfg = self.cfg;
+        let limits = self.limits();
+        cfg.limits.expansions = limits.expansions.map(|m| m.saturating_sub(self.expanded));
+        cfg.limits.time = limits
+            .time
+            .map(|t| (t - self.began.elapsed().as_secs_f64()).max(0.0));
+        cfg
+    }
+
+    /// The lattice points within range of the robot not sensed yet, in
+    /// index order.
+    fn scan(&self) -> Vec<usize> {
+        if self.sensed_count == self.sensed.len() {
+            return Vec::new();
+        }
+        let (i, j) = self.spec.coords(self.pos);
+        let r = self.range;
+        let (i0, i1) = (
+            i.saturating_sub(r),
+            i.saturating_add(r).min(self.spec.nx - 1),
+        );
+        let (j0, j1) = (
+            j.saturating_sub(r),
+            j.saturating_add(r).min(self.spec.ny - 1),
+        );
+        let mut found = Vec::new();
+        for jj in j0..=j1 {
+            for ii in i0..=i1 {
+                let n = self.spec.index(ii, jj);
+                if !self.sensed[n] {
+                    found.push(n);
+                }
+            }
+        }
+        found
+    }
+
+    /// Learns the true state of `nodes` and of every edge between two
+    /// sensed points among them and their neighbours. Returns whether
+    /// anything turned out blocked (a point or an edge).
+    fn reveal(&mut self, belief: &mut GridLattice, nodes: &[usize]) -> bool {
+        let mut blocked = false;
+        for &n in nodes {
+            self.sensed[n] = true;
+            self.sensed_count += 1;
+            let free = self.truth.free[n];
+            belief.free[n] = free;
+            blocked |= !free;
+            if let Some(log) = &mut self.log {
+                if log.sensed_points < MAX_TRACED_POINTS {
+                    log.sensed_points += 1;
+                    if let Some(step) = log.online.sensed.last_mut() {
+                        step.push((self.spec.point_of(n), !free));
+                    }
+                } else {
+                    log.truncated = true;
+                }
+            }
+        }
+        for &n in nodes {
+            if !self.truth.free[n] {
+                continue;
+            }
+            for d in 0..self.moves.dirs {
+                let Some(m) = self.truth.neighbour(n, d) else {
+                    continue;
+                };
+                if self.sensed[m] && self.truth.free[m] {
+                    let ok = self.truth.edge_free(self.index, n, d, m);
+                    belief.set_edge(n, d, m, ok);
+                    blocked |= !ok;
+                }
+            }
+        }
+        blocked
+    }
+
+    /// Senses around the robot; returns whether anything new is blocked.
+    fn sense(&mut self, belief: &mut GridLattice) -> bool {
+        let nodes = self.scan();
+        self.reveal(belief, &nodes)
+    }
+
+    /// Moves to the adjacent point `to` along a believed-usable edge (one
+    /// the robot has sensed, so a true one), unless a limit stops it.
+    fn advance(&mut self, belief: &GridLattice, to: usize) -> Result<(), End> {
+        let max = self.limits().steps.unwrap_or(MAX_STEPS).min(MAX_STEPS);
+        if self.steps() >= max || self.out_of_time() {
+            return Err(End::GaveUp);
+        }
+        let d = (0..self.moves.dirs)
+            .find(|&d| belief.neighbour(self.pos, d) == Some(to))
+            .expect("moves join lattice neighbours");
+        debug_assert!(belief.edge_known_usable(self.pos, d, to));
+        self.traveled += self.moves.cost[d];
+        self.pos = to;
+        self.walk.push(to);
+        if let Some(log) = &mut self.log {
+            log.online.sensed.push(Vec::new());
+            log.online.plans.push(Vec::new());
+        }
+        Ok(())
+    }
+
+    /// Whether the trace still takes plans.
+    fn wants_plan(&self) -> bool {
+        self.log
+            .as_ref()
+            .is_some_and(|l| l.plan_points < MAX_TRACED_POINTS)
+    }
+
+    /// Sets the plan held at the current step (points from the robot on).
+    fn hold_plan(&mut self, plan: impl IntoIterator<Item = usize>) {
+        let spec = self.spec;
+        let Some(log) = &mut self.log else {
+            return;
+        };
+        if log.plan_points >= MAX_TRACED_POINTS {
+            log.truncated = true;
+            return;
+        }
+        let points: Vec<Point> = plan
+            .into_iter()
+            .take(MAX_TRACED_POINTS - log.plan_points)
+            .map(|n| spec.point_of(n))
+            .collect();
+        log.plan_points += points.len();
+        if let Some(step) = log.online.plans.last_mut() {
+            *step = points;
+        }
+    }
+
+    /// Adds expanded nodes to the trace.
+    fn log_expansions(&mut self, nodes: impl IntoIterator<Item = usize>) {
+        let spec = self.spec;
+        let Some(log) = &mut self.log else {
+            return;
+        };
+        for n in nodes {
+            if log.expansions.len() >= MAX_TRACED_POINTS {
+                log.truncated = true;
+                return;
+            }
+            let p = spec.point_of(n);
+            log.expansions.push(Config::new(p.x, p.y, 0.0));
+        }
+    }
+}
+
+/// `backtrack` (`shortcut: false`) and `shortcut`: one A* on the belief,
+/// the robot walking to each node before it is expanded and sensing on the
+/// way.
+fn explore(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize, shortcut: bool) -> End {
+    let mut buf = SearchBuffers::default();
+    let cfg = rover.search_cfg();
+    let start = rover.pos;
+    let index = rover.index;
+    let traced = rover.log.is_some();
+    let mut chain = Vec::new();
+    let r = search_with(
+        belief,
+        index,
+        start,
+        goal,
+        &cfg,
+        traced,
+        &mut buf,
+        |node, buf, belief| {
+            let route = walk_between(rover.pos, node, buf, shortcut, &mut chain);
+            for k in 0..route.len() {
+                rover.hold_plan(std::iter::once(rover.pos).chain(route[k..].iter().copied()));
+                if rover.advance(belief, route[k]).is_err() {
+                    return false;
+                }
+                rover.sense(belief);
+            }
+            true
+        },
+    );
+    rover.expanded = r.expanded;
+    rover.replans = 1;
+    rover.log_expansions(r.expansion_order);
+    match r.nodes {
+        Some(_) => End::Reached,
+        None if r.gave_up => End::GaveUp,
+        None => End::Unreachable,
+    }
+}
+
+/// The points to walk from `from` to `to` in the search tree of `buf`
+/// (excluding `from`): up the back-pointers to the start and down to `to`,
+/// or with `shortcut` only up to their deepest common ancestor. `chain` is
+/// scratch space.
+fn walk_between(
+    from: usize,
+    to: usize,
+    buf: &SearchBuffers,
+    shortcut: bool,
+    chain: &mut Vec<usize>,
+) -> Vec<usize> {
+    let ancestors = |mut n: usize, out: &mut Vec<usize>| {
+        out.clear();
+        out.push(n);
+        while let Some(p) = buf.parent(n) {
+            out.push(p);
+            n = p;
+        }
+    };
+    // Both chains end at the search's start.
+    let mut up = Vec::new();
+    ancestors(from, &mut up);
+    ancestors(to, chain);
+    // Drop the common tail: with `shortcut` all of it but the deepest
+    // common ancestor, without it only the start (walked through once).
+    let mut common = 1;
+    if shortcut {
+        while common < up.len().min(chain.len())
+            && up[up.len() - 1 - common] == chain[chain.len() - 1 - common]
+        {
+            common += 1;
+        }
+    }
+    let turn = up.len() - common;
+    let mut route: Vec<usize> = up[1..=turn].to_vec();
+    route.extend(chain[..chain.len() - common].iter().rev());
+    route
+}
+
+/// `replan`: A* from the robot on the belief; follow the plan while it is
+/// not blocked by what was sensed, else plan again.
+fn replan(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> End {
+    let mut buf = SearchBuffers::default();
+    loop {
+        if rover.pos == goal {
+            return End::Reached;
+        }
+        let cfg = rover.search_cfg();
+        let record = rover
+            .log
+            .as_ref()
+            .is_some_and(|l| l.expansions.len() < MAX_TRACED_POINTS);
+        let r = search(belief, rover.index, rover.pos, goal, &cfg, record, &mut buf);
+        rover.expanded += r.expanded;
+        rover.replans += 1;
+        rover.log_expansions(r.expansion_order);
+        let plan = match r.nodes {
+            Some(nodes) => nodes,
+            None if r.gave_up => return End::GaveUp,
+            None => return End::Unreachable,
+        };
+        let mut k = 0;
+        loop {
+            rover.hold_plan(plan[k..].iter().copied());
+            if k + 1 == plan.len() {
+                return End::Reached;
+            }
+            if let Err(end) = rover.advance(belief, plan[k + 1]) {
+                return end;
+            }
+            k += 1;
+            if rover.sense(belief) && !plan_usable(belief, &rover.moves, &plan[k..]) {
+                break;
+            }
+        }
+    }
+}
+
+/// Whether every move of `plan` is believed usable.
+fn plan_usable(belief: &GridLattice, moves: &Moves, plan: &[usize]) -> bool {
+    plan.windows(2).all(|w| {
+        (0..moves.dirs).any(|d| moves.edge(belief, w[0], d).is_some_and(|(v, _)| v == w[1]))
+    })
+}
+
+// ------------------------------------------------------------------ D* Lite
+
+/// A length a + b·√2 in cells, exact: the cost of any walk on the lattice
+/// (axis moves cost 1, diagonal moves √2) and of the heuristics below.
+/// D* Lite compares keys that equal each other in exact arithmetic all the
+/// time (a state on the shortest path and the start); in floating point
+/// they differ in the last bits depending on the order of the sums, which
+/// reorders the queue and can stop ComputeShortestPath before a state the
+/// robot then steps on is consistent (seen on maze512: the robot went back
+/// and forth between two stale states). Exact lengths make every
+/// comparison, and so every tie, exact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Len {
+    a: i64,
+    b: i64,
+}
+
+impl Len {
+    const ZERO: Len = Len { a: 0, b: 0 };
+    const INF: Len = Len { a: i64::MAX, b: 0 };
+
+    fn is_inf(self) -> bool {
+        self.a == i64::MAX
+    }
+
+    fn add(self, o: Len) -> Len {
+        if self.is_inf() || o.is_inf() {
+            Len::INF
+        } else {
+            Len {
+                a: self.a + o.a,
+                b: self.b + o.b,
+            }
+        }
+    }
+
+    fn min(self, o: Len) -> Len {
+        if o.cmp(&self) == Ordering::Less {
+            o
+        } else {
+            self
+        }
+    }
+}
+
+impl PartialOrd for Len {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Len {
+    /// The sign of (a₁ − a₂) + (b₁ − b₂)·√2, decided on integers.
+    fn cmp(&self, o: &Self) -> Ordering {
+        match (self.is_inf(), o.is_inf()) {
+            (true, true) => return Ordering::Equal,
+            (true, false) => return Ordering::Greater,
+            (false, true) => return Ordering::Less,
+            _ => {}
+        }
+        let (da, db) = (i128::from(self.a - o.a), i128::from(self.b - o.b));
+        match (da.cmp(&0), db.cmp(&0)) {
+            (Ordering::Equal, x) | (x, Ordering::Equal) => x,
+            (x, y) if x == y => x,
+            // Opposite signs: compare |da| with |db|·√2 by their squares
+            // (never equal, √2 being irrational).
+            (x, _) => {
+                if da * da > 2 * db * db {
+                    x
+                } else {
+                    x.reverse()
+                }
+            }
+        }
+    }
+}
+
+/// A D* Lite priority: `[min(g, rhs) + h(s_start, s) + km, min(g, rhs)]`,
+/// compared lexicographically.
+type Key = (Len, Len);
+
+/// A queue entry; entries whose key is no longer the node's are stale and
+/// skipped (lazy deletion).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Queued {
+    key: Key,
+    node: u32,
+}
+
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // A max-heap: the smallest key pops first, then the lowest index.
+        other.key.cmp(&self.key).then(other.node.cmp(&self.node))
+    }
+}
+
+/// D* Lite (Koenig & Likhachev, "D* Lite", AAAI 2002, Figure 4: the
+/// optimized version) searching from the goal, so that g(s) estimates the
+/// cost from s to the goal and the robot's moves only change the key
+/// modifier km. Costs and keys are exact [`Len`]s; the heuristic is the
+/// lattice distance without obstacles (octile for 8 neighbours, Manhattan
+/// for 4): admissible, consistent, and a metric, as km needs.
+struct DStarLite {
+    g: Vec<Len>,
+    rhs: Vec<Len>,
+    /// The node's current key, valid while `queued`.
+    key: Vec<Key>,
+    queued: Vec<bool>,
+    heap: BinaryHeap<Queued>,
+    km: Len,
+    goal: usize,
+    spec: LatticeSpec,
+    eight: bool,
+    /// `false`: h = 0.
+    heuristic: bool,
+}
+
+impl DStarLite {
+    fn new(spec: LatticeSpec, eight: bool, heuristic: bool, goal: usize, start: usize) -> Self {
+        let n = spec.layer_len();
+        let mut d = DStarLite {
+            g: vec![Len::INF; n],
+            rhs: vec![Len::INF; n],
+            key: vec![(Len::ZERO, Len::ZERO); n],
+            queued: vec![false; n],
+            heap: BinaryHeap::new(),
+            km: Len::ZERO,
+            goal,
+            spec,
+            eight,
+            heuristic,
+        };
+        d.rhs[goal] = Len::ZERO;
+        let k = (d.h(start, goal), Len::ZERO);
+        d.insert(goal, k);
+        d
+    }
+
+    /// The cost of a move in direction `d` of [`DIRS`].
+    fn step(d: usize) -> Len {
+        if d < 4 {
+            Len { a: 1, b: 0 }
+        } else {
+            Len { a: 0, b: 1 }
+        }
+    }
+
+    fn h(&self, p: usize, q: usize) -> Len {
+        if !self.heuristic {
+            return Len::ZERO;
+        }
+        let ((pi, pj), (qi, qj)) = (self.spec.coords(p), self.spec.coords(q));
+        let (dx, dy) = (pi.abs_diff(qi) as i64, pj.abs_diff(qj) as i64);
+        if self.eight {
+            Len {
+                a: dx.max(dy) - dx.min(dy),
+                b: dx.min(dy),
+            }
+        } else {
+            Len { a: dx + dy, b: 0 }
+        }
+    }
+
+    /// The believed cost of the move from `u` in direction `d`, with the
+    /// neighbour.
+    fn edge(belief: &GridLattice, moves: &Moves, u: usize, d: usize) -> Option<(usize, Len)> {
+        moves.edge(belief, u, d).map(|(v, _)| (v, Self::step(d)))
+    }
+
+    fn edge_cost(belief: &GridLattice, moves: &Moves, u: usize, d: usize) -> Len {
+        Self::edge(belief, moves, u, d).map_or(Len::INF, |(_, c)| c)
+    }
+
+    fn calculate_key(&self, s: usize, start: usize) -> Key {
+        let m = self.g[s].min(self.rhs[s]);
+        (m.add(self.h(start, s)).add(self.km), m)
+    }
+
+    fn insert(&mut self, s: usize, k: Key) {
+        self.key[s] = k;
+        self.queued[s] = true;
+        self.heap.push(Queued {
+            key: k,
+            node: s as u32,
+        });
+    }
+
+    /// The smallest valid entry, dropping stale ones.
+    fn top(&mut self) -> Option<(Key, usize)> {
+        while let Some(&Queued { key, node }) = self.heap.peek() {
+            let s = node as usize;
+            if self.queued[s] && self.key[s] == key {
+                return Some((key, s));
+            }
+            self.heap.pop();
+        }
+        None
+    }
+
+    fn update_vertex(&mut self, u: usize, start: usize) {
+        if self.g[u] != self.rhs[u] {
+            let k = self.calculate_key(u, start);
+            self.insert(u, k);
+        } else {
+            self.queued[u] = false;
+        }
+    }
+
+    /// min over successors s' of c(s, s') + g(s').
+    fn best_successor(&self, belief: &GridLattice, moves: &Moves, s: usize) -> Len {
+        (0..moves.dirs)
+            .filter_map(|d| Self::edge(belief, moves, s, d))
+            .map(|(v, c)| c.add(self.g[v]))
+            .fold(Len::INF, Len::min)
+    }
+
+    /// ComputeShortestPath. Counts vertex expansions into the rover (and
+    /// its trace); `Err` when a limit stops it.
+    fn compute(&mut self, belief: &GridLattice, rover: &mut Rover<'_>) -> Result<(), End> {
+        let start = rover.pos;
+        let moves = rover.moves;
+        let max = rover.limits().expansions;
+        let mut expanded = Vec::new();
+        let result = loop {
+            let Some((k_old, u)) = self.top() else {
+                break Ok(());
+            };
+            if !(k_old < self.calculate_key(start, start) || self.rhs[start] > self.g[start]) {
+                break Ok(());
+            }
+            let k_new = self.calculate_key(u, start);
+            if k_old < k_new {
+                self.insert(u, k_new);
+                continue;
+            }
+            if max.is_some_and(|m| rover.expanded >= m)
+                || (rover.expanded.is_multiple_of(256) && rover.out_of_time())
+            {
+                break Err(End::GaveUp);
+            }
+            rover.expanded += 1;
+            expanded.push(u);
+            if self.g[u] > self.rhs[u] {
+                self.g[u] = self.rhs[u];
+                self.queued[u] = false;
+                for d in 0..moves.dirs {
+                    if let Some((s, c)) = Self::edge(belief, &moves, u, d) {
+                        if s != self.goal {
+                            self.rhs[s] = self.rhs[s].min(c.add(self.g[u]));
+                        }
+                        self.update_vertex(s, start);
+                    }
+                }
+            } else {
+                let g_old = self.g[u];
+                self.g[u] = Len::INF;
+                for d in 0..moves.dirs {
+                    if let Some((s, c)) = Self::edge(belief, &moves, u, d) {
+                        if self.rhs[s] == c.add(g_old) && s != self.goal {
+                            self.rhs[s] = self.best_successor(belief, &moves, s);
+                        }
+                        self.update_vertex(s, start);
+                    }
+                }
+                // u itself: rhs(u) does not depend on g(u).
+                self.update_vertex(u, start);
+            }
+        };
+        rover.log_expansions(expanded);
+        result
+    }
+
+    /// The cheapest move from `s`: argmin c(s, s') + g(s'), the first
+    /// direction on ties; `None` when every move costs ∞.
+    fn next_move(&self, belief: &GridLattice, moves: &Moves, s: usize) -> Option<usize> {
+        let mut best: Option<(Len, usize)> = None;
+        for d in 0..moves.dirs {
+            if let Some((v, c)) = Self::edge(belief, moves, s, d) {
+                let f = c.add(self.g[v]);
+                if !f.is_inf() && best.is_none_or(|(b, _)| f < b) {
+                    best = Some((f, v));
+                }
+            }
+        }
+        best.map(|(_, v)| v)
+    }
+
+    /// The plan the robot holds: the greedy descent from `s` (for the
+    /// trace), at most `cap` points.
+    fn plan_from(&self, belief: &GridLattice, moves: &Moves, s: usize, cap: usize) -> Vec<usize> {
+        let mut plan = vec![s];
+        let mut cur = s;
+        while cur != self.goal && plan.len() < cap {
+            match self.next_move(belief, moves, cur) {
+                Some(v) => {
+                    plan.push(v);
+                    cur = v;
+                }
+                None => break,
+            }
+        }
+        plan
+    }
+}
+
+/// `dstar_lite`: the main loop of D* Lite, with the robot sensing after
+/// each move and the changed edges repaired incrementally.
+fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> End {
+    let spec = rover.spec;
+    let moves = rover.moves;
+    let mut ds = DStarLite::new(spec, moves.dirs == 8, rover.cfg.heuristic, goal, rover.pos);
+    let mut last = rover.pos;
+    rover.replans = 1;
+    if let Err(end) = ds.compute(belief, rover) {
+        return end;
+    }
+    // Nodes whose out-edges may have changed, deduplicated by a stamp.
+    let mut stamp = vec![0u32; spec.layer_len()];
+    let mut round = 0u32;
+    loop {
+        if rover.pos == goal {
+            return End::Reached;
+        }
+        if ds.rhs[rover.pos].is_inf() {
+            return End::Unreachable;
+        }
+        if rover.wants_plan() {
+            let plan = ds.plan_from(belief, &moves, rover.pos, spec.layer_len());
+            rover.hold_plan(plan);
+        }
+        let Some(next) = ds.next_move(belief, &moves, rover.pos) else {
+            return End::Unreachable;
+        };
+        if let Err(end) = rover.advance(belief, next) {
+            return end;
+        }
+        let fresh = rover.scan();
+        if fresh.is_empty() {
+            continue;
+        }
+        // The edges a sensed point can change join points within one cell
+        // of it (its own edges and the diagonals that cut its corner).
+        round += 1;
+        let mut touched = Vec::new();
+        for &n in &fresh {
+            for u in std::iter::once(n).chain((0..8).filter_map(|d| belief.neighbour(n, d))) {
+                if stamp[u] != round {
+                    stamp[u] = round;
+                    touched.push(u);
+                }
+            }
+        }
+        let mut edges = Vec::new();
+        for &u in &touched {
+            for d in 0..moves.dirs {
+                if let Some(v) = belief.neighbour(u, d) {
+                    edges.push((u, d, v, DStarLite::edge_cost(belief, &moves, u, d)));
+                }
+            }
+        }
+        rover.reveal(belief, &fresh);
+        let mut changed = false;
+        for (u, d, v, c_old) in edges {
+            let c_new = DStarLite::edge_cost(belief, &moves, u, d);
+            if c_new == c_old {
+                continue;
+            }
+            if !changed {
+                changed = true;
+                ds.km = ds.km.add(ds.h(last, rover.pos));
+                last = rover.pos;
+            }
+            if c_old > c_new {
+                if u != goal {
+                    ds.rhs[u] = ds.rhs[u].min(c_new.add(ds.g[v]));
+                }
+            } else if ds.rhs[u] == c_old.add(ds.g[v]) && u != goal {
+                ds.rhs[u] = ds.best_successor(belief, &moves, u);
+            }
+            ds.update_vertex(u, rover.pos);
+        }
+        if changed {
+            rover.replans += 1;
+            if let Err(end) = ds.compute(belief, rover) {
+                return end;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::Span;
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+    use crate::geometry::{Aabb, Grid, Obstacle, Shape};
+    use crate::scenario::{Param, ParamValue};
+    use proptest::prelude::{ProptestConfig, any, prop_assert, prop_assert_eq, proptest};
+    use proptest::strategy::Strategy as Generator;
+    use std::collections::BTreeMap;
+
+    /// A random grid world: `w × h` cells of side 1 from the origin, a
+    /// start and a goal at free cell centres.
+    #[derive(Clone, Debug)]
+    struct Case {
+        w: usize,
+        h: usize,
+        /// Row-major from the bottom row (lattice order): blocked cells.
+        blocked: Vec<bool>,
+        start: (usize, usize),
+        goal: (usize, usize),
+        disk: bool,
+        connect: u8,
+        sense: usize,
+    }
+
+    /// SplitMix64, for drawing maps from one seed.
+    fn splitmix(state: &mut u64) -> u64 {
+        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = *state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    impl Case {
+        fn draw(w: usize, h: usize, seed: u64, density: f64, disk: bool, eight: bool) -> Case {
+            let mut s = seed;
+            let mut unit = || (splitmix(&mut s) >> 11) as f64 / (1u64 << 53) as f64;
+            let mut blocked: Vec<bool> = (0..w * h).map(|_| unit() < density).collect();
+            let mut pick = |blocked: &mut Vec<bool>| {
+                let k = ((unit() * (w * h) as f64) as usize).min(w * h - 1);
+                blocked[k] = false;
+                (k % w, k / w)
+            };
+            let start = pick(&mut blocked);
+            let goal = pick(&mut blocked);
+            let sense = 1 + (unit() * 3.0) as usize;
+            Case {
+                w,
+                h,
+                blocked,
+                start,
+                goal,
+                disk,
+                connect: if eight { 8 } else { 4 },
+                sense,
+            }
+        }
+
+        fn world(&self) -> World {
+            // Grid rows run from the top.
+            let cells = (0..self.h)
+                .rev()
+                .flat_map(|j| (0..self.w).map(move |i| (i, j)))
+                .map(|(i, j)| u8::from(!self.blocked[j * self.w + i]))
+                .collect();
+            World {
+                bounds: Aabb::from_corners(
+                    Point::new(0.0, 0.0),
+                    Point::new(self.w as f64, self.h as f64),
+                ),
+                obstacles: vec![Obstacle {
+                    name: "G".into(),
+                    shape: Shape::Grid(Grid {
+                        cell: 1.0,
+                        origin: Point::new(0.0, 0.0),
+                        width: self.w,
+                        height: self.h,
+                        cells,
+                    }),
+                }],
+            }
+        }
+
+        fn robot(&self) -> RobotShape {
+            if self.disk {
+                RobotShape::Disk(0.5)
+            } else {
+                RobotShape::Point
+            }
+        }
+
+        fn params(&self, strategy: &str, sense: usize, limits: Limits) -> Params {
+            let centre = |(i, j): (usize, usize)| Config::new(i as f64 + 0.5, j as f64 + 0.5, 0.0);
+            params(
+                centre(self.start),
+                centre(self.goal),
+                &[
+                    ("strategy", ParamValue::Word(strategy.into())),
+                    ("connect", ParamValue::Num(f64::from(self.connect))),
+                    ("sense", ParamValue::Num(sense as f64)),
+                ],
+                limits,
+            )
+        }
+
+        /// Runs one strategy (with the case's `sense`); the path, when
+        /// found, must start and end where asked and pass the validator.
+        fn run(&self, strategy: &str) -> PlanOutcome {
+            self.run_with(strategy, self.sense, Limits::default())
+        }
+
+        fn run_with(&self, strategy: &str, sense: usize, limits: Limits) -> PlanOutcome {
+            let (world, robot) = (self.world(), self.robot());
+            let p = self.params(strategy, sense, limits);
+            let out = plan(&world, &robot, &p);
+            if let Some(path) = &out.path {
+                assert_eq!(path.first(), Some(&p.start));
+                assert_eq!(path.last(), p.goal.as_ref());
+                if let Err(e) = validate_path(&world, &robot, path, DEFAULT_TOLERANCE) {
+                    panic!("{strategy}: the trajectory fails the validator: {e:?}");
+                }
+                let trace = out.trace.online.as_ref().expect("a trace");
+                assert_eq!(trace.sensed.len(), path.len());
+                assert_eq!(trace.plans.len(), path.len());
+                assert_eq!(num(&out, "steps") as usize + 1, path.len());
+                let length: f64 = path
+                    .windows(2)
+                    .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+                    .sum();
+                assert!((num(&out, "traveled") - length).abs() < 1e-9);
+            }
+            out
+        }
+
+        /// Offline `astar` on the same lattice.
+        fn offline(&self) -> PlanOutcome {
+            let p = self.params("replan", 1, Limits::default());
+            super::super::astar::plan(&self.world(), &self.robot(), &p)
+        }
+
+        fn index(&self, (i, j): (usize, usize)) -> usize {
+            j * self.w + i
+        }
+
+        fn cell_of(&self, p: Point) -> usize {
+            self.index((p.x.floor() as usize, p.y.floor() as usize))
+        }
+
+        /// Cost from every cell to the goal (Dijkstra), on a map where
+        /// `blocked(c)` says which cells are blocked: the lattice's rule
+        /// for a grid world, written independently (moves between free
+        /// cells, diagonals only between two free orthogonal cells).
+        fn distances(&self, blocked: &dyn Fn(usize) -> bool) -> Vec<f64> {
+            let n = self.w * self.h;
+            let mut dist = vec![f64::INFINITY; n];
+            let mut done = vec![false; n];
+            let goal = self.index(self.goal);
+            if blocked(goal) {
+                return dist;
+            }
+            dist[goal] = 0.0;
+            let moves: &[(i64, i64)] = if self.connect == 4 {
+                &[(1, 0), (0, 1), (-1, 0), (0, -1)]
+            } else {
+                &[
+                    (1, 0),
+                    (0, 1),
+                    (-1, 0),
+                    (0, -1),
+                    (1, 1),
+                    (-1, 1),
+                    (-1, -1),
+                    (1, -1),
+                ]
+            };
+            let free = |i: i64, j: i64| {
+                i >= 0
+                    && j >= 0
+                    && (i as usize) < self.w
+                    && (j as usize) < self.h
+                    && !blocked(j as usize * self.w + i as usize)
+            };
+            let mut heap = BinaryHeap::new();
+            heap.push((std::cmp::Reverse(Dist(0.0)), goal));
+            while let Some((std::cmp::Reverse(Dist(du)), u)) = heap.pop() {
+                if done[u] {
+                    continue;
+                }
+                done[u] = true;
+                let (i, j) = ((u % self.w) as i64, (u / self.w) as i64);
+                for &(dx, dy) in moves {
+                    let (ni, nj) = (i + dx, j + dy);
+                    if !free(ni, nj)
+                        || (dx != 0 && dy != 0 && !(free(i + dx, j) && free(i, j + dy)))
+                    {
+                        continue;
+                    }
+                    let v = nj as usize * self.w + ni as usize;
+                    let c = ((dx * dx + dy * dy) as f64).sqrt();
+                    if du + c < dist[v] {
+                        dist[v] = du + c;
+                        heap.push((std::cmp::Reverse(Dist(dist[v])), v));
+                    }
+                }
+            }
+            dist
+        }
+    }
+
+    /// An `f64` with a total order, for the test's Dijkstra.
+    #[derive(Clone, Copy, PartialEq)]
+    struct Dist(f64);
+    impl Eq for Dist {}
+    impl PartialOrd for Dist {
+        fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+            Some(self.cmp(other))
+        }
+    }
+    impl Ord for Dist {
+        fn cmp(&self, other: &Self) -> Ordering {
+            self.0.total_cmp(&other.0)
+        }
+    }
+
+    /// Each move of `path` starts a shortest path to the goal on the map
+    /// as the robot believed it at that step (rebuilt from the trace).
+    fn check_believed_shortest(
+        c: &Case,
+        out: &PlanOutcome,
+        path: &[Config],
+    ) -> Result<(), proptest::test_runner::TestCaseError> {
+        let trace = out.trace.online.as_ref().unwrap();
+        let mut known = vec![None; c.w * c.h];
+        for (k, w) in path.windows(2).enumerate() {
+            for &(p, blocked) in &trace.sensed[k] {
+                known[c.cell_of(p)] = Some(blocked);
+            }
+            let belief = c.distances(&|n| known[n] == Some(true));
+            let (a, b) = (c.cell_of(w[0].xy()), c.cell_of(w[1].xy()));
+            let step = (w[1].x - w[0].x).hypot(w[1].y - w[0].y);
+            prop_assert!(
+                (belief[a] - (step + belief[b])).abs() < 1e-9,
+                "step {} from {:?} is not on a believed shortest path",
+                k,
+                w[0]
+            );
+        }
+        Ok(())
+    }
+
+    fn params(
+        start: Config,
+        goal: Config,
+        values: &[(&'static str, ParamValue)],
+        limits: Limits,
+    ) -> Params {
+        let values: BTreeMap<&'static str, Param> = values
+            .iter()
+            .map(|(k, v)| {
+                (
+                    *k,
+                    Param {
+                        value: v.clone(),
+                        span: Span::default(),
+                    },
+                )
+            })
+            .collect();
+        Params {
+            start,
+            start_span: Span::default(),
+            goal: Some(goal),
+            goal_span: None,
+            limits,
+            seed: 0,
+            values,
+        }
+    }
+
+    fn num(out: &PlanOutcome, metric: &str) -> f64 {
+        match out.extra.get(metric) {
+            Some(MetricValue::Num(x)) => *x,
+            other => panic!("metric {metric}: {other:?}"),
+        }
+    }
+
+    fn case() -> impl Generator<Value = Case> {
+        (
+            3usize..14,
+            3usize..14,
+            any::<u64>(),
+            0.0..0.45f64,
+            any::<bool>(),
+            any::<bool>(),
+        )
+            .prop_map(|(w, h, seed, density, disk, eight)| {
+                Case::draw(w, h, seed, density, disk, eight)
+            })
+    }
+
+    /// Larger maps, where long runs of sensing and repairs accumulate.
+    fn large_case() -> impl Generator<Value = Case> {
+        (
+            30usize..70,
+            30usize..70,
+            any::<u64>(),
+            0.2..0.4f64,
+            any::<bool>(),
+        )
+            .prop_map(|(w, h, seed, density, eight)| Case::draw(w, h, seed, density, false, eight))
+    }
+
+    const STRATEGIES: [&str; 4] = ["backtrack", "shortcut", "replan", "dstar_lite"];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// `shortcut` expands exactly what `backtrack` expands, in the same
+        /// order (offline A*'s order on the true map), and never travels
+        /// more.
+        #[test]
+        fn shortcut_walks_less_over_the_same_expansions(c in case()) {
+            let back = c.run("backtrack");
+            let short = c.run("shortcut");
+            let offline = c.offline();
+            prop_assert_eq!(&back.trace.expansions, &short.trace.expansions);
+            prop_assert_eq!(&back.trace.expansions, &offline.trace.expansions);
+            prop_assert_eq!(back.expanded, short.expanded);
+            prop_assert_eq!(back.path.is_some(), offline.path.is_some());
+            prop_assert_eq!(short.path.is_some(), offline.path.is_some());
+            prop_assert!(num(&short, "traveled") <= num(&back, "traveled") + 1e-9);
+            prop_assert!(num(&short, "steps") <= num(&back, "steps"));
+        }
+
+        /// `replan` and `dstar_lite` reach the goal exactly when it is
+        /// reachable, and each of their moves starts a shortest path on
+        /// the map as believed at that step; with `sense` covering the
+        /// whole map both travel the offline optimum.
+        #[test]
+        fn replan_and_dstar_lite_move_along_believed_shortest_paths(c in case()) {
+            let offline = c.offline();
+            let truth = c.distances(&|k| c.blocked[k]);
+            if let Some(cost) = offline.cost {
+                prop_assert!((cost - truth[c.index(c.start)]).abs() < 1e-9);
+            }
+            for strategy in ["replan", "dstar_lite"] {
+                let out = c.run(strategy);
+                prop_assert_eq!(out.path.is_some(), offline.path.is_some(), "{}", strategy);
+                prop_assert!(!out.gave_up);
+                let Some(path) = &out.path else { continue };
+                check_believed_shortest(&c, &out, path)?;
+                let full = c.run_with(strategy, c.w.max(c.h), Limits::default());
+                let length = |o: &PlanOutcome| num(o, "traveled");
+                prop_assert!((length(&full) - truth[c.index(c.start)]).abs() < 1e-9, "{}", strategy);
+            }
+        }
+
+        /// A goal walled in: every strategy ends with no path, without
+        /// giving up.
+        #[test]
+        fn walled_in_goals_are_unreachable_for_every_strategy(c in case()) {
+            let mut c = c;
+            let (gi, gj) = c.goal;
+            for j in gj.saturating_sub(1)..=(gj + 1).min(c.h - 1) {
+                for i in gi.saturating_sub(1)..=(gi + 1).min(c.w - 1) {
+                    c.blocked[j * c.w + i] = (i, j) != c.goal;
+                }
+            }
+            let s = c.index(c.start);
+            c.blocked[s] = false;
+            if c.start == c.goal || c.offline().path.is_some() {
+                // The start was inside the wall.
+                return Ok(());
+            }
+            for strategy in STRATEGIES {
+                let out = c.run(strategy);
+                prop_assert!(out.path.is_none(), "{}", strategy);
+                prop_assert!(!out.gave_up, "{}", strategy);
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// On larger maps too, `dstar_lite` and `replan` reach the goal
+        /// exactly when it is reachable, along believed shortest paths.
+        #[test]
+        fn large_maps_are_crossed_along_believed_shortest_paths(c in large_case()) {
+            let offline = c.offline();
+            for strategy in ["replan", "dstar_lite"] {
+                let out = c.run(strategy);
+                prop_assert_eq!(out.path.is_some(), offline.path.is_some(), "{}", strategy);
+                prop_assert!(!out.gave_up);
+                if let Some(path) = &out.path {
+                    check_believed_shortest(&c, &out, path)?;
+                }
+            }
+        }
+    }
+
+    /// A room split by a segment wall with a door: lattice points on both
+    /// sides are free, but edges across the wall are not; the robot only
+    /// learns which edges cross it by sensing.
+    #[test]
+    fn segment_walls_are_sensed_as_blocked_edges() {
+        let world = World {
+            bounds: Aabb::from_corners(Point::new(0.0, 0.0), Point::new(12.0, 12.0)),
+            obstacles: vec![Obstacle {
+                name: "W".into(),
+                shape: Shape::Segment(Point::new(6.0, 0.0), Point::new(6.0, 10.0)),
+            }],
+        };
+        for strategy in STRATEGIES {
+            for connect in [4.0, 8.0] {
+                let p = params(
+                    Config::new(1.5, 1.5, 0.0),
+                    Config::new(10.5, 1.5, 0.0),
+                    &[
+                        ("strategy", ParamValue::Word(strategy.into())),
+                        ("connect", ParamValue::Num(connect)),
+                    ],
+                    Limits::default(),
+                );
+                let out = plan(&world, &RobotShape::Point, &p);
+                let path = out.path.as_ref().expect("a way through the door");
+                validate_path(&world, &RobotShape::Point, path, DEFAULT_TOLERANCE)
+                    .unwrap_or_else(|e| panic!("{strategy}: {e:?}"));
+                assert!(
+                    path.iter().any(|c| c.y > 10.0),
+                    "{strategy} went through the door"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn limits_end_a_run() {
+        let c = Case::draw(12, 12, 7, 0.2, false, true);
+        for strategy in STRATEGIES {
+            let steps = Limits {
+                steps: Some(3),
+                ..Limits::default()
+            };
+            let out = c.run_with(strategy, 1, steps);
+            if out.path.is_none() {
+                assert!(out.gave_up, "{strategy}");
+                assert_eq!(num(&out, "steps"), 3.0, "{strategy}");
+            }
+            let expansions = Limits {
+                expansions: Some(2),
+                ..Limits::default()
+            };
+            let out = c.run_with(strategy, 1, expansions);
+            assert!(out.path.is_none() && out.gave_up, "{strategy}");
+            assert!(out.expanded <= 2, "{strategy}");
+            let time = Limits {
+                time: Some(0.0),
+                ..Limits::default()
+            };
+            let out = c.run_with(strategy, 1, time);
+            assert!(out.path.is_none() && out.gave_up, "{strategy}");
+        }
+    }
+
+    #[test]
+    fn runs_are_deterministic() {
+        let c = Case::draw(13, 11, 42, 0.3, true, true);
+        for strategy in STRATEGIES {
+            let (a, b) = (c.run(strategy), c.run(strategy));
+            assert_eq!(a.path, b.path);
+            assert_eq!(a.extra, b.extra);
+            assert_eq!(a.expanded, b.expanded);
+            assert_eq!(a.trace.expansions, b.trace.expansions);
+        }
     }
 }

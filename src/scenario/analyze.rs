@@ -1204,6 +1204,8 @@ impl Analyzer {
             }
             if schema.kind == "astar" {
                 self.check_connect(robot, &params);
+            }
+            if schema.kind == "astar" || schema.kind == "online" {
                 self.check_lattice_size(world, robot, &params, p)?;
             }
             if schema.kind == "coverage" {

@@ -330,8 +330,8 @@ pub const ONLINE: PlannerSchema = PlannerSchema {
     kind: "online",
     summary: "navigation in an unknown world",
     robots: &[
-        (RobotKind::Point, Support::NotYet),
-        (RobotKind::Disk, Support::NotYet),
+        (RobotKind::Point, Support::Yes),
+        (RobotKind::Disk, Support::Yes),
     ],
     params: &[
         LATTICE_PARAMS[0],
