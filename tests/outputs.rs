@@ -293,3 +293,23 @@ fn the_recording_of_a_potential_field_has_forces_minima_escapes_and_the_stuck_ru
     );
     assert!(!text.contains("/plans/descent/path "));
 }
+
+#[test]
+fn the_recording_of_online_navigation_has_what_the_robot_knew_and_planned() {
+    let Some(text) = recorded_entities("scenarios/apartment_online.scen") else {
+        return;
+    };
+    assert_lists(
+        &text,
+        &[
+            "/plans/dstar/known/free/0000",
+            "/plans/dstar/plan",
+            "/plans/dstar/trail/0000",
+            "/plans/dstar/robot",
+            "/plans/replan/plan",
+            "/plans/backtrack/search",
+        ],
+    );
+    // Walls are found along the way: some batch of sensed cells has blocked ones.
+    assert!(text.contains("/plans/dstar/known/blocked/"));
+}

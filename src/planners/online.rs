@@ -154,10 +154,13 @@ pub fn navigate(
             out.path = Some(lattice_path(&spec, &rover.walk, start, goal));
             out.cost = Some(traveled);
         }
-        End::Unreachable => out
-            .notes
-            .push("the goal is unreachable: the sensed map leaves no way to it".into()),
+        End::Unreachable => {
+            out.trace.unfinished = walked(&spec, &rover.walk, start);
+            out.notes
+                .push("the goal is unreachable: the sensed map leaves no way to it".into());
+        }
         End::GaveUp => {
+            out.trace.unfinished = walked(&spec, &rover.walk, start);
             out.gave_up = true;
             out.notes.push(if rover.steps() >= MAX_STEPS {
                 format!("stopped after {MAX_STEPS} moves, the most a run makes")
@@ -196,6 +199,18 @@ pub fn navigate(
         out.trace.expansions = log.expansions;
     }
     out
+}
+
+/// The motion of a run that stopped short of the goal: the start, then
+/// the lattice points walked.
+fn walked(spec: &LatticeSpec, walk: &[usize], start: Config) -> Vec<Config> {
+    let mut path = vec![start];
+    path.extend(walk.iter().map(|&n| {
+        let p = spec.point_of(n);
+        Config::new(p.x, p.y, start.theta)
+    }));
+    path.dedup_by(|a, b| a.x == b.x && a.y == b.y);
+    path
 }
 
 /// How a run ended.
