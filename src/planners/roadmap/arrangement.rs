@@ -48,6 +48,11 @@ pub struct Arrangement {
     pub rays: Vec<Vec<Vector>>,
     pub start: u32,
     pub goal: u32,
+    /// The polygon edges that were cut: their points in order along the
+    /// edge, each with whether the piece to the next one is boundary.
+    pub chains: Vec<Vec<(u32, bool)>>,
+    /// Per point, the cut edges it lies on: (chain, position).
+    pub on_chain: Vec<Vec<(u32, u32)>>,
 }
 
 /// Where a direction lies among the rays of a point.
@@ -371,7 +376,12 @@ pub fn build(
         HashMap::new();
     let mut order: Vec<((u64, u64), (u64, u64))> = Vec::new();
     let mut wall_pieces: Vec<(Point, Point)> = Vec::new();
+    let mut cut_chains: Vec<Vec<Point>> = Vec::new();
     let mut seams: Vec<((u64, u64), (u64, u64))> = Vec::new();
+    // Wall pieces inside polygons: not segments of the arrangement, but
+    // where one meets the boundary it still separates the two sides of the
+    // wall there (the validator sees the whole wall).
+    let mut hidden_walls: Vec<(Point, Point)> = Vec::new();
     for e in &mut edges {
         e.cuts.sort_by(|x, y| x.0.total_cmp(&y.0));
         let mut chain = vec![e.a];
@@ -383,10 +393,16 @@ pub fn build(
         if chain.last() != Some(&e.b) {
             chain.push(e.b);
         }
+        if e.poly.is_some() && chain.len() > 2 {
+            cut_chains.push(chain.clone());
+        }
         for w in chain.windows(2) {
             let (p, q) = (w[0], w[1]);
             let mid = Point::from((p.coords + q.coords) / 2.0);
             if index.inside(mid, e.poly).is_some() {
+                if e.poly.is_none() {
+                    hidden_walls.push((p, q));
+                }
                 continue;
             }
             match e.poly {
@@ -438,7 +454,28 @@ pub fn build(
         let (a, b) = (intern(p, &mut points), intern(q, &mut points));
         segs.push(Seg { a, b, wall: true });
     }
+    let mut chains = Vec::new();
+    let mut on_chain: Vec<Vec<(u32, u32)>> = Vec::new();
+    for chain in &cut_chains {
+        let mut out = Vec::with_capacity(chain.len());
+        for (i, &p) in chain.iter().enumerate() {
+            let boundary = chain.get(i + 1).is_some_and(|&q| {
+                pieces
+                    .get(&(key(p), key(q)))
+                    .is_some_and(|&(_, seam, _, _)| !seam)
+            });
+            // Ends of pieces that are inside are no points of the arrangement.
+            out.push((intern(p, &mut points), boundary));
+        }
+        chains.push(out);
+    }
     let n = points.len();
+    on_chain.resize(n, Vec::new());
+    for (c, chain) in chains.iter().enumerate() {
+        for (i, &(p, _)) in chain.iter().enumerate() {
+            on_chain[p as usize].push((c as u32, i as u32));
+        }
+    }
     let mut incident = vec![Vec::new(); n];
     let mut rays: Vec<Vec<Vector>> = vec![Vec::new(); n];
     for (i, s) in segs.iter().enumerate() {
@@ -448,6 +485,16 @@ pub fn build(
             let d = points[s.b as usize] - points[s.a as usize];
             rays[s.a as usize].push(d);
             rays[s.b as usize].push(-d);
+        }
+    }
+    for &(p, q) in &hidden_walls {
+        if let (Some(&a), Some(&b)) = (ids.get(&key(p)), ids.get(&key(q))) {
+            rays[a as usize].push(q - p);
+            rays[b as usize].push(p - q);
+        } else if let Some(&a) = ids.get(&key(p)) {
+            rays[a as usize].push(q - p);
+        } else if let Some(&b) = ids.get(&key(q)) {
+            rays[b as usize].push(p - q);
         }
     }
     for r in rays.iter_mut() {
@@ -474,10 +521,38 @@ pub fn build(
         rays,
         start: start_id,
         goal: goal_id,
+        chains,
+        on_chain,
     }
 }
 
 impl Arrangement {
+    /// For two points on one cut polygon edge, whether the motion between
+    /// them along that edge stays on the union's boundary (every piece in
+    /// between is boundary) and crosses no wall at a point in between;
+    /// `None` when they share no cut edge. This decides such motions
+    /// exactly, where the sweep would depend on how the cut points were
+    /// rounded.
+    pub fn along_cut_edge(&self, v: u32, p: u32) -> Option<bool> {
+        let on_v = &self.on_chain[v as usize];
+        let on_p = &self.on_chain[p as usize];
+        let (c, i, j) = on_v.iter().find_map(|&(c, i)| {
+            on_p.iter()
+                .find(|&&(c2, _)| c2 == c)
+                .map(|&(_, j)| (c, i.min(j) as usize, i.max(j) as usize))
+        })?;
+        let chain = &self.chains[c as usize];
+        if !chain[i..j].iter().all(|&(_, boundary)| boundary) {
+            return Some(false);
+        }
+        let d = self.points[p as usize] - self.points[v as usize];
+        let mut sides = Sides::BOTH;
+        for &(x, _) in &chain[i + 1..j] {
+            sides = sides.pass(self, x, d);
+        }
+        Some(sides.open())
+    }
+
     /// Whether leaving point `x` in direction `d` enters the interior of a
     /// polygon whose boundary passes through `x`: `d` lies strictly inside
     /// a sector that the boundary pieces at `x` leave on their left.

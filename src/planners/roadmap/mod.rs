@@ -141,7 +141,11 @@ impl Roadmap {
         if stop.load(AtomicOrdering::Relaxed) {
             return None;
         }
-        let visible: Vec<Visible> = per_node.into_iter().flatten().collect();
+        let visible: Vec<Visible> = per_node
+            .into_iter()
+            .flatten()
+            .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
+            .collect();
         let mut graph = UnGraph::with_capacity(nodes.len(), visible.len());
         let mut base = vec![u32::MAX; arr.points.len()];
         for &p in &nodes {
