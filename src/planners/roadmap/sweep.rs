@@ -20,7 +20,7 @@
 
 use std::cmp::Ordering;
 
-use super::arrangement::{Arrangement, Sides, Way, ccw_cmp};
+use super::arrangement::{Arrangement, Sides, Way, ccw_cmp, orient};
 use crate::geometry::{Point, Vector};
 
 /// A visibility edge between points `a < b`, and the sectors it links:
@@ -248,6 +248,8 @@ impl Treap {
 
 /// Reusable buffers of one sweeping thread.
 pub(crate) struct SweepBuffers {
+    keyed: Vec<(f64, f64, u32)>,
+    group_of: Vec<u32>,
     order: Vec<u32>,
     treap: Treap,
 }
@@ -255,6 +257,8 @@ pub(crate) struct SweepBuffers {
 impl SweepBuffers {
     pub(crate) fn new(arr: &Arrangement) -> Self {
         SweepBuffers {
+            keyed: Vec::with_capacity(arr.points.len()),
+            group_of: Vec::with_capacity(arr.points.len()),
             order: Vec::with_capacity(arr.points.len()),
             treap: Treap::new(arr.segs.len()),
         }
@@ -273,22 +277,26 @@ fn ray_t(arr: &Arrangement, s: u32, pv: Point, d: Vector) -> f64 {
 }
 
 /// Orders the segments crossing the ray `pv + t·d` by distance; two
-/// segments meeting at a point of the ray are ordered as they are just
-/// before the ray (`after == false`) or just after it.
-fn seg_cmp(arr: &Arrangement, pv: Point, d: Vector, after: bool, s1: u32, s2: u32) -> Ordering {
+/// segments meeting at a point of the ray (`on_ray`) are ordered as they
+/// are just before the ray (`after == false`) or just after it.
+fn seg_cmp(
+    arr: &Arrangement,
+    pv: Point,
+    d: Vector,
+    after: bool,
+    on_ray: impl Fn(u32) -> bool,
+    s1: u32,
+    s2: u32,
+) -> Ordering {
     if s1 == s2 {
         return Ordering::Equal;
     }
     let (g1, g2) = (arr.segs[s1 as usize], arr.segs[s2 as usize]);
     for p in [g1.a, g1.b] {
-        if p != g2.a && p != g2.b {
+        if (p != g2.a && p != g2.b) || !on_ray(p) {
             continue;
         }
         let pp = arr.points[p as usize];
-        let w = pp - pv;
-        if d.perp(&w) != 0.0 || d.dot(&w) <= 0.0 {
-            continue;
-        }
         let a = arr.points[if g1.a == p { g1.b } else { g1.a } as usize];
         let b = arr.points[if g2.a == p { g2.b } else { g2.a } as usize];
         let c = (a - pp).perp(&(b - pp));
@@ -314,42 +322,37 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         let (wa, wb) = (arr.points[*a as usize] - pv, arr.points[*b as usize] - pv);
         ccw_cmp(x_axis, wa, wb).then_with(|| wa.norm_squared().total_cmp(&wb.norm_squared()))
     };
+    // Sort by a pseudo-angle (monotone in the angle), then fix the order
+    // exactly with an insertion pass (the sequence is nearly sorted).
+    buf.keyed.clear();
+    buf.keyed.extend((0..arr.points.len() as u32).filter(|&p| p != v).map(|p| {
+        let w = arr.points[p as usize] - pv;
+        let r = w.x.abs() + w.y.abs();
+        let q = if r > 0.0 { w.x / r } else { 1.0 };
+        // q runs 1 → −1 over the upper half plane, −1 → 1 over the lower.
+        let key = if w.y > 0.0 || (w.y == 0.0 && w.x > 0.0) { 1.0 - q } else { 3.0 + q };
+        (key, w.norm_squared(), p)
+    }));
+    buf.keyed
+        .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     buf.order.clear();
-    buf.order
-        .extend((0..arr.points.len() as u32).filter(|&p| p != v));
-    buf.order.sort_unstable_by(angle_cmp);
-    let treap = &mut buf.treap;
-    treap.clear();
-    let touches_v = |s: u32| {
-        let g = arr.segs[s as usize];
-        g.a == v || g.b == v
-    };
-
-    // The segments crossing the ray just clockwise of angle 0.
-    {
-        let cmp = |a: u32, b: u32| seg_cmp(arr, pv, x_axis, false, a, b);
-        for (s, g) in arr.segs.iter().enumerate() {
-            if g.a == v || g.b == v {
-                continue;
-            }
-            let (a, b) = (arr.points[g.a as usize] - pv, arr.points[g.b as usize] - pv);
-            let on_ray = |w: Vector| w.y == 0.0 && w.x > 0.0;
-            let inside = if on_ray(a) {
-                b.y < 0.0
-            } else if on_ray(b) {
-                a.y < 0.0
-            } else if (a.y < 0.0 && b.y > 0.0) || (a.y > 0.0 && b.y < 0.0) {
-                ray_t(arr, s as u32, pv, x_axis) > 0.0
-            } else {
-                false
-            };
-            if inside {
-                treap.insert(s as u32, &cmp);
-            }
+    buf.order.extend(buf.keyed.iter().map(|k| k.2));
+    let order = &mut buf.order;
+    for i in 1..order.len() {
+        let mut j = i;
+        while j > 0 && angle_cmp(&order[j - 1], &order[j]) == Ordering::Greater {
+            order.swap(j - 1, j);
+            j -= 1;
         }
     }
-
+    // Group the points by exact direction; each segment enters the tree at
+    // its counter-clockwise-first end's group and leaves at the other's
+    // (one decision per segment, so rounding cannot make them disagree).
     let order = &buf.order;
+    let group_of = &mut buf.group_of;
+    group_of.clear();
+    group_of.resize(arr.points.len(), u32::MAX);
+    let mut groups: Vec<(usize, usize)> = Vec::new();
     let mut i = 0;
     while i < order.len() {
         let mut j = i + 1;
@@ -362,19 +365,60 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         {
             j += 1;
         }
+        for &p in &order[i..j] {
+            group_of[p as usize] = groups.len() as u32;
+        }
+        groups.push((i, j));
+        i = j;
+    }
+    // (first end, last end) of a segment that may block, counter-clockwise
+    // as seen from v.
+    let ends = |s: u32| -> Option<(u32, u32)> {
+        let g = arr.segs[s as usize];
+        if g.a == v || g.b == v {
+            return None;
+        }
+        let (a, b) = (arr.points[g.a as usize], arr.points[g.b as usize]);
+        // Polygon pieces facing away from v never block first: a ray from v
+        // (outside every interior) first crosses the boundary where it
+        // enters the union, through a piece whose interior faces away.
+        if !g.wall && orient(a, b, pv) > 0.0 {
+            return None;
+        }
+        let o = (a - pv).perp(&(b - pv));
+        let (f, l) = if o > 0.0 {
+            (g.a, g.b)
+        } else if o < 0.0 {
+            (g.b, g.a)
+        } else {
+            return None;
+        };
+        (group_of[f as usize] != group_of[l as usize]).then_some((f, l))
+    };
+    let treap = &mut buf.treap;
+    treap.clear();
+    {
+        let cmp =
+            |a: u32, b: u32| seg_cmp(arr, pv, x_axis, false, |p| group_of[p as usize] == 0, a, b);
+        for s in 0..arr.segs.len() as u32 {
+            if let Some((f, l)) = ends(s)
+                && group_of[f as usize] > group_of[l as usize]
+            {
+                treap.insert(s, &cmp);
+            }
+        }
+    }
+
+    for (gi, &(i, j)) in groups.iter().enumerate() {
         let group = &order[i..j];
         let d = arr.points[group[0] as usize] - pv;
-        let side = |p: u32, s: u32| {
-            let g = arr.segs[s as usize];
-            let q = if g.a == p { g.b } else { g.a };
-            d.perp(&(arr.points[q as usize] - pv))
-        };
-        // 1. Segments ending here from the clockwise side leave.
+        let on_ray = |p: u32| group_of[p as usize] == gi as u32;
+        // 1. Segments ending here (their last end) leave.
         {
-            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, false, a, b);
+            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, false, on_ray, a, b);
             for &p in group {
                 for &s in &arr.incident[p as usize] {
-                    if !touches_v(s) && side(p, s) < 0.0 {
+                    if ends(s).is_some_and(|(_, l)| l == p) {
                         treap.remove(s, &cmp);
                     }
                 }
@@ -384,13 +428,14 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         let t_min = treap
             .first()
             .map_or(f64::INFINITY, |s| ray_t(arr, s, pv, d));
-        // 3. Walk the points outwards.
-        if arr.is_node[v as usize] {
+        // 3. Walk the points outwards (unless the nearest is hidden).
+        let dd = d.norm_squared();
+        let t_of = |p: u32| (arr.points[p as usize] - pv).dot(&d) / dd;
+        let wanted_any = group.iter().any(|&p| p > v && arr.is_node[p as usize]);
+        if arr.is_node[v as usize] && wanted_any && t_min >= t_of(group[0]) {
             let mut chain = Chain::new(arr, v, d);
-            let dd = d.norm_squared();
             for &p in group {
-                let t = (arr.points[p as usize] - pv).dot(&d) / dd;
-                if t_min < t {
+                if t_min < t_of(p) {
                     chain.block();
                 }
                 if chain.is_blocked() {
@@ -403,18 +448,17 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
                 }
             }
         }
-        // 4. Segments starting here towards the counter-clockwise side enter.
+        // 4. Segments starting here (their first end) enter.
         {
-            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, true, a, b);
+            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, true, on_ray, a, b);
             for &p in group {
                 for &s in &arr.incident[p as usize] {
-                    if !touches_v(s) && side(p, s) > 0.0 {
+                    if ends(s).is_some_and(|(f, _)| f == p) {
                         treap.insert(s, &cmp);
                     }
                 }
             }
         }
-        i = j;
     }
 }
 
@@ -422,7 +466,6 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
 /// nodes against every segment and point: O(n³), for tests.
 #[cfg(test)]
 pub(crate) fn brute_force(arr: &Arrangement) -> Vec<Visible> {
-    use super::arrangement::orient;
     let n = arr.points.len() as u32;
     let mut out = Vec::new();
     for v in 0..n {

@@ -412,3 +412,25 @@ fn deterministic() {
     assert_eq!(a.extra, b.extra);
     assert_eq!(a.trace.roadmap_edges, b.trace.roadmap_edges);
 }
+
+/// Timing of the phases on a random world (`-- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn phases_timing() {
+    for n in [100usize, 300] {
+        let w = random_world(42, n, 0, 4.0 * (n as f64).sqrt(), 1.0);
+        let (polys, walls) = grow(&w, &RobotShape::Point, 0.0, 32);
+        let t = std::time::Instant::now();
+        let arr = arrangement::build(&polys, &walls, p(0.0, 0.0), p(1.0, 1.0), w.bounds, TOUCH_EPS);
+        let ta = t.elapsed();
+        let t = std::time::Instant::now();
+        let mut buf = sweep::SweepBuffers::new(&arr);
+        let mut out = Vec::new();
+        for v in 0..arr.points.len() as u32 {
+            if arr.is_node[v as usize] {
+                sweep::sweep(&arr, v, &mut buf, &mut out);
+            }
+        }
+        eprintln!("n {n}: points {} arrangement {:?} sweeps (1 thread) {:?} edges {}", arr.points.len(), ta, t.elapsed(), out.len());
+    }
+}
