@@ -73,7 +73,7 @@ pub fn import_roadmap_file(path: &Path) -> Result<String, (Vec<Diag>, SourceMap)
         .unwrap_or_default();
     match convert(&text, id, &title) {
         Ok(s) => Ok(s),
-        Err(d) => fail(d, sources),
+        Err(d) => fail(*d, sources),
     }
 }
 
@@ -123,44 +123,55 @@ struct Reader<'a> {
 }
 
 impl Reader<'_> {
-    fn line(&mut self, what: &str) -> Result<&Record, Diag> {
+    fn line(&mut self, what: &str) -> Result<&Record, Box<Diag>> {
         let r = self.records.get(self.next).ok_or_else(|| {
-            Diag::error(
-                "scen::import::missing_line",
-                format!("the file ends before {what}"),
+            Box::new(
+                Diag::error(
+                    "scen::import::missing_line",
+                    format!("the file ends before {what}"),
+                )
+                .at(self.end, format!("{what} expected here"))
+                .help(FORMAT_HELP),
             )
-            .at(self.end, format!("{what} expected here"))
-            .help(FORMAT_HELP)
         })?;
         self.next += 1;
         Ok(r)
     }
 
     /// A line of exactly `n` numbers.
-    fn numbers(&mut self, n: usize, what: &str, shape: &str) -> Result<(Vec<f64>, Span), Diag> {
+    fn numbers(
+        &mut self,
+        n: usize,
+        what: &str,
+        shape: &str,
+    ) -> Result<(Vec<f64>, Span), Box<Diag>> {
         let r = self.line(what)?;
         if r.fields.len() != n {
-            return Err(Diag::error(
-                "scen::import::wrong_count",
-                format!(
-                    "{what}: expected {n} number(s) `{shape}`, found {}",
-                    r.fields.len()
-                ),
-            )
-            .at(r.span, format!("{} field(s) here", r.fields.len()))
-            .help(FORMAT_HELP));
+            return Err(Box::new(
+                Diag::error(
+                    "scen::import::wrong_count",
+                    format!(
+                        "{what}: expected {n} number(s) `{shape}`, found {}",
+                        r.fields.len()
+                    ),
+                )
+                .at(r.span, format!("{} field(s) here", r.fields.len()))
+                .help(FORMAT_HELP),
+            ));
         }
         let mut out = Vec::with_capacity(n);
         for (s, span) in &r.fields {
             match s.parse::<f64>() {
                 Ok(x) if x.is_finite() && x.abs() <= 1e12 => out.push(x),
                 _ => {
-                    return Err(Diag::error(
-                        "scen::import::bad_number",
-                        format!("{what}: `{s}` is not a number"),
-                    )
-                    .at(*span, "not a finite number (up to 1e12 in size)")
-                    .help(FORMAT_HELP));
+                    return Err(Box::new(
+                        Diag::error(
+                            "scen::import::bad_number",
+                            format!("{what}: `{s}` is not a number"),
+                        )
+                        .at(*span, "not a finite number (up to 1e12 in size)")
+                        .help(FORMAT_HELP),
+                    ));
                 }
             }
         }
@@ -168,16 +179,18 @@ impl Reader<'_> {
     }
 
     /// A line with one count in `lo..=hi`.
-    fn count(&mut self, what: &str, lo: usize, hi: usize) -> Result<usize, Diag> {
+    fn count(&mut self, what: &str, lo: usize, hi: usize) -> Result<usize, Box<Diag>> {
         let (v, span) = self.numbers(1, what, "N")?;
         let x = v[0];
         if x.fract() != 0.0 || x < lo as f64 || x > hi as f64 {
-            return Err(Diag::error(
-                "scen::import::bad_count",
-                format!("{what} must be a whole number from {lo} to {hi}"),
-            )
-            .at(span, "not accepted")
-            .help(FORMAT_HELP));
+            return Err(Box::new(
+                Diag::error(
+                    "scen::import::bad_count",
+                    format!("{what} must be a whole number from {lo} to {hi}"),
+                )
+                .at(span, "not accepted")
+                .help(FORMAT_HELP),
+            ));
         }
         Ok(x as usize)
     }
@@ -196,14 +209,14 @@ fn pt(p: Point) -> String {
 }
 
 /// Converts the text of an `input.txt` into a scenario.
-pub fn convert(text: &str, file: FileId, title: &str) -> Result<String, Diag> {
+pub fn convert(text: &str, file: FileId, title: &str) -> Result<String, Box<Diag>> {
     let recs = records(text, file);
     let mut rd = Reader {
         records: &recs,
         next: 0,
-        end: recs
-            .last()
-            .map_or(Span::new(file, 0, 0), |r| Span::new(file, r.span.end, r.span.end)),
+        end: recs.last().map_or(Span::new(file, 0, 0), |r| {
+            Span::new(file, r.span.end, r.span.end)
+        }),
     };
     let n = rd.count("the number of segments N", 0, 100_000)?;
     let mut segments = Vec::with_capacity(n);
@@ -212,11 +225,13 @@ pub fn convert(text: &str, file: FileId, title: &str) -> Result<String, Diag> {
         let (v, span) = rd.numbers(4, &what, "Sx, Sy, Ex, Ey")?;
         let (a, b) = (Point::new(v[0], v[1]), Point::new(v[2], v[3]));
         if a == b {
-            return Err(Diag::error(
-                "scen::import::degenerate_segment",
-                format!("{what} has zero length"),
-            )
-            .at(span, "both ends are the same point"));
+            return Err(Box::new(
+                Diag::error(
+                    "scen::import::degenerate_segment",
+                    format!("{what} has zero length"),
+                )
+                .at(span, "both ends are the same point"),
+            ));
         }
         segments.push((a, b));
     }
@@ -236,22 +251,26 @@ pub fn convert(text: &str, file: FileId, title: &str) -> Result<String, Diag> {
         let convex = normalize_simple_polygon(&local)
             .is_ok_and(|ccw| ccw.len() == local.len() && is_convex(&ccw));
         if !convex {
-            return Err(Diag::error(
-                "scen::import::robot_not_convex",
-                "the robot's vertices are not those of a convex polygon",
-            )
-            .at(m_span, "this robot")
-            .help("give m ≥ 3 distinct vertices of a convex polygon with area, in order"));
+            return Err(Box::new(
+                Diag::error(
+                    "scen::import::robot_not_convex",
+                    "the robot's vertices are not those of a convex polygon",
+                )
+                .at(m_span, "this robot")
+                .help("give m ≥ 3 distinct vertices of a convex polygon with area, in order"),
+            ));
         }
         robot = local;
     }
     if let Some(r) = recs.get(rd.next) {
-        return Err(Diag::error(
-            "scen::import::extra_line",
-            "unexpected line after the input",
-        )
-        .at(r.span, "not part of the format")
-        .help(FORMAT_HELP));
+        return Err(Box::new(
+            Diag::error(
+                "scen::import::extra_line",
+                "unexpected line after the input",
+            )
+            .at(r.span, "not part of the format")
+            .help(FORMAT_HELP),
+        ));
     }
 
     // Bounds: everything, plus the robot's size and a margin.
@@ -270,7 +289,11 @@ pub fn convert(text: &str, file: FileId, title: &str) -> Result<String, Diag> {
     );
 
     let mut out = String::new();
-    let _ = writeln!(out, "scenario \"Imported from {}\"", title.replace(['"', '\\'], "_"));
+    let _ = writeln!(
+        out,
+        "scenario \"Imported from {}\"",
+        title.replace(['"', '\\'], "_")
+    );
     let _ = writeln!(out);
     let _ = writeln!(
         out,
@@ -316,7 +339,7 @@ pub fn convert(text: &str, file: FileId, title: &str) -> Result<String, Diag> {
 mod tests {
     use super::*;
 
-    fn conv(text: &str) -> Result<String, (Diag, usize)> {
+    fn conv(text: &str) -> Result<String, (Box<Diag>, usize)> {
         let mut sm = SourceMap::default();
         let id = sm.add(Path::new("input.txt"), text.to_string());
         convert(text, id, "input.txt").map_err(|d| {
@@ -349,12 +372,28 @@ mod tests {
     fn errors_point_at_the_line() {
         let cases: &[(&str, &str, usize)] = &[
             ("x\n", "scen::import::bad_number", 1),
-            ("2\n0 0 1 1\n0 0 1\n0 0\n1 1\n", "scen::import::wrong_count", 3),
+            (
+                "2\n0 0 1 1\n0 0 1\n0 0\n1 1\n",
+                "scen::import::wrong_count",
+                3,
+            ),
             ("1\n0 0 1 1\n0 0\n", "scen::import::missing_line", 3),
             ("1.5\n", "scen::import::bad_count", 1),
-            ("1\n0 0 0 0\n1 1\n2 2\n", "scen::import::degenerate_segment", 2),
-            ("0\n1 1\n2 2\n4\n0 0\n1 0\n0 1\n1 1\n", "scen::import::robot_not_convex", 4),
-            ("0\n1 1\n2 2\n3\n0 0\n1 0\n0 1\n9 9\n", "scen::import::extra_line", 8),
+            (
+                "1\n0 0 0 0\n1 1\n2 2\n",
+                "scen::import::degenerate_segment",
+                2,
+            ),
+            (
+                "0\n1 1\n2 2\n4\n0 0\n1 0\n0 1\n1 1\n",
+                "scen::import::robot_not_convex",
+                4,
+            ),
+            (
+                "0\n1 1\n2 2\n3\n0 0\n1 0\n0 1\n9 9\n",
+                "scen::import::extra_line",
+                8,
+            ),
             ("0\n1 1\nnan 2\n", "scen::import::bad_number", 3),
         ];
         for &(text, code, line) in cases {

@@ -91,9 +91,10 @@ pub fn ccw_cmp(o: Vector, a: Vector, b: Vector) -> std::cmp::Ordering {
     let rot = |w: Vector| Vector::new(o.dot(&w), o.perp(&w));
     let (ra, rb) = (rot(a), rot(b));
     let half = |w: Vector| u8::from(!(w.y > 0.0 || (w.y == 0.0 && w.x > 0.0)));
-    half(ra)
-        .cmp(&half(rb))
-        .then_with(|| 0.0.partial_cmp(&ra.perp(&rb)).unwrap_or(std::cmp::Ordering::Equal))
+    half(ra).cmp(&half(rb)).then_with(|| {
+        0.0.partial_cmp(&ra.perp(&rb))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    })
 }
 
 /// Whether two non-zero vectors point the same way exactly.
@@ -250,6 +251,11 @@ pub fn bbox(points: &[Point]) -> Aabb {
     b
 }
 
+/// A directed piece by the exact keys of its ends.
+type PieceKey = ((u64, u64), (u64, u64));
+/// A piece's obstacle, whether it is a seam, and its ends.
+type PieceInfo = (usize, bool, Point, Point);
+
 /// An input edge before splitting.
 struct RawEdge {
     a: Point,
@@ -372,12 +378,11 @@ pub fn build(
 
     // Pieces; drop those inside another polygon, and seams.
     let index = PolygonIndex::new(polys, extent, tol);
-    let mut pieces: HashMap<((u64, u64), (u64, u64)), (usize, bool, Point, Point)> =
-        HashMap::new();
-    let mut order: Vec<((u64, u64), (u64, u64))> = Vec::new();
+    let mut pieces: HashMap<PieceKey, PieceInfo> = HashMap::new();
+    let mut order: Vec<PieceKey> = Vec::new();
     let mut wall_pieces: Vec<(Point, Point)> = Vec::new();
     let mut cut_chains: Vec<Vec<Point>> = Vec::new();
-    let mut seams: Vec<((u64, u64), (u64, u64))> = Vec::new();
+    let mut seams: Vec<PieceKey> = Vec::new();
     // Wall pieces inside polygons: not segments of the arrangement, but
     // where one meets the boundary it still separates the two sides of the
     // wall there (the validator sees the whole wall).
@@ -409,12 +414,13 @@ pub fn build(
                 None => wall_pieces.push(if key(p) < key(q) { (p, q) } else { (q, p) }),
                 Some(k) => {
                     let (kp, kq) = (key(p), key(q));
-                    if let Some(&(o, _, _, _)) = pieces.get(&(kq, kp)) {
-                        if o == e.obstacle && polys[k].obstacle == o {
-                            seams.push((kq, kp));
-                            seams.push((kp, kq));
-                            continue;
-                        }
+                    if let Some(&(o, _, _, _)) = pieces.get(&(kq, kp))
+                        && o == e.obstacle
+                        && polys[k].obstacle == o
+                    {
+                        seams.push((kq, kp));
+                        seams.push((kp, kq));
+                        continue;
                     }
                     if pieces.insert((kp, kq), (e.obstacle, false, p, q)).is_none() {
                         order.push((kp, kq));
@@ -428,7 +434,7 @@ pub fn build(
             v.1 = true;
         }
     }
-    wall_pieces.sort_by(|x, y| (key(x.0), key(x.1)).cmp(&(key(y.0), key(y.1))));
+    wall_pieces.sort_by_key(|x| (key(x.0), key(x.1)));
     wall_pieces.dedup();
 
     // Points and segments.
@@ -507,9 +513,8 @@ pub fn build(
     let is_node = (0..n)
         .map(|i| {
             let p = points[i];
-            let vertex = i as u32 == start_id
-                || i as u32 == goal_id
-                || originals.contains_key(&key(p));
+            let vertex =
+                i as u32 == start_id || i as u32 == goal_id || originals.contains_key(&key(p));
             vertex && bounds.contains(p) && index.inside(p, None).is_none()
         })
         .collect();

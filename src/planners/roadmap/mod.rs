@@ -23,7 +23,7 @@ pub mod sweep;
 
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
-use std::sync::atomic::{AtomicBool, Ordering as AtomicOrdering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
 use std::time::Instant;
 
 use petgraph::graph::{NodeIndex, UnGraph};
@@ -32,7 +32,7 @@ use rayon::prelude::*;
 
 use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::minkowski::{c_obstacle_points, disk_polygon, minkowski_sum_points};
-use crate::geometry::{ConvexPolygon, Config, Point, RobotShape, TOUCH_EPS, World, angle_diff};
+use crate::geometry::{Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff};
 use crate::planners::{MetricValue, PlanOutcome, Trace};
 use crate::scenario::Params;
 
@@ -43,8 +43,11 @@ use sweep::{SweepBuffers, Visible};
 pub const DEFAULT_ARC_SEGMENTS: usize = 32;
 /// The most `arc_segments` accepted (more would only cost memory).
 pub const MAX_ARC_SEGMENTS: usize = 4096;
-/// The most vertices of grown obstacles a roadmap is built over.
-pub const MAX_VERTICES: usize = 200_000;
+/// The most vertices of grown obstacles a roadmap is built over (the
+/// construction is O(n² log n): about a minute at this size).
+pub const MAX_VERTICES: usize = 50_000;
+/// The most visibility edges a roadmap holds (memory: about 50 bytes each).
+pub const MAX_EDGES: usize = 20_000_000;
 /// The most visibility edges kept in the trace for drawing.
 pub const MAX_TRACED_EDGES: usize = 200_000;
 
@@ -92,6 +95,15 @@ pub fn grow(
     (polys, walls)
 }
 
+/// Why a roadmap was not built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stopped {
+    /// `limit time` was reached.
+    Time,
+    /// More than [`MAX_EDGES`] visibility edges.
+    Edges,
+}
+
 /// A built roadmap: the arrangement, the visibility edges and the graph.
 pub struct Roadmap {
     pub arrangement: Arrangement,
@@ -105,7 +117,8 @@ pub struct Roadmap {
 
 impl Roadmap {
     /// Builds the roadmap among `polys` and `walls` for the path from
-    /// `start` to `goal`; `None` when `deadline` passed first.
+    /// `start` to `goal`; `Err` when `deadline` passed first, or the graph
+    /// grew beyond [`MAX_EDGES`].
     pub fn build(
         polys: &[Grown],
         walls: &[WallIn],
@@ -113,13 +126,15 @@ impl Roadmap {
         goal: Point,
         bounds: crate::geometry::Aabb,
         deadline: Option<Instant>,
-    ) -> Option<Roadmap> {
+    ) -> Result<Roadmap, Stopped> {
         let arrangement = arrangement::build(polys, walls, start, goal, bounds, TOUCH_EPS);
         let arr = &arrangement;
         let nodes: Vec<u32> = (0..arr.points.len() as u32)
             .filter(|&p| arr.is_node[p as usize])
             .collect();
         let stop = AtomicBool::new(false);
+        let too_many = AtomicBool::new(false);
+        let edges = AtomicUsize::new(0);
         let per_node: Vec<Vec<Visible>> = nodes
             .par_iter()
             .map_init(
@@ -134,12 +149,19 @@ impl Roadmap {
                         return out;
                     }
                     sweep::sweep(arr, v, buf, &mut out);
+                    if edges.fetch_add(out.len(), AtomicOrdering::Relaxed) + out.len() > MAX_EDGES {
+                        too_many.store(true, AtomicOrdering::Relaxed);
+                        stop.store(true, AtomicOrdering::Relaxed);
+                    }
                     out
                 },
             )
             .collect();
+        if too_many.load(AtomicOrdering::Relaxed) {
+            return Err(Stopped::Edges);
+        }
         if stop.load(AtomicOrdering::Relaxed) {
-            return None;
+            return Err(Stopped::Time);
         }
         let visible: Vec<Visible> = per_node
             .into_iter()
@@ -164,7 +186,7 @@ impl Roadmap {
                 );
             }
         }
-        Some(Roadmap {
+        Ok(Roadmap {
             arrangement,
             visible,
             graph,
@@ -286,8 +308,7 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
         return out;
     }
     let (polys, walls) = grow(world, robot, start.theta, arc);
-    let vertices: usize =
-        polys.iter().map(|p| p.vertices.len()).sum::<usize>() + 2 * walls.len();
+    let vertices: usize = polys.iter().map(|p| p.vertices.len()).sum::<usize>() + 2 * walls.len();
     if vertices > MAX_VERTICES {
         out.notes.push(format!(
             "the grown obstacles have {vertices} vertices, more than the {MAX_VERTICES} a roadmap is built over"
@@ -313,8 +334,10 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
                     "the {which} lies inside obstacle `{}` grown by the robot (disks are circumscribed {arc}-gons): move it away or raise `arc_segments`",
                     world.obstacles[polys[i].obstacle].name
                 ));
-                out.extra.insert("graph_nodes".into(), MetricValue::Num(0.0));
-                out.extra.insert("graph_edges".into(), MetricValue::Num(0.0));
+                out.extra
+                    .insert("graph_nodes".into(), MetricValue::Num(0.0));
+                out.extra
+                    .insert("graph_edges".into(), MetricValue::Num(0.0));
                 return out;
             }
         }
@@ -323,18 +346,27 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
         .limits
         .time
         .map(|s| Instant::now() + std::time::Duration::from_secs_f64(s.clamp(0.0, 1e9)));
-    let Some(roadmap) = Roadmap::build(
+    let roadmap = match Roadmap::build(
         &polys,
         &walls,
         start.xy(),
         goal.xy(),
         world.bounds,
         deadline,
-    ) else {
-        out.gave_up = true;
-        out.notes
-            .push("the time limit was reached while building the roadmap".into());
-        return out;
+    ) {
+        Ok(r) => r,
+        Err(Stopped::Time) => {
+            out.gave_up = true;
+            out.notes
+                .push("the time limit was reached while building the roadmap".into());
+            return out;
+        }
+        Err(Stopped::Edges) => {
+            out.notes.push(format!(
+                "the roadmap would have more than {MAX_EDGES} visibility edges: simplify the world"
+            ));
+            return out;
+        }
     };
     out.extra.insert(
         "graph_nodes".into(),

@@ -325,14 +325,19 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
     // Sort by a pseudo-angle (monotone in the angle), then fix the order
     // exactly with an insertion pass (the sequence is nearly sorted).
     buf.keyed.clear();
-    buf.keyed.extend((0..arr.points.len() as u32).filter(|&p| p != v).map(|p| {
-        let w = arr.points[p as usize] - pv;
-        let r = w.x.abs() + w.y.abs();
-        let q = if r > 0.0 { w.x / r } else { 1.0 };
-        // q runs 1 → −1 over the upper half plane, −1 → 1 over the lower.
-        let key = if w.y > 0.0 || (w.y == 0.0 && w.x > 0.0) { 1.0 - q } else { 3.0 + q };
-        (key, w.norm_squared(), p)
-    }));
+    buf.keyed
+        .extend((0..arr.points.len() as u32).filter(|&p| p != v).map(|p| {
+            let w = arr.points[p as usize] - pv;
+            let r = w.x.abs() + w.y.abs();
+            let q = if r > 0.0 { w.x / r } else { 1.0 };
+            // q runs 1 → −1 over the upper half plane, −1 → 1 over the lower.
+            let key = if w.y > 0.0 || (w.y == 0.0 && w.x > 0.0) {
+                1.0 - q
+            } else {
+                3.0 + q
+            };
+            (key, w.norm_squared(), p)
+        }));
     buf.keyed
         .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     buf.order.clear();

@@ -65,7 +65,9 @@ fn box_robot(w: f64, h: f64) -> RobotShape {
 }
 
 fn length(path: &[Config]) -> f64 {
-    path.windows(2).map(|w| (w[1].xy() - w[0].xy()).norm()).sum()
+    path.windows(2)
+        .map(|w| (w[1].xy() - w[0].xy()).norm())
+        .sum()
 }
 
 /// Plans, checks the path with the validator, returns its length.
@@ -74,7 +76,10 @@ fn plan_length(w: &World, robot: &RobotShape, start: (f64, f64), goal: (f64, f64
     let path = out.path?;
     validate_path(w, robot, &path, 0.01).expect("the roadmap path validates");
     let l = length(&path);
-    assert!((out.cost.unwrap_or(f64::NAN) - l).abs() < 1e-9, "cost = length");
+    assert!(
+        (out.cost.unwrap_or(f64::NAN) - l).abs() < 1e-9,
+        "cost = length"
+    );
     Some(l)
 }
 
@@ -210,7 +215,8 @@ fn seams_of_a_nonconvex_polygon_are_inside() {
         }],
     );
     let (polys, walls) = grow(&w, &RobotShape::Point, 0.0, 32);
-    let rm = Roadmap::build(&polys, &walls, p(3.0, 3.0), p(-1.0, -1.0), w.bounds, None).unwrap();
+    let rm =
+        Roadmap::build(&polys, &walls, p(3.0, 3.0), p(-1.0, -1.0), w.bounds, None).expect("built");
     let pts = &rm.arrangement.points;
     for e in &rm.visible {
         let m = Point::from((pts[e.a as usize].coords + pts[e.b as usize].coords) / 2.0);
@@ -319,7 +325,7 @@ pub(super) fn random_world(seed: u64, n: usize, walls: usize, size: f64, r: f64)
 }
 
 fn sorted(mut v: Vec<Visible>) -> Vec<Visible> {
-    v.sort_by(|a, b| (a.a, a.b).cmp(&(b.a, b.b)));
+    v.sort_by_key(|e| (e.a, e.b));
     v
 }
 
@@ -337,7 +343,7 @@ proptest! {
             _ => box_robot(0.6, 0.3),
         };
         let (polys, walls) = grow(&w, &robot, 0.0, 16);
-        let rm = Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).unwrap();
+        let rm = Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).expect("built");
         let arr = &rm.arrangement;
         let brute: Vec<Visible> = sweep::brute_force(arr)
             .into_iter()
@@ -356,7 +362,7 @@ proptest! {
             _ => box_robot(0.6, 0.3),
         };
         let (polys, walls) = grow(&w, &robot, 0.0, 16);
-        let rm = Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).unwrap();
+        let rm = Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).expect("built");
         let v = Validator::new(&w);
         let pts = &rm.arrangement.points;
         for e in &rm.visible {
@@ -406,8 +412,16 @@ proptest! {
 #[test]
 fn deterministic() {
     let w = random_world(7, 30, 5, 20.0, 2.0);
-    let a = plan(&w, &RobotShape::Disk(0.2), &params((0.1, 0.1), (19.9, 19.9), &[]));
-    let b = plan(&w, &RobotShape::Disk(0.2), &params((0.1, 0.1), (19.9, 19.9), &[]));
+    let a = plan(
+        &w,
+        &RobotShape::Disk(0.2),
+        &params((0.1, 0.1), (19.9, 19.9), &[]),
+    );
+    let b = plan(
+        &w,
+        &RobotShape::Disk(0.2),
+        &params((0.1, 0.1), (19.9, 19.9), &[]),
+    );
     assert_eq!(a.path, b.path);
     assert_eq!(a.extra, b.extra);
     assert_eq!(a.trace.roadmap_edges, b.trace.roadmap_edges);
@@ -421,7 +435,14 @@ fn phases_timing() {
         let w = random_world(42, n, 0, 4.0 * (n as f64).sqrt(), 1.0);
         let (polys, walls) = grow(&w, &RobotShape::Point, 0.0, 32);
         let t = std::time::Instant::now();
-        let arr = arrangement::build(&polys, &walls, p(0.0, 0.0), p(1.0, 1.0), w.bounds, TOUCH_EPS);
+        let arr = arrangement::build(
+            &polys,
+            &walls,
+            p(0.0, 0.0),
+            p(1.0, 1.0),
+            w.bounds,
+            TOUCH_EPS,
+        );
         let ta = t.elapsed();
         let t = std::time::Instant::now();
         let mut buf = sweep::SweepBuffers::new(&arr);
@@ -431,6 +452,12 @@ fn phases_timing() {
                 sweep::sweep(&arr, v, &mut buf, &mut out);
             }
         }
-        eprintln!("n {n}: points {} arrangement {:?} sweeps (1 thread) {:?} edges {}", arr.points.len(), ta, t.elapsed(), out.len());
+        eprintln!(
+            "n {n}: points {} arrangement {:?} sweeps (1 thread) {:?} edges {}",
+            arr.points.len(),
+            ta,
+            t.elapsed(),
+            out.len()
+        );
     }
 }
