@@ -44,8 +44,8 @@ pub const DEFAULT_ARC_SEGMENTS: usize = 32;
 /// The most `arc_segments` accepted (more would only cost memory).
 pub const MAX_ARC_SEGMENTS: usize = 4096;
 /// The most vertices of grown obstacles a roadmap is built over (the
-/// construction is O(n² log n): about a minute at this size).
-pub const MAX_VERTICES: usize = 50_000;
+/// construction is O(n² log n): about a minute at this size on two cores).
+pub const MAX_VERTICES: usize = 25_000;
 /// The most visibility edges a roadmap holds (memory: about 50 bytes each).
 pub const MAX_EDGES: usize = 20_000_000;
 /// The most visibility edges kept in the trace for drawing.

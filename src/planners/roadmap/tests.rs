@@ -461,3 +461,25 @@ fn phases_timing() {
         );
     }
 }
+
+#[test]
+fn huge_worlds_are_refused_not_hung() {
+    let disks = (0..10)
+        .map(|i| Shape::Disk {
+            center: p(1.0 + 2.0 * i as f64, 5.0),
+            radius: 0.5,
+        })
+        .collect();
+    let w = world((0.0, 0.0, 25.0, 10.0), disks);
+    let out = plan(
+        &w,
+        &RobotShape::Point,
+        &params(
+            (0.0, 0.0),
+            (24.0, 9.0),
+            &[("arc_segments", ParamValue::Num(4096.0))],
+        ),
+    );
+    assert!(out.path.is_none());
+    assert!(out.notes[0].contains("vertices"), "{:?}", out.notes);
+}
