@@ -288,6 +288,11 @@ impl Ord for Queued {
 /// Runs a `roadmap` plan.
 pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     let mut out = PlanOutcome::default();
+    // Zero until a graph is built (every early return keeps the metrics).
+    out.extra
+        .insert("graph_nodes".into(), MetricValue::Num(0.0));
+    out.extra
+        .insert("graph_edges".into(), MetricValue::Num(0.0));
     let arc = params
         .num("arc_segments")
         .unwrap_or(DEFAULT_ARC_SEGMENTS as f64);

@@ -482,4 +482,5 @@ fn huge_worlds_are_refused_not_hung() {
     );
     assert!(out.path.is_none());
     assert!(out.notes[0].contains("vertices"), "{:?}", out.notes);
+    assert_eq!(out.extra["graph_nodes"], MetricValue::Num(0.0));
 }
