@@ -250,6 +250,7 @@ impl Treap {
 pub(crate) struct SweepBuffers {
     keyed: Vec<(f64, f64, u32)>,
     group_of: Vec<u32>,
+    ends: Vec<(u32, u32)>,
     order: Vec<u32>,
     treap: Treap,
 }
@@ -259,6 +260,7 @@ impl SweepBuffers {
         SweepBuffers {
             keyed: Vec::with_capacity(arr.points.len()),
             group_of: Vec::with_capacity(arr.points.len()),
+            ends: Vec::with_capacity(arr.segs.len()),
             order: Vec::with_capacity(arr.points.len()),
             treap: Treap::new(arr.segs.len()),
         }
@@ -400,16 +402,20 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         };
         (group_of[f as usize] != group_of[l as usize]).then_some((f, l))
     };
+    // Each segment's ends, decided once per sweep (`NIL` when it never
+    // enters the tree).
+    let seg_ends = &mut buf.ends;
+    seg_ends.clear();
+    seg_ends.extend((0..arr.segs.len() as u32).map(|s| ends(s).unwrap_or((NIL, NIL))));
+    let seg_ends = &*seg_ends;
     let treap = &mut buf.treap;
     treap.clear();
     {
         let cmp =
             |a: u32, b: u32| seg_cmp(arr, pv, x_axis, false, |p| group_of[p as usize] == 0, a, b);
-        for s in 0..arr.segs.len() as u32 {
-            if let Some((f, l)) = ends(s)
-                && group_of[f as usize] > group_of[l as usize]
-            {
-                treap.insert(s, &cmp);
+        for (s, &(f, l)) in seg_ends.iter().enumerate() {
+            if f != NIL && group_of[f as usize] > group_of[l as usize] {
+                treap.insert(s as u32, &cmp);
             }
         }
     }
@@ -423,7 +429,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, false, on_ray, a, b);
             for &p in group {
                 for &s in &arr.incident[p as usize] {
-                    if ends(s).is_some_and(|(_, l)| l == p) {
+                    if seg_ends[s as usize].1 == p {
                         treap.remove(s, &cmp);
                     }
                 }
@@ -458,7 +464,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, true, on_ray, a, b);
             for &p in group {
                 for &s in &arr.incident[p as usize] {
-                    if ends(s).is_some_and(|(f, _)| f == p) {
+                    if seg_ends[s as usize].0 == p {
                         treap.insert(s, &cmp);
                     }
                 }
