@@ -121,11 +121,23 @@ pub fn main() -> i32 {
         Command::Run(args) => cmd_run(&args),
         Command::Check(args) => cmd_check(&args),
         Command::Test(args) => cmd_test(&args),
-        Command::Import { format, file } => {
-            eprintln!(
-                "error: `scen import {format}` is not implemented yet in this version of scen (file `{}`)",
-                file.display()
-            );
+        Command::Import { format, file } => cmd_import(&format, &file),
+    }
+}
+
+/// `scen import FORMAT FILE`: the scenario on stdout.
+fn cmd_import(format: &str, file: &Path) -> i32 {
+    if format != "roadmap" {
+        eprintln!("error: unknown import format `{format}` (known: roadmap)");
+        return EXIT_BAD_INPUT;
+    }
+    match crate::import::import_roadmap_file(file) {
+        Ok(text) => {
+            print!("{text}");
+            EXIT_OK
+        }
+        Err((diags, sources)) => {
+            eprint!("{}", render_diags(&diags, &sources));
             EXIT_BAD_INPUT
         }
     }

@@ -9,6 +9,7 @@ pub mod cli;
 pub mod diagnostics;
 pub mod drive;
 pub mod geometry;
+pub mod import;
 pub mod planners;
 pub mod report;
 pub mod rng;

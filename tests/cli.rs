@@ -226,12 +226,13 @@ fn an_unreachable_viewer_warns_once_and_the_report_is_complete() {
 }
 
 #[test]
-fn import_is_not_implemented_and_says_so() {
+fn import_roadmap_prints_a_scenario() {
     Test::new()
         .file("input.txt", "1\n0, 0, 1, 1\n0, 1\n1, 0\n")
         .args(&["import", "roadmap", "input.txt"])
-        .stderr_contains("not implemented yet")
-        .status(2)
+        .stdout_contains("segment s1 (0, 0) (1, 1)")
+        .stdout_contains("plan vg roadmap r {")
+        .status(0)
         .run();
 }
 

@@ -363,9 +363,9 @@ pub const ROADMAP: PlannerSchema = PlannerSchema {
     kind: "roadmap",
     summary: "visibility graph and Dijkstra",
     robots: &[
-        (RobotKind::Point, Support::NotYet),
-        (RobotKind::Disk, Support::NotYet),
-        (RobotKind::Polygon, Support::NotYet),
+        (RobotKind::Point, Support::Yes),
+        (RobotKind::Disk, Support::Yes),
+        (RobotKind::Polygon, Support::Yes),
     ],
     params: &[p(
         "arc_segments",

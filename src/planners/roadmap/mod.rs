@@ -1,0 +1,420 @@
+//! Visibility-graph roadmap with Dijkstra (SPEC 3.3, SEEDS.md §D).
+//!
+//! 1. Every obstacle piece is grown by the robot at the start's θ:
+//!    `B ⊕ (−A)` ([`crate::geometry::minkowski`]); a disk robot is its
+//!    circumscribed `arc_segments`-gon, a disk obstacle too (both
+//!    conservative). For a point robot the pieces stay as they are, and
+//!    segment obstacles stay walls without interior.
+//! 2. The boundary of the union of the grown obstacles is computed
+//!    ([`arrangement`]); its vertices (and the start and the goal) are the
+//!    nodes, except those inside another grown obstacle or outside `bounds`.
+//! 3. The visibility edges come from a rotational sweep ([`sweep`],
+//!    O(n² log n)): the open segment between two nodes may touch the grown
+//!    obstacles and run along their boundaries, not enter their interior;
+//!    it may not cross a wall, nor pass from one side of the walls to the
+//!    other through a wall vertex. A wall vertex is one graph node per
+//!    sector between its walls, so that a path cannot turn round a wall
+//!    vertex to the other side either (the validator's rule, SPEC 3.0).
+//! 4. Dijkstra on the `petgraph` graph gives the shortest path;
+//!    `cost` = `length`.
+
+pub mod arrangement;
+pub mod sweep;
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
+use std::time::Instant;
+
+use petgraph::graph::{NodeIndex, UnGraph};
+use petgraph::visit::EdgeRef;
+use rayon::prelude::*;
+
+use crate::geometry::cspace::ObstaclePieces;
+use crate::geometry::minkowski::{c_obstacle_points, disk_polygon, minkowski_sum_points};
+use crate::geometry::{Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff};
+use crate::planners::{MetricValue, PlanOutcome, Trace};
+use crate::scenario::Params;
+
+use arrangement::{Arrangement, Grown, PolygonIndex, WallIn, bbox, strictly_inside};
+use sweep::{SweepBuffers, Visible};
+
+/// Default segments per full circle for disks.
+pub const DEFAULT_ARC_SEGMENTS: usize = 32;
+/// The most `arc_segments` accepted (more would only cost memory).
+pub const MAX_ARC_SEGMENTS: usize = 4096;
+/// The most vertices of grown obstacles a roadmap is built over (the
+/// construction is O(n² log n): about a minute at this size on two cores).
+pub const MAX_VERTICES: usize = 25_000;
+/// The most visibility edges a roadmap holds (memory: about 50 bytes each).
+pub const MAX_EDGES: usize = 20_000_000;
+/// The most visibility edges kept in the trace for drawing.
+pub const MAX_TRACED_EDGES: usize = 200_000;
+
+/// The obstacles grown by `robot` at orientation `theta`: convex polygons
+/// with interior, and (point robot only) walls.
+pub fn grow(
+    world: &World,
+    robot: &RobotShape,
+    theta: f64,
+    arc_segments: usize,
+) -> (Vec<Grown>, Vec<WallIn>) {
+    let pieces = ObstaclePieces::with_disk_sides(world, arc_segments);
+    let robot_polygon = match robot {
+        RobotShape::Point => None,
+        RobotShape::Disk(r) => Some(ConvexPolygon {
+            vertices: disk_polygon(Point::origin(), *r, arc_segments),
+        }),
+        RobotShape::Polygon(p) => Some(p.clone()),
+    };
+    let robot_theta = if matches!(robot, RobotShape::Polygon(_)) {
+        theta
+    } else {
+        0.0
+    };
+    let mut polys = Vec::new();
+    let mut walls = Vec::new();
+    for piece in &pieces.pieces {
+        let vertices = match &robot_polygon {
+            Some(a) => c_obstacle_points(&piece.points, a, robot_theta),
+            None => minkowski_sum_points(&piece.points, &[Point::origin()]),
+        };
+        match vertices.len() {
+            0 | 1 => {}
+            2 => walls.push(WallIn {
+                a: vertices[0],
+                b: vertices[1],
+                obstacle: piece.obstacle,
+            }),
+            _ => polys.push(Grown {
+                vertices,
+                obstacle: piece.obstacle,
+            }),
+        }
+    }
+    (polys, walls)
+}
+
+/// Why a roadmap was not built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stopped {
+    /// `limit time` was reached.
+    Time,
+    /// More than [`MAX_EDGES`] visibility edges.
+    Edges,
+}
+
+/// A built roadmap: the arrangement, the visibility edges and the graph.
+pub struct Roadmap {
+    pub arrangement: Arrangement,
+    pub visible: Vec<Visible>,
+    /// One node per (point, sector), weighted by length.
+    pub graph: UnGraph<(u32, u32), f64>,
+    /// Per point, its first graph node (`u32::MAX` for points that are not
+    /// nodes).
+    base: Vec<u32>,
+}
+
+impl Roadmap {
+    /// Builds the roadmap among `polys` and `walls` for the path from
+    /// `start` to `goal`; `Err` when `deadline` passed first, or the graph
+    /// grew beyond [`MAX_EDGES`].
+    pub fn build(
+        polys: &[Grown],
+        walls: &[WallIn],
+        start: Point,
+        goal: Point,
+        bounds: crate::geometry::Aabb,
+        deadline: Option<Instant>,
+    ) -> Result<Roadmap, Stopped> {
+        let arrangement = arrangement::build(polys, walls, start, goal, bounds, TOUCH_EPS);
+        let arr = &arrangement;
+        let nodes: Vec<u32> = (0..arr.points.len() as u32)
+            .filter(|&p| arr.is_node[p as usize])
+            .collect();
+        let stop = AtomicBool::new(false);
+        let too_many = AtomicBool::new(false);
+        let edges = AtomicUsize::new(0);
+        let per_node: Vec<Vec<Visible>> = nodes
+            .par_iter()
+            .map_init(
+                || SweepBuffers::new(arr),
+                |buf, &v| {
+                    let mut out = Vec::new();
+                    if stop.load(AtomicOrdering::Relaxed) {
+                        return out;
+                    }
+                    if deadline.is_some_and(|d| Instant::now() > d) {
+                        stop.store(true, AtomicOrdering::Relaxed);
+                        return out;
+                    }
+                    sweep::sweep(arr, v, buf, &mut out);
+                    if edges.fetch_add(out.len(), AtomicOrdering::Relaxed) + out.len() > MAX_EDGES {
+                        too_many.store(true, AtomicOrdering::Relaxed);
+                        stop.store(true, AtomicOrdering::Relaxed);
+                    }
+                    out
+                },
+            )
+            .collect();
+        if too_many.load(AtomicOrdering::Relaxed) {
+            return Err(Stopped::Edges);
+        }
+        if stop.load(AtomicOrdering::Relaxed) {
+            return Err(Stopped::Time);
+        }
+        let visible: Vec<Visible> = per_node
+            .into_iter()
+            .flatten()
+            .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
+            .collect();
+        let mut graph = UnGraph::with_capacity(nodes.len(), visible.len());
+        let mut base = vec![u32::MAX; arr.points.len()];
+        for &p in &nodes {
+            base[p as usize] = graph.node_count() as u32;
+            for s in 0..arr.sector_count(p) {
+                graph.add_node((p, s as u32));
+            }
+        }
+        for e in &visible {
+            let w = (arr.points[e.b as usize] - arr.points[e.a as usize]).norm();
+            for &(sa, sb) in &e.links {
+                graph.add_edge(
+                    NodeIndex::new((base[e.a as usize] + sa) as usize),
+                    NodeIndex::new((base[e.b as usize] + sb) as usize),
+                    w,
+                );
+            }
+        }
+        Ok(Roadmap {
+            arrangement,
+            visible,
+            graph,
+            base,
+        })
+    }
+
+    /// The graph nodes of point `p` (its sectors).
+    fn nodes_of(&self, p: u32) -> impl Iterator<Item = NodeIndex> + '_ {
+        let b = self.base[p as usize];
+        let n = if b == u32::MAX {
+            0
+        } else {
+            self.arrangement.sector_count(p)
+        };
+        (0..n).map(move |s| NodeIndex::new((b as usize) + s))
+    }
+
+    /// Dijkstra from the start's nodes to any of the goal's: the path as
+    /// points, its length and the nodes expanded; `Err(expanded)` when
+    /// `max_expansions` was reached first.
+    pub fn shortest_path(
+        &self,
+        max_expansions: Option<u64>,
+    ) -> Result<Option<(Vec<Point>, f64, u64)>, u64> {
+        let arr = &self.arrangement;
+        let g = &self.graph;
+        let n = g.node_count();
+        let mut dist = vec![f64::INFINITY; n];
+        let mut prev = vec![usize::MAX; n];
+        let mut closed = vec![false; n];
+        let mut heap = BinaryHeap::new();
+        for s in self.nodes_of(arr.start) {
+            dist[s.index()] = 0.0;
+            heap.push(Reverse(Queued(0.0, s.index())));
+        }
+        let is_goal = |i: usize| g[NodeIndex::new(i)].0 == arr.goal;
+        let mut expanded = 0u64;
+        while let Some(Reverse(Queued(d, u))) = heap.pop() {
+            if closed[u] {
+                continue;
+            }
+            closed[u] = true;
+            expanded += 1;
+            if is_goal(u) {
+                let mut nodes = vec![u];
+                while prev[*nodes.last().unwrap_or(&u)] != usize::MAX {
+                    let last = *nodes.last().unwrap_or(&u);
+                    nodes.push(prev[last]);
+                }
+                nodes.reverse();
+                let mut points: Vec<Point> = nodes
+                    .iter()
+                    .map(|&i| arr.points[g[NodeIndex::new(i)].0 as usize])
+                    .collect();
+                points.dedup();
+                return Ok(Some((points, d, expanded)));
+            }
+            if max_expansions.is_some_and(|m| expanded >= m) {
+                return Err(expanded);
+            }
+            for e in g.edges(NodeIndex::new(u)) {
+                let v = if e.source().index() == u {
+                    e.target().index()
+                } else {
+                    e.source().index()
+                };
+                let nd = d + *e.weight();
+                if nd < dist[v] {
+                    dist[v] = nd;
+                    prev[v] = u;
+                    heap.push(Reverse(Queued(nd, v)));
+                }
+            }
+        }
+        Ok(None)
+    }
+}
+
+/// A queue entry of Dijkstra: distance and node, ordered by distance (then
+/// node, for determinism).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Queued(f64, usize);
+
+impl Eq for Queued {}
+
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
+    }
+}
+
+/// Runs a `roadmap` plan.
+pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
+    let mut out = PlanOutcome::default();
+    // Zero until a graph is built (every early return keeps the metrics).
+    out.extra
+        .insert("graph_nodes".into(), MetricValue::Num(0.0));
+    out.extra
+        .insert("graph_edges".into(), MetricValue::Num(0.0));
+    let arc = params
+        .num("arc_segments")
+        .unwrap_or(DEFAULT_ARC_SEGMENTS as f64);
+    if !(arc.is_finite() && arc >= 8.0 && arc <= MAX_ARC_SEGMENTS as f64) {
+        out.notes.push(format!(
+            "`arc_segments` must lie between 8 and {MAX_ARC_SEGMENTS}"
+        ));
+        return out;
+    }
+    let arc = arc.round() as usize;
+    let start = params.start;
+    let goal = params.goal.unwrap_or(start);
+    if robot.rotates() && angle_diff(start.theta, goal.theta).abs() > 1e-12 {
+        out.notes.push(
+            "the roadmap robot only translates (at the start's θ): give the goal the start's θ"
+                .into(),
+        );
+        return out;
+    }
+    let (polys, walls) = grow(world, robot, start.theta, arc);
+    let vertices: usize = polys.iter().map(|p| p.vertices.len()).sum::<usize>() + 2 * walls.len();
+    if vertices > MAX_VERTICES {
+        out.notes.push(format!(
+            "the grown obstacles have {vertices} vertices, more than the {MAX_VERTICES} a roadmap is built over"
+        ));
+        return out;
+    }
+    out.trace = Trace {
+        grown_obstacles: polys.iter().map(|p| p.vertices.clone()).collect(),
+        ..Trace::default()
+    };
+    // The analyzer refused poses in collision with the true obstacles; the
+    // grown disks are a little larger (circumscribed polygons).
+    if !polys.is_empty() {
+        let extent = polys
+            .iter()
+            .map(|p| bbox(&p.vertices))
+            .fold(world.bounds, |a, b| bbox(&[a.min, a.max, b.min, b.max]));
+        let index = PolygonIndex::new(&polys, extent, TOUCH_EPS);
+        for (which, c) in [("start", start), ("goal", goal)] {
+            if let Some(i) = index.inside(c.xy(), None) {
+                debug_assert!(strictly_inside(&polys[i].vertices, c.xy(), TOUCH_EPS));
+                out.notes.push(format!(
+                    "the {which} lies inside obstacle `{}` grown by the robot (disks are circumscribed {arc}-gons): move it away or raise `arc_segments`",
+                    world.obstacles[polys[i].obstacle].name
+                ));
+                out.extra
+                    .insert("graph_nodes".into(), MetricValue::Num(0.0));
+                out.extra
+                    .insert("graph_edges".into(), MetricValue::Num(0.0));
+                return out;
+            }
+        }
+    }
+    let deadline = params
+        .limits
+        .time
+        .map(|s| Instant::now() + std::time::Duration::from_secs_f64(s.clamp(0.0, 1e9)));
+    let roadmap = match Roadmap::build(
+        &polys,
+        &walls,
+        start.xy(),
+        goal.xy(),
+        world.bounds,
+        deadline,
+    ) {
+        Ok(r) => r,
+        Err(Stopped::Time) => {
+            out.gave_up = true;
+            out.notes
+                .push("the time limit was reached while building the roadmap".into());
+            return out;
+        }
+        Err(Stopped::Edges) => {
+            out.notes.push(format!(
+                "the roadmap would have more than {MAX_EDGES} visibility edges: simplify the world"
+            ));
+            return out;
+        }
+    };
+    out.extra.insert(
+        "graph_nodes".into(),
+        MetricValue::Num(roadmap.graph.node_count() as f64),
+    );
+    out.extra.insert(
+        "graph_edges".into(),
+        MetricValue::Num(roadmap.graph.edge_count() as f64),
+    );
+    let pts = &roadmap.arrangement.points;
+    out.trace.roadmap_edges = roadmap
+        .visible
+        .iter()
+        .take(MAX_TRACED_EDGES)
+        .map(|e| (pts[e.a as usize], pts[e.b as usize]))
+        .collect();
+    match roadmap.shortest_path(params.limits.expansions) {
+        Err(expanded) => {
+            out.expanded = expanded;
+            out.gave_up = true;
+            out.notes
+                .push("the expansion limit was reached before the goal".into());
+        }
+        Ok(None) => {}
+        Ok(Some((points, length, expanded))) => {
+            out.expanded = expanded;
+            let mut path: Vec<Config> = points
+                .iter()
+                .map(|p| Config::new(p.x, p.y, start.theta))
+                .collect();
+            if path.len() == 1 {
+                path.push(goal);
+            }
+            path[0] = start;
+            if let Some(last) = path.last_mut() {
+                *last = goal;
+            }
+            out.cost = Some(length);
+            out.path = Some(path);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,523 @@
+//! Visibility among the arrangement's points by a rotational plane sweep
+//! (Lee's algorithm): O(n log n) per node, O(n² log n) in all.
+//!
+//! Around a node `v`, the other points are visited in counter-clockwise
+//! order (then by distance); a balanced tree (a treap) holds the segments
+//! that cross the current ray, ordered by their distance along it. The
+//! segments of the arrangement never cross, so that order does not change
+//! while a segment is in the tree. At each ray (the points exactly on it,
+//! nearest first):
+//! 1. the segments ending on the ray and lying clockwise of it leave the
+//!    tree;
+//! 2. the nearest segment left in the tree crosses the ray properly: every
+//!    point beyond it is hidden;
+//! 3. the points are walked outwards, as a straight motion from `v` would
+//!    meet them ([`Chain`]): it may not enter a polygon's interior at `v`,
+//!    at a point it passes or at the point it reaches, nor pass from one
+//!    side of the walls to the other;
+//! 4. the segments starting on the ray and lying counter-clockwise of it
+//!    enter the tree.
+
+use std::cmp::Ordering;
+
+use super::arrangement::{Arrangement, Sides, Way, ccw_cmp, orient};
+use crate::geometry::{Point, Vector};
+
+/// A visibility edge between points `a < b`, and the sectors it links:
+/// pairs (sector at `a`, sector at `b`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Visible {
+    pub a: u32,
+    pub b: u32,
+    pub links: Vec<(u32, u32)>,
+}
+
+/// A straight motion from `v` in direction `d`, met point by point.
+pub(crate) struct Chain {
+    /// Per starting sector at `v`: the sides still open.
+    starts: Vec<(u32, Sides)>,
+    d: Vector,
+    blocked: bool,
+}
+
+impl Chain {
+    pub(crate) fn new(arr: &Arrangement, v: u32, d: Vector) -> Self {
+        let n = arr.sector_count(v);
+        let starts = match arr.classify(v, d) {
+            Way::Sector(m) => vec![(m as u32, Sides::BOTH)],
+            Way::Ray(i) => vec![
+                (
+                    i as u32,
+                    Sides {
+                        left: true,
+                        right: false,
+                    },
+                ),
+                (
+                    ((i + n - 1) % n) as u32,
+                    Sides {
+                        left: false,
+                        right: true,
+                    },
+                ),
+            ],
+        };
+        Chain {
+            starts,
+            d,
+            blocked: arr.into_interior(v, d),
+        }
+    }
+
+    /// Reaching point `p`: the sector pairs linked, if `p` can be reached
+    /// (and `wanted`); then moves on past `p` (which may block the chain).
+    pub(crate) fn reach(&mut self, arr: &Arrangement, p: u32, wanted: bool) -> Vec<(u32, u32)> {
+        let mut links = Vec::new();
+        if self.blocked {
+            return links;
+        }
+        if arr.into_interior(p, -self.d) {
+            self.blocked = true;
+            return links;
+        }
+        if wanted {
+            let n = arr.sector_count(p);
+            let (left, right) = match arr.classify(p, -self.d) {
+                Way::Sector(m) => (m, m),
+                // Arriving along ray i: the left of the motion is the
+                // sector clockwise of the ray.
+                Way::Ray(i) => ((i + n - 1) % n, i),
+            };
+            for &(s, sides) in &self.starts {
+                if sides.left {
+                    links.push((s, left as u32));
+                }
+                if sides.right {
+                    links.push((s, right as u32));
+                }
+            }
+            links.sort_unstable();
+            links.dedup();
+        }
+        if arr.into_interior(p, self.d) {
+            self.blocked = true;
+        } else {
+            for s in self.starts.iter_mut() {
+                s.1 = s.1.pass(arr, p, self.d);
+            }
+            self.blocked = self.starts.iter().all(|s| !s.1.open());
+        }
+        links
+    }
+
+    pub(crate) fn block(&mut self) {
+        self.blocked = true;
+    }
+
+    pub(crate) fn is_blocked(&self) -> bool {
+        self.blocked
+    }
+}
+
+// ------------------------------------------------------------------ treap
+
+const NIL: u32 = u32::MAX;
+
+/// A treap over segment ids, ordered by a comparator given to each call.
+struct Treap {
+    left: Vec<u32>,
+    right: Vec<u32>,
+    prio: Vec<u64>,
+    root: u32,
+}
+
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+impl Treap {
+    fn new(n: usize) -> Self {
+        Treap {
+            left: vec![NIL; n],
+            right: vec![NIL; n],
+            prio: (0..n as u64).map(mix).collect(),
+            root: NIL,
+        }
+    }
+
+    /// Splits `t` into the elements for which `go_left` holds (a prefix of
+    /// the order) and the rest.
+    fn split(&mut self, t: u32, go_left: &mut impl FnMut(u32) -> bool) -> (u32, u32) {
+        if t == NIL {
+            return (NIL, NIL);
+        }
+        let i = t as usize;
+        if go_left(t) {
+            let (l, r) = self.split(self.right[i], go_left);
+            self.right[i] = l;
+            (t, r)
+        } else {
+            let (l, r) = self.split(self.left[i], go_left);
+            self.left[i] = r;
+            (l, t)
+        }
+    }
+
+    fn merge(&mut self, a: u32, b: u32) -> u32 {
+        if a == NIL {
+            return b;
+        }
+        if b == NIL {
+            return a;
+        }
+        if self.prio[a as usize] > self.prio[b as usize] {
+            let r = self.right[a as usize];
+            self.right[a as usize] = self.merge(r, b);
+            a
+        } else {
+            let l = self.left[b as usize];
+            self.left[b as usize] = self.merge(a, l);
+            b
+        }
+    }
+
+    fn insert(&mut self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) {
+        self.left[x as usize] = NIL;
+        self.right[x as usize] = NIL;
+        let (l, r) = self.split(self.root, &mut |e| cmp(e, x) == Ordering::Less);
+        let l = self.merge(l, x);
+        self.root = self.merge(l, r);
+    }
+
+    /// Removes `x`; if the order was broken by rounding and `x` is not
+    /// where the comparator says, removes it by a linear rebuild.
+    fn remove(&mut self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) {
+        let (l, r) = self.split(self.root, &mut |e| cmp(e, x) == Ordering::Less);
+        let (m, r) = self.split(r, &mut |e| cmp(e, x) != Ordering::Greater);
+        if m == x && self.left[x as usize] == NIL && self.right[x as usize] == NIL {
+            self.root = self.merge(l, r);
+            return;
+        }
+        let lm = self.merge(l, m);
+        let all = self.merge(lm, r);
+        let mut items = Vec::new();
+        self.collect(all, &mut items);
+        self.root = NIL;
+        for e in items.into_iter().filter(|&e| e != x) {
+            self.left[e as usize] = NIL;
+            self.right[e as usize] = NIL;
+            self.root = self.merge(self.root, e);
+        }
+    }
+
+    fn collect(&self, t: u32, out: &mut Vec<u32>) {
+        if t == NIL {
+            return;
+        }
+        self.collect(self.left[t as usize], out);
+        out.push(t);
+        self.collect(self.right[t as usize], out);
+    }
+
+    fn first(&self) -> Option<u32> {
+        let mut t = self.root;
+        if t == NIL {
+            return None;
+        }
+        while self.left[t as usize] != NIL {
+            t = self.left[t as usize];
+        }
+        Some(t)
+    }
+
+    fn clear(&mut self) {
+        let mut items = Vec::new();
+        self.collect(self.root, &mut items);
+        for e in items {
+            self.left[e as usize] = NIL;
+            self.right[e as usize] = NIL;
+        }
+        self.root = NIL;
+    }
+}
+
+// ------------------------------------------------------------------ sweep
+
+/// Reusable buffers of one sweeping thread.
+pub(crate) struct SweepBuffers {
+    keyed: Vec<(f64, f64, u32)>,
+    group_of: Vec<u32>,
+    ends: Vec<(u32, u32)>,
+    order: Vec<u32>,
+    treap: Treap,
+}
+
+impl SweepBuffers {
+    pub(crate) fn new(arr: &Arrangement) -> Self {
+        SweepBuffers {
+            keyed: Vec::with_capacity(arr.points.len()),
+            group_of: Vec::with_capacity(arr.points.len()),
+            ends: Vec::with_capacity(arr.segs.len()),
+            order: Vec::with_capacity(arr.points.len()),
+            treap: Treap::new(arr.segs.len()),
+        }
+    }
+}
+
+/// Where segment `s` meets the ray `pv + t·d`, as `t`.
+fn ray_t(arr: &Arrangement, s: u32, pv: Point, d: Vector) -> f64 {
+    let seg = arr.segs[s as usize];
+    let (a, b) = (arr.points[seg.a as usize], arr.points[seg.b as usize]);
+    let den = d.perp(&(b - a));
+    if den == 0.0 {
+        return f64::INFINITY;
+    }
+    (a - pv).perp(&(b - a)) / den
+}
+
+/// Orders the segments crossing the ray `pv + t·d` by distance; two
+/// segments meeting at a point of the ray (`on_ray`) are ordered as they
+/// are just before the ray (`after == false`) or just after it.
+fn seg_cmp(
+    arr: &Arrangement,
+    pv: Point,
+    d: Vector,
+    after: bool,
+    on_ray: impl Fn(u32) -> bool,
+    s1: u32,
+    s2: u32,
+) -> Ordering {
+    if s1 == s2 {
+        return Ordering::Equal;
+    }
+    let (g1, g2) = (arr.segs[s1 as usize], arr.segs[s2 as usize]);
+    for p in [g1.a, g1.b] {
+        if (p != g2.a && p != g2.b) || !on_ray(p) {
+            continue;
+        }
+        let pp = arr.points[p as usize];
+        let a = arr.points[if g1.a == p { g1.b } else { g1.a } as usize];
+        let b = arr.points[if g2.a == p { g2.b } else { g2.a } as usize];
+        let c = (a - pp).perp(&(b - pp));
+        let ord = if c > 0.0 {
+            Ordering::Less
+        } else if c < 0.0 {
+            Ordering::Greater
+        } else {
+            return s1.cmp(&s2);
+        };
+        return if after { ord.reverse() } else { ord };
+    }
+    ray_t(arr, s1, pv, d)
+        .total_cmp(&ray_t(arr, s2, pv, d))
+        .then(s1.cmp(&s2))
+}
+
+/// The visibility edges from node `v` to the nodes of higher index.
+pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut Vec<Visible>) {
+    let pv = arr.points[v as usize];
+    let x_axis = Vector::new(1.0, 0.0);
+    let angle_cmp = |a: &u32, b: &u32| {
+        let (wa, wb) = (arr.points[*a as usize] - pv, arr.points[*b as usize] - pv);
+        ccw_cmp(x_axis, wa, wb).then_with(|| wa.norm_squared().total_cmp(&wb.norm_squared()))
+    };
+    // Sort by a pseudo-angle (monotone in the angle), then fix the order
+    // exactly with an insertion pass (the sequence is nearly sorted).
+    buf.keyed.clear();
+    buf.keyed
+        .extend((0..arr.points.len() as u32).filter(|&p| p != v).map(|p| {
+            let w = arr.points[p as usize] - pv;
+            let r = w.x.abs() + w.y.abs();
+            let q = if r > 0.0 { w.x / r } else { 1.0 };
+            // q runs 1 → −1 over the upper half plane, −1 → 1 over the lower.
+            let key = if w.y > 0.0 || (w.y == 0.0 && w.x > 0.0) {
+                1.0 - q
+            } else {
+                3.0 + q
+            };
+            (key, w.norm_squared(), p)
+        }));
+    buf.keyed
+        .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    buf.order.clear();
+    buf.order.extend(buf.keyed.iter().map(|k| k.2));
+    let order = &mut buf.order;
+    for i in 1..order.len() {
+        let mut j = i;
+        while j > 0 && angle_cmp(&order[j - 1], &order[j]) == Ordering::Greater {
+            order.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    // Group the points by exact direction; each segment enters the tree at
+    // its counter-clockwise-first end's group and leaves at the other's
+    // (one decision per segment, so rounding cannot make them disagree).
+    let order = &buf.order;
+    let group_of = &mut buf.group_of;
+    group_of.clear();
+    group_of.resize(arr.points.len(), u32::MAX);
+    let mut groups: Vec<(usize, usize)> = Vec::new();
+    let mut i = 0;
+    while i < order.len() {
+        let mut j = i + 1;
+        while j < order.len()
+            && ccw_cmp(
+                x_axis,
+                arr.points[order[i] as usize] - pv,
+                arr.points[order[j] as usize] - pv,
+            ) == Ordering::Equal
+        {
+            j += 1;
+        }
+        for &p in &order[i..j] {
+            group_of[p as usize] = groups.len() as u32;
+        }
+        groups.push((i, j));
+        i = j;
+    }
+    // (first end, last end) of a segment that may block, counter-clockwise
+    // as seen from v.
+    let ends = |s: u32| -> Option<(u32, u32)> {
+        let g = arr.segs[s as usize];
+        if g.a == v || g.b == v {
+            return None;
+        }
+        let (a, b) = (arr.points[g.a as usize], arr.points[g.b as usize]);
+        // Polygon pieces facing away from v never block first: a ray from v
+        // (outside every interior) first crosses the boundary where it
+        // enters the union, through a piece whose interior faces away.
+        if !g.wall && orient(a, b, pv) > 0.0 {
+            return None;
+        }
+        let o = (a - pv).perp(&(b - pv));
+        let (f, l) = if o > 0.0 {
+            (g.a, g.b)
+        } else if o < 0.0 {
+            (g.b, g.a)
+        } else {
+            return None;
+        };
+        (group_of[f as usize] != group_of[l as usize]).then_some((f, l))
+    };
+    // Each segment's ends, decided once per sweep (`NIL` when it never
+    // enters the tree).
+    let seg_ends = &mut buf.ends;
+    seg_ends.clear();
+    seg_ends.extend((0..arr.segs.len() as u32).map(|s| ends(s).unwrap_or((NIL, NIL))));
+    let seg_ends = &*seg_ends;
+    let treap = &mut buf.treap;
+    treap.clear();
+    {
+        let cmp =
+            |a: u32, b: u32| seg_cmp(arr, pv, x_axis, false, |p| group_of[p as usize] == 0, a, b);
+        for (s, &(f, l)) in seg_ends.iter().enumerate() {
+            if f != NIL && group_of[f as usize] > group_of[l as usize] {
+                treap.insert(s as u32, &cmp);
+            }
+        }
+    }
+
+    for (gi, &(i, j)) in groups.iter().enumerate() {
+        let group = &order[i..j];
+        let d = arr.points[group[0] as usize] - pv;
+        let on_ray = |p: u32| group_of[p as usize] == gi as u32;
+        // 1. Segments ending here (their last end) leave.
+        {
+            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, false, on_ray, a, b);
+            for &p in group {
+                for &s in &arr.incident[p as usize] {
+                    if seg_ends[s as usize].1 == p {
+                        treap.remove(s, &cmp);
+                    }
+                }
+            }
+        }
+        // 2. The nearest proper crossing.
+        let t_min = treap
+            .first()
+            .map_or(f64::INFINITY, |s| ray_t(arr, s, pv, d));
+        // 3. Walk the points outwards (unless the nearest is hidden).
+        let dd = d.norm_squared();
+        let t_of = |p: u32| (arr.points[p as usize] - pv).dot(&d) / dd;
+        let wanted_any = group.iter().any(|&p| p > v && arr.is_node[p as usize]);
+        if arr.is_node[v as usize] && wanted_any && t_min >= t_of(group[0]) {
+            let mut chain = Chain::new(arr, v, d);
+            for &p in group {
+                if t_min < t_of(p) {
+                    chain.block();
+                }
+                if chain.is_blocked() {
+                    break;
+                }
+                let wanted = p > v && arr.is_node[p as usize];
+                let links = chain.reach(arr, p, wanted);
+                if !links.is_empty() {
+                    out.push(Visible { a: v, b: p, links });
+                }
+            }
+        }
+        // 4. Segments starting here (their first end) enter.
+        {
+            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, true, on_ray, a, b);
+            for &p in group {
+                for &s in &arr.incident[p as usize] {
+                    if seg_ends[s as usize].0 == p {
+                        treap.insert(s, &cmp);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The same edges as [`sweep`] over all nodes, by testing every pair of
+/// nodes against every segment and point: O(n³), for tests.
+#[cfg(test)]
+pub(crate) fn brute_force(arr: &Arrangement) -> Vec<Visible> {
+    let n = arr.points.len() as u32;
+    let mut out = Vec::new();
+    for v in 0..n {
+        if !arr.is_node[v as usize] {
+            continue;
+        }
+        for w in v + 1..n {
+            if !arr.is_node[w as usize] {
+                continue;
+            }
+            let (pv, pw) = (arr.points[v as usize], arr.points[w as usize]);
+            let d = pw - pv;
+            let crossed = arr.segs.iter().any(|g| {
+                if g.a == v || g.b == v || g.a == w || g.b == w {
+                    return false;
+                }
+                let (a, b) = (arr.points[g.a as usize], arr.points[g.b as usize]);
+                orient(pv, pw, a) * orient(pv, pw, b) < 0.0
+                    && orient(a, b, pv) * orient(a, b, pw) < 0.0
+            });
+            if crossed {
+                continue;
+            }
+            let mut between: Vec<(f64, u32)> = (0..n)
+                .filter(|&p| p != v && p != w)
+                .filter_map(|p| {
+                    let q = arr.points[p as usize];
+                    let t = (q - pv).dot(&d);
+                    (orient(pv, pw, q) == 0.0 && t > 0.0 && t < d.norm_squared()).then_some((t, p))
+                })
+                .collect();
+            between.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut chain = Chain::new(arr, v, d);
+            for &(_, p) in &between {
+                chain.reach(arr, p, false);
+            }
+            let links = chain.reach(arr, w, true);
+            if !links.is_empty() {
+                out.push(Visible { a: v, b: w, links });
+            }
+        }
+    }
+    out
+}

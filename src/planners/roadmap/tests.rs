@@ -1,0 +1,486 @@
+use std::collections::BTreeMap;
+
+use proptest::prelude::*;
+
+use super::*;
+use crate::diagnostics::Span;
+use crate::geometry::polygon::convex_hull;
+use crate::geometry::validator::{Validator, validate_path};
+use crate::geometry::{Aabb, Obstacle, Shape};
+use crate::scenario::{Limits, Param, ParamValue};
+
+fn p(x: f64, y: f64) -> Point {
+    Point::new(x, y)
+}
+
+fn world(bounds: (f64, f64, f64, f64), shapes: Vec<Shape>) -> World {
+    World {
+        bounds: Aabb::from_corners(p(bounds.0, bounds.1), p(bounds.2, bounds.3)),
+        obstacles: shapes
+            .into_iter()
+            .enumerate()
+            .map(|(i, shape)| Obstacle {
+                name: format!("o{i}"),
+                shape,
+            })
+            .collect(),
+    }
+}
+
+fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+    Shape::Rect(Aabb::from_corners(p(x0, y0), p(x1, y1)))
+}
+
+fn seg(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+    Shape::Segment(p(x0, y0), p(x1, y1))
+}
+
+fn params(start: (f64, f64), goal: (f64, f64), values: &[(&'static str, ParamValue)]) -> Params {
+    Params {
+        start: Config::new(start.0, start.1, 0.0),
+        start_span: Span::default(),
+        goal: Some(Config::new(goal.0, goal.1, 0.0)),
+        goal_span: None,
+        limits: Limits::default(),
+        seed: 0,
+        values: values
+            .iter()
+            .map(|(k, v)| {
+                (
+                    *k,
+                    Param {
+                        value: v.clone(),
+                        span: Span::default(),
+                    },
+                )
+            })
+            .collect::<BTreeMap<_, _>>(),
+    }
+}
+
+fn box_robot(w: f64, h: f64) -> RobotShape {
+    RobotShape::Polygon(ConvexPolygon {
+        vertices: vec![p(0.0, 0.0), p(w, 0.0), p(w, h), p(0.0, h)],
+    })
+}
+
+fn length(path: &[Config]) -> f64 {
+    path.windows(2)
+        .map(|w| (w[1].xy() - w[0].xy()).norm())
+        .sum()
+}
+
+/// Plans, checks the path with the validator, returns its length.
+fn plan_length(w: &World, robot: &RobotShape, start: (f64, f64), goal: (f64, f64)) -> Option<f64> {
+    let out = plan(w, robot, &params(start, goal, &[]));
+    let path = out.path?;
+    validate_path(w, robot, &path, 0.01).expect("the roadmap path validates");
+    let l = length(&path);
+    assert!(
+        (out.cost.unwrap_or(f64::NAN) - l).abs() < 1e-9,
+        "cost = length"
+    );
+    Some(l)
+}
+
+fn assert_close(a: f64, b: f64) {
+    assert!((a - b).abs() <= 1e-9, "{a} vs {b}");
+}
+
+#[test]
+fn around_one_square() {
+    let w = world((-5.0, -5.0, 10.0, 5.0), vec![rect(1.0, -1.0, 3.0, 1.0)]);
+    let l = plan_length(&w, &RobotShape::Point, (0.0, 0.0), (4.0, 0.0)).unwrap();
+    assert_close(l, 2.0 + 2.0 * 2f64.sqrt());
+    // A 1×1 box (reference at its lower-left corner) grows the square to
+    // [0, 3] × [-2, 1]: from (-1, 0) to (4, 0) over the top corners.
+    let l = plan_length(&w, &box_robot(1.0, 1.0), (-1.0, 0.0), (4.0, 0.0)).unwrap();
+    assert_close(l, 2.0 * 2f64.sqrt() + 3.0);
+}
+
+#[test]
+fn between_two_squares_through_collinear_corners() {
+    // The straight line from (0, 3) to (6, -3) touches the corners (2, 1)
+    // and (4, -1) exactly: allowed, and the shortest path.
+    let w = world(
+        (-5.0, -5.0, 10.0, 5.0),
+        vec![rect(2.0, 1.0, 4.0, 3.0), rect(2.0, -3.0, 4.0, -1.0)],
+    );
+    let l = plan_length(&w, &RobotShape::Point, (0.0, 3.0), (6.0, -3.0)).unwrap();
+    assert_close(l, 72f64.sqrt());
+    // Between them, straight.
+    let l = plan_length(&w, &RobotShape::Point, (0.0, 0.0), (6.0, 0.0)).unwrap();
+    assert_close(l, 6.0);
+}
+
+#[test]
+fn along_collinear_tops() {
+    let w = world(
+        (-1.0, -1.0, 8.0, 3.0),
+        vec![
+            rect(1.0, 0.0, 2.0, 1.0),
+            rect(3.0, 0.0, 4.0, 1.0),
+            rect(5.0, 0.0, 6.0, 1.0),
+        ],
+    );
+    let l = plan_length(&w, &RobotShape::Point, (0.0, 1.0), (7.0, 1.0)).unwrap();
+    assert_close(l, 7.0);
+    // Below the tops, the path climbs over them: (0, 0.5) up to (1, 1),
+    // along, down from (6, 1).
+    let l = plan_length(&w, &RobotShape::Point, (0.0, 0.5), (7.0, 0.5)).unwrap();
+    assert_close(l, 5.0 + 2.0 * 1.25f64.sqrt());
+}
+
+#[test]
+fn gap_exactly_as_wide_as_the_robot() {
+    // Two walls leave the gap 0 ≤ y ≤ 1 at 2 ≤ x ≤ 3; a 1×1 box passes
+    // with its reference (lower-left corner) exactly on y = 0, where the
+    // grown walls touch.
+    let w = world(
+        (-1.0, -7.0, 6.0, 7.0),
+        vec![rect(2.0, -5.0, 3.0, 0.0), rect(2.0, 1.0, 3.0, 6.0)],
+    );
+    let l = plan_length(&w, &box_robot(1.0, 1.0), (0.0, 0.0), (5.0, 0.0)).unwrap();
+    assert_close(l, 5.0);
+    let l = plan_length(&w, &box_robot(1.0, 1.0), (0.0, 0.5), (5.0, -0.5)).unwrap();
+    assert_close(l, 1.25f64.sqrt() + 2.0 + 4.25f64.sqrt());
+    // A box a little taller does not fit: around the walls.
+    let l = plan_length(&w, &box_robot(1.0, 1.01), (0.0, 0.0), (5.0, 0.0));
+    assert!(l.is_none_or(|l| l > 10.0), "{l:?}");
+}
+
+#[test]
+fn through_a_wall_vertex_is_crossing() {
+    // A roof ^ of two walls: from under its apex to above it the straight
+    // line passes through the apex, which crosses the walls; the path goes
+    // round an end.
+    let w = world(
+        (-3.0, -3.0, 5.0, 5.0),
+        vec![seg(0.0, 0.0, 1.0, 1.0), seg(1.0, 1.0, 2.0, 0.0)],
+    );
+    let l = plan_length(&w, &RobotShape::Point, (1.0, 0.2), (1.0, 3.0)).unwrap();
+    assert_close(l, 1.04f64.sqrt() + 10f64.sqrt());
+    // Sliding along a wall and leaving on the other side at the apex is
+    // crossing too: from the left slope's outside to the right slope's
+    // inside.
+    let l = plan_length(&w, &RobotShape::Point, (0.0, 1.0), (1.5, 0.2)).unwrap();
+    assert!(l > 2.0, "{l}");
+}
+
+#[test]
+fn closed_chain_of_walls() {
+    let square = vec![
+        seg(1.0, 1.0, 3.0, 1.0),
+        seg(3.0, 1.0, 3.0, 3.0),
+        seg(3.0, 3.0, 1.0, 3.0),
+        seg(1.0, 3.0, 1.0, 1.0),
+    ];
+    let w = world((0.0, 0.0, 4.0, 4.0), square);
+    assert!(plan_length(&w, &RobotShape::Point, (0.5, 2.0), (2.0, 2.0)).is_none());
+    let l = plan_length(&w, &RobotShape::Point, (1.5, 1.5), (2.5, 2.5)).unwrap();
+    assert_close(l, 2f64.sqrt());
+    // Outside, round two corners.
+    let l = plan_length(&w, &RobotShape::Point, (0.5, 2.0), (3.5, 2.0)).unwrap();
+    assert_close(l, 2.0 * 1.25f64.sqrt() + 2.0);
+    // An open chain (one wall missing): in through the opening.
+    let w = world(
+        (0.0, 0.0, 4.0, 4.0),
+        vec![
+            seg(1.0, 1.0, 3.0, 1.0),
+            seg(3.0, 1.0, 3.0, 3.0),
+            seg(3.0, 3.0, 1.0, 3.0),
+        ],
+    );
+    let l = plan_length(&w, &RobotShape::Point, (0.5, 2.0), (2.0, 2.0)).unwrap();
+    assert_close(l, 1.5);
+}
+
+#[test]
+fn seams_of_a_nonconvex_polygon_are_inside() {
+    let outline = vec![
+        p(0.0, 0.0),
+        p(4.0, 0.0),
+        p(4.0, 1.0),
+        p(1.0, 1.0),
+        p(1.0, 4.0),
+        p(0.0, 4.0),
+    ];
+    let pieces = crate::geometry::polygon::convex_decomposition(&outline);
+    assert!(pieces.len() >= 2);
+    let w = world(
+        (-2.0, -2.0, 6.0, 6.0),
+        vec![Shape::Polygon {
+            outline: outline.clone(),
+            pieces,
+        }],
+    );
+    let (polys, walls) = grow(&w, &RobotShape::Point, 0.0, 32);
+    let rm =
+        Roadmap::build(&polys, &walls, p(3.0, 3.0), p(-1.0, -1.0), w.bounds, None).expect("built");
+    let pts = &rm.arrangement.points;
+    for e in &rm.visible {
+        let m = Point::from((pts[e.a as usize].coords + pts[e.b as usize].coords) / 2.0);
+        let inside = crate::geometry::validator::config_collision(
+            &w,
+            &RobotShape::Point,
+            Config::new(m.x, m.y, 0.0),
+        );
+        assert!(inside.is_none(), "edge through the polygon at {m:?}");
+    }
+    let l = plan_length(&w, &RobotShape::Point, (3.0, 3.0), (-1.0, -1.0)).unwrap();
+    assert_close(l, 5f64.sqrt() + 1.0 + 26f64.sqrt());
+}
+
+#[test]
+fn poses_inside_the_circumscribed_disk_and_turning_goals_are_refused() {
+    // The start touches the true disk obstacle but lies inside its
+    // circumscribed 8-gon.
+    let w = world(
+        (-5.0, -5.0, 5.0, 5.0),
+        vec![Shape::Disk {
+            center: p(0.0, 0.0),
+            radius: 1.0,
+        }],
+    );
+    let a = std::f64::consts::PI / 8.0;
+    let out = plan(
+        &w,
+        &RobotShape::Point,
+        &params(
+            (1.03 * a.cos(), 1.03 * a.sin()),
+            (3.0, 3.0),
+            &[("arc_segments", ParamValue::Num(8.0))],
+        ),
+    );
+    assert!(out.path.is_none());
+    assert!(out.notes[0].contains("`o0`"), "{:?}", out.notes);
+    let mut pr = params((3.0, 0.0), (-3.0, 0.0), &[]);
+    pr.goal = Some(Config::new(-3.0, 0.0, 1.0));
+    let out = plan(&w, &box_robot(1.0, 1.0), &pr);
+    assert!(out.path.is_none() && !out.notes.is_empty());
+}
+
+#[test]
+fn limits_are_honoured() {
+    let w = world((-5.0, -5.0, 10.0, 5.0), vec![rect(1.0, -1.0, 3.0, 1.0)]);
+    let mut pr = params((0.0, 0.0), (4.0, 0.0), &[]);
+    pr.limits.expansions = Some(1);
+    let out = plan(&w, &RobotShape::Point, &pr);
+    assert!(out.gave_up && out.path.is_none());
+    let mut pr = params((0.0, 0.0), (4.0, 0.0), &[]);
+    pr.limits.time = Some(0.0);
+    let out = plan(&w, &RobotShape::Point, &pr);
+    assert!(out.gave_up && out.path.is_none());
+}
+
+// ---------------------------------------------------------- random worlds
+
+/// SplitMix64, for random worlds from one seed.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+/// `n` random convex obstacles (hulls of 3–8 points around a centre) in
+/// `[0, size]²`, and `walls` random segments.
+pub(super) fn random_world(seed: u64, n: usize, walls: usize, size: f64, r: f64) -> World {
+    let mut rng = Rng(seed);
+    let mut shapes = Vec::new();
+    for _ in 0..n {
+        let (cx, cy) = (rng.range(0.0, size), rng.range(0.0, size));
+        let k = 3 + (rng.next() * 6.0) as usize;
+        let pts: Vec<Point> = (0..k)
+            .map(|_| {
+                let a = rng.range(0.0, std::f64::consts::TAU);
+                let d = rng.range(0.3, 1.0) * r;
+                p(cx + d * a.cos(), cy + d * a.sin())
+            })
+            .collect();
+        let hull = convex_hull(&pts);
+        if hull.len() >= 3 {
+            shapes.push(Shape::Polygon {
+                outline: hull.clone(),
+                pieces: vec![ConvexPolygon { vertices: hull }],
+            });
+        }
+    }
+    for _ in 0..walls {
+        let (x, y) = (rng.range(0.0, size), rng.range(0.0, size));
+        let a = rng.range(0.0, std::f64::consts::TAU);
+        let l = rng.range(0.2, 1.5) * r;
+        shapes.push(seg(x, y, x + l * a.cos(), y + l * a.sin()));
+    }
+    world((0.0, 0.0, size, size), shapes)
+}
+
+fn sorted(mut v: Vec<Visible>) -> Vec<Visible> {
+    v.sort_by_key(|e| (e.a, e.b));
+    v
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// The sweep finds exactly the edges of the O(n³) brute force, for
+    /// overlapping polygons and walls, point and box robots.
+    #[test]
+    fn sweep_equals_brute_force(seed in any::<u64>(), n in 1usize..9, walls in 0usize..6, robot in 0u8..3) {
+        let w = random_world(seed, n, walls, 10.0, 2.0);
+        let robot = match robot {
+            0 => RobotShape::Point,
+            1 => RobotShape::Disk(0.3),
+            _ => box_robot(0.6, 0.3),
+        };
+        let (polys, walls) = grow(&w, &robot, 0.0, 16);
+        let rm = Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).expect("built");
+        let arr = &rm.arrangement;
+        let brute: Vec<Visible> = sweep::brute_force(arr)
+            .into_iter()
+            .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
+            .collect();
+        prop_assert_eq!(sorted(rm.visible.clone()), sorted(brute));
+    }
+
+    /// Every visibility edge passes the validator as a motion.
+    #[test]
+    fn every_edge_validates(seed in any::<u64>(), n in 1usize..7, walls in 0usize..5, robot in 0u8..3) {
+        let w = random_world(seed, n, walls, 10.0, 2.0);
+        let robot = match robot {
+            0 => RobotShape::Point,
+            1 => RobotShape::Disk(0.3),
+            _ => box_robot(0.6, 0.3),
+        };
+        let (polys, walls) = grow(&w, &robot, 0.0, 16);
+        let rm = Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).expect("built");
+        let v = Validator::new(&w);
+        let pts = &rm.arrangement.points;
+        for e in &rm.visible {
+            let (a, b) = (pts[e.a as usize], pts[e.b as usize]);
+            let path = [Config::new(a.x, a.y, 0.0), Config::new(b.x, b.y, 0.0)];
+            let r = v.validate_path(&robot, &path, 0.01);
+            prop_assert!(r.is_ok(), "edge {:?} -> {:?}: {:?}", a, b, r);
+        }
+    }
+
+    /// The roadmap path is never longer than the 8-connected lattice path
+    /// of `astar` at a fine cell (a feasible polyline), and it validates.
+    /// The disk's lattice robot is the circumscribed one, whose paths are
+    /// feasible for the roadmap's grown (circumscribed) obstacles.
+    #[test]
+    fn never_longer_than_the_lattice(seed in any::<u64>(), n in 1usize..7, walls in 0usize..4, robot in 0u8..3, s in (0.0..10.0f64, 0.0..10.0f64), g in (0.0..10.0f64, 0.0..10.0f64)) {
+        let w = random_world(seed, n, walls, 10.0, 2.0);
+        let k = 16.0;
+        let (robot, lattice_robot) = match robot {
+            0 => (RobotShape::Point, RobotShape::Point),
+            1 => (RobotShape::Disk(0.3), RobotShape::Disk(0.3 / (std::f64::consts::PI / k).cos() * (1.0 + 1e-9))),
+            _ => (box_robot(0.6, 0.3), box_robot(0.6, 0.3)),
+        };
+        let v = Validator::new(&w);
+        for c in [s, g] {
+            prop_assume!(v.config_collision(&lattice_robot, Config::new(c.0, c.1, 0.0)).is_none());
+        }
+        let out = plan(&w, &robot, &params(s, g, &[("arc_segments", ParamValue::Num(k))]));
+        let lat = crate::planners::astar::plan(&w, &lattice_robot, &params(s, g, &[
+            ("cell", ParamValue::Num(0.1)),
+            ("rotate", ParamValue::Word("no".into())),
+        ]));
+        if let Some(path) = &out.path {
+            let r = v.validate_path(&robot, path, 0.01);
+            prop_assert!(r.is_ok(), "{:?}", r);
+        }
+        if let Some(lp) = &lat.path {
+            prop_assert!(v.validate_path(&lattice_robot, lp, 0.01).is_ok());
+            let rl = out.path.as_ref().map(|p| length(p));
+            prop_assert!(rl.is_some(), "the lattice found a path, the roadmap none: {:?}", out.notes);
+            let (rl, ll) = (rl.unwrap_or(0.0), length(lp));
+            prop_assert!(rl <= ll + 1e-9, "roadmap {} > lattice {}", rl, ll);
+        }
+    }
+}
+
+#[test]
+fn deterministic() {
+    let w = random_world(7, 30, 5, 20.0, 2.0);
+    let a = plan(
+        &w,
+        &RobotShape::Disk(0.2),
+        &params((0.1, 0.1), (19.9, 19.9), &[]),
+    );
+    let b = plan(
+        &w,
+        &RobotShape::Disk(0.2),
+        &params((0.1, 0.1), (19.9, 19.9), &[]),
+    );
+    assert_eq!(a.path, b.path);
+    assert_eq!(a.extra, b.extra);
+    assert_eq!(a.trace.roadmap_edges, b.trace.roadmap_edges);
+}
+
+/// Timing of the phases on a random world (`-- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn phases_timing() {
+    for n in [100usize, 300] {
+        let w = random_world(42, n, 0, 4.0 * (n as f64).sqrt(), 1.0);
+        let (polys, walls) = grow(&w, &RobotShape::Point, 0.0, 32);
+        let t = std::time::Instant::now();
+        let arr = arrangement::build(
+            &polys,
+            &walls,
+            p(0.0, 0.0),
+            p(1.0, 1.0),
+            w.bounds,
+            TOUCH_EPS,
+        );
+        let ta = t.elapsed();
+        let t = std::time::Instant::now();
+        let mut buf = sweep::SweepBuffers::new(&arr);
+        let mut out = Vec::new();
+        for v in 0..arr.points.len() as u32 {
+            if arr.is_node[v as usize] {
+                sweep::sweep(&arr, v, &mut buf, &mut out);
+            }
+        }
+        eprintln!(
+            "n {n}: points {} arrangement {:?} sweeps (1 thread) {:?} edges {}",
+            arr.points.len(),
+            ta,
+            t.elapsed(),
+            out.len()
+        );
+    }
+}
+
+#[test]
+fn huge_worlds_are_refused_not_hung() {
+    let disks = (0..10)
+        .map(|i| Shape::Disk {
+            center: p(1.0 + 2.0 * i as f64, 5.0),
+            radius: 0.5,
+        })
+        .collect();
+    let w = world((0.0, 0.0, 25.0, 10.0), disks);
+    let out = plan(
+        &w,
+        &RobotShape::Point,
+        &params(
+            (0.0, 0.0),
+            (24.0, 9.0),
+            &[("arc_segments", ParamValue::Num(4096.0))],
+        ),
+    );
+    assert!(out.path.is_none());
+    assert!(out.notes[0].contains("vertices"), "{:?}", out.notes);
+    assert_eq!(out.extra["graph_nodes"], MetricValue::Num(0.0));
+}
