@@ -14,7 +14,7 @@ use crate::geometry::{
 use crate::syntax::ast::{self, Expr, ExprKind, ParamToken, Value, ValueKind};
 
 use super::loader::{LoadFailure, MAX_MAP_BYTES, SourcedStmt, read_text};
-use super::schema::{self, MetricType, PlannerSchema, RobotKind, Support, ValueSpec, did_you_mean};
+use super::schema::{self, MetricType, PlannerSchema, RobotKind, ValueSpec, did_you_mean};
 use super::{Check, DEFAULT_CELL_CAP, Limits, Param, ParamValue, Params, Plan, Robot, Scenario};
 
 /// Analyses the statements of a scenario (includes already spliced in).
@@ -852,9 +852,9 @@ impl Analyzer {
         };
         let robot = &robots[robot_index];
         let kind = robot_kind(&robot.shape);
-        match schema.robots.iter().find(|(k, _)| *k == kind) {
+        match schema.robots.iter().find(|k| **k == kind) {
             None => {
-                let ok: Vec<&str> = schema.robots.iter().map(|(k, _)| k.name()).collect();
+                let ok: Vec<&str> = schema.robots.iter().map(|k| k.name()).collect();
                 self.error(
                     Diag::error(
                         "scen::analyze::robot_kind",
@@ -872,32 +872,7 @@ impl Analyzer {
                     )),
                 );
             }
-            Some((_, Support::NotYet)) => {
-                let implemented: Vec<&str> = schema::PLANNERS
-                    .iter()
-                    .flat_map(|s| {
-                        s.robots
-                            .iter()
-                            .filter(|(_, sup)| *sup == Support::Yes)
-                            .map(move |(k, _)| (s.kind, k.name()))
-                    })
-                    .map(|(s, k)| if s == "astar" { k } else { s })
-                    .collect();
-                let _ = implemented;
-                self.error(
-                    Diag::error(
-                        "scen::analyze::not_implemented",
-                        format!(
-                            "planner `{}` for {} robots is not implemented yet in this version of scen",
-                            schema.kind,
-                            kind.name()
-                        ),
-                    )
-                    .at(p.kind.span, "not implemented yet")
-                    .help("implemented so far: `astar` for point, disk and polygon robots"),
-                );
-            }
-            Some((_, Support::Yes)) => {}
+            Some(_) => {}
         }
         let params = self.params(p, schema, Some(robot), world)?;
         Some(Plan {

@@ -209,18 +209,10 @@ pub struct PlannerSchema {
     /// One line for help texts.
     pub summary: &'static str,
     /// Which robots it plans for, and whether this version implements that.
-    pub robots: &'static [(RobotKind, Support)],
+    pub robots: &'static [RobotKind],
     pub params: &'static [ParamSpec],
     pub metrics: &'static [(&'static str, MetricType)],
     pub needs_goal: bool,
-}
-
-/// Whether a planner/robot combination is implemented in this version.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Support {
-    Yes,
-    /// Specified (SPEC 3) but not implemented yet.
-    NotYet,
 }
 
 impl PlannerSchema {
@@ -246,10 +238,6 @@ impl PlannerSchema {
     pub fn all_metrics(&self) -> impl Iterator<Item = &'static (&'static str, MetricType)> {
         COMMON_METRICS.iter().chain(self.metrics.iter())
     }
-
-    pub fn is_implemented(&self) -> bool {
-        self.robots.iter().any(|(_, s)| *s == Support::Yes)
-    }
 }
 
 const LATTICE_PARAMS: [ParamSpec; 3] = [
@@ -271,11 +259,7 @@ const LATTICE_PARAMS: [ParamSpec; 3] = [
 pub const ASTAR: PlannerSchema = PlannerSchema {
     kind: "astar",
     summary: "A* on a lattice of configurations",
-    robots: &[
-        (RobotKind::Point, Support::Yes),
-        (RobotKind::Disk, Support::Yes),
-        (RobotKind::Polygon, Support::Yes),
-    ],
+    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
     params: &[
         LATTICE_PARAMS[0],
         LATTICE_PARAMS[1],
@@ -329,10 +313,7 @@ pub const ASTAR: PlannerSchema = PlannerSchema {
 pub const ONLINE: PlannerSchema = PlannerSchema {
     kind: "online",
     summary: "navigation in an unknown world",
-    robots: &[
-        (RobotKind::Point, Support::Yes),
-        (RobotKind::Disk, Support::Yes),
-    ],
+    robots: &[RobotKind::Point, RobotKind::Disk],
     params: &[
         LATTICE_PARAMS[0],
         LATTICE_PARAMS[1],
@@ -362,11 +343,7 @@ pub const ONLINE: PlannerSchema = PlannerSchema {
 pub const ROADMAP: PlannerSchema = PlannerSchema {
     kind: "roadmap",
     summary: "visibility graph and Dijkstra",
-    robots: &[
-        (RobotKind::Point, Support::Yes),
-        (RobotKind::Disk, Support::Yes),
-        (RobotKind::Polygon, Support::Yes),
-    ],
+    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
     params: &[p(
         "arc_segments",
         at_least(8.0, true),
@@ -380,10 +357,7 @@ pub const ROADMAP: PlannerSchema = PlannerSchema {
 pub const POTENTIAL: PlannerSchema = PlannerSchema {
     kind: "potential",
     summary: "potential field with random-walk escape",
-    robots: &[
-        (RobotKind::Point, Support::Yes),
-        (RobotKind::Disk, Support::Yes),
-    ],
+    robots: &[RobotKind::Point, RobotKind::Disk],
     params: &[
         p("attract", positive(false), "1", "attractive gain η"),
         p("repulse", positive(false), "1", "repulsive gain d"),
@@ -410,10 +384,7 @@ pub const POTENTIAL: PlannerSchema = PlannerSchema {
 pub const COVERAGE: PlannerSchema = PlannerSchema {
     kind: "coverage",
     summary: "spanning tree coverage of a grid",
-    robots: &[
-        (RobotKind::Disk, Support::Yes),
-        (RobotKind::Polygon, Support::Yes),
-    ],
+    robots: &[RobotKind::Disk, RobotKind::Polygon],
     params: &[
         p(
             "on",
