@@ -313,3 +313,24 @@ fn the_recording_of_online_navigation_has_what_the_robot_knew_and_planned() {
     // Walls are found along the way: some batch of sensed cells has blocked ones.
     assert!(text.contains("/plans/dstar/known/blocked/"));
 }
+
+#[test]
+fn the_recording_of_a_roadmap_has_the_visibility_edges() {
+    let Some(text) = recorded_entities("scenarios/roadmap_segments.scen") else {
+        return;
+    };
+    assert_lists(
+        &text,
+        &[
+            "/plans/cup/roadmap",
+            "/plans/cup/path",
+            "/plans/boxed/roadmap",
+        ],
+    );
+    // The goal inside the closed chain is not reached: no path is drawn.
+    assert!(!text.contains("/plans/boxed/path "));
+    let Some(text) = recorded_entities("scenarios/roadmap_robot.scen") else {
+        return;
+    };
+    assert_lists(&text, &["/plans/triangle/grown", "/plans/triangle/roadmap"]);
+}
