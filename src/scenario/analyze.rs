@@ -852,27 +852,24 @@ impl Analyzer {
         };
         let robot = &robots[robot_index];
         let kind = robot_kind(&robot.shape);
-        match schema.robots.iter().find(|k| **k == kind) {
-            None => {
-                let ok: Vec<&str> = schema.robots.iter().map(|k| k.name()).collect();
-                self.error(
-                    Diag::error(
-                        "scen::analyze::robot_kind",
-                        format!(
-                            "planner `{}` does not plan for {} robots",
-                            schema.kind,
-                            kind.name()
-                        ),
-                    )
-                    .at(p.robot.span, format!("a {} robot", kind.name()))
-                    .help(format!(
-                        "`{}` plans for {} robots",
+        if !schema.robots.contains(&kind) {
+            let ok: Vec<&str> = schema.robots.iter().map(|k| k.name()).collect();
+            self.error(
+                Diag::error(
+                    "scen::analyze::robot_kind",
+                    format!(
+                        "planner `{}` does not plan for {} robots",
                         schema.kind,
-                        ok.join(" and ")
-                    )),
-                );
-            }
-            Some(_) => {}
+                        kind.name()
+                    ),
+                )
+                .at(p.robot.span, format!("a {} robot", kind.name()))
+                .help(format!(
+                    "`{}` plans for {} robots",
+                    schema.kind,
+                    ok.join(" and ")
+                )),
+            );
         }
         let params = self.params(p, schema, Some(robot), world)?;
         Some(Plan {
