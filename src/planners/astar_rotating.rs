@@ -654,9 +654,8 @@ mod tests {
     use super::*;
     use crate::geometry::validator::validate_path;
     use crate::geometry::{Obstacle, Shape};
-    use crate::scenario::{Scenario, loader};
+    use crate::scenario::Scenario;
     use proptest::prelude::*;
-    use std::sync::atomic::{AtomicUsize, Ordering as AtomicOrdering};
 
     const APARTMENT: &str = "world {
   bounds (0, 0) (32, 30)
@@ -675,21 +674,8 @@ mod tests {
 robot rod polygon [(0,0), (8,0), (8,1), (0,1)]
 ";
 
-    /// Loads a scenario from text (written to a fresh temporary file).
     fn load(text: &str) -> Scenario {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, AtomicOrdering::SeqCst);
-        let path = std::env::temp_dir().join(format!(
-            "scen-astar-rotating-{}-{n}.scen",
-            std::process::id()
-        ));
-        std::fs::write(&path, text).expect("write the scenario");
-        let s = loader::load(&path);
-        let _ = std::fs::remove_file(&path);
-        match s {
-            Ok(s) => s,
-            Err(f) => panic!("{:?}", f.diags),
-        }
+        crate::scenario::load_text(text)
     }
 
     /// Runs every plan of the scenario; every path must pass the validator.

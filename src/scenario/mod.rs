@@ -123,3 +123,20 @@ pub struct Check {
     pub line: usize,
     pub span: Span,
 }
+
+/// Loads a scenario from text (written to a fresh temporary file, so
+/// includes and spans work as for a file); panics on diagnostics. For tests.
+#[cfg(test)]
+pub(crate) fn load_text(text: &str) -> Scenario {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let n = COUNTER.fetch_add(1, Ordering::SeqCst);
+    let path = std::env::temp_dir().join(format!("scen-test-{}-{n}.scen", std::process::id()));
+    std::fs::write(&path, text).expect("write the scenario");
+    let s = loader::load(&path);
+    let _ = std::fs::remove_file(&path);
+    match s {
+        Ok(s) => s,
+        Err(f) => panic!("{:?}", f.diags),
+    }
+}

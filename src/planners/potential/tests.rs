@@ -1,22 +1,11 @@
 use super::*;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use crate::geometry::{Obstacle, Shape};
-use crate::scenario::{Scenario, loader};
+use crate::scenario::Scenario;
 use proptest::prelude::*;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// Loads a scenario from text (written to a fresh temporary file).
 fn load(text: &str) -> Scenario {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let n = COUNTER.fetch_add(1, Ordering::SeqCst);
-    let path = std::env::temp_dir().join(format!("scen-potential-{}-{n}.scen", std::process::id()));
-    std::fs::write(&path, text).expect("write the scenario");
-    let s = loader::load(&path);
-    let _ = std::fs::remove_file(&path);
-    match s {
-        Ok(s) => s,
-        Err(f) => panic!("{:?}", f.diags),
-    }
+    crate::scenario::load_text(text)
 }
 
 /// Runs every plan; a found path must start at the start, end at the goal
