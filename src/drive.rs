@@ -13,7 +13,8 @@
 
 use std::collections::BTreeMap;
 
-use crate::geometry::{Config, Point, angle_diff};
+use crate::geometry::polygon::distance_point_segment;
+use crate::geometry::{Config, angle_diff};
 use crate::scenario::{Param, ParamValue};
 
 /// The unit a drive parameter is written in.
@@ -153,18 +154,6 @@ pub struct DriveOutcome {
     pub completed: bool,
 }
 
-/// Distance from `p` to the segment `a`–`b`.
-fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + ab * t)).norm()
-}
-
 /// Drives `path` from its first configuration (heading = its θ).
 pub fn drive(path: &[Config], u: &Unicycle) -> DriveOutcome {
     let Some(first) = path.first() else {
@@ -191,7 +180,7 @@ pub fn drive(path: &[Config], u: &Unicycle) -> DriveOutcome {
             steps += 1;
             t = steps as f64 * u.dt;
             samples.push((t, *state));
-            max_dev = max_dev.max(segment_distance(state.xy(), from, to));
+            max_dev = max_dev.max(distance_point_segment(state.xy(), from, to));
             true
         };
         if (to - state.xy()).norm() <= u.reach {

@@ -26,7 +26,8 @@
 //! boundary), and the square of half-width `2·TOUCH_EPS` around a grid corner
 //! whose four cells are blocked — because those lie inside the obstacle.
 
-use super::{Aabb, Point, Shape, TOUCH_EPS, Vector, World, polygon};
+use super::polygon::{self, distance_point_segment};
+use super::{Aabb, Point, Shape, TOUCH_EPS, Vector, World};
 
 /// Obstacles of a world prepared for fast queries by the planners.
 ///
@@ -826,18 +827,6 @@ fn seam_end_margin(outline: &[Point], a: Point, b: Point) -> f64 {
 fn cell_index(v: f64, n: usize) -> usize {
     let i = v as i64;
     if i <= 0 { 0 } else { (i as usize).min(n - 1) }
-}
-
-#[inline]
-fn distance_point_segment(x: Point, a: Point, b: Point) -> f64 {
-    let ab = b - a;
-    let len2 = ab.norm_squared();
-    let t = if len2 > 0.0 {
-        ((x - a).dot(&ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (x - (a + ab * t)).norm()
 }
 
 #[inline]

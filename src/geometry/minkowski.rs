@@ -372,18 +372,6 @@ mod tests {
         poly(&[(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
     }
 
-    /// Distance from `q` to the closed segment `ab`.
-    fn seg_dist(q: Point, a: Point, b: Point) -> f64 {
-        let ab = b - a;
-        let l2 = ab.norm_squared();
-        let t = if l2 > 0.0 {
-            ((q - a).dot(&ab) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (q - (a + ab * t)).norm()
-    }
-
     /// Distance from `q` to the boundary of the ring (a point or segment
     /// for 1 or 2 points).
     fn boundary_dist(ring: &[Point], q: Point) -> f64 {
@@ -392,7 +380,9 @@ mod tests {
             return (q - ring[0]).norm();
         }
         (0..n)
-            .map(|i| seg_dist(q, ring[i], ring[(i + 1) % n]))
+            .map(|i| {
+                crate::geometry::polygon::distance_point_segment(q, ring[i], ring[(i + 1) % n])
+            })
             .fold(f64::INFINITY, f64::min)
     }
 

@@ -63,8 +63,10 @@ fn length_tolerance(points: &[Point]) -> f64 {
     REL_TOL * extent(points)
 }
 
-/// Distance from `p` to the closed segment `ab`.
-fn distance_point_segment(p: Point, a: Point, b: Point) -> f64 {
+/// The point of the closed segment `ab` closest to `p` (`a` when the
+/// segment is a point).
+#[inline]
+pub fn closest_point_on_segment(p: Point, a: Point, b: Point) -> Point {
     let ab = b - a;
     let len2 = ab.norm_squared();
     let t = if len2 > 0.0 {
@@ -72,7 +74,13 @@ fn distance_point_segment(p: Point, a: Point, b: Point) -> f64 {
     } else {
         0.0
     };
-    (p - (a + ab * t)).norm()
+    a + ab * t
+}
+
+/// Distance from `p` to the closed segment `ab`.
+#[inline]
+pub fn distance_point_segment(p: Point, a: Point, b: Point) -> f64 {
+    (p - closest_point_on_segment(p, a, b)).norm()
 }
 
 /// Distance between the closed segments `ab` and `cd` (0 when they meet).

@@ -23,6 +23,7 @@
 //! Primitives are numbered source by source, so a bucket lists a source's
 //! primitives together and the per-source minimum is a running minimum.
 
+use crate::geometry::polygon::closest_point_on_segment;
 use crate::geometry::{Aabb, Grid, Point, Shape, Vector, World};
 
 /// The closed-form shapes whose closest points make up a source's.
@@ -38,16 +39,7 @@ impl Prim {
     #[inline]
     fn closest(&self, x: Point) -> (Point, f64) {
         let b = match *self {
-            Prim::Segment(a, b) => {
-                let ab = b - a;
-                let l2 = ab.norm_squared();
-                let t = if l2 > 0.0 {
-                    ((x - a).dot(&ab) / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                a + ab * t
-            }
+            Prim::Segment(a, b) => closest_point_on_segment(x, a, b),
             Prim::Box(b) => Point::new(x.x.clamp(b.min.x, b.max.x), x.y.clamp(b.min.y, b.max.y)),
             Prim::Disk(c, r) => {
                 let d = x - c;
