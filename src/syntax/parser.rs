@@ -985,6 +985,14 @@ impl HelpContext<'_> {
         if self.chunk.rule == Some(Rule::plan_chunk) && (has(Rule::ident) || has(Rule::plan_kind)) {
             return Some("a plan is written `plan NAME KIND ROBOT { PARAMETERS }`".to_string());
         }
+        if has(Rule::kw_origin) && expects("`{`") && is_word {
+            return Some(
+                "a grid's rows go in a block after it, top row first: \
+                 `grid G cell 1 origin (0, 0) { \"..#\" \"...\" }`; or load a map: \
+                 `grid G \"maps/x.map\" cell 1 origin (0, 0)`"
+                    .to_string(),
+            );
+        }
         if let Some(closer) = self.open_closer.filter(|c| expects(c)) {
             return Some(format!("add the missing {closer}"));
         }
@@ -2451,6 +2459,17 @@ expect cover.coverage == 100%
             diags[0].help.as_deref(),
             Some("this `}` has no matching `{`")
         );
+    }
+
+    #[test]
+    fn grid_rows_written_as_a_keyword_get_the_block_syntax() {
+        let text =
+            "world {\n  bounds (0,0) (2,2)\n  grid G cell 1 origin (0, 0) rows [\"..\"]\n}\n";
+        let (_, diags) = parse(text, 0);
+        assert_eq!(diags.len(), 1, "{diags:#?}");
+        assert_eq!(snippet(text, diags[0].span.unwrap()), "rows");
+        let help = diags[0].help.as_deref().unwrap_or_default();
+        assert!(help.starts_with("a grid's rows go in a block"), "{help}");
     }
 
     #[test]
