@@ -248,11 +248,30 @@ impl Treap {
 
 /// Reusable buffers of one sweeping thread.
 pub(crate) struct SweepBuffers {
-    keyed: Vec<(f64, f64, u32)>,
+    keyed: Vec<(u64, u64, u32)>,
     group_of: Vec<u32>,
+    groups: Vec<(usize, usize)>,
     ends: Vec<(u32, u32)>,
     order: Vec<u32>,
+    /// Per group, the segments entering the tree there (`enter[enter_at[g]
+    /// ..enter_at[g + 1]]`), and likewise those leaving it.
+    enter_at: Vec<u32>,
+    enter: Vec<u32>,
+    leave_at: Vec<u32>,
+    leave: Vec<u32>,
+    /// Per segment: its end points and `(a, b - a)`, contiguous for the
+    /// comparisons of the tree.
+    lines: Vec<Line>,
     treap: Treap,
+}
+
+/// A segment's ends and the vector along it, as [`ray_t`] reads them.
+#[derive(Clone, Copy)]
+struct Line {
+    a: u32,
+    b: u32,
+    pa: Point,
+    ab: Vector,
 }
 
 impl SweepBuffers {
@@ -260,10 +279,53 @@ impl SweepBuffers {
         SweepBuffers {
             keyed: Vec::with_capacity(arr.points.len()),
             group_of: Vec::with_capacity(arr.points.len()),
+            groups: Vec::with_capacity(arr.points.len()),
             ends: Vec::with_capacity(arr.segs.len()),
             order: Vec::with_capacity(arr.points.len()),
+            enter_at: Vec::with_capacity(arr.points.len() + 1),
+            enter: Vec::with_capacity(arr.segs.len()),
+            leave_at: Vec::with_capacity(arr.points.len() + 1),
+            leave: Vec::with_capacity(arr.segs.len()),
+            lines: arr
+                .segs
+                .iter()
+                .map(|g| {
+                    let (pa, pb) = (arr.points[g.a as usize], arr.points[g.b as usize]);
+                    Line {
+                        a: g.a,
+                        b: g.b,
+                        pa,
+                        ab: pb - pa,
+                    }
+                })
+                .collect(),
             treap: Treap::new(arr.segs.len()),
         }
+    }
+}
+
+/// Buckets the segments by group: `at[g]..at[g + 1]` indexes `out` for the
+/// segments whose `group(s)` is `g` (in increasing segment order).
+fn bucket(
+    groups: usize,
+    segs: impl Iterator<Item = (u32, u32)> + Clone,
+    at: &mut Vec<u32>,
+    out: &mut Vec<u32>,
+) {
+    at.clear();
+    at.resize(groups + 1, 0);
+    for (_, g) in segs.clone() {
+        at[g as usize + 1] += 1;
+    }
+    for g in 0..groups {
+        at[g + 1] += at[g];
+    }
+    out.clear();
+    out.resize(at[groups] as usize, 0);
+    let mut next: Vec<u32> = at[..groups].to_vec();
+    for (s, g) in segs {
+        out[next[g as usize] as usize] = s;
+        next[g as usize] += 1;
     }
 }
 
@@ -271,11 +333,52 @@ impl SweepBuffers {
 fn ray_t(arr: &Arrangement, s: u32, pv: Point, d: Vector) -> f64 {
     let seg = arr.segs[s as usize];
     let (a, b) = (arr.points[seg.a as usize], arr.points[seg.b as usize]);
-    let den = d.perp(&(b - a));
+    line_t(a, b - a, pv, d)
+}
+
+/// Where the line `a + u·ab` meets the ray `pv + t·d`, as `t`.
+#[inline]
+fn line_t(a: Point, ab: Vector, pv: Point, d: Vector) -> f64 {
+    let den = d.perp(&ab);
     if den == 0.0 {
         return f64::INFINITY;
     }
-    (a - pv).perp(&(b - a)) / den
+    (a - pv).perp(&ab) / den
+}
+
+/// Inserts (`remove == false`) or removes segment `x` in the tree ordered
+/// by [`seg_cmp`] along the ray `pv + t·d`: the distance of `x` is computed
+/// once, and [`seg_cmp`] itself is called only for segments sharing an end
+/// with `x` (the only case where it does not compare distances).
+#[allow(clippy::too_many_arguments)]
+fn update(
+    arr: &Arrangement,
+    treap: &mut Treap,
+    lines: &[Line],
+    pv: Point,
+    d: Vector,
+    after: bool,
+    on_ray: impl Fn(u32) -> bool + Copy,
+    x: u32,
+    remove: bool,
+) {
+    let lx = lines[x as usize];
+    let tx = line_t(lx.pa, lx.ab, pv, d);
+    let cmp = |e: u32, x: u32| {
+        if e == x {
+            return Ordering::Equal;
+        }
+        let le = lines[e as usize];
+        if le.a == lx.a || le.a == lx.b || le.b == lx.a || le.b == lx.b {
+            return seg_cmp(arr, pv, d, after, on_ray, e, x);
+        }
+        line_t(le.pa, le.ab, pv, d).total_cmp(&tx).then(e.cmp(&x))
+    };
+    if remove {
+        treap.remove(x, &cmp);
+    } else {
+        treap.insert(x, &cmp);
+    }
 }
 
 /// Orders the segments crossing the ray `pv + t·d` by distance; two
@@ -338,10 +441,10 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             } else {
                 3.0 + q
             };
-            (key, w.norm_squared(), p)
+            // Both keys are non-negative: their bits order as they do.
+            (key.to_bits(), w.norm_squared().to_bits(), p)
         }));
-    buf.keyed
-        .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    buf.keyed.sort_unstable_by_key(|k| (k.0, k.1));
     buf.order.clear();
     buf.order.extend(buf.keyed.iter().map(|k| k.2));
     let order = &mut buf.order;
@@ -359,7 +462,8 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
     let group_of = &mut buf.group_of;
     group_of.clear();
     group_of.resize(arr.points.len(), u32::MAX);
-    let mut groups: Vec<(usize, usize)> = Vec::new();
+    let groups = &mut buf.groups;
+    groups.clear();
     let mut i = 0;
     while i < order.len() {
         let mut j = i + 1;
@@ -408,15 +512,34 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
     seg_ends.clear();
     seg_ends.extend((0..arr.segs.len() as u32).map(|s| ends(s).unwrap_or((NIL, NIL))));
     let seg_ends = &*seg_ends;
+    let group_of = &*group_of;
+    // The segments entering and leaving the tree, bucketed by group.
+    let blocking = || {
+        seg_ends
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.0 != NIL)
+            .map(|(s, &e)| (s as u32, e))
+    };
+    bucket(
+        groups.len(),
+        blocking().map(|(s, (f, _))| (s, group_of[f as usize])),
+        &mut buf.enter_at,
+        &mut buf.enter,
+    );
+    bucket(
+        groups.len(),
+        blocking().map(|(s, (_, l))| (s, group_of[l as usize])),
+        &mut buf.leave_at,
+        &mut buf.leave,
+    );
+    let lines = &buf.lines;
     let treap = &mut buf.treap;
     treap.clear();
-    {
-        let cmp =
-            |a: u32, b: u32| seg_cmp(arr, pv, x_axis, false, |p| group_of[p as usize] == 0, a, b);
-        for (s, &(f, l)) in seg_ends.iter().enumerate() {
-            if f != NIL && group_of[f as usize] > group_of[l as usize] {
-                treap.insert(s as u32, &cmp);
-            }
+    let on_first = |p: u32| group_of[p as usize] == 0;
+    for (s, (f, l)) in blocking() {
+        if group_of[f as usize] > group_of[l as usize] {
+            update(arr, treap, lines, pv, x_axis, false, on_first, s, false);
         }
     }
 
@@ -425,15 +548,8 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         let d = arr.points[group[0] as usize] - pv;
         let on_ray = |p: u32| group_of[p as usize] == gi as u32;
         // 1. Segments ending here (their last end) leave.
-        {
-            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, false, on_ray, a, b);
-            for &p in group {
-                for &s in &arr.incident[p as usize] {
-                    if seg_ends[s as usize].1 == p {
-                        treap.remove(s, &cmp);
-                    }
-                }
-            }
+        for &s in &buf.leave[buf.leave_at[gi] as usize..buf.leave_at[gi + 1] as usize] {
+            update(arr, treap, lines, pv, d, false, on_ray, s, true);
         }
         // 2. The nearest proper crossing.
         let t_min = treap
@@ -460,15 +576,8 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             }
         }
         // 4. Segments starting here (their first end) enter.
-        {
-            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, true, on_ray, a, b);
-            for &p in group {
-                for &s in &arr.incident[p as usize] {
-                    if seg_ends[s as usize].0 == p {
-                        treap.insert(s, &cmp);
-                    }
-                }
-            }
+        for &s in &buf.enter[buf.enter_at[gi] as usize..buf.enter_at[gi + 1] as usize] {
+            update(arr, treap, lines, pv, d, true, on_ray, s, false);
         }
     }
 }
