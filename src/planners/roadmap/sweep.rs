@@ -1,22 +1,23 @@
 //! Visibility among the arrangement's points by a rotational plane sweep
-//! (Lee's algorithm): O(n log n) per node, O(n² log n) in all.
+//! (Lee's algorithm): O(n log n + n·k) per node, k the segments crossing a
+//! ray (a handful in scattered worlds, at most n).
 //!
 //! Around a node `v`, the other points are visited in counter-clockwise
-//! order (then by distance); a balanced tree (a treap) holds the segments
+//! order (then by distance); a sorted list ([`Status`]) holds the segments
 //! that cross the current ray, ordered by their distance along it. The
 //! segments of the arrangement never cross, so that order does not change
-//! while a segment is in the tree. At each ray (the points exactly on it,
+//! while a segment is in the list. At each ray (the points exactly on it,
 //! nearest first):
 //! 1. the segments ending on the ray and lying clockwise of it leave the
-//!    tree;
-//! 2. the nearest segment left in the tree crosses the ray properly: every
+//!    list;
+//! 2. the nearest segment left in the list crosses the ray properly: every
 //!    point beyond it is hidden;
 //! 3. the points are walked outwards, as a straight motion from `v` would
 //!    meet them ([`Chain`]): it may not enter a polygon's interior at `v`,
 //!    at a point it passes or at the point it reaches, nor pass from one
 //!    side of the walls to the other;
 //! 4. the segments starting on the ray and lying counter-clockwise of it
-//!    enter the tree.
+//!    enter the list.
 
 use std::cmp::Ordering;
 
@@ -119,128 +120,53 @@ impl Chain {
     }
 }
 
-// ------------------------------------------------------------------ treap
+// ----------------------------------------------------------------- status
 
 const NIL: u32 = u32::MAX;
 
-/// A treap over segment ids, ordered by a comparator given to each call.
-struct Treap {
-    left: Vec<u32>,
-    right: Vec<u32>,
-    prio: Vec<u64>,
-    root: u32,
+/// The segments crossing the ray, nearest first, ordered by a comparator
+/// given to each call: a sorted `Vec`. Along a ray through a world of
+/// scattered obstacles only a handful of segments cross it, where binary
+/// search and a short move beat a balanced tree by far; an update costs
+/// O(log k) comparisons and a move of O(k) ids, k the segments crossing.
+struct Status {
+    items: Vec<u32>,
 }
 
-fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-impl Treap {
+impl Status {
     fn new(n: usize) -> Self {
-        Treap {
-            left: vec![NIL; n],
-            right: vec![NIL; n],
-            prio: (0..n as u64).map(mix).collect(),
-            root: NIL,
+        Status {
+            items: Vec::with_capacity(n.min(1024)),
         }
     }
 
-    /// Splits `t` into the elements for which `go_left` holds (a prefix of
-    /// the order) and the rest.
-    fn split(&mut self, t: u32, go_left: &mut impl FnMut(u32) -> bool) -> (u32, u32) {
-        if t == NIL {
-            return (NIL, NIL);
-        }
-        let i = t as usize;
-        if go_left(t) {
-            let (l, r) = self.split(self.right[i], go_left);
-            self.right[i] = l;
-            (t, r)
-        } else {
-            let (l, r) = self.split(self.left[i], go_left);
-            self.left[i] = r;
-            (l, t)
-        }
-    }
-
-    fn merge(&mut self, a: u32, b: u32) -> u32 {
-        if a == NIL {
-            return b;
-        }
-        if b == NIL {
-            return a;
-        }
-        if self.prio[a as usize] > self.prio[b as usize] {
-            let r = self.right[a as usize];
-            self.right[a as usize] = self.merge(r, b);
-            a
-        } else {
-            let l = self.left[b as usize];
-            self.left[b as usize] = self.merge(a, l);
-            b
-        }
+    /// Where `x` goes: after the prefix that orders before it.
+    fn position(&self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) -> usize {
+        self.items.partition_point(|&e| cmp(e, x) == Ordering::Less)
     }
 
     fn insert(&mut self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) {
-        self.left[x as usize] = NIL;
-        self.right[x as usize] = NIL;
-        let (l, r) = self.split(self.root, &mut |e| cmp(e, x) == Ordering::Less);
-        let l = self.merge(l, x);
-        self.root = self.merge(l, r);
+        let i = self.position(x, cmp);
+        self.items.insert(i, x);
     }
 
     /// Removes `x`; if the order was broken by rounding and `x` is not
-    /// where the comparator says, removes it by a linear rebuild.
+    /// where the comparator says, finds it by a linear search.
     fn remove(&mut self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) {
-        let (l, r) = self.split(self.root, &mut |e| cmp(e, x) == Ordering::Less);
-        let (m, r) = self.split(r, &mut |e| cmp(e, x) != Ordering::Greater);
-        if m == x && self.left[x as usize] == NIL && self.right[x as usize] == NIL {
-            self.root = self.merge(l, r);
-            return;
+        let i = self.position(x, cmp);
+        if self.items.get(i) == Some(&x) {
+            self.items.remove(i);
+        } else if let Some(i) = self.items.iter().position(|&e| e == x) {
+            self.items.remove(i);
         }
-        let lm = self.merge(l, m);
-        let all = self.merge(lm, r);
-        let mut items = Vec::new();
-        self.collect(all, &mut items);
-        self.root = NIL;
-        for e in items.into_iter().filter(|&e| e != x) {
-            self.left[e as usize] = NIL;
-            self.right[e as usize] = NIL;
-            self.root = self.merge(self.root, e);
-        }
-    }
-
-    fn collect(&self, t: u32, out: &mut Vec<u32>) {
-        if t == NIL {
-            return;
-        }
-        self.collect(self.left[t as usize], out);
-        out.push(t);
-        self.collect(self.right[t as usize], out);
     }
 
     fn first(&self) -> Option<u32> {
-        let mut t = self.root;
-        if t == NIL {
-            return None;
-        }
-        while self.left[t as usize] != NIL {
-            t = self.left[t as usize];
-        }
-        Some(t)
+        self.items.first().copied()
     }
 
     fn clear(&mut self) {
-        let mut items = Vec::new();
-        self.collect(self.root, &mut items);
-        for e in items {
-            self.left[e as usize] = NIL;
-            self.right[e as usize] = NIL;
-        }
-        self.root = NIL;
+        self.items.clear();
     }
 }
 
@@ -253,16 +179,16 @@ pub(crate) struct SweepBuffers {
     groups: Vec<(usize, usize)>,
     ends: Vec<(u32, u32)>,
     order: Vec<u32>,
-    /// Per group, the segments entering the tree there (`enter[enter_at[g]
+    /// Per group, the segments entering the list there (`enter[enter_at[g]
     /// ..enter_at[g + 1]]`), and likewise those leaving it.
     enter_at: Vec<u32>,
     enter: Vec<u32>,
     leave_at: Vec<u32>,
     leave: Vec<u32>,
     /// Per segment: its end points and `(a, b - a)`, contiguous for the
-    /// comparisons of the tree.
+    /// comparisons of the list.
     lines: Vec<Line>,
-    treap: Treap,
+    status: Status,
 }
 
 /// A segment's ends and the vector along it, as [`ray_t`] reads them.
@@ -299,7 +225,7 @@ impl SweepBuffers {
                     }
                 })
                 .collect(),
-            treap: Treap::new(arr.segs.len()),
+            status: Status::new(arr.segs.len()),
         }
     }
 }
@@ -346,14 +272,14 @@ fn line_t(a: Point, ab: Vector, pv: Point, d: Vector) -> f64 {
     (a - pv).perp(&ab) / den
 }
 
-/// Inserts (`remove == false`) or removes segment `x` in the tree ordered
+/// Inserts (`remove == false`) or removes segment `x` in the list ordered
 /// by [`seg_cmp`] along the ray `pv + t·d`: the distance of `x` is computed
 /// once, and [`seg_cmp`] itself is called only for segments sharing an end
 /// with `x` (the only case where it does not compare distances).
 #[allow(clippy::too_many_arguments)]
 fn update(
     arr: &Arrangement,
-    treap: &mut Treap,
+    status: &mut Status,
     lines: &[Line],
     pv: Point,
     d: Vector,
@@ -375,9 +301,9 @@ fn update(
         line_t(le.pa, le.ab, pv, d).total_cmp(&tx).then(e.cmp(&x))
     };
     if remove {
-        treap.remove(x, &cmp);
+        status.remove(x, &cmp);
     } else {
-        treap.insert(x, &cmp);
+        status.insert(x, &cmp);
     }
 }
 
@@ -455,7 +381,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             j -= 1;
         }
     }
-    // Group the points by exact direction; each segment enters the tree at
+    // Group the points by exact direction; each segment enters the list at
     // its counter-clockwise-first end's group and leaves at the other's
     // (one decision per segment, so rounding cannot make them disagree).
     let order = &buf.order;
@@ -507,13 +433,13 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         (group_of[f as usize] != group_of[l as usize]).then_some((f, l))
     };
     // Each segment's ends, decided once per sweep (`NIL` when it never
-    // enters the tree).
+    // enters the list).
     let seg_ends = &mut buf.ends;
     seg_ends.clear();
     seg_ends.extend((0..arr.segs.len() as u32).map(|s| ends(s).unwrap_or((NIL, NIL))));
     let seg_ends = &*seg_ends;
     let group_of = &*group_of;
-    // The segments entering and leaving the tree, bucketed by group.
+    // The segments entering and leaving the list, bucketed by group.
     let blocking = || {
         seg_ends
             .iter()
@@ -534,12 +460,12 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         &mut buf.leave,
     );
     let lines = &buf.lines;
-    let treap = &mut buf.treap;
-    treap.clear();
+    let status = &mut buf.status;
+    status.clear();
     let on_first = |p: u32| group_of[p as usize] == 0;
     for (s, (f, l)) in blocking() {
         if group_of[f as usize] > group_of[l as usize] {
-            update(arr, treap, lines, pv, x_axis, false, on_first, s, false);
+            update(arr, status, lines, pv, x_axis, false, on_first, s, false);
         }
     }
 
@@ -549,10 +475,10 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         let on_ray = |p: u32| group_of[p as usize] == gi as u32;
         // 1. Segments ending here (their last end) leave.
         for &s in &buf.leave[buf.leave_at[gi] as usize..buf.leave_at[gi + 1] as usize] {
-            update(arr, treap, lines, pv, d, false, on_ray, s, true);
+            update(arr, status, lines, pv, d, false, on_ray, s, true);
         }
         // 2. The nearest proper crossing.
-        let t_min = treap
+        let t_min = status
             .first()
             .map_or(f64::INFINITY, |s| ray_t(arr, s, pv, d));
         // 3. Walk the points outwards (unless the nearest is hidden).
@@ -577,7 +503,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         }
         // 4. Segments starting here (their first end) enter.
         for &s in &buf.enter[buf.enter_at[gi] as usize..buf.enter_at[gi + 1] as usize] {
-            update(arr, treap, lines, pv, d, true, on_ray, s, false);
+            update(arr, status, lines, pv, d, true, on_ray, s, false);
         }
     }
 }
