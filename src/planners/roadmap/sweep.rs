@@ -174,7 +174,7 @@ impl Status {
 
 /// Reusable buffers of one sweeping thread.
 pub(crate) struct SweepBuffers {
-    keyed: Vec<(u64, u64, u32)>,
+    keyed: Vec<(u64, u32)>,
     group_of: Vec<u32>,
     groups: Vec<(usize, usize)>,
     ends: Vec<(u32, u32)>,
@@ -248,11 +248,14 @@ fn bucket(
     }
     out.clear();
     out.resize(at[groups] as usize, 0);
-    let mut next: Vec<u32> = at[..groups].to_vec();
+    // Fill each bucket from its start, which moves `at[g]` to the start of
+    // bucket `g + 1`; then shift the starts back into place.
     for (s, g) in segs {
-        out[next[g as usize] as usize] = s;
-        next[g as usize] += 1;
+        out[at[g as usize] as usize] = s;
+        at[g as usize] += 1;
     }
+    at.copy_within(0..groups, 1);
+    at[0] = 0;
 }
 
 /// Where segment `s` meets the ray `pv + t·d`, as `t`.
@@ -367,12 +370,14 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             } else {
                 3.0 + q
             };
-            // Both keys are non-negative: their bits order as they do.
-            (key.to_bits(), w.norm_squared().to_bits(), p)
+            // The key is non-negative: its bits order as it does. Points
+            // on one direction (equal keys) are put in order of distance
+            // by the insertion pass below.
+            (key.to_bits(), p)
         }));
-    buf.keyed.sort_unstable_by_key(|k| (k.0, k.1));
+    buf.keyed.sort_unstable_by_key(|k| k.0);
     buf.order.clear();
-    buf.order.extend(buf.keyed.iter().map(|k| k.2));
+    buf.order.extend(buf.keyed.iter().map(|k| k.1));
     let order = &mut buf.order;
     for i in 1..order.len() {
         let mut j = i;
