@@ -174,7 +174,7 @@ impl Status {
 
 /// Reusable buffers of one sweeping thread.
 pub(crate) struct SweepBuffers {
-    keyed: Vec<(u64, u32)>,
+    keyed: Vec<(u64, u64, u32)>,
     group_of: Vec<u32>,
     groups: Vec<(usize, usize)>,
     ends: Vec<(u32, u32)>,
@@ -370,14 +370,14 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             } else {
                 3.0 + q
             };
-            // The key is non-negative: its bits order as it does. Points
-            // on one direction (equal keys) are put in order of distance
-            // by the insertion pass below.
-            (key.to_bits(), p)
+            // Both keys are non-negative: their bits order as they do.
+            // (Ordering by distance too keeps the insertion pass linear on
+            // the many collinear points of axis-aligned worlds.)
+            (key.to_bits(), w.norm_squared().to_bits(), p)
         }));
-    buf.keyed.sort_unstable_by_key(|k| k.0);
+    buf.keyed.sort_unstable_by_key(|k| (k.0, k.1));
     buf.order.clear();
-    buf.order.extend(buf.keyed.iter().map(|k| k.1));
+    buf.order.extend(buf.keyed.iter().map(|k| k.2));
     let order = &mut buf.order;
     for i in 1..order.len() {
         let mut j = i;
