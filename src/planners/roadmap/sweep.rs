@@ -293,6 +293,8 @@ fn update(
 ) {
     let lx = lines[x as usize];
     let tx = line_t(lx.pa, lx.ab, pv, d);
+    // tx = nx / dx as line_t computes it.
+    let (nx, dx) = ((lx.pa - pv).perp(&lx.ab), d.perp(&lx.ab));
     let cmp = |e: u32, x: u32| {
         if e == x {
             return Ordering::Equal;
@@ -301,6 +303,10 @@ fn update(
         if le.a == lx.a || le.a == lx.b || le.b == lx.a || le.b == lx.b {
             return seg_cmp(arr, pv, d, after, on_ray, e, x);
         }
+        let (ne, de) = ((le.pa - pv).perp(&le.ab), d.perp(&le.ab));
+        if let Some(ord) = quotient_cmp(ne, de, nx, dx) {
+            return ord;
+        }
         line_t(le.pa, le.ab, pv, d).total_cmp(&tx).then(e.cmp(&x))
     };
     if remove {
@@ -308,6 +314,30 @@ fn update(
     } else {
         status.insert(x, &cmp);
     }
+}
+
+/// Compares `ne / de` with `nx / dx` without dividing, when the products
+/// decide it with a wide margin: the quotients then differ by far more than
+/// their rounding, so `f64::total_cmp` of the rounded quotients agrees.
+/// `None` when a term is zero (signed zeros, infinite quotients), the
+/// margin is too thin or not a number.
+#[inline]
+fn quotient_cmp(ne: f64, de: f64, nx: f64, dx: f64) -> Option<Ordering> {
+    if ne == 0.0 || de == 0.0 || nx == 0.0 || dx == 0.0 {
+        return None;
+    }
+    let (p, q) = (ne * dx, nx * de);
+    let gap = (p - q).abs();
+    if gap.is_nan() || gap <= 1e-9 * (p.abs() + q.abs()) {
+        return None;
+    }
+    // ne/de < nx/dx  ⇔  ne·dx < nx·de when de·dx > 0, reversed otherwise.
+    let less = (p < q) == ((de > 0.0) == (dx > 0.0));
+    Some(if less {
+        Ordering::Less
+    } else {
+        Ordering::Greater
+    })
 }
 
 /// Orders the segments crossing the ray `pv + t·d` by distance; two
