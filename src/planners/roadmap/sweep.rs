@@ -174,7 +174,7 @@ impl Status {
 
 /// Reusable buffers of one sweeping thread.
 pub(crate) struct SweepBuffers {
-    keyed: Vec<(u64, u64, u32)>,
+    keyed: Vec<(u64, u32)>,
     group_of: Vec<u32>,
     groups: Vec<(usize, usize)>,
     ends: Vec<(u32, u32)>,
@@ -292,8 +292,7 @@ fn update(
     remove: bool,
 ) {
     let lx = lines[x as usize];
-    let tx = line_t(lx.pa, lx.ab, pv, d);
-    // tx = nx / dx as line_t computes it.
+    // x's distance is nx / dx as line_t computes it.
     let (nx, dx) = ((lx.pa - pv).perp(&lx.ab), d.perp(&lx.ab));
     let cmp = |e: u32, x: u32| {
         if e == x {
@@ -307,7 +306,9 @@ fn update(
         if let Some(ord) = quotient_cmp(ne, de, nx, dx) {
             return ord;
         }
-        line_t(le.pa, le.ab, pv, d).total_cmp(&tx).then(e.cmp(&x))
+        line_t(le.pa, le.ab, pv, d)
+            .total_cmp(&line_t(lx.pa, lx.ab, pv, d))
+            .then(e.cmp(&x))
     };
     if remove {
         status.remove(x, &cmp);
@@ -400,14 +401,16 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             } else {
                 3.0 + q
             };
-            // Both keys are non-negative: their bits order as they do.
-            // (Ordering by distance too keeps the insertion pass linear on
-            // the many collinear points of axis-aligned worlds.)
-            (key.to_bits(), w.norm_squared().to_bits(), p)
+            // The key is non-negative: its bits order as it does.
+            (key.to_bits(), p)
         }));
-    buf.keyed.sort_unstable_by_key(|k| (k.0, k.1));
+    // Equal keys (one direction) by distance, which keeps the insertion
+    // pass linear on the many collinear points of axis-aligned worlds.
+    let dist = |p: u32| (arr.points[p as usize] - pv).norm_squared();
+    buf.keyed
+        .sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| dist(a.1).total_cmp(&dist(b.1))));
     buf.order.clear();
-    buf.order.extend(buf.keyed.iter().map(|k| k.2));
+    buf.order.extend(buf.keyed.iter().map(|k| k.1));
     let order = &mut buf.order;
     for i in 1..order.len() {
         let mut j = i;
