@@ -1,22 +1,23 @@
 //! Visibility among the arrangement's points by a rotational plane sweep
-//! (Lee's algorithm): O(n log n) per node, O(n² log n) in all.
+//! (Lee's algorithm): O(n log n + n·k) per node, k the segments crossing a
+//! ray (a handful in scattered worlds, at most n).
 //!
 //! Around a node `v`, the other points are visited in counter-clockwise
-//! order (then by distance); a balanced tree (a treap) holds the segments
+//! order (then by distance); a sorted list ([`Status`]) holds the segments
 //! that cross the current ray, ordered by their distance along it. The
 //! segments of the arrangement never cross, so that order does not change
-//! while a segment is in the tree. At each ray (the points exactly on it,
+//! while a segment is in the list. At each ray (the points exactly on it,
 //! nearest first):
 //! 1. the segments ending on the ray and lying clockwise of it leave the
-//!    tree;
-//! 2. the nearest segment left in the tree crosses the ray properly: every
+//!    list;
+//! 2. the nearest segment left in the list crosses the ray properly: every
 //!    point beyond it is hidden;
 //! 3. the points are walked outwards, as a straight motion from `v` would
 //!    meet them ([`Chain`]): it may not enter a polygon's interior at `v`,
 //!    at a point it passes or at the point it reaches, nor pass from one
 //!    side of the walls to the other;
 //! 4. the segments starting on the ray and lying counter-clockwise of it
-//!    enter the tree.
+//!    enter the list.
 
 use std::cmp::Ordering;
 
@@ -119,128 +120,53 @@ impl Chain {
     }
 }
 
-// ------------------------------------------------------------------ treap
+// ----------------------------------------------------------------- status
 
 const NIL: u32 = u32::MAX;
 
-/// A treap over segment ids, ordered by a comparator given to each call.
-struct Treap {
-    left: Vec<u32>,
-    right: Vec<u32>,
-    prio: Vec<u64>,
-    root: u32,
+/// The segments crossing the ray, nearest first, ordered by a comparator
+/// given to each call: a sorted `Vec`. Along a ray through a world of
+/// scattered obstacles only a handful of segments cross it, where binary
+/// search and a short move beat a balanced tree by far; an update costs
+/// O(log k) comparisons and a move of O(k) ids, k the segments crossing.
+struct Status {
+    items: Vec<u32>,
 }
 
-fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-impl Treap {
+impl Status {
     fn new(n: usize) -> Self {
-        Treap {
-            left: vec![NIL; n],
-            right: vec![NIL; n],
-            prio: (0..n as u64).map(mix).collect(),
-            root: NIL,
+        Status {
+            items: Vec::with_capacity(n.min(1024)),
         }
     }
 
-    /// Splits `t` into the elements for which `go_left` holds (a prefix of
-    /// the order) and the rest.
-    fn split(&mut self, t: u32, go_left: &mut impl FnMut(u32) -> bool) -> (u32, u32) {
-        if t == NIL {
-            return (NIL, NIL);
-        }
-        let i = t as usize;
-        if go_left(t) {
-            let (l, r) = self.split(self.right[i], go_left);
-            self.right[i] = l;
-            (t, r)
-        } else {
-            let (l, r) = self.split(self.left[i], go_left);
-            self.left[i] = r;
-            (l, t)
-        }
-    }
-
-    fn merge(&mut self, a: u32, b: u32) -> u32 {
-        if a == NIL {
-            return b;
-        }
-        if b == NIL {
-            return a;
-        }
-        if self.prio[a as usize] > self.prio[b as usize] {
-            let r = self.right[a as usize];
-            self.right[a as usize] = self.merge(r, b);
-            a
-        } else {
-            let l = self.left[b as usize];
-            self.left[b as usize] = self.merge(a, l);
-            b
-        }
+    /// Where `x` goes: after the prefix that orders before it.
+    fn position(&self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) -> usize {
+        self.items.partition_point(|&e| cmp(e, x) == Ordering::Less)
     }
 
     fn insert(&mut self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) {
-        self.left[x as usize] = NIL;
-        self.right[x as usize] = NIL;
-        let (l, r) = self.split(self.root, &mut |e| cmp(e, x) == Ordering::Less);
-        let l = self.merge(l, x);
-        self.root = self.merge(l, r);
+        let i = self.position(x, cmp);
+        self.items.insert(i, x);
     }
 
     /// Removes `x`; if the order was broken by rounding and `x` is not
-    /// where the comparator says, removes it by a linear rebuild.
+    /// where the comparator says, finds it by a linear search.
     fn remove(&mut self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) {
-        let (l, r) = self.split(self.root, &mut |e| cmp(e, x) == Ordering::Less);
-        let (m, r) = self.split(r, &mut |e| cmp(e, x) != Ordering::Greater);
-        if m == x && self.left[x as usize] == NIL && self.right[x as usize] == NIL {
-            self.root = self.merge(l, r);
-            return;
+        let i = self.position(x, cmp);
+        if self.items.get(i) == Some(&x) {
+            self.items.remove(i);
+        } else if let Some(i) = self.items.iter().position(|&e| e == x) {
+            self.items.remove(i);
         }
-        let lm = self.merge(l, m);
-        let all = self.merge(lm, r);
-        let mut items = Vec::new();
-        self.collect(all, &mut items);
-        self.root = NIL;
-        for e in items.into_iter().filter(|&e| e != x) {
-            self.left[e as usize] = NIL;
-            self.right[e as usize] = NIL;
-            self.root = self.merge(self.root, e);
-        }
-    }
-
-    fn collect(&self, t: u32, out: &mut Vec<u32>) {
-        if t == NIL {
-            return;
-        }
-        self.collect(self.left[t as usize], out);
-        out.push(t);
-        self.collect(self.right[t as usize], out);
     }
 
     fn first(&self) -> Option<u32> {
-        let mut t = self.root;
-        if t == NIL {
-            return None;
-        }
-        while self.left[t as usize] != NIL {
-            t = self.left[t as usize];
-        }
-        Some(t)
+        self.items.first().copied()
     }
 
     fn clear(&mut self) {
-        let mut items = Vec::new();
-        self.collect(self.root, &mut items);
-        for e in items {
-            self.left[e as usize] = NIL;
-            self.right[e as usize] = NIL;
-        }
-        self.root = NIL;
+        self.items.clear();
     }
 }
 
@@ -248,11 +174,30 @@ impl Treap {
 
 /// Reusable buffers of one sweeping thread.
 pub(crate) struct SweepBuffers {
-    keyed: Vec<(f64, f64, u32)>,
+    keyed: Vec<(u64, u32)>,
     group_of: Vec<u32>,
+    groups: Vec<(usize, usize)>,
     ends: Vec<(u32, u32)>,
     order: Vec<u32>,
-    treap: Treap,
+    /// Per group, the segments entering the list there (`enter[enter_at[g]
+    /// ..enter_at[g + 1]]`), and likewise those leaving it.
+    enter_at: Vec<u32>,
+    enter: Vec<u32>,
+    leave_at: Vec<u32>,
+    leave: Vec<u32>,
+    /// Per segment: its end points and `(a, b - a)`, contiguous for the
+    /// comparisons of the list.
+    lines: Vec<Line>,
+    status: Status,
+}
+
+/// A segment's ends and the vector along it, as [`ray_t`] reads them.
+#[derive(Clone, Copy)]
+struct Line {
+    a: u32,
+    b: u32,
+    pa: Point,
+    ab: Vector,
 }
 
 impl SweepBuffers {
@@ -260,22 +205,140 @@ impl SweepBuffers {
         SweepBuffers {
             keyed: Vec::with_capacity(arr.points.len()),
             group_of: Vec::with_capacity(arr.points.len()),
+            groups: Vec::with_capacity(arr.points.len()),
             ends: Vec::with_capacity(arr.segs.len()),
             order: Vec::with_capacity(arr.points.len()),
-            treap: Treap::new(arr.segs.len()),
+            enter_at: Vec::with_capacity(arr.points.len() + 1),
+            enter: Vec::with_capacity(arr.segs.len()),
+            leave_at: Vec::with_capacity(arr.points.len() + 1),
+            leave: Vec::with_capacity(arr.segs.len()),
+            lines: arr
+                .segs
+                .iter()
+                .map(|g| {
+                    let (pa, pb) = (arr.points[g.a as usize], arr.points[g.b as usize]);
+                    Line {
+                        a: g.a,
+                        b: g.b,
+                        pa,
+                        ab: pb - pa,
+                    }
+                })
+                .collect(),
+            status: Status::new(arr.segs.len()),
         }
     }
+}
+
+/// Buckets the segments by group: `at[g]..at[g + 1]` indexes `out` for the
+/// segments whose `group(s)` is `g` (in increasing segment order).
+fn bucket(
+    groups: usize,
+    segs: impl Iterator<Item = (u32, u32)> + Clone,
+    at: &mut Vec<u32>,
+    out: &mut Vec<u32>,
+) {
+    at.clear();
+    at.resize(groups + 1, 0);
+    for (_, g) in segs.clone() {
+        at[g as usize + 1] += 1;
+    }
+    for g in 0..groups {
+        at[g + 1] += at[g];
+    }
+    out.clear();
+    out.resize(at[groups] as usize, 0);
+    // Fill each bucket from its start, which moves `at[g]` to the start of
+    // bucket `g + 1`; then shift the starts back into place.
+    for (s, g) in segs {
+        out[at[g as usize] as usize] = s;
+        at[g as usize] += 1;
+    }
+    at.copy_within(0..groups, 1);
+    at[0] = 0;
 }
 
 /// Where segment `s` meets the ray `pv + t·d`, as `t`.
 fn ray_t(arr: &Arrangement, s: u32, pv: Point, d: Vector) -> f64 {
     let seg = arr.segs[s as usize];
     let (a, b) = (arr.points[seg.a as usize], arr.points[seg.b as usize]);
-    let den = d.perp(&(b - a));
+    line_t(a, b - a, pv, d)
+}
+
+/// Where the line `a + u·ab` meets the ray `pv + t·d`, as `t`.
+#[inline]
+fn line_t(a: Point, ab: Vector, pv: Point, d: Vector) -> f64 {
+    let den = d.perp(&ab);
     if den == 0.0 {
         return f64::INFINITY;
     }
-    (a - pv).perp(&(b - a)) / den
+    (a - pv).perp(&ab) / den
+}
+
+/// Inserts (`remove == false`) or removes segment `x` in the list ordered
+/// by [`seg_cmp`] along the ray `pv + t·d`: the distance of `x` is computed
+/// once, and [`seg_cmp`] itself is called only for segments sharing an end
+/// with `x` (the only case where it does not compare distances).
+#[allow(clippy::too_many_arguments)]
+fn update(
+    arr: &Arrangement,
+    status: &mut Status,
+    lines: &[Line],
+    pv: Point,
+    d: Vector,
+    after: bool,
+    on_ray: impl Fn(u32) -> bool + Copy,
+    x: u32,
+    remove: bool,
+) {
+    let lx = lines[x as usize];
+    // x's distance is nx / dx as line_t computes it.
+    let (nx, dx) = ((lx.pa - pv).perp(&lx.ab), d.perp(&lx.ab));
+    let cmp = |e: u32, x: u32| {
+        if e == x {
+            return Ordering::Equal;
+        }
+        let le = lines[e as usize];
+        if le.a == lx.a || le.a == lx.b || le.b == lx.a || le.b == lx.b {
+            return seg_cmp(arr, pv, d, after, on_ray, e, x);
+        }
+        let (ne, de) = ((le.pa - pv).perp(&le.ab), d.perp(&le.ab));
+        if let Some(ord) = quotient_cmp(ne, de, nx, dx) {
+            return ord;
+        }
+        line_t(le.pa, le.ab, pv, d)
+            .total_cmp(&line_t(lx.pa, lx.ab, pv, d))
+            .then(e.cmp(&x))
+    };
+    if remove {
+        status.remove(x, &cmp);
+    } else {
+        status.insert(x, &cmp);
+    }
+}
+
+/// Compares `ne / de` with `nx / dx` without dividing, when the products
+/// decide it with a wide margin: the quotients then differ by far more than
+/// their rounding, so `f64::total_cmp` of the rounded quotients agrees.
+/// `None` when a term is zero (signed zeros, infinite quotients), the
+/// margin is too thin or not a number.
+#[inline]
+fn quotient_cmp(ne: f64, de: f64, nx: f64, dx: f64) -> Option<Ordering> {
+    if ne == 0.0 || de == 0.0 || nx == 0.0 || dx == 0.0 {
+        return None;
+    }
+    let (p, q) = (ne * dx, nx * de);
+    let gap = (p - q).abs();
+    if gap.is_nan() || gap <= 1e-9 * (p.abs() + q.abs()) {
+        return None;
+    }
+    // ne/de < nx/dx  ⇔  ne·dx < nx·de when de·dx > 0, reversed otherwise.
+    let less = (p < q) == ((de > 0.0) == (dx > 0.0));
+    Some(if less {
+        Ordering::Less
+    } else {
+        Ordering::Greater
+    })
 }
 
 /// Orders the segments crossing the ray `pv + t·d` by distance; two
@@ -338,12 +401,16 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             } else {
                 3.0 + q
             };
-            (key, w.norm_squared(), p)
+            // The key is non-negative: its bits order as it does.
+            (key.to_bits(), p)
         }));
+    // Equal keys (one direction) by distance, which keeps the insertion
+    // pass linear on the many collinear points of axis-aligned worlds.
+    let dist = |p: u32| (arr.points[p as usize] - pv).norm_squared();
     buf.keyed
-        .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        .sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| dist(a.1).total_cmp(&dist(b.1))));
     buf.order.clear();
-    buf.order.extend(buf.keyed.iter().map(|k| k.2));
+    buf.order.extend(buf.keyed.iter().map(|k| k.1));
     let order = &mut buf.order;
     for i in 1..order.len() {
         let mut j = i;
@@ -352,14 +419,15 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             j -= 1;
         }
     }
-    // Group the points by exact direction; each segment enters the tree at
+    // Group the points by exact direction; each segment enters the list at
     // its counter-clockwise-first end's group and leaves at the other's
     // (one decision per segment, so rounding cannot make them disagree).
     let order = &buf.order;
     let group_of = &mut buf.group_of;
     group_of.clear();
     group_of.resize(arr.points.len(), u32::MAX);
-    let mut groups: Vec<(usize, usize)> = Vec::new();
+    let groups = &mut buf.groups;
+    groups.clear();
     let mut i = 0;
     while i < order.len() {
         let mut j = i + 1;
@@ -403,20 +471,39 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         (group_of[f as usize] != group_of[l as usize]).then_some((f, l))
     };
     // Each segment's ends, decided once per sweep (`NIL` when it never
-    // enters the tree).
+    // enters the list).
     let seg_ends = &mut buf.ends;
     seg_ends.clear();
     seg_ends.extend((0..arr.segs.len() as u32).map(|s| ends(s).unwrap_or((NIL, NIL))));
     let seg_ends = &*seg_ends;
-    let treap = &mut buf.treap;
-    treap.clear();
-    {
-        let cmp =
-            |a: u32, b: u32| seg_cmp(arr, pv, x_axis, false, |p| group_of[p as usize] == 0, a, b);
-        for (s, &(f, l)) in seg_ends.iter().enumerate() {
-            if f != NIL && group_of[f as usize] > group_of[l as usize] {
-                treap.insert(s as u32, &cmp);
-            }
+    let group_of = &*group_of;
+    // The segments entering and leaving the list, bucketed by group.
+    let blocking = || {
+        seg_ends
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.0 != NIL)
+            .map(|(s, &e)| (s as u32, e))
+    };
+    bucket(
+        groups.len(),
+        blocking().map(|(s, (f, _))| (s, group_of[f as usize])),
+        &mut buf.enter_at,
+        &mut buf.enter,
+    );
+    bucket(
+        groups.len(),
+        blocking().map(|(s, (_, l))| (s, group_of[l as usize])),
+        &mut buf.leave_at,
+        &mut buf.leave,
+    );
+    let lines = &buf.lines;
+    let status = &mut buf.status;
+    status.clear();
+    let on_first = |p: u32| group_of[p as usize] == 0;
+    for (s, (f, l)) in blocking() {
+        if group_of[f as usize] > group_of[l as usize] {
+            update(arr, status, lines, pv, x_axis, false, on_first, s, false);
         }
     }
 
@@ -425,18 +512,11 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         let d = arr.points[group[0] as usize] - pv;
         let on_ray = |p: u32| group_of[p as usize] == gi as u32;
         // 1. Segments ending here (their last end) leave.
-        {
-            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, false, on_ray, a, b);
-            for &p in group {
-                for &s in &arr.incident[p as usize] {
-                    if seg_ends[s as usize].1 == p {
-                        treap.remove(s, &cmp);
-                    }
-                }
-            }
+        for &s in &buf.leave[buf.leave_at[gi] as usize..buf.leave_at[gi + 1] as usize] {
+            update(arr, status, lines, pv, d, false, on_ray, s, true);
         }
         // 2. The nearest proper crossing.
-        let t_min = treap
+        let t_min = status
             .first()
             .map_or(f64::INFINITY, |s| ray_t(arr, s, pv, d));
         // 3. Walk the points outwards (unless the nearest is hidden).
@@ -460,15 +540,8 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             }
         }
         // 4. Segments starting here (their first end) enter.
-        {
-            let cmp = |a: u32, b: u32| seg_cmp(arr, pv, d, true, on_ray, a, b);
-            for &p in group {
-                for &s in &arr.incident[p as usize] {
-                    if seg_ends[s as usize].0 == p {
-                        treap.insert(s, &cmp);
-                    }
-                }
-            }
+        for &s in &buf.enter[buf.enter_at[gi] as usize..buf.enter_at[gi + 1] as usize] {
+            update(arr, status, lines, pv, d, true, on_ray, s, false);
         }
     }
 }
