@@ -1168,20 +1168,7 @@ mod tests {
                 return dist;
             }
             dist[goal] = 0.0;
-            let moves: &[(i64, i64)] = if self.connect == 4 {
-                &[(1, 0), (0, 1), (-1, 0), (0, -1)]
-            } else {
-                &[
-                    (1, 0),
-                    (0, 1),
-                    (-1, 0),
-                    (0, -1),
-                    (1, 1),
-                    (-1, 1),
-                    (-1, -1),
-                    (1, -1),
-                ]
-            };
+            let moves = &crate::planners::astar::DIRS[..if self.connect == 4 { 4 } else { 8 }];
             let free = |i: i64, j: i64| {
                 i >= 0
                     && j >= 0
