@@ -61,7 +61,14 @@ fn world(n: usize, seed: u64) -> (Vec<Grown>, Aabb) {
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("roadmap");
     group.sample_size(10);
+    // ROADMAP_BENCH_N=1000 measures one size only (for profiling).
+    let only: Option<usize> = std::env::var("ROADMAP_BENCH_N")
+        .ok()
+        .and_then(|s| s.parse().ok());
     for n in [100usize, 1000, 3000] {
+        if only.is_some_and(|m| m != n) {
+            continue;
+        }
         let (polys, bounds) = world(n, 42);
         let (start, goal) = (bounds.min, bounds.max);
         let t = Instant::now();

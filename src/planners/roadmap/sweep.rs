@@ -150,13 +150,10 @@ impl Status {
         self.items.insert(i, x);
     }
 
-    /// Removes `x`; if the order was broken by rounding and `x` is not
-    /// where the comparator says, finds it by a linear search.
-    fn remove(&mut self, x: u32, cmp: &impl Fn(u32, u32) -> Ordering) {
-        let i = self.position(x, cmp);
-        if self.items.get(i) == Some(&x) {
-            self.items.remove(i);
-        } else if let Some(i) = self.items.iter().position(|&e| e == x) {
+    /// Removes `x`, found by its id: a scan of the k ids costs no more than
+    /// the move that follows, and no geometry (nor rounding) is involved.
+    fn remove(&mut self, x: u32) {
+        if let Some(i) = self.items.iter().position(|&e| e == x) {
             self.items.remove(i);
         }
     }
@@ -188,6 +185,11 @@ pub(crate) struct SweepBuffers {
     /// Per segment: its end points and `(a, b - a)`, contiguous for the
     /// comparisons of the list.
     lines: Vec<Line>,
+    /// Per point: its two boundary pieces, when it has exactly two and
+    /// neither is a wall (`[NIL, NIL]` otherwise).
+    pieces: Vec<[u32; 2]>,
+    /// Per segment: whether it faces away from the swept node.
+    back: Vec<bool>,
     status: Status,
 }
 
@@ -225,6 +227,15 @@ impl SweepBuffers {
                     }
                 })
                 .collect(),
+            pieces: arr
+                .incident
+                .iter()
+                .map(|inc| match inc[..] {
+                    [s, t] if !arr.segs[s as usize].wall && !arr.segs[t as usize].wall => [s, t],
+                    _ => [NIL, NIL],
+                })
+                .collect(),
+            back: Vec::with_capacity(arr.segs.len()),
             status: Status::new(arr.segs.len()),
         }
     }
@@ -275,12 +286,12 @@ fn line_t(a: Point, ab: Vector, pv: Point, d: Vector) -> f64 {
     (a - pv).perp(&ab) / den
 }
 
-/// Inserts (`remove == false`) or removes segment `x` in the list ordered
-/// by [`seg_cmp`] along the ray `pv + t·d`: the distance of `x` is computed
-/// once, and [`seg_cmp`] itself is called only for segments sharing an end
-/// with `x` (the only case where it does not compare distances).
+/// Inserts segment `x` in the list ordered by [`seg_cmp`] along the ray
+/// `pv + t·d`: the distance of `x` is computed once, and [`seg_cmp`] itself
+/// is called only for segments sharing an end with `x` (the only case where
+/// it does not compare distances).
 #[allow(clippy::too_many_arguments)]
-fn update(
+fn insert(
     arr: &Arrangement,
     status: &mut Status,
     lines: &[Line],
@@ -289,7 +300,6 @@ fn update(
     after: bool,
     on_ray: impl Fn(u32) -> bool + Copy,
     x: u32,
-    remove: bool,
 ) {
     let lx = lines[x as usize];
     // x's distance is nx / dx as line_t computes it.
@@ -310,11 +320,7 @@ fn update(
             .total_cmp(&line_t(lx.pa, lx.ab, pv, d))
             .then(e.cmp(&x))
     };
-    if remove {
-        status.remove(x, &cmp);
-    } else {
-        status.insert(x, &cmp);
-    }
+    status.insert(x, &cmp);
 }
 
 /// Compares `ne / de` with `nx / dx` without dividing, when the products
@@ -387,23 +393,48 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         let (wa, wb) = (arr.points[*a as usize] - pv, arr.points[*b as usize] - pv);
         ccw_cmp(x_axis, wa, wb).then_with(|| wa.norm_squared().total_cmp(&wb.norm_squared()))
     };
+    // The polygon pieces facing away from v: v lies strictly on their
+    // interior side. They never block first: a ray from v (outside every
+    // interior) first crosses the boundary where it enters the union,
+    // through a piece whose interior faces away from the ray's origin.
+    buf.back.clear();
+    buf.back.extend(
+        arr.segs.iter().map(|g| {
+            !g.wall && orient(arr.points[g.a as usize], arr.points[g.b as usize], pv) > 0.0
+        }),
+    );
+    let back = &buf.back;
+    // A point between two pieces facing away is hidden: v lies on the
+    // interior side of both, so the direction from the point to v points
+    // into the interior there (whether the corner is convex, flat or
+    // reflex), and a motion from v arrives from the interior. The sweep
+    // leaves it out: it is no event (its pieces never enter the list),
+    // cannot be reached, and a ray through it was blocked before it, where
+    // it entered the interior (a proper crossing or a point kept here).
+    let hidden = |p: u32| {
+        let [s, t] = buf.pieces[p as usize];
+        s != NIL && back[s as usize] && back[t as usize]
+    };
     // Sort by a pseudo-angle (monotone in the angle), then fix the order
     // exactly with an insertion pass (the sequence is nearly sorted).
     buf.keyed.clear();
-    buf.keyed
-        .extend((0..arr.points.len() as u32).filter(|&p| p != v).map(|p| {
-            let w = arr.points[p as usize] - pv;
-            let r = w.x.abs() + w.y.abs();
-            let q = if r > 0.0 { w.x / r } else { 1.0 };
-            // q runs 1 → −1 over the upper half plane, −1 → 1 over the lower.
-            let key = if w.y > 0.0 || (w.y == 0.0 && w.x > 0.0) {
-                1.0 - q
-            } else {
-                3.0 + q
-            };
-            // The key is non-negative: its bits order as it does.
-            (key.to_bits(), p)
-        }));
+    buf.keyed.extend(
+        (0..arr.points.len() as u32)
+            .filter(|&p| p != v && !hidden(p))
+            .map(|p| {
+                let w = arr.points[p as usize] - pv;
+                let r = w.x.abs() + w.y.abs();
+                let q = if r > 0.0 { w.x / r } else { 1.0 };
+                // q runs 1 → −1 over the upper half plane, −1 → 1 over the lower.
+                let key = if w.y > 0.0 || (w.y == 0.0 && w.x > 0.0) {
+                    1.0 - q
+                } else {
+                    3.0 + q
+                };
+                // The key is non-negative: its bits order as it does.
+                (key.to_bits(), p)
+            }),
+    );
     // Equal keys (one direction) by distance, which keeps the insertion
     // pass linear on the many collinear points of axis-aligned worlds.
     let dist = |p: u32| (arr.points[p as usize] - pv).norm_squared();
@@ -453,13 +484,10 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         if g.a == v || g.b == v {
             return None;
         }
-        let (a, b) = (arr.points[g.a as usize], arr.points[g.b as usize]);
-        // Polygon pieces facing away from v never block first: a ray from v
-        // (outside every interior) first crosses the boundary where it
-        // enters the union, through a piece whose interior faces away.
-        if !g.wall && orient(a, b, pv) > 0.0 {
+        if back[s as usize] {
             return None;
         }
+        let (a, b) = (arr.points[g.a as usize], arr.points[g.b as usize]);
         let o = (a - pv).perp(&(b - pv));
         let (f, l) = if o > 0.0 {
             (g.a, g.b)
@@ -503,7 +531,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
     let on_first = |p: u32| group_of[p as usize] == 0;
     for (s, (f, l)) in blocking() {
         if group_of[f as usize] > group_of[l as usize] {
-            update(arr, status, lines, pv, x_axis, false, on_first, s, false);
+            insert(arr, status, lines, pv, x_axis, false, on_first, s);
         }
     }
 
@@ -513,7 +541,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         let on_ray = |p: u32| group_of[p as usize] == gi as u32;
         // 1. Segments ending here (their last end) leave.
         for &s in &buf.leave[buf.leave_at[gi] as usize..buf.leave_at[gi + 1] as usize] {
-            update(arr, status, lines, pv, d, false, on_ray, s, true);
+            status.remove(s);
         }
         // 2. The nearest proper crossing.
         let t_min = status
@@ -541,7 +569,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         }
         // 4. Segments starting here (their first end) enter.
         for &s in &buf.enter[buf.enter_at[gi] as usize..buf.enter_at[gi + 1] as usize] {
-            update(arr, status, lines, pv, d, true, on_ray, s, false);
+            insert(arr, status, lines, pv, d, true, on_ray, s);
         }
     }
 }
