@@ -174,7 +174,9 @@ pub(crate) struct SweepBuffers {
     keyed: Vec<(u64, u32)>,
     group_of: Vec<u32>,
     groups: Vec<(usize, usize)>,
-    ends: Vec<(u32, u32)>,
+    /// The segments that may block: (segment, group of its first end,
+    /// group of its last end).
+    blocking: Vec<(u32, u32, u32)>,
     order: Vec<u32>,
     /// Per group, the segments entering the list there (`enter[enter_at[g]
     /// ..enter_at[g + 1]]`), and likewise those leaving it.
@@ -208,7 +210,7 @@ impl SweepBuffers {
             keyed: Vec::with_capacity(arr.points.len()),
             group_of: Vec::with_capacity(arr.points.len()),
             groups: Vec::with_capacity(arr.points.len()),
-            ends: Vec::with_capacity(arr.segs.len()),
+            blocking: Vec::with_capacity(arr.segs.len()),
             order: Vec::with_capacity(arr.points.len()),
             enter_at: Vec::with_capacity(arr.points.len() + 1),
             enter: Vec::with_capacity(arr.segs.len()),
@@ -477,15 +479,14 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         groups.push((i, j));
         i = j;
     }
-    // (first end, last end) of a segment that may block, counter-clockwise
-    // as seen from v.
-    let ends = |s: u32| -> Option<(u32, u32)> {
-        let g = arr.segs[s as usize];
-        if g.a == v || g.b == v {
-            return None;
-        }
-        if back[s as usize] {
-            return None;
+    // The segments that may block, with the groups of their first and last
+    // ends counter-clockwise as seen from v: decided once per sweep, so
+    // rounding cannot make the entry and the exit disagree.
+    let blocking = &mut buf.blocking;
+    blocking.clear();
+    for (s, g) in arr.segs.iter().enumerate() {
+        if back[s] || g.a == v || g.b == v {
+            continue;
         }
         let (a, b) = (arr.points[g.a as usize], arr.points[g.b as usize]);
         let o = (a - pv).perp(&(b - pv));
@@ -494,34 +495,25 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         } else if o < 0.0 {
             (g.b, g.a)
         } else {
-            return None;
+            continue;
         };
-        (group_of[f as usize] != group_of[l as usize]).then_some((f, l))
-    };
-    // Each segment's ends, decided once per sweep (`NIL` when it never
-    // enters the list).
-    let seg_ends = &mut buf.ends;
-    seg_ends.clear();
-    seg_ends.extend((0..arr.segs.len() as u32).map(|s| ends(s).unwrap_or((NIL, NIL))));
-    let seg_ends = &*seg_ends;
+        let (gf, gl) = (group_of[f as usize], group_of[l as usize]);
+        if gf != gl {
+            blocking.push((s as u32, gf, gl));
+        }
+    }
+    let blocking = &*blocking;
     let group_of = &*group_of;
     // The segments entering and leaving the list, bucketed by group.
-    let blocking = || {
-        seg_ends
-            .iter()
-            .enumerate()
-            .filter(|(_, e)| e.0 != NIL)
-            .map(|(s, &e)| (s as u32, e))
-    };
     bucket(
         groups.len(),
-        blocking().map(|(s, (f, _))| (s, group_of[f as usize])),
+        blocking.iter().map(|&(s, gf, _)| (s, gf)),
         &mut buf.enter_at,
         &mut buf.enter,
     );
     bucket(
         groups.len(),
-        blocking().map(|(s, (_, l))| (s, group_of[l as usize])),
+        blocking.iter().map(|&(s, _, gl)| (s, gl)),
         &mut buf.leave_at,
         &mut buf.leave,
     );
@@ -529,8 +521,8 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
     let status = &mut buf.status;
     status.clear();
     let on_first = |p: u32| group_of[p as usize] == 0;
-    for (s, (f, l)) in blocking() {
-        if group_of[f as usize] > group_of[l as usize] {
+    for &(s, gf, gl) in blocking {
+        if gf > gl {
             insert(arr, status, lines, pv, x_axis, false, on_first, s);
         }
     }
