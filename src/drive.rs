@@ -154,6 +154,21 @@ pub struct DriveOutcome {
     pub completed: bool,
 }
 
+impl DriveOutcome {
+    /// At most `max` (≥ 2) of the samples, evenly spread, the first and the
+    /// last included: what the viewer animates and `--json` lists.
+    pub fn thinned(&self, max: usize) -> impl Iterator<Item = (f64, Config)> + '_ {
+        let n = self.samples.len();
+        // Every `every`-th sample and the last: at most max when max ≥ 2.
+        let every = n
+            .saturating_sub(1)
+            .div_ceil(max.saturating_sub(1).max(1))
+            .max(1);
+        let last = n.checked_sub(1).filter(|l| !l.is_multiple_of(every));
+        (0..n).step_by(every).chain(last).map(|i| self.samples[i])
+    }
+}
+
 /// Drives `path` from its first configuration (heading = its θ).
 pub fn drive(path: &[Config], u: &Unicycle) -> DriveOutcome {
     let Some(first) = path.first() else {
@@ -303,5 +318,42 @@ mod tests {
         assert!(one.completed);
         assert_eq!(one.time, 0.0);
         assert_eq!(one.samples.len(), 1);
+    }
+
+    #[test]
+    fn thinning_keeps_the_ends_and_at_most_max_samples() {
+        let outcome = |n: usize| DriveOutcome {
+            samples: (0..n)
+                .map(|i| (i as f64, Config::new(i as f64, 0.0, 0.0)))
+                .collect(),
+            ..Default::default()
+        };
+        assert_eq!(outcome(0).thinned(10).count(), 0);
+        assert_eq!(
+            outcome(1).thinned(10).map(|s| s.0).collect::<Vec<_>>(),
+            [0.0]
+        );
+        assert_eq!(outcome(7).thinned(10).count(), 7);
+        for (n, max) in [
+            (11, 10),
+            (100, 10),
+            (101, 10),
+            (12_345, 1000),
+            (2, 2),
+            (3, 2),
+        ] {
+            let times: Vec<f64> = outcome(n).thinned(max).map(|s| s.0).collect();
+            assert!(
+                times.len() <= max,
+                "{n} samples thinned to {max}: {}",
+                times.len()
+            );
+            assert_eq!(times[0], 0.0);
+            assert_eq!(*times.last().unwrap(), (n - 1) as f64);
+            // Evenly spread: all steps but the last are equal.
+            let steps: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
+            assert!(steps[..steps.len() - 1].iter().all(|&d| d == steps[0]));
+            assert!(steps[steps.len() - 1] <= steps[0]);
+        }
     }
 }

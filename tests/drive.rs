@@ -112,3 +112,35 @@ fn a_plan_without_a_path_has_nothing_to_drive() {
     assert_eq!(m["drive_collision_free"], MetricValue::Bool(false));
     assert_eq!(m["drive_time"], MetricValue::Num(f64::INFINITY));
 }
+
+#[test]
+fn json_lists_the_driven_trajectory() {
+    let report = run(
+        "plan a astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive unicycle }\n\
+         plan b astar dot { start (0.5, 0.5) goal (7.5, 5.5) }\n\
+         plan c astar dot { start (0.5, 0.5) goal (7.5, 0.5) limit expansions 3 drive unicycle }",
+    );
+    let doc = scen::report::json::to_json(&report);
+    let plans = &doc["plans"];
+    let drive = report.plans[0].drive.as_ref().unwrap();
+    let listed = plans["a"]["drive"].as_array().expect("a's trajectory");
+    assert!(listed.len() >= 2 && listed.len() <= scen::report::json::DRIVE_SAMPLES);
+    let pose = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (t0, c0) = drive.samples[0];
+    assert_eq!(pose(&listed[0]), vec![t0, c0.x, c0.y, c0.theta]);
+    let (tn, cn) = *drive.samples.last().unwrap();
+    assert_eq!(pose(listed.last().unwrap()), vec![tn, cn.x, cn.y, cn.theta]);
+    assert!(
+        listed.windows(2).all(|w| pose(&w[0])[0] < pose(&w[1])[0]),
+        "times increase"
+    );
+    // No `drive`: no key; a drive without a path: null.
+    assert!(plans["b"].get("drive").is_none());
+    assert!(plans["c"]["drive"].is_null());
+}

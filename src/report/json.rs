@@ -17,6 +17,10 @@ use crate::scenario::{Plan, Scenario};
 /// JSON integers (`"expanded": 5786`, not `5786.0`).
 const EXACT_INTEGER_LIMIT: f64 = 9_007_199_254_740_992.0; // 2^53
 
+/// At most this many poses of a driven trajectory are listed (evenly
+/// spread, the first and the last included).
+pub const DRIVE_SAMPLES: usize = 10_000;
+
 /// The SPEC 5 document for one scenario run.
 pub fn to_json(report: &RunReport) -> Value {
     let scenario = &report.scenario;
@@ -57,6 +61,25 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     obj.insert("robot".into(), robot.map(|r| r.name.clone()).into());
     obj.insert("metrics".into(), metrics_json(&run.metrics));
     obj.insert("path".into(), path);
+    // A plan with `drive`: its driven trajectory, `[t, x, y, θ]` per pose
+    // (seconds, radians), thinned like the viewer's; null without a path.
+    if plan.params.get("drive").is_some() {
+        let drive = run.drive.as_ref().map_or(Value::Null, |d| {
+            Value::Array(
+                d.thinned(DRIVE_SAMPLES)
+                    .map(|(t, c)| {
+                        Value::Array(
+                            vec![t, c.x, c.y, c.theta]
+                                .into_iter()
+                                .map(float_json)
+                                .collect(),
+                        )
+                    })
+                    .collect(),
+            )
+        });
+        obj.insert("drive".into(), drive);
+    }
     Value::Object(obj)
 }
 

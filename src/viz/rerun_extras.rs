@@ -28,7 +28,7 @@ use rerun::{
 use super::rerun_sink::{entity, rgb, strip};
 use super::{OBSTACLE_GREY, robot_outline};
 use crate::drive::DriveOutcome;
-use crate::geometry::{Aabb, Config, Point, RobotShape, Vector};
+use crate::geometry::{Aabb, Point, RobotShape, Vector};
 use crate::planners::{CoverageTrace, FieldTrace, OnlineTrace};
 
 /// The most batches sensed cells are sent in.
@@ -265,14 +265,8 @@ pub(super) fn log_drive(
             .with_radii([Radius::new_ui_points(1.0)])
             .with_draw_order(31.0),
     )?;
-    let n = drive.samples.len();
-    let every = n.div_ceil(DRIVE_POSES).max(1);
     let body = entity(&["plans", name, "drive", "robot"]);
-    let picked = (0..n)
-        .step_by(every)
-        .chain((!(n - 1).is_multiple_of(every)).then_some(n - 1));
-    for i in picked {
-        let (t, c): (f64, Config) = drive.samples[i];
+    for (t, c) in drive.thinned(DRIVE_POSES) {
         rec.set_duration_secs("time", t);
         let strips = robot_outline(shape, c, mark);
         rec.log(
