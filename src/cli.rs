@@ -316,8 +316,14 @@ fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
         let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
         entries.sort();
         for e in entries {
+            let hidden = e
+                .file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with('.'));
             if e.is_dir() {
-                collect_scen(&e, out);
+                // `.git` and other hidden folders hold no scenarios.
+                if !hidden {
+                    collect_scen(&e, out);
+                }
             } else if e.extension().is_some_and(|x| x == "scen")
                 && !e
                     .file_name()
@@ -329,6 +335,21 @@ fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
     } else {
         out.push(path.to_path_buf());
     }
+}
+
+/// The diagnostic codes a test file declares it must get, one per
+/// `# expect-error: CODE` line among the comment lines that open it (a test
+/// of the diagnostics: it passes when loading it reports every code).
+fn expected_errors(file: &Path) -> Vec<String> {
+    let Ok(text) = std::fs::read_to_string(file) else {
+        return Vec::new();
+    };
+    text.lines()
+        .map_while(|l| l.trim_start().strip_prefix('#'))
+        .filter_map(|h| h.trim_start().strip_prefix("expect-error:"))
+        .map(|code| code.trim().to_string())
+        .filter(|code| !code.is_empty())
+        .collect()
 }
 
 fn cmd_test(args: &TestArgs) -> i32 {
@@ -359,14 +380,44 @@ fn cmd_test(args: &TestArgs) -> i32 {
     // Each file: (line, diagnostics text, passed, failed).
     let results: Vec<(String, String, usize, usize)> = files
         .par_iter()
-        .map(|f| match crate::load(f) {
-            Err(fail) => (
+        .map(|f| match (crate::load(f), expected_errors(f)) {
+            (Err(fail), expected) if !expected.is_empty() => {
+                let missing: Vec<&String> = expected
+                    .iter()
+                    .filter(|code| !fail.diags.iter().any(|d| d.code == code.as_str()))
+                    .collect();
+                if missing.is_empty() {
+                    let line = format!("ok      {}  (expected errors reported)", f.display());
+                    (line, String::new(), 1, 0)
+                } else {
+                    let line = format!(
+                        "FAILED  {}  (expected error {} not reported)",
+                        f.display(),
+                        missing
+                            .iter()
+                            .map(|c| format!("`{c}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    );
+                    (line, render_diags(&fail.diags, &fail.sources), 0, 1)
+                }
+            }
+            (Err(fail), _) => (
                 format!("FAILED  {}  (does not load)", f.display()),
                 render_diags(&fail.diags, &fail.sources),
                 0,
                 1,
             ),
-            Ok(s) => {
+            (Ok(_), expected) if !expected.is_empty() => (
+                format!(
+                    "FAILED  {}  (loads, but `# expect-error:` expects it not to)",
+                    f.display()
+                ),
+                String::new(),
+                0,
+                1,
+            ),
+            (Ok(s), _) => {
                 let report = run_scenario(s, &[]);
                 let invalid: Vec<String> = report
                     .plans

@@ -11,10 +11,10 @@
 //! `scen run FILE`. Each file starts with comment headers:
 //!
 //! ```text
-//! # error: scen::analyze::unknown_key   the code expected (one line per code)
-//! # line: 10                            the line of the first code's diagnostic
-//! # at: support/cycle_partner.scen      the file it points into (default: this one)
-//! # min-errors: 3                       at least this many errors
+//! # expect-error: scen::analyze::unknown_key   the code expected (one line per code)
+//! # line: 10                                   the line of the first code's diagnostic
+//! # at: support/_cycle_partner.scen            the file it points into (default: this one)
+//! # min-errors: 3                              at least this many errors
 //! ```
 //!
 //! Without `min-errors` the file has one mistake and must get exactly one
@@ -82,7 +82,7 @@ impl Case {
                     .map_err(|_| format!("{file}: bad `# {key}:` header"))
             };
             match key.trim() {
-                "error" => case.codes.push(value.to_string()),
+                "expect-error" => case.codes.push(value.to_string()),
                 "line" => case.line = Some(number()?),
                 "min-errors" => case.min_errors = Some(number()?),
                 "at" => case.located_in = file_name(value),
@@ -90,7 +90,7 @@ impl Case {
             }
         }
         if case.codes.is_empty() {
-            return Err(format!("{file}: no `# error: CODE` header"));
+            return Err(format!("{file}: no `# expect-error: CODE` header"));
         }
         Ok(case)
     }

@@ -151,6 +151,43 @@ fn test_runs_a_folder_and_counts_checks() {
 }
 
 #[test]
+fn test_checks_expected_errors() {
+    let header = "# expect-error: scen::analyze::unknown_key\n";
+    let bad = SMALL.replace("goal", "gaol");
+    Test::new()
+        // Gets the error it expects: passes.
+        .file("suite/a.scen", &format!("{header}{bad}"))
+        // Gets another error: fails, and shows what it got.
+        .file(
+            "suite/b.scen",
+            &format!("# expect-error: scen::analyze::duplicate_key\n{bad}"),
+        )
+        // Loads: fails.
+        .file("suite/c.scen", &format!("{header}{SMALL}"))
+        .args(&["test", "suite"])
+        .stdout(
+            "ok      suite/a.scen  (expected errors reported)\n\
+             FAILED  suite/b.scen  (expected error `scen::analyze::duplicate_key` not reported)\n\
+             FAILED  suite/c.scen  (loads, but `# expect-error:` expects it not to)\n\
+             1 passed, 2 failed\n",
+        )
+        .stderr_contains("scen::analyze::unknown_key")
+        .status(1)
+        .run();
+}
+
+#[test]
+fn the_bad_input_corpus_passes_scen_test() {
+    // Every file of tests/bad_inputs declares the errors it must get.
+    let corpus = repo().join("tests/bad_inputs");
+    Test::new()
+        .args(&["test", corpus.to_str().expect("utf-8 path")])
+        .stdout_contains(" 0 failed")
+        .status(0)
+        .run();
+}
+
+#[test]
 fn json_output_follows_the_spec() {
     let out = Test::new()
         .file("small.scen", SMALL)
