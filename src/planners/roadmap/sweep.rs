@@ -3,7 +3,9 @@
 //! ray (a handful in scattered worlds, at most n).
 //!
 //! Around a node `v`, the other points are visited in counter-clockwise
-//! order (then by distance); a sorted list ([`Status`]) holds the segments
+//! order (then by distance), except those hidden between two boundary
+//! pieces that face away from `v` (neither visible nor events); a sorted
+//! list ([`Status`]) holds the segments
 //! that cross the current ray, ordered by their distance along it. The
 //! segments of the arrangement never cross, so that order does not change
 //! while a segment is in the list. At each ray (the points exactly on it,
