@@ -17,82 +17,6 @@ use crate::geometry::polygon::distance_point_segment;
 use crate::geometry::{Config, angle_diff};
 use crate::scenario::{Param, ParamValue};
 
-/// The unit a drive parameter is written in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Unit {
-    /// A plain number (world units, 1/s).
-    Number,
-    /// Seconds: a number or a duration (`10ms`).
-    Seconds,
-    /// An angle with its unit (`0.5deg`); stored in radians.
-    Angle,
-}
-
-/// One sub-parameter of `drive unicycle { ... }`.
-#[derive(Clone, Copy, Debug)]
-pub struct DriveParamSpec {
-    pub key: &'static str,
-    pub unit: Unit,
-    /// The default, in stored units (radians for angles).
-    pub default: f64,
-    /// Accepted values: `0 < x <= max`.
-    pub max: f64,
-    pub help: &'static str,
-}
-
-/// The sub-parameters of `drive unicycle`, with their defaults.
-pub const DRIVE_PARAMS: &[DriveParamSpec] = &[
-    DriveParamSpec {
-        key: "dt",
-        unit: Unit::Seconds,
-        default: 0.01,
-        max: 1.0,
-        help: "integration step in seconds (a number or a duration such as `10ms`)",
-    },
-    DriveParamSpec {
-        key: "max_speed",
-        unit: Unit::Number,
-        default: 1.0,
-        max: 1e6,
-        help: "largest linear speed, world units per second",
-    },
-    DriveParamSpec {
-        key: "max_turn_rate",
-        unit: Unit::Angle,
-        default: 2.0,
-        max: 1e6,
-        help: "largest turn rate, an angle per second (e.g. `120deg`)",
-    },
-    DriveParamSpec {
-        key: "gain",
-        unit: Unit::Number,
-        default: 2.0,
-        max: 1e6,
-        help: "go-to-cell gain: speed = gain × distance (1/s)",
-    },
-    DriveParamSpec {
-        key: "turn_gain",
-        unit: Unit::Number,
-        default: 8.0,
-        max: 1e6,
-        help: "go-to-orientation gain: turn rate = turn_gain × heading error (1/s)",
-    },
-    DriveParamSpec {
-        key: "reach",
-        unit: Unit::Number,
-        default: 0.0009,
-        max: 1e6,
-        help: "distance to a path point at which it counts as reached",
-    },
-    DriveParamSpec {
-        key: "align",
-        unit: Unit::Angle,
-        default: 0.5 * std::f64::consts::PI / 180.0,
-        max: std::f64::consts::FRAC_PI_2,
-        help: "heading error under which the robot stops turning in place and drives",
-    },
-];
-
 /// The most simulated steps of one drive; a drive that needs more stops
 /// there, unfinished.
 pub const MAX_DRIVE_STEPS: usize = 2_000_000;
@@ -109,9 +33,19 @@ pub struct Unicycle {
     pub align: f64,
 }
 
+/// The defaults of [`crate::scenario::schema::DRIVE_PARAMS`] (a test
+/// checks that they are the values written there).
 impl Default for Unicycle {
     fn default() -> Self {
-        Unicycle::from_block(&BTreeMap::new())
+        Unicycle {
+            dt: 0.01,
+            max_speed: 1.0,
+            max_turn_rate: 2.0,
+            gain: 2.0,
+            turn_gain: 8.0,
+            reach: 0.0009,
+            align: 0.5_f64.to_radians(),
+        }
     }
 }
 
@@ -119,21 +53,19 @@ impl Unicycle {
     /// The settings of a validated `drive unicycle { ... }` block, with
     /// defaults for keys not given.
     pub fn from_block(block: &BTreeMap<&'static str, Param>) -> Self {
-        let get = |key: &str| {
-            let spec = DRIVE_PARAMS.iter().find(|s| s.key == key);
-            match block.get(key).map(|p| &p.value) {
-                Some(ParamValue::Num(x)) => *x,
-                _ => spec.map_or(0.0, |s| s.default),
-            }
+        let d = Unicycle::default();
+        let get = |key: &str, default: f64| match block.get(key).map(|p| &p.value) {
+            Some(ParamValue::Num(x)) => *x,
+            _ => default,
         };
         Unicycle {
-            dt: get("dt"),
-            max_speed: get("max_speed"),
-            max_turn_rate: get("max_turn_rate"),
-            gain: get("gain"),
-            turn_gain: get("turn_gain"),
-            reach: get("reach"),
-            align: get("align"),
+            dt: get("dt", d.dt),
+            max_speed: get("max_speed", d.max_speed),
+            max_turn_rate: get("max_turn_rate", d.max_turn_rate),
+            gain: get("gain", d.gain),
+            turn_gain: get("turn_gain", d.turn_gain),
+            reach: get("reach", d.reach),
+            align: get("align", d.align),
         }
     }
 }
@@ -355,5 +287,26 @@ mod tests {
             assert!(steps[..steps.len() - 1].iter().all(|&d| d == steps[0]));
             assert!(steps[steps.len() - 1] <= steps[0]);
         }
+    }
+
+    #[test]
+    fn the_defaults_are_the_ones_the_schema_writes() {
+        // A block giving every key its documented default, as written.
+        let block: Vec<String> = crate::scenario::schema::DRIVE_PARAMS
+            .iter()
+            .map(|p| format!("{} {}", p.key, p.default))
+            .collect();
+        let text = format!(
+            "world {{ bounds (0, 0) (4, 4) }}\nrobot r point\n\
+             plan a astar r {{ start (1, 1) goal (3, 3) drive unicycle {{ {} }} }}\n",
+            block.join(" ")
+        );
+        let scenario = crate::scenario::load_text(&text);
+        let Some(ParamValue::Block(_, given)) = scenario.plans[0].params.get("drive") else {
+            panic!("no drive block");
+        };
+        assert_eq!(given.len(), crate::scenario::schema::DRIVE_PARAMS.len());
+        assert_eq!(Unicycle::from_block(given), Unicycle::default());
+        assert_eq!(Unicycle::from_block(&BTreeMap::new()), Unicycle::default());
     }
 }

@@ -18,7 +18,7 @@ use serde_json::Value;
 
 /// The keys of `drive unicycle { ... }` (SPEC 3.6), from the drive schema.
 fn drive_keys() -> impl Iterator<Item = &'static str> {
-    scen::drive::DRIVE_PARAMS.iter().map(|p| p.key)
+    scen::scenario::schema::DRIVE_PARAMS.iter().map(|p| p.key)
 }
 
 /// The models of `drive` (`ValueSpec::Drive`).

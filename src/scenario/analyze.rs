@@ -889,229 +889,38 @@ impl Analyzer {
         robot: Option<&Robot>,
         world: Option<&World>,
     ) -> Option<Params> {
-        let tokens = &p.body;
-        let mut values: BTreeMap<&'static str, Param> = BTreeMap::new();
+        let set = ParamSet {
+            owner: format!("planner `{}`", schema.kind),
+            name: format!("`{}`", schema.kind),
+            specs: schema.all_params().collect(),
+        };
         let mut limits = Limits::default();
         let mut limit_spans: HashMap<&'static str, Span> = HashMap::new();
-        let mut given: Vec<&'static str> = Vec::new();
-        let mut ok = true;
-        let mut i = 0;
-        while i < tokens.len() {
-            let tok = &tokens[i];
-            let ParamToken::Word(key) = tok else {
-                self.error(
-                    Diag::error("scen::analyze::expected_key", "expected a parameter name")
-                        .at(tok.span(), "a value without a key")
-                        .help(format!(
-                            "parameters of `{}`: {}",
-                            schema.kind,
-                            keys_of(schema)
-                        )),
-                );
-                ok = false;
-                i += 1;
-                continue;
-            };
-            i += 1;
-            let Some(spec) = schema.param(&key.value) else {
-                let mut d = Diag::error(
-                    "scen::analyze::unknown_key",
-                    format!(
-                        "unknown parameter `{}` for planner `{}`",
-                        key.value, schema.kind
-                    ),
-                )
-                .at(key.span, "unknown key");
-                d = match did_you_mean(&key.value, schema.all_params().map(|p| p.key)) {
-                    Some(k) => d.help(format!("did you mean `{k}`? accepted: {}", keys_of(schema))),
-                    None => d.help(format!("accepted: {}", keys_of(schema))),
-                };
-                self.error(d);
-                ok = false;
-                // Skip its values: everything up to the next known key.
-                while i < tokens.len() {
-                    if let ParamToken::Word(w) = &tokens[i]
-                        && schema.param(&w.value).is_some()
-                    {
-                        break;
+        let (mut values, given, ok) =
+            self.param_list(&p.body, &set, |this, spec, next, tokens, i| {
+                match spec.value {
+                    ValueSpec::Limit => {
+                        this.limit(spec, next, tokens, i, &mut limits, &mut limit_spans)
                     }
-                    i += 1;
+                    ValueSpec::Drive => {
+                        let ParamToken::Word(model) = next else {
+                            this.wrong_value(spec, next);
+                            return Parsed::Bad;
+                        };
+                        let block = match tokens.get(*i) {
+                            Some(ParamToken::Block { tokens, .. }) => {
+                                *i += 1;
+                                tokens.as_slice()
+                            }
+                            _ => &[],
+                        };
+                        this.drive_block(model, block)
+                    }
+                    _ => this
+                        .param_value(spec, next, robot)
+                        .map_or(Parsed::Bad, Parsed::Value),
                 }
-                continue;
-            };
-            given.push(spec.key);
-            if !spec.repeatable
-                && let Some(first) = values.get(spec.key)
-            {
-                self.error(
-                    Diag::error(
-                        "scen::analyze::duplicate_key",
-                        format!("`{}` is given twice", spec.key),
-                    )
-                    .at(key.span, "second time")
-                    .with_related(first.span, "first given here")
-                    .help("give each parameter once"),
-                );
-                ok = false;
-            }
-            let missing = |this: &mut Self, at: Span| {
-                this.error(
-                    Diag::error(
-                        "scen::analyze::missing_value",
-                        format!("`{}` needs a value", spec.key),
-                    )
-                    .at(at, "no value")
-                    .help(format!(
-                        "`{}` takes {}",
-                        spec.key,
-                        spec.value.describe()
-                    )),
-                );
-            };
-            let next = tokens.get(i);
-            let Some(next) = next else {
-                missing(self, key.span);
-                ok = false;
-                break;
-            };
-            // A known key right after a key means the value is missing.
-            if let ParamToken::Word(w) = next
-                && !matches!(
-                    spec.value,
-                    ValueSpec::Word(_)
-                        | ValueSpec::IntOrWord(_)
-                        | ValueSpec::ObstacleName
-                        | ValueSpec::Limit
-                        | ValueSpec::Drive
-                )
-                && schema.param(&w.value).is_some()
-            {
-                missing(self, key.span);
-                ok = false;
-                continue;
-            }
-            i += 1;
-            let value = match spec.value {
-                ValueSpec::Limit => {
-                    let ParamToken::Word(which) = next else {
-                        self.wrong_value(spec, next);
-                        ok = false;
-                        continue;
-                    };
-                    let amount = tokens.get(i);
-                    let Some(k) = schema::LIMIT_KINDS.iter().find(|k| **k == which.value) else {
-                        self.error(
-                            Diag::error(
-                                "scen::analyze::bad_limit",
-                                format!("unknown limit `{}`", which.value),
-                            )
-                            .at(which.span, "not a limit")
-                            .help(format!("`limit` takes {}", spec.value.describe())),
-                        );
-                        ok = false;
-                        if let Some(ParamToken::Value(_)) = amount {
-                            i += 1; // its amount
-                        }
-                        continue;
-                    };
-                    let Some(ParamToken::Value(v)) = amount else {
-                        missing(self, which.span);
-                        ok = false;
-                        continue;
-                    };
-                    i += 1;
-                    if let Some(first) = limit_spans.get(k) {
-                        self.error(
-                            Diag::error(
-                                "scen::analyze::duplicate_key",
-                                format!("`limit {k}` is given twice"),
-                            )
-                            .at(which.span, "second time")
-                            .with_related(*first, "first given here")
-                            .help("give each limit once"),
-                        );
-                        ok = false;
-                    }
-                    limit_spans.insert(k, which.span);
-                    if *k == "time" {
-                        match v.kind {
-                            ValueKind::Duration(s) if s > 0.0 && s.is_finite() => {
-                                limits.time = Some(s)
-                            }
-                            _ => {
-                                self.error(
-                                    Diag::error(
-                                        "scen::analyze::bad_limit",
-                                        "`limit time` needs a positive duration",
-                                    )
-                                    .at(v.span, "expected a duration")
-                                    .help("write `limit time 2s` or `limit time 500ms`"),
-                                );
-                                ok = false;
-                            }
-                        }
-                    } else {
-                        match v.kind {
-                            ValueKind::Number(n) if n >= 1.0 && n.fract() == 0.0 && n <= 1e18 => {
-                                let n = n as u64;
-                                match *k {
-                                    "expansions" => limits.expansions = Some(n),
-                                    "steps" => limits.steps = Some(n),
-                                    _ => limits.cells = Some(n),
-                                }
-                            }
-                            _ => {
-                                self.error(
-                                    Diag::error(
-                                        "scen::analyze::bad_limit",
-                                        format!("`limit {k}` needs a positive integer"),
-                                    )
-                                    .at(v.span, "expected a positive integer")
-                                    .help(format!("write e.g. `limit {k} 10000`")),
-                                );
-                                ok = false;
-                            }
-                        }
-                    }
-                    continue;
-                }
-                ValueSpec::Drive => {
-                    let ParamToken::Word(w) = next else {
-                        self.wrong_value(spec, next);
-                        ok = false;
-                        continue;
-                    };
-                    let block = match tokens.get(i) {
-                        Some(ParamToken::Block { tokens, .. }) => {
-                            i += 1;
-                            Some(tokens.as_slice())
-                        }
-                        _ => None,
-                    };
-                    match self.drive_block(w, block) {
-                        Some(v) => v,
-                        None => {
-                            ok = false;
-                            continue;
-                        }
-                    }
-                }
-                _ => match self.param_value(spec, next, robot) {
-                    Some(v) => v,
-                    None => {
-                        ok = false;
-                        continue;
-                    }
-                },
-            };
-            values.insert(
-                spec.key,
-                Param {
-                    value,
-                    span: next.span(),
-                },
-            );
-        }
+            });
         let plan_head = p.name.span.to(p.robot.span);
         let start = values.remove("start");
         let goal = values.remove("goal");
@@ -1188,131 +997,96 @@ impl Analyzer {
     }
 
     /// `drive unicycle { key value ... }`: the model word and the block's
-    /// sub-parameters (SPEC 3.6), each at most once, each positive and at
-    /// most its maximum, angles with a unit.
-    fn drive_block(
-        &mut self,
-        model: &Spanned<String>,
-        block: Option<&[ParamToken]>,
-    ) -> Option<ParamValue> {
-        use crate::drive::{DRIVE_PARAMS, Unit};
-        let keys: Vec<&str> = DRIVE_PARAMS.iter().map(|s| s.key).collect();
+    /// sub-parameters (SPEC 3.6, [`schema::DRIVE_PARAMS`]).
+    fn drive_block(&mut self, model: &Spanned<String>, block: &[ParamToken]) -> Parsed {
         let mut ok = true;
         if model.value != "unicycle" {
-            let mut d = Diag::error(
-                "scen::analyze::out_of_range",
-                format!("`drive` does not accept `{}`", model.value),
-            )
-            .at(model.span, "not a drive model");
-            d = d.help("the only drive model is `unicycle`: `drive unicycle { dt 0.01 }`");
-            self.error(d);
+            self.error(
+                Diag::error(
+                    "scen::analyze::out_of_range",
+                    format!("`drive` does not accept `{}`", model.value),
+                )
+                .at(model.span, "not a drive model")
+                .help("the only drive model is `unicycle`: `drive unicycle { dt 0.01 }`"),
+            );
             ok = false;
         }
+        let set = ParamSet {
+            owner: "`drive unicycle`".into(),
+            name: "`drive unicycle`".into(),
+            specs: schema::DRIVE_PARAMS.iter().collect(),
+        };
+        let (values, _, block_ok) = self.param_list(block, &set, |this, spec, next, _, _| {
+            this.param_value(spec, next, None)
+                .map_or(Parsed::Bad, Parsed::Value)
+        });
+        if ok && block_ok {
+            Parsed::Value(ParamValue::Block(model.value.clone(), values))
+        } else {
+            Parsed::Bad
+        }
+    }
+
+    /// The tokens of a parameter list (a plan's body, a `drive` block):
+    /// `key value...` pairs, each key of `set` at most once unless
+    /// repeatable. `value` reads the value starting at `next` (advancing
+    /// `i` past any further tokens it takes). Returns the values, the keys
+    /// given (even with a bad value) and whether all was well.
+    fn param_list(
+        &mut self,
+        tokens: &[ParamToken],
+        set: &ParamSet,
+        mut value: impl FnMut(
+            &mut Self,
+            &'static schema::ParamSpec,
+            &ParamToken,
+            &[ParamToken],
+            &mut usize,
+        ) -> Parsed,
+    ) -> (BTreeMap<&'static str, Param>, Vec<&'static str>, bool) {
         let mut values: BTreeMap<&'static str, Param> = BTreeMap::new();
-        let tokens = block.unwrap_or(&[]);
+        let mut given: Vec<&'static str> = Vec::new();
+        let mut ok = true;
         let mut i = 0;
         while i < tokens.len() {
             let tok = &tokens[i];
             i += 1;
             let ParamToken::Word(key) = tok else {
                 self.error(
-                    Diag::error(
-                        "scen::analyze::expected_key",
-                        "expected a `drive` parameter name",
-                    )
-                    .at(tok.span(), "a value without a key")
-                    .help(format!(
-                        "parameters of `drive unicycle`: {}",
-                        schema::backticked(&keys)
-                    )),
+                    Diag::error("scen::analyze::expected_key", "expected a parameter name")
+                        .at(tok.span(), "a value without a key")
+                        .help(format!("parameters of {}: {}", set.name, set.keys())),
                 );
                 ok = false;
                 continue;
             };
-            let Some(spec) = DRIVE_PARAMS.iter().find(|s| s.key == key.value) else {
+            let Some(spec) = set.get(&key.value) else {
                 let mut d = Diag::error(
                     "scen::analyze::unknown_key",
-                    format!("unknown parameter `{}` for `drive unicycle`", key.value),
+                    format!("unknown parameter `{}` for {}", key.value, set.owner),
                 )
                 .at(key.span, "unknown key");
-                d = match did_you_mean(&key.value, keys.iter().copied()) {
-                    Some(k) => d.help(format!(
-                        "did you mean `{k}`? accepted: {}",
-                        schema::backticked(&keys)
-                    )),
-                    None => d.help(format!("accepted: {}", schema::backticked(&keys))),
+                d = match did_you_mean(&key.value, set.specs.iter().map(|p| p.key)) {
+                    Some(k) => d.help(format!("did you mean `{k}`? accepted: {}", set.keys())),
+                    None => d.help(format!("accepted: {}", set.keys())),
                 };
                 self.error(d);
                 ok = false;
-                if let Some(ParamToken::Value(_)) = tokens.get(i) {
-                    i += 1; // its value
+                // Skip its values: everything up to the next known key.
+                while i < tokens.len() {
+                    if let ParamToken::Word(w) = &tokens[i]
+                        && set.get(&w.value).is_some()
+                    {
+                        break;
+                    }
+                    i += 1;
                 }
                 continue;
             };
-            let what = match spec.unit {
-                Unit::Number => "a positive number",
-                Unit::Seconds => "a positive number of seconds or a duration (`10ms`)",
-                Unit::Angle => "a positive angle (`0.5deg`)",
-            };
-            let Some(ParamToken::Value(v)) = tokens.get(i) else {
-                self.error(
-                    Diag::error(
-                        "scen::analyze::missing_value",
-                        format!("`{}` needs a value", spec.key),
-                    )
-                    .at(key.span, "no value")
-                    .help(format!("`{}` takes {what}: {}", spec.key, spec.help)),
-                );
-                ok = false;
-                continue;
-            };
-            i += 1;
-            let x = match (spec.unit, &v.kind) {
-                (Unit::Number | Unit::Seconds, ValueKind::Number(x))
-                | (Unit::Seconds, ValueKind::Duration(x))
-                | (Unit::Angle, ValueKind::Angle(x)) => *x,
-                (Unit::Angle, ValueKind::Number(n)) => {
-                    self.error(
-                        Diag::error(
-                            "scen::analyze::angle_unit",
-                            format!("`{}` is an angle and needs a unit", spec.key),
-                        )
-                        .at(v.span, "a bare number")
-                        .help(format!("write `{n}deg` or `{n}rad`")),
-                    );
-                    ok = false;
-                    continue;
-                }
-                (_, other) => {
-                    self.error(
-                        Diag::error(
-                            "scen::analyze::wrong_type",
-                            format!("`{}` takes {what}, found {}", spec.key, other.describe()),
-                        )
-                        .at(v.span, "unexpected value")
-                        .help(format!("`{}`: {}", spec.key, spec.help)),
-                    );
-                    ok = false;
-                    continue;
-                }
-            };
-            if !(x > 0.0 && x <= spec.max) {
-                let max = match spec.unit {
-                    Unit::Angle => format!("{}deg", spec.max.to_degrees()),
-                    _ => format!("{}", spec.max),
-                };
-                self.error(
-                    Diag::error(
-                        "scen::analyze::out_of_range",
-                        format!("`{}` must be > 0 and <= {max}", spec.key),
-                    )
-                    .at(v.span, "out of range")
-                    .help(format!("`{}`: {}", spec.key, spec.help)),
-                );
-                ok = false;
-                continue;
-            }
-            if let Some(first) = values.get(spec.key) {
+            given.push(spec.key);
+            if !spec.repeatable
+                && let Some(first) = values.get(spec.key)
+            {
                 self.error(
                     Diag::error(
                         "scen::analyze::duplicate_key",
@@ -1323,17 +1097,139 @@ impl Analyzer {
                     .help("give each parameter once"),
                 );
                 ok = false;
+            }
+            let Some(next) = tokens.get(i) else {
+                self.missing_value(spec, key.span);
+                ok = false;
+                break;
+            };
+            // A known key right after a key means the value is missing.
+            if let ParamToken::Word(w) = next
+                && !matches!(
+                    spec.value,
+                    ValueSpec::Word(_)
+                        | ValueSpec::IntOrWord(_)
+                        | ValueSpec::ObstacleName
+                        | ValueSpec::Limit
+                        | ValueSpec::Drive
+                )
+                && set.get(&w.value).is_some()
+            {
+                self.missing_value(spec, key.span);
+                ok = false;
                 continue;
             }
-            values.insert(
-                spec.key,
-                Param {
-                    value: ParamValue::Num(x),
-                    span: v.span,
-                },
-            );
+            i += 1;
+            match value(self, spec, next, tokens, &mut i) {
+                Parsed::Value(value) => {
+                    values.insert(
+                        spec.key,
+                        Param {
+                            value,
+                            span: next.span(),
+                        },
+                    );
+                }
+                Parsed::Stored => {}
+                Parsed::Bad => ok = false,
+            }
         }
-        ok.then(|| ParamValue::Block(model.value.clone(), values))
+        (values, given, ok)
+    }
+
+    /// `limit KIND AMOUNT` (repeatable, each kind once), stored in `limits`.
+    fn limit(
+        &mut self,
+        spec: &schema::ParamSpec,
+        next: &ParamToken,
+        tokens: &[ParamToken],
+        i: &mut usize,
+        limits: &mut Limits,
+        spans: &mut HashMap<&'static str, Span>,
+    ) -> Parsed {
+        let ParamToken::Word(which) = next else {
+            self.wrong_value(spec, next);
+            return Parsed::Bad;
+        };
+        let amount = tokens.get(*i);
+        let Some(k) = schema::LIMIT_KINDS.iter().find(|k| **k == which.value) else {
+            self.error(
+                Diag::error(
+                    "scen::analyze::bad_limit",
+                    format!("unknown limit `{}`", which.value),
+                )
+                .at(which.span, "not a limit")
+                .help(format!("`limit` takes {}", spec.value.describe())),
+            );
+            if let Some(ParamToken::Value(_)) = amount {
+                *i += 1; // its amount
+            }
+            return Parsed::Bad;
+        };
+        let Some(ParamToken::Value(v)) = amount else {
+            self.missing_value(spec, which.span);
+            return Parsed::Bad;
+        };
+        *i += 1;
+        let mut ok = true;
+        if let Some(first) = spans.get(k) {
+            self.error(
+                Diag::error(
+                    "scen::analyze::duplicate_key",
+                    format!("`limit {k}` is given twice"),
+                )
+                .at(which.span, "second time")
+                .with_related(*first, "first given here")
+                .help("give each limit once"),
+            );
+            ok = false;
+        }
+        spans.insert(k, which.span);
+        match (*k, &v.kind) {
+            ("time", ValueKind::Duration(s)) if *s > 0.0 && s.is_finite() => limits.time = Some(*s),
+            ("time", _) => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::bad_limit",
+                        "`limit time` needs a positive duration",
+                    )
+                    .at(v.span, "expected a duration")
+                    .help("write `limit time 2s` or `limit time 500ms`"),
+                );
+                ok = false;
+            }
+            (_, ValueKind::Number(n)) if *n >= 1.0 && n.fract() == 0.0 && *n <= 1e18 => {
+                let n = *n as u64;
+                match *k {
+                    "expansions" => limits.expansions = Some(n),
+                    "steps" => limits.steps = Some(n),
+                    _ => limits.cells = Some(n),
+                }
+            }
+            _ => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::bad_limit",
+                        format!("`limit {k}` needs a positive integer"),
+                    )
+                    .at(v.span, "expected a positive integer")
+                    .help(format!("write e.g. `limit {k} 10000`")),
+                );
+                ok = false;
+            }
+        }
+        if ok { Parsed::Stored } else { Parsed::Bad }
+    }
+
+    fn missing_value(&mut self, spec: &schema::ParamSpec, at: Span) {
+        self.error(
+            Diag::error(
+                "scen::analyze::missing_value",
+                format!("`{}` needs a value", spec.key),
+            )
+            .at(at, "no value")
+            .help(format!("`{}` takes {}", spec.key, spec.value.describe())),
+        );
     }
 
     fn wrong_value(&mut self, spec: &schema::ParamSpec, tok: &ParamToken) {
@@ -1392,18 +1288,8 @@ impl Analyzer {
                     }
                 };
                 let below = if min_open { x <= min } else { x < min };
-                if below || x > max || (integer && x.fract() != 0.0) {
-                    self.error(
-                        Diag::error(
-                            "scen::analyze::out_of_range",
-                            format!("`{}` must be {}, got {x}", spec.key, spec.value.describe()),
-                        )
-                        .at(v.span, "out of range")
-                        .help(format!("`{}`: {}", spec.key, spec.help)),
-                    );
-                    return None;
-                }
-                Some(ParamValue::Num(x))
+                let ok = !(below || x > max || (integer && x.fract() != 0.0));
+                self.in_range(spec, v, x, ok, &format!("{x}"))
             }
             (ValueSpec::IntChoice(choices), ParamToken::Value(v)) => {
                 let ValueKind::Number(x) = v.kind else {
@@ -1468,19 +1354,9 @@ impl Analyzer {
                 }
             }
             (ValueSpec::IntOrWord(_), ParamToken::Value(v)) => match v.kind {
-                ValueKind::Number(x) if x >= 1.0 && x.fract() == 0.0 && x <= 1e9 => {
-                    Some(ParamValue::Num(x))
-                }
                 ValueKind::Number(x) => {
-                    self.error(
-                        Diag::error(
-                            "scen::analyze::out_of_range",
-                            format!("`{}` must be {}, got {x}", spec.key, spec.value.describe()),
-                        )
-                        .at(v.span, "out of range")
-                        .help(format!("`{}`: {}", spec.key, spec.help)),
-                    );
-                    None
+                    let ok = x >= 1.0 && x.fract() == 0.0 && x <= 1e9;
+                    self.in_range(spec, v, x, ok, &format!("{x}"))
                 }
                 _ => {
                     self.wrong_value(spec, tok);
@@ -1490,11 +1366,68 @@ impl Analyzer {
             (ValueSpec::ObstacleName, ParamToken::Word(w)) => {
                 Some(ParamValue::Word(w.value.clone()))
             }
+            (ValueSpec::Seconds { max }, ParamToken::Value(v)) => match v.kind {
+                ValueKind::Number(x) | ValueKind::Duration(x) => {
+                    self.in_range(spec, v, x, x > 0.0 && x <= max, &format!("{x}"))
+                }
+                _ => {
+                    self.wrong_value(spec, tok);
+                    None
+                }
+            },
+            (ValueSpec::Angle { max }, ParamToken::Value(v)) => match v.kind {
+                ValueKind::Angle(x) => {
+                    let shown = format!("{}deg", x.to_degrees());
+                    self.in_range(spec, v, x, x > 0.0 && x <= max, &shown)
+                }
+                ValueKind::Number(n) => {
+                    self.error(
+                        Diag::error(
+                            "scen::analyze::angle_unit",
+                            format!("`{}` is an angle and needs a unit", spec.key),
+                        )
+                        .at(v.span, "a bare number")
+                        .help(format!("write `{n}deg` or `{n}rad`")),
+                    );
+                    None
+                }
+                _ => {
+                    self.wrong_value(spec, tok);
+                    None
+                }
+            },
             _ => {
                 self.wrong_value(spec, tok);
                 None
             }
         }
+    }
+
+    /// `x` (shown as `shown`) if `ok`, else an out-of-range error.
+    fn in_range(
+        &mut self,
+        spec: &schema::ParamSpec,
+        v: &Value,
+        x: f64,
+        ok: bool,
+        shown: &str,
+    ) -> Option<ParamValue> {
+        if ok {
+            return Some(ParamValue::Num(x));
+        }
+        self.error(
+            Diag::error(
+                "scen::analyze::out_of_range",
+                format!(
+                    "`{}` must be {}, got {shown}",
+                    spec.key,
+                    spec.value.describe()
+                ),
+            )
+            .at(v.span, "out of range")
+            .help(format!("`{}`: {}", spec.key, spec.help)),
+        );
+        None
     }
 
     fn bad_word(&mut self, spec: &schema::ParamSpec, w: &Spanned<String>, words: &[&str]) {
@@ -1941,9 +1874,34 @@ impl Analyzer {
     }
 }
 
-fn keys_of(schema: &PlannerSchema) -> String {
-    let keys: Vec<&str> = schema.all_params().map(|p| p.key).collect();
-    schema::backticked(&keys)
+/// The parameters a list may give (a plan's, a `drive` block's), and how
+/// messages name its owner.
+struct ParamSet {
+    /// After "unknown parameter `k` for": "planner `astar`".
+    owner: String,
+    /// After "parameters of": "`astar`".
+    name: String,
+    specs: Vec<&'static schema::ParamSpec>,
+}
+
+impl ParamSet {
+    fn get(&self, key: &str) -> Option<&'static schema::ParamSpec> {
+        self.specs.iter().copied().find(|p| p.key == key)
+    }
+
+    fn keys(&self) -> String {
+        let keys: Vec<&str> = self.specs.iter().map(|p| p.key).collect();
+        schema::backticked(&keys)
+    }
+}
+
+/// What reading a parameter's value gave.
+enum Parsed {
+    Value(ParamValue),
+    /// Valid, and kept elsewhere (`limit`).
+    Stored,
+    /// Reported.
+    Bad,
 }
 
 fn stmt_span(s: &ast::Stmt) -> Span {

@@ -45,6 +45,11 @@ pub enum ValueSpec {
     Limit,
     /// A word with an optional `{ ... }` block (`drive unicycle { dt 0.02 }`).
     Drive,
+    /// A positive number of seconds or a duration (`10ms`), at most `max`.
+    Seconds { max: f64 },
+    /// A positive angle written with its unit (`0.5deg`), at most `max`
+    /// radians; stored in radians.
+    Angle { max: f64 },
 }
 
 impl ValueSpec {
@@ -81,6 +86,13 @@ impl ValueSpec {
                     .into()
             }
             ValueSpec::Drive => "`unicycle`, optionally followed by `{ ... }`".into(),
+            ValueSpec::Seconds { max } => {
+                format!("a positive number of seconds or a duration (`10ms`), at most {max}s")
+            }
+            ValueSpec::Angle { max } => format!(
+                "a positive angle with its unit (`0.5deg`), at most {}deg",
+                max.to_degrees()
+            ),
         }
     }
 }
@@ -169,6 +181,65 @@ pub const COMMON_PARAMS: &[ParamSpec] = &[
         ValueSpec::Drive,
         "",
         "simulate a differential-drive robot following the path",
+    ),
+];
+
+const fn up_to(max: f64) -> ValueSpec {
+    ValueSpec::Number {
+        min: 0.0,
+        min_open: true,
+        max,
+        integer: false,
+    }
+}
+
+/// The sub-parameters of `drive unicycle { ... }` (SPEC 3.6). The values
+/// the simulation takes for keys not given are
+/// [`crate::drive::Unicycle::default`]'s, the defaults written here.
+pub const DRIVE_PARAMS: &[ParamSpec] = &[
+    p(
+        "dt",
+        ValueSpec::Seconds { max: 1.0 },
+        "10ms",
+        "integration step in seconds (a number or a duration such as `10ms`)",
+    ),
+    p(
+        "max_speed",
+        up_to(1e6),
+        "1",
+        "largest linear speed, world units per second",
+    ),
+    p(
+        "max_turn_rate",
+        ValueSpec::Angle { max: 1e6 },
+        "2rad",
+        "largest turn rate, an angle per second (e.g. `120deg`)",
+    ),
+    p(
+        "gain",
+        up_to(1e6),
+        "2",
+        "go-to-cell gain: speed = gain × distance (1/s)",
+    ),
+    p(
+        "turn_gain",
+        up_to(1e6),
+        "8",
+        "go-to-orientation gain: turn rate = turn_gain × heading error (1/s)",
+    ),
+    p(
+        "reach",
+        up_to(1e6),
+        "0.0009",
+        "distance to a path point at which it counts as reached",
+    ),
+    p(
+        "align",
+        ValueSpec::Angle {
+            max: std::f64::consts::FRAC_PI_2,
+        },
+        "0.5deg",
+        "heading error under which the robot stops turning in place and drives",
     ),
 ];
 
