@@ -893,6 +893,7 @@ impl Analyzer {
             owner: format!("planner `{}`", schema.kind),
             name: format!("`{}`", schema.kind),
             specs: schema.all_params().collect(),
+            nested: schema::DRIVE_PARAMS,
         };
         let mut limits = Limits::default();
         let mut limit_spans: HashMap<&'static str, Span> = HashMap::new();
@@ -1015,6 +1016,7 @@ impl Analyzer {
             owner: "`drive unicycle`".into(),
             name: "`drive unicycle`".into(),
             specs: schema::DRIVE_PARAMS.iter().collect(),
+            nested: &[],
         };
         let (values, _, block_ok) = self.param_list(block, &set, |this, spec, next, _, _| {
             this.param_value(spec, next, None)
@@ -1066,9 +1068,19 @@ impl Analyzer {
                     format!("unknown parameter `{}` for {}", key.value, set.owner),
                 )
                 .at(key.span, "unknown key");
-                d = match did_you_mean(&key.value, set.specs.iter().map(|p| p.key)) {
-                    Some(k) => d.help(format!("did you mean `{k}`? accepted: {}", set.keys())),
-                    None => d.help(format!("accepted: {}", set.keys())),
+                let nested = set.nested.iter().find(|p| p.key == key.value);
+                d = match (
+                    nested,
+                    did_you_mean(&key.value, set.specs.iter().map(|p| p.key)),
+                ) {
+                    (Some(p), _) => d.help(format!(
+                        "put it in the drive block: `drive unicycle {{ {} {} }}`",
+                        p.key, p.default
+                    )),
+                    (None, Some(k)) => {
+                        d.help(format!("did you mean `{k}`? accepted: {}", set.keys()))
+                    }
+                    (None, None) => d.help(format!("accepted: {}", set.keys())),
                 };
                 self.error(d);
                 ok = false;
@@ -1167,7 +1179,15 @@ impl Analyzer {
             return Parsed::Bad;
         };
         let Some(ParamToken::Value(v)) = amount else {
-            self.missing_value(spec, which.span);
+            let example = if *k == "time" { "2s" } else { "10000" };
+            self.error(
+                Diag::error(
+                    "scen::analyze::missing_value",
+                    format!("`limit {k}` needs an amount"),
+                )
+                .at(which.span, "no amount")
+                .help(format!("write e.g. `limit {k} {example}`")),
+            );
             return Parsed::Bad;
         };
         *i += 1;
@@ -1882,6 +1902,9 @@ struct ParamSet {
     /// After "parameters of": "`astar`".
     name: String,
     specs: Vec<&'static schema::ParamSpec>,
+    /// The keys of the `drive` block nested in this list, for a help line
+    /// when one is written outside it.
+    nested: &'static [schema::ParamSpec],
 }
 
 impl ParamSet {
