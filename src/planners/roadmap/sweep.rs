@@ -500,6 +500,19 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             continue;
         };
         let (gf, gl) = (group_of[f as usize], group_of[l as usize]);
+        // Seen from v a segment spans less than half a turn, so one whose
+        // first end comes later in the order than its last must cross the
+        // x axis: its first end below it, its last above. Otherwise the
+        // segment is collinear with v but for rounding (the sign of `o`
+        // and the order of its ends disagree), and like an exactly
+        // collinear one it blocks nothing properly: its ends are walked.
+        let below = |p: u32| {
+            let w = arr.points[p as usize] - pv;
+            !(w.y > 0.0 || (w.y == 0.0 && w.x > 0.0))
+        };
+        if gf > gl && !(below(f) && !below(l)) {
+            continue;
+        }
         if gf != gl {
             blocking.push((s as u32, gf, gl));
         }

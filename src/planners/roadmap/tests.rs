@@ -352,6 +352,39 @@ proptest! {
         prop_assert_eq!(sorted(rm.visible.clone()), sorted(brute));
     }
 
+    /// The same on axis-aligned worlds on an integer grid: rectangles that
+    /// touch at corners, share edges and overlap, walls along their sides,
+    /// many collinear points and flat corners (the degenerate cases of the
+    /// sweep's angular groups and of its hidden-point rule).
+    #[test]
+    fn sweep_equals_brute_force_on_grid_worlds(
+        rects in prop::collection::vec((0u8..8, 0u8..8, 1u8..4, 1u8..4), 1..10),
+        walls in prop::collection::vec((0u8..9, 0u8..9, 0u8..2, 1u8..4), 0..5),
+        boxed in any::<bool>(),
+    ) {
+        let mut shapes: Vec<Shape> = rects
+            .iter()
+            .map(|&(x, y, w, h)| {
+                let (x, y) = (f64::from(x), f64::from(y));
+                rect(x, y, x + f64::from(w), y + f64::from(h))
+            })
+            .collect();
+        for &(x, y, vertical, l) in &walls {
+            let (x, y, l) = (f64::from(x), f64::from(y), f64::from(l));
+            shapes.push(if vertical == 1 { seg(x, y, x, y + l) } else { seg(x, y, x + l, y) });
+        }
+        let w = world((-1.0, -1.0, 12.0, 12.0), shapes);
+        let robot = if boxed { box_robot(0.5, 0.5) } else { RobotShape::Point };
+        let (polys, walls) = grow(&w, &robot, 0.0, 16);
+        let rm = Roadmap::build(&polys, &walls, p(-0.5, -0.5), p(11.5, 11.5), w.bounds, None).expect("built");
+        let arr = &rm.arrangement;
+        let brute: Vec<Visible> = sweep::brute_force(arr)
+            .into_iter()
+            .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
+            .collect();
+        prop_assert_eq!(sorted(rm.visible.clone()), sorted(brute));
+    }
+
     /// Every visibility edge passes the validator as a motion.
     #[test]
     fn every_edge_validates(seed in any::<u64>(), n in 1usize..7, walls in 0usize..5, robot in 0u8..3) {
@@ -483,4 +516,24 @@ fn huge_worlds_are_refused_not_hung() {
     assert!(out.path.is_none());
     assert!(out.notes[0].contains("vertices"), "{:?}", out.notes);
     assert_eq!(out.extra["graph_nodes"], MetricValue::Num(0.0));
+}
+
+/// Regression: two overlapping grown boxes share an edge line through the
+/// swept node 32, and rounding made the segment 34-35 on that line seem to
+/// span the whole turn around it (the sign of its orientation and the order
+/// of its ends disagreed), hiding 38 and 39 from 32.
+#[test]
+fn a_segment_collinear_with_the_node_but_for_rounding_blocks_nothing() {
+    let w = random_world(13760135364525337302, 3, 2, 10.0, 2.0);
+    let (polys, walls) = grow(&w, &box_robot(0.6, 0.3), 0.0, 16);
+    let rm =
+        Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).expect("built");
+    let arr = &rm.arrangement;
+    let brute: Vec<Visible> = sweep::brute_force(arr)
+        .into_iter()
+        .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
+        .collect();
+    let visible = sorted(rm.visible.clone());
+    assert!(visible.iter().any(|e| (e.a, e.b) == (32, 38)));
+    assert_eq!(visible, sorted(brute));
 }
