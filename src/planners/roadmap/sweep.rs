@@ -510,7 +510,8 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
             let w = arr.points[p as usize] - pv;
             !(w.y > 0.0 || (w.y == 0.0 && w.x > 0.0))
         };
-        if gf > gl && !(below(f) && !below(l)) {
+        let crosses_x_axis = below(f) && !below(l);
+        if gf > gl && !crosses_x_axis {
             continue;
         }
         if gf != gl {
