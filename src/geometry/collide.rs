@@ -762,7 +762,7 @@ fn thin_wall_distance(a: Point, b: Point, probe: &Probe) -> f64 {
 /// Whether the closed segment `pq` (a point when `p == q`) meets the open
 /// box `(lo, hi)`: Liang–Barsky clipping with strict inequalities.
 #[inline]
-fn segment_meets_open_box(p: Point, q: Point, lo: Point, hi: Point) -> bool {
+pub(crate) fn segment_meets_open_box(p: Point, q: Point, lo: Point, hi: Point) -> bool {
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
     for (s, d, l, h) in [(p.x, q.x - p.x, lo.x, hi.x), (p.y, q.y - p.y, lo.y, hi.y)] {
         if d == 0.0 {
@@ -776,6 +776,65 @@ fn segment_meets_open_box(p: Point, q: Point, lo: Point, hi: Point) -> bool {
         }
     }
     t0 < t1 || (p == q && t0 <= t1)
+}
+
+/// Whether obstacle `shape` overlaps the axis-aligned box `b` by more than
+/// touching; a wall, whether it meets the open box. For solids the test
+/// shrinks `b` by `TOUCH_EPS / 2` and asks whether the closed shapes meet:
+/// whatever stays outside then overlaps `b` by less than `TOUCH_EPS` (at
+/// most `TOUCH_EPS / √2` along any axis), so a body inside `b` touches at
+/// most. A wall on `b`'s boundary does not overlap it (but a motion from
+/// `b` to the box beside it would cross it: the caller's concern).
+pub fn box_overlaps(b: &Aabb, shape: &Shape) -> bool {
+    let s = TOUCH_EPS / 2.0;
+    let inner = Aabb::from_corners(
+        Point::new(b.min.x + s, b.min.y + s),
+        Point::new(b.max.x - s, b.max.y - s),
+    );
+    let meets_box = |r: &Aabb| {
+        inner.min.x <= r.max.x
+            && r.min.x <= inner.max.x
+            && inner.min.y <= r.max.y
+            && r.min.y <= inner.max.y
+    };
+    match shape {
+        Shape::Rect(r) => meets_box(r),
+        Shape::Disk { center, radius } => distance_point_box(*center, &inner) <= *radius,
+        Shape::Polygon { pieces, .. } => pieces
+            .iter()
+            .any(|piece| convex_meets_box(&piece.vertices, &inner)),
+        Shape::Segment(p, q) => segment_meets_open_box(*p, *q, b.min, b.max),
+        Shape::Grid(g) => {
+            let (cols, rows) = g.cells_overlapping(&inner);
+            rows.into_iter().any(|row| {
+                cols.clone()
+                    .any(|col| g.is_blocked(col, row) && meets_box(&g.cell_box(col, row)))
+            })
+        }
+    }
+}
+
+/// Whether the closed convex polygon `v` (counter-clockwise) and the closed
+/// box `b` meet: no separating axis among the box's and the polygon's edge
+/// normals.
+fn convex_meets_box(v: &[Point], b: &Aabb) -> bool {
+    let (lo, hi) = (bounding_box(v).min, bounding_box(v).max);
+    if lo.x > b.max.x || b.min.x > hi.x || lo.y > b.max.y || b.min.y > hi.y {
+        return false;
+    }
+    let n = v.len();
+    (0..n).all(|i| {
+        let (a, c) = (v[i], v[(i + 1) % n]);
+        // Outward normal of edge a → c of a counter-clockwise polygon.
+        let normal = Vector::new(c.y - a.y, a.x - c.x);
+        let box_min = b
+            .corners()
+            .iter()
+            .map(|k| normal.dot(&(k - a)))
+            .fold(f64::INFINITY, f64::min);
+        // The polygon lies at ≤ 0 along its own outward normal.
+        box_min <= 0.0
+    })
 }
 
 /// The edges shared by two pieces (edges of a piece that are not on the

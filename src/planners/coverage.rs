@@ -3,7 +3,9 @@
 //! The `on` grid is resampled to D-cells (side D = `tool`, a multiple `k` of
 //! the grid's cell) and then to mega-cells of 2 × 2 D-cells, both aligned
 //! with the grid's bottom-left corner; cells cut by the top or right edge
-//! count as blocked. Prim's algorithm grows a minimum spanning tree of the
+//! count as blocked, and so do D-cells that another obstacle of the world
+//! overlaps ([`Others`]): the robot fits in its D-cell, so the tour's moves
+//! between free D-cells then stay clear of every obstacle. Prim's algorithm grows a minimum spanning tree of the
 //! 4-connected free mega-cells from the start's mega-cell (ties: lowest
 //! row, rows counted from the top as in the grid, then lowest column). The
 //! tour circumnavigates the tree counter-clockwise, keeping the tree on its
@@ -19,6 +21,7 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::time::Instant;
 
+use crate::geometry::collide::{box_overlaps, segment_meets_open_box};
 use crate::geometry::{Aabb, Config, Grid, Point, RobotShape, Shape, World};
 use crate::scenario::Params;
 
@@ -76,23 +79,145 @@ pub enum StartProblem {
     /// Its D-cell is free but its mega-cell is not (partly blocked, or cut
     /// by the grid's edge): STC cannot cover from there.
     MegaCellBlocked,
+    /// Another obstacle of the world (its index) overlaps its D-cell or
+    /// another D-cell of its mega-cell.
+    Overlapped(usize),
 }
 
 impl StartProblem {
-    pub fn message(self) -> &'static str {
+    /// What is wrong, after "the start": `grid` names the grid covered.
+    pub fn message(self, world: &World, grid: &str) -> String {
         match self {
-            StartProblem::OutsideGrid => "lies outside the whole D-cells",
-            StartProblem::Blocked => "lies in a blocked D-cell",
-            StartProblem::MegaCellBlocked => {
-                "lies in a free D-cell of a partly blocked mega-cell, which STC cannot cover"
-            }
+            StartProblem::OutsideGrid => format!("lies outside the whole D-cells of grid `{grid}`"),
+            StartProblem::Blocked => format!("lies in a blocked D-cell of grid `{grid}`"),
+            StartProblem::MegaCellBlocked => format!(
+                "lies in a free D-cell of a partly blocked mega-cell of grid `{grid}`, which STC cannot cover"
+            ),
+            StartProblem::Overlapped(o) => format!(
+                "lies in a mega-cell of grid `{grid}` that obstacle `{}` overlaps, which STC cannot cover",
+                world.obstacles.get(o).map_or("?", |o| o.name.as_str())
+            ),
         }
     }
 }
 
+/// The obstacles of the world other than the grid being covered, with
+/// their bounding boxes: each blocks the D-cells it overlaps
+/// ([`box_overlaps`]: more than touching, or a wall meeting the D-cell).
+pub struct Others<'w> {
+    items: Vec<(usize, &'w Shape, Aabb)>,
+    /// The walls among them: (obstacle, a, b).
+    walls: Vec<(usize, Point, Point)>,
+}
+
+impl<'w> Others<'w> {
+    /// Every obstacle of `world` but the grid `on` (found by identity).
+    pub fn new(world: &'w World, on: &Grid) -> Self {
+        let items = world
+            .obstacles
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| !matches!(&o.shape, Shape::Grid(g) if std::ptr::eq(g, on)))
+            .map(|(i, o)| (i, &o.shape, shape_box(&o.shape)))
+            .collect();
+        let walls = world
+            .obstacles
+            .iter()
+            .enumerate()
+            .filter_map(|(i, o)| match o.shape {
+                Shape::Segment(a, b) => Some((i, a, b)),
+                _ => None,
+            })
+            .collect();
+        Others { items, walls }
+    }
+
+    /// No obstacle besides the grid.
+    pub fn none() -> Self {
+        Others {
+            items: Vec::new(),
+            walls: Vec::new(),
+        }
+    }
+
+    /// The first wall that meets the open box `b` (a mega-cell: a wall
+    /// between two of its D-cells blocks the tour inside it).
+    pub fn wall_inside(&self, b: &Aabb) -> Option<usize> {
+        self.walls
+            .iter()
+            .find(|(_, p, q)| segment_meets_open_box(*p, *q, b.min, b.max))
+            .map(|&(i, ..)| i)
+    }
+
+    /// The first obstacle that blocks the D-cell `b`.
+    pub fn blocker(&self, b: &Aabb) -> Option<usize> {
+        self.items
+            .iter()
+            .find(|(_, shape, bb)| boxes_meet(bb, b) && box_overlaps(b, shape))
+            .map(|&(i, ..)| i)
+    }
+}
+
+/// A closed box around an obstacle.
+fn shape_box(shape: &Shape) -> Aabb {
+    let around = |pts: &mut dyn Iterator<Item = Point>| {
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for p in pts {
+            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+        }
+        Aabb::from_corners(lo, hi)
+    };
+    match shape {
+        Shape::Polygon { outline, .. } => around(&mut outline.iter().copied()),
+        Shape::Rect(r) => *r,
+        Shape::Segment(a, b) => Aabb::from_corners(*a, *b),
+        Shape::Disk { center, radius } => Aabb::from_corners(
+            Point::new(center.x - radius, center.y - radius),
+            Point::new(center.x + radius, center.y + radius),
+        ),
+        Shape::Grid(g) => g.extent(),
+    }
+}
+
+/// Whether segment `pq` meets the open axis-parallel side at `x = at`
+/// (`vertical`) or `y = at`, spanning `(lo, hi)` along it, ends excluded.
+fn meets_open_side(p: Point, q: Point, at: f64, (lo, hi): (f64, f64), vertical: bool) -> bool {
+    // Coordinates across the side (u) and along it (v).
+    let (pu, pv, qu, qv) = if vertical {
+        (p.x, p.y, q.x, q.y)
+    } else {
+        (p.y, p.x, q.y, q.x)
+    };
+    if pu == at && qu == at {
+        // Along the side's line: a positive-length overlap (or a point
+        // inside the side).
+        let (v0, v1) = (pv.min(qv), pv.max(qv));
+        return lo.max(v0) < hi.min(v1) || (lo < v0 && v1 < hi);
+    }
+    if (pu - at) * (qu - at) > 0.0 {
+        return false;
+    }
+    // It crosses or touches the line once.
+    let v = pv + (qv - pv) * (at - pu) / (qu - pu);
+    lo < v && v < hi
+}
+
+fn boxes_meet(a: &Aabb, b: &Aabb) -> bool {
+    a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y
+}
+
 /// The D-cell `(i, j)` of side `k` grid cells that contains `p`, if it
 /// starts a tour: inside the grid, free, and in a free mega-cell.
-pub fn start_cell(grid: &Grid, k: usize, p: Point) -> Result<(usize, usize), StartProblem> {
+pub fn start_cell(
+    grid: &Grid,
+    others: &Others,
+    k: usize,
+    p: Point,
+) -> Result<(usize, usize), StartProblem> {
     let d = grid.cell * k as f64;
     let (fi, fj) = (
         ((p.x - grid.origin.x) / d).floor(),
@@ -112,6 +237,21 @@ pub fn start_cell(grid: &Grid, k: usize, p: Point) -> Result<(usize, usize), Sta
     });
     if !whole {
         return Err(StartProblem::MegaCellBlocked);
+    }
+    let dcell = |i: usize, j: usize| {
+        let at = |i: usize, j: usize| {
+            Point::new(grid.origin.x + i as f64 * d, grid.origin.y + j as f64 * d)
+        };
+        Aabb::from_corners(at(i, j), at(i + 1, j + 1))
+    };
+    for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+        if let Some(o) = others.blocker(&dcell(a + di, b + dj)) {
+            return Err(StartProblem::Overlapped(o));
+        }
+    }
+    let mega = Aabb::from_corners(dcell(a, b).min, dcell(a + 1, b + 1).max);
+    if let Some(o) = others.wall_inside(&mega) {
+        return Err(StartProblem::Overlapped(o));
     }
     Ok((i, j))
 }
@@ -138,11 +278,20 @@ pub struct Cells {
     pub mrows: usize,
     /// Mega-cell weights, `b * mcols + a`; 0 blocked.
     pub mega: Vec<u8>,
+    /// Per mega-cell, the sides to its neighbours that a wall runs along
+    /// (bits [`EAST`] and [`NORTH`]): the tree may not cross them.
+    pub fenced: Vec<u8>,
 }
 
 impl Cells {
     /// Resamples `grid` with `k` grid cells per D-cell side.
     pub fn new(grid: &Grid, k: usize) -> Self {
+        Cells::with_others(grid, &Others::none(), k)
+    }
+
+    /// Resamples `grid` with `k` grid cells per D-cell side; the D-cells
+    /// that `others` overlap are blocked too.
+    pub fn with_others(grid: &Grid, others: &Others, k: usize) -> Self {
         let (cols, rows) = (grid.width / k, grid.height / k);
         let mut dcells = vec![0u8; cols * rows];
         for j in 0..rows {
@@ -150,11 +299,40 @@ impl Cells {
                 dcells[j * cols + i] = dcell_weight(grid, k, i, j);
             }
         }
-        let (mcols, mrows) = (cols / 2, rows / 2);
+        let mut cells = Cells {
+            d: grid.cell * k as f64,
+            origin: grid.origin,
+            cols,
+            rows,
+            dcells,
+            mcols: cols / 2,
+            mrows: rows / 2,
+            mega: Vec::new(),
+            fenced: vec![0; (cols / 2) * (rows / 2)],
+        };
+        // Each other obstacle is tested against the D-cells under its box.
+        for &(_, shape, bb) in &others.items {
+            let range = |lo: f64, hi: f64, origin: f64, n: usize| {
+                let f = |v: f64| ((v - origin) / cells.d).floor().clamp(0.0, n as f64) as usize;
+                f(lo)..(f(hi) + 1).min(n)
+            };
+            let is = range(bb.min.x, bb.max.x, cells.origin.x, cols);
+            let js = range(bb.min.y, bb.max.y, cells.origin.y, rows);
+            for j in js {
+                for i in is.clone() {
+                    if cells.dcells[j * cols + i] != 0
+                        && box_overlaps(&cells.dcell_box(i, j), shape)
+                    {
+                        cells.dcells[j * cols + i] = 0;
+                    }
+                }
+            }
+        }
+        let (mcols, mrows) = (cells.mcols, cells.mrows);
         let mut mega = vec![0u8; mcols * mrows];
         for b in 0..mrows {
             for a in 0..mcols {
-                let at = |i: usize, j: usize| dcells[j * cols + i];
+                let at = |i: usize, j: usize| cells.dcells[j * cols + i];
                 let ws = [
                     at(2 * a, 2 * b),
                     at(2 * a + 1, 2 * b),
@@ -168,16 +346,59 @@ impl Cells {
                 };
             }
         }
-        Cells {
-            d: grid.cell * k as f64,
-            origin: grid.origin,
-            cols,
-            rows,
-            dcells,
-            mcols,
-            mrows,
-            mega,
+        cells.mega = mega;
+        cells.fence(others);
+        cells
+    }
+
+    /// The box of mega-cell `(a, b)`.
+    pub fn mega_box(&self, a: usize, b: usize) -> Aabb {
+        Aabb::from_corners(
+            self.dcell_box(2 * a, 2 * b).min,
+            self.dcell_box(2 * a + 1, 2 * b + 1).max,
+        )
+    }
+
+    /// Blocks the mega-cells whose open box a wall meets (one lying between
+    /// two of their D-cells included), and fences the sides between
+    /// mega-cells that a wall meets.
+    fn fence(&mut self, others: &Others) {
+        let (mc, mr) = (self.mcols, self.mrows);
+        let side = 2.0 * self.d;
+        for &(_, p, q) in &others.walls {
+            let range = |lo: f64, hi: f64, origin: f64, n: usize| {
+                let f = |v: f64| ((v - origin) / side).floor().clamp(0.0, n as f64) as usize;
+                // One more below: a wall on a cell's low side is its
+                // neighbour's east or north side.
+                f(lo).saturating_sub(1)..(f(hi) + 1).min(n)
+            };
+            let as_ = range(p.x.min(q.x), p.x.max(q.x), self.origin.x, mc);
+            let bs = range(p.y.min(q.y), p.y.max(q.y), self.origin.y, mr);
+            for b in bs {
+                for a in as_.clone() {
+                    let m = b * mc + a;
+                    let bx = self.mega_box(a, b);
+                    if segment_meets_open_box(p, q, bx.min, bx.max) {
+                        self.mega[m] = 0;
+                    }
+                    // The east side x = max.x, and the north side y = max.y,
+                    // without their ends.
+                    if a + 1 < mc && meets_open_side(p, q, bx.max.x, (bx.min.y, bx.max.y), true) {
+                        self.fenced[m] |= EAST;
+                    }
+                    if b + 1 < mr && meets_open_side(p, q, bx.max.y, (bx.min.x, bx.max.x), false) {
+                        self.fenced[m] |= NORTH;
+                    }
+                }
+            }
         }
+    }
+
+    /// Whether the tree may link mega-cell `m` to its neighbour `n`.
+    fn open_between(&self, m: usize, n: usize) -> bool {
+        let (lo, hi) = (m.min(n), m.max(n));
+        let bit = if hi == lo + 1 { EAST } else { NORTH };
+        self.fenced[lo] & bit == 0
     }
 
     /// The box of D-cell `(i, j)`.
@@ -295,7 +516,7 @@ pub fn prim(
         }
         let (a, b) = (m % mc, m / mc);
         let mut push = |n: usize| {
-            if !in_tree[n] && cells.mega[n] > 0 {
+            if !in_tree[n] && cells.mega[n] > 0 && cells.open_between(m, n) {
                 heap.push(key(weights.edge(cells.mega[m], cells.mega[n]), n, m));
             }
         };
@@ -365,15 +586,18 @@ pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome 
         Some("sum") => EdgeWeights::Sum,
         _ => EdgeWeights::Max,
     };
-    let start = match start_cell(grid, k, params.start.xy()) {
+    let others = Others::new(world, grid);
+    let start = match start_cell(grid, &others, k, params.start.xy()) {
         Ok(s) => s,
         Err(e) => {
-            out.notes.push(format!("the start {}", e.message()));
+            let name = params.word("on").unwrap_or("?");
+            out.notes
+                .push(format!("the start {}", e.message(world, name)));
             return out;
         }
     };
     let began = Instant::now();
-    let cells = Cells::new(grid, k);
+    let cells = Cells::with_others(grid, &others, k);
     let root = (start.1 / 2) * cells.mcols + start.0 / 2;
     let deadline = params
         .limits
@@ -396,13 +620,7 @@ pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome 
             .order
             .iter()
             .take(MAX_TRACED)
-            .map(|&m| {
-                let (a, b) = (m % cells.mcols, m / cells.mcols);
-                Aabb::from_corners(
-                    cells.dcell_box(2 * a, 2 * b).min,
-                    cells.dcell_box(2 * a + 1, 2 * b + 1).max,
-                )
-            })
+            .map(|&m| cells.mega_box(m % cells.mcols, m / cells.mcols))
             .collect(),
         uncovered: uncovered
             .iter()
@@ -813,6 +1031,144 @@ mod tests {
         }
     }
 
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+
+        /// With other obstacles over the grid (disks, boxes, walls on and
+        /// off the grid lines), the tour avoids them all: it passes the
+        /// validator for a disk of diameter D and a D × D square, whenever
+        /// the start can start a tour.
+        #[test]
+        fn tours_avoid_the_other_obstacles(
+            w in 2usize..14, h in 2usize..14, k in 1usize..3,
+            extra in prop::collection::vec((0u8..4, 0u16..280, 0u16..280, 0u16..280, 0u16..280), 1..6),
+            pick in any::<usize>(),
+        ) {
+            let grid = open_grid(w, h);
+            let mut world = world_of(&grid);
+            let at = |v: u16| f64::from(v) / 20.0;
+            for (n, &(kind, x, y, u, v)) in extra.iter().enumerate() {
+                let (x, y, u, v) = (at(x), at(y), at(u), at(v));
+                let shape = match kind {
+                    0 => Shape::Disk { center: Point::new(x, y), radius: 0.2 + u / 10.0 },
+                    1 => Shape::Rect(Aabb::from_corners(Point::new(x, y), Point::new(x + u / 5.0 + 0.1, y + v / 5.0 + 0.1))),
+                    // Walls on the grid lines (whole coordinates) and anywhere.
+                    2 => Shape::Segment(Point::new(x.round(), y.round()), Point::new(x.round(), (y + v / 3.0).round())),
+                    _ => Shape::Segment(Point::new(x, y), Point::new(u, v)),
+                };
+                // The analyzer refuses walls of zero length.
+                if matches!(shape, Shape::Segment(a, b) if a == b) {
+                    continue;
+                }
+                world.obstacles.push(Obstacle { name: format!("o{n}"), shape });
+            }
+            let d = k as f64;
+            let others = Others::new(&world, &grid);
+            let starts: Vec<(usize, usize)> = (0..w / k)
+                .flat_map(|i| (0..h / k).map(move |j| (i, j)))
+                .filter(|&(i, j)| {
+                    let c = Point::new((i as f64 + 0.5) * d, (j as f64 + 0.5) * d);
+                    start_cell(&grid, &others, k, c).is_ok()
+                })
+                .collect();
+            if starts.is_empty() {
+                return Ok(());
+            }
+            let (i, j) = starts[pick % starts.len()];
+            let start = Config::new((i as f64 + 0.5) * d, (j as f64 + 0.5) * d, 0.0);
+            let half = d / 2.0;
+            let square = RobotShape::Polygon(ConvexPolygon {
+                vertices: vec![
+                    Point::new(-half, -half),
+                    Point::new(half, -half),
+                    Point::new(half, half),
+                    Point::new(-half, half),
+                ],
+            });
+            for robot in [RobotShape::Disk(half), square] {
+                let out = plan(&world, &robot, &params(start, d, "max", Limits::default()));
+                let path = out.path.expect("a tour");
+                let v = validate_path(&world, &robot, &path, DEFAULT_TOLERANCE);
+                prop_assert!(v.is_ok(), "{:?}", v);
+            }
+        }
+    }
+
+    #[test]
+    fn other_obstacles_block_the_d_cells_they_overlap() {
+        let grid = open_grid(8, 8);
+        let mut world = world_of(&grid);
+        let mut add = |name: &str, shape| {
+            world.obstacles.push(Obstacle {
+                name: name.into(),
+                shape,
+            })
+        };
+        // A disk overlapping D-cells (5, 5) and (6, 5) only, and a box that
+        // touches D-cell (1, 6) without overlapping it.
+        add(
+            "pond",
+            Shape::Disk {
+                center: Point::new(6.0, 5.5),
+                radius: 0.4,
+            },
+        );
+        add(
+            "crate",
+            Shape::Rect(Aabb::from_corners(
+                Point::new(0.0, 7.0),
+                Point::new(2.0, 8.0),
+            )),
+        );
+        // A wall along the side between mega-cells (0, 0) and (1, 0), and
+        // one between D-cells (4, 0) and (5, 0) inside mega-cell (2, 0).
+        add(
+            "fence",
+            Shape::Segment(Point::new(2.0, 0.0), Point::new(2.0, 2.0)),
+        );
+        add(
+            "screen",
+            Shape::Segment(Point::new(5.0, 0.0), Point::new(5.0, 1.0)),
+        );
+        let cells = Cells::with_others(&grid, &Others::new(&world, &grid), 1);
+        let free = |i: usize, j: usize| cells.dcells[j * 8 + i] > 0;
+        assert!(!free(5, 5) && !free(6, 5));
+        assert!(free(4, 5) && free(7, 5) && free(5, 4) && free(5, 6));
+        assert!(!free(0, 7) && !free(1, 7) && free(1, 6));
+        // Walls on D-cell sides block no D-cell...
+        assert!(free(1, 0) && free(2, 0) && free(4, 0) && free(5, 0));
+        // ...but the one inside mega-cell (2, 0) blocks it, and the one
+        // between mega-cells (0, 0) and (1, 0) fences them apart.
+        assert_eq!(cells.mega[2], 0);
+        assert!(cells.mega[0] > 0 && cells.mega[1] > 0);
+        assert!(!cells.open_between(0, 1) && cells.open_between(0, 4));
+        let tree = prim(&cells, 0, EdgeWeights::Max, None, None);
+        assert!(!tree.edges.iter().any(|&e| e == (0, 1) || e == (1, 0)));
+    }
+
+    #[test]
+    fn a_start_whose_mega_cell_another_obstacle_overlaps_is_refused() {
+        let grid = open_grid(4, 4);
+        let mut world = world_of(&grid);
+        world.obstacles.push(Obstacle {
+            name: "pillar".into(),
+            shape: Shape::Disk {
+                center: Point::new(1.5, 1.5),
+                radius: 0.3,
+            },
+        });
+        let others = Others::new(&world, &grid);
+        // The pillar stands in D-cell (1, 1) of mega-cell (0, 0).
+        assert_eq!(
+            start_cell(&grid, &others, 1, Point::new(0.5, 0.5)),
+            Err(StartProblem::Overlapped(1))
+        );
+        assert_eq!(
+            start_cell(&grid, &others, 1, Point::new(2.5, 0.5)),
+            Ok((2, 0))
+        );
+    }
+
     fn open_grid(w: usize, h: usize) -> Grid {
         Grid {
             cell: 1.0,
@@ -869,22 +1225,25 @@ mod tests {
         assert_eq!((cells.mcols, cells.mrows), (1, 0));
         assert_eq!(cells.uncovered().count(), 2);
         assert_eq!(
-            start_cell(&g, 2, Point::new(0.5, 0.5)),
+            start_cell(&g, &Others::none(), 2, Point::new(0.5, 0.5)),
             Err(StartProblem::MegaCellBlocked)
         );
         assert_eq!(
-            start_cell(&g, 2, Point::new(0.5, 2.5)),
+            start_cell(&g, &Others::none(), 2, Point::new(0.5, 2.5)),
             Err(StartProblem::OutsideGrid)
         );
         assert_eq!(
-            start_cell(&g, 1, Point::new(0.5, 2.5)),
+            start_cell(&g, &Others::none(), 1, Point::new(0.5, 2.5)),
             Err(StartProblem::Blocked)
         );
         assert_eq!(
-            start_cell(&g, 1, Point::new(-0.5, 0.5)),
+            start_cell(&g, &Others::none(), 1, Point::new(-0.5, 0.5)),
             Err(StartProblem::OutsideGrid)
         );
-        assert_eq!(start_cell(&g, 1, Point::new(1.5, 0.5)), Ok((1, 0)));
+        assert_eq!(
+            start_cell(&g, &Others::none(), 1, Point::new(1.5, 0.5)),
+            Ok((1, 0))
+        );
     }
 
     #[test]

@@ -1665,11 +1665,12 @@ impl Analyzer {
                         return;
                     }
                     let k = k as usize;
-                    if let Err(e) = coverage::start_cell(grid, k, params.start.xy()) {
+                    let others = coverage::Others::new(world, grid);
+                    if let Err(e) = coverage::start_cell(grid, &others, k, params.start.xy()) {
                         self.error(
                             Diag::error(
                                 "scen::analyze::coverage_start",
-                                format!("the start {} of grid `{name}`", e.message()),
+                                format!("the start {}", e.message(world, name)),
                             )
                             .at(params.start_span, "cannot start a coverage tour here")
                             .help(format!(
