@@ -417,7 +417,12 @@ pub const ROADMAP: PlannerSchema = PlannerSchema {
     robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
     params: &[p(
         "arc_segments",
-        at_least(8.0, true),
+        ValueSpec::Number {
+            min: 8.0,
+            min_open: false,
+            max: crate::planners::roadmap::MAX_ARC_SEGMENTS as f64,
+            integer: true,
+        },
         "32",
         "segments per full circle for grown disks",
     )],
