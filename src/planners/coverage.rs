@@ -1011,23 +1011,7 @@ mod tests {
                 grid.origin.y + (s.1 as f64 + 0.5) * d,
                 0.0,
             );
-            let world = world_of(&grid);
-            let half = d / 2.0;
-            let square = RobotShape::Polygon(ConvexPolygon {
-                vertices: vec![
-                    Point::new(-half, -half),
-                    Point::new(half, -half),
-                    Point::new(half, half),
-                    Point::new(-half, half),
-                ],
-            });
-            for robot in [RobotShape::Disk(half), square] {
-                let out = plan(&world, &robot, &params(start, d, "max", Limits::default()));
-                let path = out.path.expect("a tour");
-                prop_assert_eq!(path[0], start);
-                let v = validate_path(&world, &robot, &path, DEFAULT_TOLERANCE);
-                prop_assert!(v.is_ok(), "{:?}", v);
-            }
+            tours_validate(&world_of(&grid), start, d)?;
         }
     }
 
@@ -1076,21 +1060,7 @@ mod tests {
             }
             let (i, j) = starts[pick % starts.len()];
             let start = Config::new((i as f64 + 0.5) * d, (j as f64 + 0.5) * d, 0.0);
-            let half = d / 2.0;
-            let square = RobotShape::Polygon(ConvexPolygon {
-                vertices: vec![
-                    Point::new(-half, -half),
-                    Point::new(half, -half),
-                    Point::new(half, half),
-                    Point::new(-half, half),
-                ],
-            });
-            for robot in [RobotShape::Disk(half), square] {
-                let out = plan(&world, &robot, &params(start, d, "max", Limits::default()));
-                let path = out.path.expect("a tour");
-                let v = validate_path(&world, &robot, &path, DEFAULT_TOLERANCE);
-                prop_assert!(v.is_ok(), "{:?}", v);
-            }
+            tours_validate(&world, start, d)?;
         }
     }
 
@@ -1167,6 +1137,28 @@ mod tests {
             start_cell(&grid, &others, 1, Point::new(2.5, 0.5)),
             Ok((2, 0))
         );
+    }
+
+    /// The tour from `start` starts there and passes the independent
+    /// validator for a disk of diameter `d` and for a `d` × `d` square.
+    fn tours_validate(world: &World, start: Config, d: f64) -> Result<(), TestCaseError> {
+        let half = d / 2.0;
+        let square = RobotShape::Polygon(ConvexPolygon {
+            vertices: vec![
+                Point::new(-half, -half),
+                Point::new(half, -half),
+                Point::new(half, half),
+                Point::new(-half, half),
+            ],
+        });
+        for robot in [RobotShape::Disk(half), square] {
+            let out = plan(world, &robot, &params(start, d, "max", Limits::default()));
+            let path = out.path.expect("a tour");
+            prop_assert_eq!(path[0], start);
+            let v = validate_path(world, &robot, &path, DEFAULT_TOLERANCE);
+            prop_assert!(v.is_ok(), "{:?}", v);
+        }
+        Ok(())
     }
 
     fn open_grid(w: usize, h: usize) -> Grid {

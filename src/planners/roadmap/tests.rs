@@ -329,6 +329,24 @@ fn sorted(mut v: Vec<Visible>) -> Vec<Visible> {
     v
 }
 
+/// The roadmap's visibility edges and the brute force's (without the
+/// motions along cut edges that leave the boundary), both sorted.
+fn sweep_and_brute(
+    w: &World,
+    robot: &RobotShape,
+    start: Point,
+    goal: Point,
+) -> (Vec<Visible>, Vec<Visible>) {
+    let (polys, walls) = grow(w, robot, 0.0, 16);
+    let rm = Roadmap::build(&polys, &walls, start, goal, w.bounds, None).expect("built");
+    let arr = &rm.arrangement;
+    let brute: Vec<Visible> = sweep::brute_force(arr)
+        .into_iter()
+        .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
+        .collect();
+    (sorted(rm.visible), sorted(brute))
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
@@ -342,14 +360,8 @@ proptest! {
             1 => RobotShape::Disk(0.3),
             _ => box_robot(0.6, 0.3),
         };
-        let (polys, walls) = grow(&w, &robot, 0.0, 16);
-        let rm = Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).expect("built");
-        let arr = &rm.arrangement;
-        let brute: Vec<Visible> = sweep::brute_force(arr)
-            .into_iter()
-            .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
-            .collect();
-        prop_assert_eq!(sorted(rm.visible.clone()), sorted(brute));
+        let (visible, brute) = sweep_and_brute(&w, &robot, p(0.5, 0.5), p(9.5, 9.5));
+        prop_assert_eq!(visible, brute);
     }
 
     /// The same on axis-aligned worlds on an integer grid: rectangles that
@@ -375,14 +387,8 @@ proptest! {
         }
         let w = world((-1.0, -1.0, 12.0, 12.0), shapes);
         let robot = if boxed { box_robot(0.5, 0.5) } else { RobotShape::Point };
-        let (polys, walls) = grow(&w, &robot, 0.0, 16);
-        let rm = Roadmap::build(&polys, &walls, p(-0.5, -0.5), p(11.5, 11.5), w.bounds, None).expect("built");
-        let arr = &rm.arrangement;
-        let brute: Vec<Visible> = sweep::brute_force(arr)
-            .into_iter()
-            .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
-            .collect();
-        prop_assert_eq!(sorted(rm.visible.clone()), sorted(brute));
+        let (visible, brute) = sweep_and_brute(&w, &robot, p(-0.5, -0.5), p(11.5, 11.5));
+        prop_assert_eq!(visible, brute);
     }
 
     /// Every visibility edge passes the validator as a motion.
@@ -525,15 +531,7 @@ fn huge_worlds_are_refused_not_hung() {
 #[test]
 fn a_segment_collinear_with_the_node_but_for_rounding_blocks_nothing() {
     let w = random_world(13760135364525337302, 3, 2, 10.0, 2.0);
-    let (polys, walls) = grow(&w, &box_robot(0.6, 0.3), 0.0, 16);
-    let rm =
-        Roadmap::build(&polys, &walls, p(0.5, 0.5), p(9.5, 9.5), w.bounds, None).expect("built");
-    let arr = &rm.arrangement;
-    let brute: Vec<Visible> = sweep::brute_force(arr)
-        .into_iter()
-        .filter(|e| arr.along_cut_edge(e.a, e.b) != Some(false))
-        .collect();
-    let visible = sorted(rm.visible.clone());
+    let (visible, brute) = sweep_and_brute(&w, &box_robot(0.6, 0.3), p(0.5, 0.5), p(9.5, 9.5));
     assert!(visible.iter().any(|e| (e.a, e.b) == (32, 38)));
-    assert_eq!(visible, sorted(brute));
+    assert_eq!(visible, brute);
 }
