@@ -14,35 +14,23 @@ use scen::geometry::polygon::convex_hull;
 use scen::geometry::{Aabb, Point};
 use scen::planners::roadmap::Roadmap;
 use scen::planners::roadmap::arrangement::Grown;
-
-/// SplitMix64 in [0, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use scen::rng::SplitMix64;
 
 /// `n` convex polygons of 5–8 vertices (regular polygons of radius 0.5–1
 /// with jittered angles) in a square of side 4·√n.
 fn world(n: usize, seed: u64) -> (Vec<Grown>, Aabb) {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let side = 4.0 * (n as f64).sqrt();
     let mut polys = Vec::with_capacity(n);
     while polys.len() < n {
-        let (cx, cy) = (rng.next() * side, rng.next() * side);
-        let k = 5 + (rng.next() * 4.0) as usize;
-        let r = 0.5 + 0.5 * rng.next();
-        let rot = rng.next() * std::f64::consts::TAU;
+        let (cx, cy) = (rng.next_f64() * side, rng.next_f64() * side);
+        let k = 5 + (rng.next_f64() * 4.0) as usize;
+        let r = 0.5 + 0.5 * rng.next_f64();
+        let rot = rng.next_f64() * std::f64::consts::TAU;
         let pts: Vec<Point> = (0..k)
             .map(|i| {
-                let a =
-                    rot + (i as f64 + 0.4 * (rng.next() - 0.5)) * std::f64::consts::TAU / k as f64;
+                let a = rot
+                    + (i as f64 + 0.4 * (rng.next_f64() - 0.5)) * std::f64::consts::TAU / k as f64;
                 Point::new(cx + r * a.cos(), cy + r * a.sin())
             })
             .collect();

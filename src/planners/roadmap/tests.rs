@@ -275,31 +275,14 @@ fn limits_are_honoured() {
 
 // ---------------------------------------------------------- random worlds
 
-/// SplitMix64, for random worlds from one seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
-
 /// `n` random convex obstacles (hulls of 3–8 points around a centre) in
 /// `[0, size]²`, and `walls` random segments.
 pub(super) fn random_world(seed: u64, n: usize, walls: usize, size: f64, r: f64) -> World {
-    let mut rng = Rng(seed);
+    let mut rng = crate::rng::SplitMix64::new(seed);
     let mut shapes = Vec::new();
     for _ in 0..n {
         let (cx, cy) = (rng.range(0.0, size), rng.range(0.0, size));
-        let k = 3 + (rng.next() * 6.0) as usize;
+        let k = 3 + (rng.next_f64() * 6.0) as usize;
         let pts: Vec<Point> = (0..k)
             .map(|_| {
                 let a = rng.range(0.0, std::f64::consts::TAU);
