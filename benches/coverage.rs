@@ -28,22 +28,11 @@ use scen::scenario::{Limits, Param, ParamValue, Params};
 
 const SIDE: usize = 2000;
 
-/// SplitMix64.
-fn rng(seed: u64) -> impl FnMut() -> u64 {
-    let mut s = seed;
-    move || {
-        s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = s;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-}
-
 /// `block` × `block` squares blocked with probability 0.2; the bottom-left
 /// square is kept free for the start.
 fn map(block: usize, seed: u64) -> Grid {
-    let mut next = rng(seed);
+    let mut rng = scen::rng::SplitMix64::new(seed);
+    let mut next = move || rng.next_u64();
     let mut cells: Vec<u8> = (0..SIDE * SIDE).map(|_| (next() % 9) as u8 + 1).collect();
     for by in (0..SIDE).step_by(block) {
         for bx in (0..SIDE).step_by(block) {

@@ -724,14 +724,8 @@ mod tests {
     /// A random grid: `density` of its cells blocked, the others weighted
     /// 1..=9 (SplitMix64 on `seed`).
     fn random_grid(w: usize, h: usize, density: f64, seed: u64) -> Grid {
-        let mut s = seed;
-        let mut next = move || {
-            s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = s;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^ (z >> 31)
-        };
+        let mut rng = crate::rng::SplitMix64::new(seed);
+        let mut next = move || rng.next_u64();
         let cells = (0..w * h)
             .map(|_| {
                 let r = next();

@@ -1031,19 +1031,10 @@ mod tests {
         sense: usize,
     }
 
-    /// SplitMix64, for drawing maps from one seed.
-    fn splitmix(state: &mut u64) -> u64 {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
     impl Case {
         fn draw(w: usize, h: usize, seed: u64, density: f64, disk: bool, eight: bool) -> Case {
-            let mut s = seed;
-            let mut unit = || (splitmix(&mut s) >> 11) as f64 / (1u64 << 53) as f64;
+            let mut rng = crate::rng::SplitMix64::new(seed);
+            let mut unit = || rng.next_f64();
             let mut blocked: Vec<bool> = (0..w * h).map(|_| unit() < density).collect();
             let mut pick = |blocked: &mut Vec<bool>| {
                 let k = ((unit() * (w * h) as f64) as usize).min(w * h - 1);
