@@ -258,7 +258,7 @@ impl ObstacleIndex {
                         }
                         let len = edges.len() as u32 - first;
                         if len >= 3 {
-                            push(Kind::Convex { first, len }, bounding_box(v));
+                            push(Kind::Convex { first, len }, Aabb::around(v));
                         } else {
                             edges.truncate(first as usize);
                         }
@@ -385,7 +385,7 @@ impl ObstacleIndex {
             let i = k * b.nx + col;
             for &item in &b.items[b.start[i] as usize..b.start[i + 1] as usize] {
                 let piece = &self.pieces[item as usize];
-                if overlap(&piece.aabb, &probe.aabb) && self.piece_hit(piece, probe) {
+                if piece.aabb.meets(&probe.aabb) && self.piece_hit(piece, probe) {
                     found = Some(piece.owner as usize);
                     return true;
                 }
@@ -818,8 +818,7 @@ pub fn box_overlaps(b: &Aabb, shape: &Shape) -> bool {
 /// box `b` meet: no separating axis among the box's and the polygon's edge
 /// normals.
 fn convex_meets_box(v: &[Point], b: &Aabb) -> bool {
-    let (lo, hi) = (bounding_box(v).min, bounding_box(v).max);
-    if lo.x > b.max.x || b.min.x > hi.x || lo.y > b.max.y || b.min.y > hi.y {
+    if !Aabb::around(v).meets(b) {
         return false;
     }
     let n = v.len();
@@ -841,7 +840,7 @@ fn convex_meets_box(v: &[Point], b: &Aabb) -> bool {
 /// outline), once each.
 fn seams<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) -> Vec<(Point, Point)> {
     let n = outline.len();
-    let b = bounding_box(outline);
+    let b = Aabb::around(outline);
     let tol = 1e-9 * b.width().max(b.height());
     let mut out: Vec<(Point, Point)> = Vec::new();
     for v in pieces {
@@ -893,22 +892,6 @@ fn distance_point_box(x: Point, b: &Aabb) -> f64 {
     let dx = (b.min.x - x.x).max(x.x - b.max.x).max(0.0);
     let dy = (b.min.y - x.y).max(x.y - b.max.y).max(0.0);
     dx.hypot(dy)
-}
-
-fn bounding_box(points: &[Point]) -> Aabb {
-    let first = points.first().copied().unwrap_or_else(Point::origin);
-    points.iter().fold(
-        Aabb {
-            min: first,
-            max: first,
-        },
-        |b, p| union(&b, &Aabb { min: *p, max: *p }),
-    )
-}
-
-#[inline]
-fn overlap(a: &Aabb, b: &Aabb) -> bool {
-    a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y
 }
 
 fn union(a: &Aabb, b: &Aabb) -> Aabb {

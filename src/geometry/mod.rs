@@ -76,6 +76,30 @@ impl Aabb {
             Point::new(self.min.x, self.max.y),
         ]
     }
+
+    /// The smallest box around `points` (the box of the origin alone when
+    /// there are none).
+    pub fn around(points: &[Point]) -> Self {
+        let first = points.first().copied().unwrap_or_else(Point::origin);
+        points.iter().fold(
+            Aabb {
+                min: first,
+                max: first,
+            },
+            |b, p| Aabb {
+                min: Point::new(b.min.x.min(p.x), b.min.y.min(p.y)),
+                max: Point::new(b.max.x.max(p.x), b.max.y.max(p.y)),
+            },
+        )
+    }
+
+    /// Whether the two closed boxes share a point.
+    pub fn meets(&self, other: &Aabb) -> bool {
+        self.min.x <= other.max.x
+            && other.min.x <= self.max.x
+            && self.min.y <= other.max.y
+            && other.min.y <= self.max.y
+    }
 }
 
 /// A convex polygon with counter-clockwise vertices, no duplicate or
@@ -163,6 +187,22 @@ pub enum Shape {
         radius: f64,
     },
     Grid(Grid),
+}
+
+impl Shape {
+    /// The smallest closed box around the obstacle (a grid's whole extent).
+    pub fn bounding_box(&self) -> Aabb {
+        match self {
+            Shape::Polygon { outline, .. } => Aabb::around(outline),
+            Shape::Rect(r) => *r,
+            Shape::Segment(a, b) => Aabb::from_corners(*a, *b),
+            Shape::Disk { center, radius } => Aabb::from_corners(
+                Point::new(center.x - radius, center.y - radius),
+                Point::new(center.x + radius, center.y + radius),
+            ),
+            Shape::Grid(g) => g.extent(),
+        }
+    }
 }
 
 /// The shape of a robot in its own frame.

@@ -167,18 +167,6 @@ fn separation(a: &[Point], b: &[Point]) -> f64 {
     best
 }
 
-fn bbox(pts: &[Point]) -> Aabb {
-    let mut b = Aabb {
-        min: pts[0],
-        max: pts[0],
-    };
-    for p in pts {
-        b.min = Point::new(b.min.x.min(p.x), b.min.y.min(p.y));
-        b.max = Point::new(b.max.x.max(p.x), b.max.y.max(p.y));
-    }
-    b
-}
-
 fn boxes_meet(a: &Aabb, b: &Aabb, margin: f64) -> bool {
     a.min.x <= b.max.x + margin
         && b.min.x <= a.max.x + margin
@@ -250,7 +238,7 @@ impl Lattice<'_> {
 
     /// Whether the translation from `p` to `q` in layer `k` passes.
     fn translation_free(&self, k: usize, p: Point, q: Point) -> bool {
-        let seg = bbox(&[p, q]);
+        let seg = Aabb::around(&[p, q]);
         let layer = &self.layers[k];
         layer
             .c_obstacles
@@ -270,7 +258,7 @@ impl Lattice<'_> {
         pts.extend(self.shape.placed_vertices(b));
         let hull = polygon::convex_hull(&pts);
         if hull.len() >= 3 {
-            let hb = bbox(&hull);
+            let hb = Aabb::around(&hull);
             let clear = self
                 .pieces
                 .iter()
@@ -439,12 +427,17 @@ fn run(
     out.extra.insert("generated".into(), MetricValue::Num(0.0));
     let layer_boxes = layers
         .iter()
-        .map(|l| l.c_obstacles.iter().map(|c| bbox(&c.vertices)).collect())
+        .map(|l| {
+            l.c_obstacles
+                .iter()
+                .map(|c| Aabb::around(&c.vertices))
+                .collect()
+        })
         .collect();
     let piece_list = pieces
         .pieces
         .iter()
-        .map(|p| (p.points.clone(), bbox(&p.points)))
+        .map(|p| (p.points.clone(), Aabb::around(&p.points)))
         .collect();
     let mut lat = Lattice {
         spec,
@@ -911,7 +904,12 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
         let layers: Vec<CLayer> = thetas.iter().map(|&t| pieces.layer(robot, t)).collect();
         let layer_boxes = layers
             .iter()
-            .map(|l| l.c_obstacles.iter().map(|c| bbox(&c.vertices)).collect())
+            .map(|l| {
+                l.c_obstacles
+                    .iter()
+                    .map(|c| Aabb::around(&c.vertices))
+                    .collect()
+            })
             .collect();
         Lattice {
             spec: LatticeSpec::new(world, 1.0, super::super::lattice::Sample::Center, 1.0),
@@ -921,7 +919,7 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
             pieces: pieces
                 .pieces
                 .iter()
-                .map(|p| (p.points.clone(), bbox(&p.points)))
+                .map(|p| (p.points.clone(), Aabb::around(&p.points)))
                 .collect(),
             free: Vec::new(),
             moves: Vec::new(),

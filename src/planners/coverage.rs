@@ -5,8 +5,9 @@
 //! with the grid's bottom-left corner; cells cut by the top or right edge
 //! count as blocked, and so do D-cells that another obstacle of the world
 //! overlaps ([`Others`]): the robot fits in its D-cell, so the tour's moves
-//! between free D-cells then stay clear of every obstacle. Prim's algorithm grows a minimum spanning tree of the
-//! 4-connected free mega-cells from the start's mega-cell (ties: lowest
+//! between free D-cells then stay clear of every obstacle. Prim's algorithm
+//! grows a minimum spanning tree of the 4-connected free mega-cells from
+//! the start's mega-cell (ties: lowest
 //! row, rows counted from the top as in the grid, then lowest column). The
 //! tour circumnavigates the tree counter-clockwise, keeping the tree on its
 //! left: inside a mega-cell the robot goes round its four D-cells
@@ -118,7 +119,7 @@ impl<'w> Others<'w> {
             .iter()
             .enumerate()
             .filter(|(_, o)| !matches!(&o.shape, Shape::Grid(g) if std::ptr::eq(g, on)))
-            .map(|(i, o)| (i, &o.shape, shape_box(&o.shape)))
+            .map(|(i, o)| (i, &o.shape, o.shape.bounding_box()))
             .collect();
         let walls = world
             .obstacles
@@ -153,33 +154,8 @@ impl<'w> Others<'w> {
     pub fn blocker(&self, b: &Aabb) -> Option<usize> {
         self.items
             .iter()
-            .find(|(_, shape, bb)| boxes_meet(bb, b) && box_overlaps(b, shape))
+            .find(|(_, shape, bb)| bb.meets(b) && box_overlaps(b, shape))
             .map(|&(i, ..)| i)
-    }
-}
-
-/// A closed box around an obstacle.
-fn shape_box(shape: &Shape) -> Aabb {
-    let around = |pts: &mut dyn Iterator<Item = Point>| {
-        let (mut lo, mut hi) = (
-            Point::new(f64::INFINITY, f64::INFINITY),
-            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
-        );
-        for p in pts {
-            lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
-            hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
-        }
-        Aabb::from_corners(lo, hi)
-    };
-    match shape {
-        Shape::Polygon { outline, .. } => around(&mut outline.iter().copied()),
-        Shape::Rect(r) => *r,
-        Shape::Segment(a, b) => Aabb::from_corners(*a, *b),
-        Shape::Disk { center, radius } => Aabb::from_corners(
-            Point::new(center.x - radius, center.y - radius),
-            Point::new(center.x + radius, center.y + radius),
-        ),
-        Shape::Grid(g) => g.extent(),
     }
 }
 
@@ -204,10 +180,6 @@ fn meets_open_side(p: Point, q: Point, at: f64, (lo, hi): (f64, f64), vertical: 
     // It crosses or touches the line once.
     let v = pv + (qv - pv) * (at - pu) / (qu - pu);
     lo < v && v < hi
-}
-
-fn boxes_meet(a: &Aabb, b: &Aabb) -> bool {
-    a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y
 }
 
 /// The D-cell `(i, j)` of side `k` grid cells that contains `p`, if it

@@ -207,7 +207,7 @@ impl<'a> PolygonIndex<'a> {
     pub(crate) fn new(polys: &'a [Grown], extent: Aabb, tol: f64) -> Self {
         let mut buckets = Buckets::new(extent, polys.len());
         for (i, p) in polys.iter().enumerate() {
-            buckets.insert(i as u32, &bbox(&p.vertices));
+            buckets.insert(i as u32, &Aabb::around(&p.vertices));
         }
         PolygonIndex {
             polys,
@@ -236,19 +236,6 @@ pub fn strictly_inside(poly: &[Point], p: Point, tol: f64) -> bool {
         let (a, b) = (poly[i], poly[(i + 1) % n]);
         orient(a, b, p) > tol * (b - a).norm()
     })
-}
-
-/// The bounding box of some points.
-pub fn bbox(points: &[Point]) -> Aabb {
-    let mut b = Aabb {
-        min: points[0],
-        max: points[0],
-    };
-    for p in points {
-        b.min = Point::new(b.min.x.min(p.x), b.min.y.min(p.y));
-        b.max = Point::new(b.max.x.max(p.x), b.max.y.max(p.y));
-    }
-    b
 }
 
 /// A directed piece by the exact keys of its ends.
@@ -326,10 +313,10 @@ pub fn build(
             });
         }
     }
-    let boxes: Vec<Aabb> = edges.iter().map(|e| bbox(&[e.a, e.b])).collect();
-    let mut extent = bbox(&[start, goal, bounds.min, bounds.max]);
+    let boxes: Vec<Aabb> = edges.iter().map(|e| Aabb::around(&[e.a, e.b])).collect();
+    let mut extent = Aabb::around(&[start, goal, bounds.min, bounds.max]);
     for b in &boxes {
-        extent = bbox(&[extent.min, extent.max, b.min, b.max]);
+        extent = Aabb::around(&[extent.min, extent.max, b.min, b.max]);
     }
 
     // Cut the edges where they meet.

@@ -32,11 +32,13 @@ use rayon::prelude::*;
 
 use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::minkowski::{c_obstacle_points, disk_polygon, minkowski_sum_points};
-use crate::geometry::{Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff};
+use crate::geometry::{
+    Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff,
+};
 use crate::planners::{MetricValue, PlanOutcome, Trace};
 use crate::scenario::Params;
 
-use arrangement::{Arrangement, Grown, PolygonIndex, WallIn, bbox, strictly_inside};
+use arrangement::{Arrangement, Grown, PolygonIndex, WallIn, strictly_inside};
 use sweep::{SweepBuffers, Visible};
 
 /// Default segments per full circle for disks.
@@ -329,8 +331,10 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     if !polys.is_empty() {
         let extent = polys
             .iter()
-            .map(|p| bbox(&p.vertices))
-            .fold(world.bounds, |a, b| bbox(&[a.min, a.max, b.min, b.max]));
+            .map(|p| Aabb::around(&p.vertices))
+            .fold(world.bounds, |a, b| {
+                Aabb::around(&[a.min, a.max, b.min, b.max])
+            });
         let index = PolygonIndex::new(&polys, extent, TOUCH_EPS);
         for (which, c) in [("start", start), ("goal", goal)] {
             if let Some(i) = index.inside(c.xy(), None) {
