@@ -107,8 +107,6 @@ impl StartProblem {
 /// ([`box_overlaps`]: more than touching, or a wall meeting the D-cell).
 pub struct Others<'w> {
     items: Vec<(usize, &'w Shape, Aabb)>,
-    /// The walls among them: (obstacle, a, b).
-    walls: Vec<(usize, Point, Point)>,
 }
 
 impl<'w> Others<'w> {
@@ -121,33 +119,28 @@ impl<'w> Others<'w> {
             .filter(|(_, o)| !matches!(&o.shape, Shape::Grid(g) if std::ptr::eq(g, on)))
             .map(|(i, o)| (i, &o.shape, o.shape.bounding_box()))
             .collect();
-        let walls = world
-            .obstacles
-            .iter()
-            .enumerate()
-            .filter_map(|(i, o)| match o.shape {
-                Shape::Segment(a, b) => Some((i, a, b)),
-                _ => None,
-            })
-            .collect();
-        Others { items, walls }
+        Others { items }
     }
 
     /// No obstacle besides the grid.
     pub fn none() -> Self {
-        Others {
-            items: Vec::new(),
-            walls: Vec::new(),
-        }
+        Others { items: Vec::new() }
+    }
+
+    /// The walls among them: (obstacle, a, b).
+    fn walls(&self) -> impl Iterator<Item = (usize, Point, Point)> + '_ {
+        self.items.iter().filter_map(|&(i, shape, _)| match *shape {
+            Shape::Segment(a, b) => Some((i, a, b)),
+            _ => None,
+        })
     }
 
     /// The first wall that meets the open box `b` (a mega-cell: a wall
     /// between two of its D-cells blocks the tour inside it).
     pub fn wall_inside(&self, b: &Aabb) -> Option<usize> {
-        self.walls
-            .iter()
-            .find(|(_, p, q)| segment_meets_open_box(*p, *q, b.min, b.max))
-            .map(|&(i, ..)| i)
+        self.walls()
+            .find(|&(_, p, q)| segment_meets_open_box(p, q, b.min, b.max))
+            .map(|(i, ..)| i)
     }
 
     /// The first obstacle that blocks the D-cell `b`.
@@ -157,6 +150,21 @@ impl<'w> Others<'w> {
             .find(|(_, shape, bb)| bb.meets(b) && box_overlaps(b, shape))
             .map(|&(i, ..)| i)
     }
+}
+
+/// The square `(i, j)` of side `side` in a raster whose cell `(0, 0)` has
+/// its bottom-left corner at `origin` (`i` to the right, `j` upwards).
+fn square(origin: Point, side: f64, i: usize, j: usize) -> Aabb {
+    let at =
+        |i: usize, j: usize| Point::new(origin.x + i as f64 * side, origin.y + j as f64 * side);
+    Aabb::from_corners(at(i, j), at(i + 1, j + 1))
+}
+
+/// The indices of the `n` squares of side `side` from `origin` that the
+/// closed interval `[lo, hi]` meets, along one axis.
+fn index_range(lo: f64, hi: f64, origin: f64, side: f64, n: usize) -> std::ops::Range<usize> {
+    let f = |v: f64| ((v - origin) / side).floor().clamp(0.0, n as f64) as usize;
+    f(lo)..(f(hi) + 1).min(n)
 }
 
 /// Whether segment `pq` meets the open axis-parallel side at `x = at`
@@ -210,19 +218,12 @@ pub fn start_cell(
     if !whole {
         return Err(StartProblem::MegaCellBlocked);
     }
-    let dcell = |i: usize, j: usize| {
-        let at = |i: usize, j: usize| {
-            Point::new(grid.origin.x + i as f64 * d, grid.origin.y + j as f64 * d)
-        };
-        Aabb::from_corners(at(i, j), at(i + 1, j + 1))
-    };
     for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-        if let Some(o) = others.blocker(&dcell(a + di, b + dj)) {
+        if let Some(o) = others.blocker(&square(grid.origin, d, a + di, b + dj)) {
             return Err(StartProblem::Overlapped(o));
         }
     }
-    let mega = Aabb::from_corners(dcell(a, b).min, dcell(a + 1, b + 1).max);
-    if let Some(o) = others.wall_inside(&mega) {
+    if let Some(o) = others.wall_inside(&square(grid.origin, 2.0 * d, a / 2, b / 2)) {
         return Err(StartProblem::Overlapped(o));
     }
     Ok((i, j))
@@ -284,12 +285,8 @@ impl Cells {
         };
         // Each other obstacle is tested against the D-cells under its box.
         for &(_, shape, bb) in &others.items {
-            let range = |lo: f64, hi: f64, origin: f64, n: usize| {
-                let f = |v: f64| ((v - origin) / cells.d).floor().clamp(0.0, n as f64) as usize;
-                f(lo)..(f(hi) + 1).min(n)
-            };
-            let is = range(bb.min.x, bb.max.x, cells.origin.x, cols);
-            let js = range(bb.min.y, bb.max.y, cells.origin.y, rows);
+            let is = index_range(bb.min.x, bb.max.x, cells.origin.x, cells.d, cols);
+            let js = index_range(bb.min.y, bb.max.y, cells.origin.y, cells.d, rows);
             for j in js {
                 for i in is.clone() {
                     if cells.dcells[j * cols + i] != 0
@@ -325,10 +322,7 @@ impl Cells {
 
     /// The box of mega-cell `(a, b)`.
     pub fn mega_box(&self, a: usize, b: usize) -> Aabb {
-        Aabb::from_corners(
-            self.dcell_box(2 * a, 2 * b).min,
-            self.dcell_box(2 * a + 1, 2 * b + 1).max,
-        )
+        square(self.origin, 2.0 * self.d, a, b)
     }
 
     /// Blocks the mega-cells whose open box a wall meets (one lying between
@@ -337,12 +331,12 @@ impl Cells {
     fn fence(&mut self, others: &Others) {
         let (mc, mr) = (self.mcols, self.mrows);
         let side = 2.0 * self.d;
-        for &(_, p, q) in &others.walls {
+        for (_, p, q) in others.walls() {
+            // One more below: a wall on a mega-cell's low side is its
+            // neighbour's east or north side.
             let range = |lo: f64, hi: f64, origin: f64, n: usize| {
-                let f = |v: f64| ((v - origin) / side).floor().clamp(0.0, n as f64) as usize;
-                // One more below: a wall on a cell's low side is its
-                // neighbour's east or north side.
-                f(lo).saturating_sub(1)..(f(hi) + 1).min(n)
+                let r = index_range(lo, hi, origin, side, n);
+                r.start.saturating_sub(1)..r.end
             };
             let as_ = range(p.x.min(q.x), p.x.max(q.x), self.origin.x, mc);
             let bs = range(p.y.min(q.y), p.y.max(q.y), self.origin.y, mr);
@@ -381,13 +375,7 @@ impl Cells {
 
     /// The box of D-cell `(i, j)`.
     pub fn dcell_box(&self, i: usize, j: usize) -> Aabb {
-        let p = |i: usize, j: usize| {
-            Point::new(
-                self.origin.x + i as f64 * self.d,
-                self.origin.y + j as f64 * self.d,
-            )
-        };
-        Aabb::from_corners(p(i, j), p(i + 1, j + 1))
+        square(self.origin, self.d, i, j)
     }
 
     /// The centre of D-cell `(i, j)`.
