@@ -791,14 +791,8 @@ pub fn box_overlaps(b: &Aabb, shape: &Shape) -> bool {
         Point::new(b.min.x + s, b.min.y + s),
         Point::new(b.max.x - s, b.max.y - s),
     );
-    let meets_box = |r: &Aabb| {
-        inner.min.x <= r.max.x
-            && r.min.x <= inner.max.x
-            && inner.min.y <= r.max.y
-            && r.min.y <= inner.max.y
-    };
     match shape {
-        Shape::Rect(r) => meets_box(r),
+        Shape::Rect(r) => inner.meets(r),
         Shape::Disk { center, radius } => distance_point_box(*center, &inner) <= *radius,
         Shape::Polygon { pieces, .. } => pieces
             .iter()
@@ -808,7 +802,7 @@ pub fn box_overlaps(b: &Aabb, shape: &Shape) -> bool {
             let (cols, rows) = g.cells_overlapping(&inner);
             rows.into_iter().any(|row| {
                 cols.clone()
-                    .any(|col| g.is_blocked(col, row) && meets_box(&g.cell_box(col, row)))
+                    .any(|col| g.is_blocked(col, row) && inner.meets(&g.cell_box(col, row)))
             })
         }
     }

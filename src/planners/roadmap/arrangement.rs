@@ -85,12 +85,17 @@ pub fn orient(a: Point, b: Point, c: Point) -> f64 {
     (b - a).perp(&(c - a))
 }
 
+/// Whether the angle of `w` from the x axis lies in `[0, π)`.
+pub fn upper_half(w: Vector) -> bool {
+    w.y > 0.0 || (w.y == 0.0 && w.x > 0.0)
+}
+
 /// Compares the counter-clockwise angles from `o` to `a` and from `o` to
 /// `b`, in `[0, 2π)`, exactly (half plane, then the cross product).
 pub fn ccw_cmp(o: Vector, a: Vector, b: Vector) -> std::cmp::Ordering {
     let rot = |w: Vector| Vector::new(o.dot(&w), o.perp(&w));
     let (ra, rb) = (rot(a), rot(b));
-    let half = |w: Vector| u8::from(!(w.y > 0.0 || (w.y == 0.0 && w.x > 0.0)));
+    let half = |w: Vector| u8::from(!upper_half(w));
     half(ra).cmp(&half(rb)).then_with(|| {
         0.0.partial_cmp(&ra.perp(&rb))
             .unwrap_or(std::cmp::Ordering::Equal)

@@ -23,7 +23,7 @@
 
 use std::cmp::Ordering;
 
-use super::arrangement::{Arrangement, Sides, Way, ccw_cmp, orient};
+use super::arrangement::{Arrangement, Sides, Way, ccw_cmp, orient, upper_half};
 use crate::geometry::{Point, Vector};
 
 /// A visibility edge between points `a < b`, and the sectors it links:
@@ -430,11 +430,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
                 let r = w.x.abs() + w.y.abs();
                 let q = if r > 0.0 { w.x / r } else { 1.0 };
                 // q runs 1 → −1 over the upper half plane, −1 → 1 over the lower.
-                let key = if w.y > 0.0 || (w.y == 0.0 && w.x > 0.0) {
-                    1.0 - q
-                } else {
-                    3.0 + q
-                };
+                let key = if upper_half(w) { 1.0 - q } else { 3.0 + q };
                 // The key is non-negative: its bits order as it does.
                 (key.to_bits(), p)
             }),
@@ -506,10 +502,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
         // segment is collinear with v but for rounding (the sign of `o`
         // and the order of its ends disagree), and like an exactly
         // collinear one it blocks nothing properly: its ends are walked.
-        let below = |p: u32| {
-            let w = arr.points[p as usize] - pv;
-            !(w.y > 0.0 || (w.y == 0.0 && w.x > 0.0))
-        };
+        let below = |p: u32| !upper_half(arr.points[p as usize] - pv);
         let crosses_x_axis = below(f) && !below(l);
         if gf > gl && !crosses_x_axis {
             continue;
