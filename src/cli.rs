@@ -339,12 +339,14 @@ fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
 
 /// The diagnostic codes a test file declares it must get, one per
 /// `# expect-error: CODE` line among the comment lines that open it (a test
-/// of the diagnostics: it passes when loading it reports every code).
-fn expected_errors(file: &Path) -> Vec<String> {
-    let Ok(text) = std::fs::read_to_string(file) else {
+/// of the diagnostics: it passes when loading it reports every code). The
+/// text is the loader's: the main file is the first source it read.
+fn expected_errors(sources: &SourceMap) -> Vec<String> {
+    let Some(main) = sources.files.first() else {
         return Vec::new();
     };
-    text.lines()
+    main.text
+        .lines()
         .map_while(|l| l.trim_start().strip_prefix('#'))
         .filter_map(|h| h.trim_start().strip_prefix("expect-error:"))
         .map(|code| code.trim().to_string())
@@ -380,7 +382,15 @@ fn cmd_test(args: &TestArgs) -> i32 {
     // Each file: (line, diagnostics text, passed, failed).
     let results: Vec<(String, String, usize, usize)> = files
         .par_iter()
-        .map(|f| match (crate::load(f), expected_errors(f)) {
+        .map(|f| {
+            let loaded = crate::load(f);
+            let expected = expected_errors(match &loaded {
+                Ok(s) => &s.sources,
+                Err(fail) => &fail.sources,
+            });
+            (f, loaded, expected)
+        })
+        .map(|(f, loaded, expected)| match (loaded, expected) {
             (Err(fail), expected) if !expected.is_empty() => {
                 let missing: Vec<&String> = expected
                     .iter()
