@@ -276,13 +276,10 @@ impl Analyzer {
                     Some(t) => match &t.kind {
                         ValueKind::Angle(a) => Some(*a),
                         ValueKind::Number(n) => {
-                            self.error(
-                                Diag::error(
-                                    "scen::analyze::angle_unit",
-                                    format!("the angle of {what} needs a unit"),
-                                )
-                                .at(t.span, "a bare number")
-                                .help(format!("write `{n}deg` or `{n}rad`")),
+                            self.angle_without_unit(
+                                t.span,
+                                *n,
+                                format!("the angle of {what} needs a unit"),
                             );
                             None
                         }
@@ -1401,13 +1398,10 @@ impl Analyzer {
                     self.in_range(spec, v, x, x > 0.0 && x <= max, &shown)
                 }
                 ValueKind::Number(n) => {
-                    self.error(
-                        Diag::error(
-                            "scen::analyze::angle_unit",
-                            format!("`{}` is an angle and needs a unit", spec.key),
-                        )
-                        .at(v.span, "a bare number")
-                        .help(format!("write `{n}deg` or `{n}rad`")),
+                    self.angle_without_unit(
+                        v.span,
+                        n,
+                        format!("`{}` is an angle and needs a unit", spec.key),
                     );
                     None
                 }
@@ -1421,6 +1415,15 @@ impl Analyzer {
                 None
             }
         }
+    }
+
+    /// A bare number `n` where an angle is expected: says which units to add.
+    fn angle_without_unit(&mut self, span: Span, n: f64, message: String) {
+        self.error(
+            Diag::error("scen::analyze::angle_unit", message)
+                .at(span, "a bare number")
+                .help(format!("write `{n}deg` or `{n}rad`")),
+        );
     }
 
     /// `x` (shown as `shown`) if `ok`, else an out-of-range error.
