@@ -14,8 +14,8 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use scen::geometry::RobotShape;
 use scen::geometry::cspace::ObstaclePieces;
+use scen::planners::astar::Astar;
 use scen::planners::astar_rotating;
-use scen::planners::lattice::LatticeSpec;
 
 fn bench(c: &mut Criterion) {
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/apartment_rod_fine.scen");
@@ -25,8 +25,14 @@ fn bench(c: &mut Criterion) {
         panic!("apartment_rod_fine plans for a polygon robot");
     };
     let world = &scenario.world;
-    let spec = LatticeSpec::from_params(world, &scenario.robots[plan.robot].shape, &plan.params);
-    let once = astar_rotating::plan(world, robot, &plan.params);
+    let task = plan.task(&scenario);
+    let settings = plan
+        .settings
+        .as_any()
+        .downcast_ref::<Astar>()
+        .expect("an astar plan");
+    let spec = settings.lattice;
+    let once = astar_rotating::plan(&task, settings, robot);
     assert!(once.path.is_some(), "the fine apartment has a path");
     eprintln!(
         "apartment_rod_fine: {} configurations ({} × {} × {} layers), {} expanded",
@@ -40,7 +46,7 @@ fn bench(c: &mut Criterion) {
     // The split of one plan, measured (edge checks timed one by one) over
     // a few runs; the median run by total time is printed.
     let mut runs: Vec<_> = (0..7)
-        .map(|_| astar_rotating::plan_profiled(world, robot, &plan.params).1)
+        .map(|_| astar_rotating::plan_profiled(&task, settings, robot).1)
         .collect();
     runs.sort_by_key(|p| p.cspace + p.trace + p.classify + p.search);
     let p = runs[runs.len() / 2];
@@ -68,7 +74,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| ObstaclePieces::new(world).layers(robot, spec.layers))
     });
     group.bench_function("plan_end_to_end", |b| {
-        b.iter(|| astar_rotating::plan(world, robot, &plan.params))
+        b.iter(|| astar_rotating::plan(&task, settings, robot))
     });
     group.finish();
 }

@@ -17,14 +17,13 @@
 //!
 //! Run: `cargo bench --bench coverage -- --sample-size 10 --warm-up-time 1 --measurement-time 3`.
 
-use std::collections::BTreeMap;
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use scen::Span;
 use scen::geometry::{Config, Grid, Obstacle, Point, RobotShape, Shape, World};
-use scen::planners::coverage::{Cells, EdgeWeights, prim, tour};
-use scen::scenario::{Limits, Param, ParamValue, Params};
+use scen::planners::coverage::{Cells, Coverage, EdgeWeights, prim, tour};
+use scen::planners::registry::Task;
+use scen::scenario::Limits;
 
 const SIDE: usize = 2000;
 
@@ -52,26 +51,6 @@ fn map(block: usize, seed: u64) -> Grid {
         width: SIDE,
         height: SIDE,
         cells,
-    }
-}
-
-fn params() -> Params {
-    let mut values = BTreeMap::new();
-    values.insert(
-        "on",
-        Param {
-            value: ParamValue::Word("G".into()),
-            span: Span::default(),
-        },
-    );
-    Params {
-        start: Config::new(0.5, 0.5, 0.0),
-        start_span: Span::default(),
-        goal: None,
-        goal_span: None,
-        limits: Limits::default(),
-        seed: 0,
-        values,
     }
 }
 
@@ -103,10 +82,22 @@ fn bench(c: &mut Criterion) {
                 shape: Shape::Grid(grid.clone()),
             }],
         };
-        let p = params();
         let robot = RobotShape::Disk(0.5);
+        let task = Task {
+            world: &world,
+            robot: &robot,
+            start: Config::new(0.5, 0.5, 0.0),
+            goal: None,
+            limits: Limits::default(),
+            seed: 0,
+        };
+        let settings = Coverage {
+            on: 0,
+            k: 1,
+            weights: EdgeWeights::Max,
+        };
         g.bench_function("plan", |b| {
-            b.iter(|| black_box(scen::planners::coverage::plan(&world, &robot, &p)))
+            b.iter(|| black_box(scen::planners::coverage::plan(&task, &settings)))
         });
         g.finish();
     }

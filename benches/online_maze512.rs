@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
 use scen::planners::MetricValue;
-use scen::planners::online::{Options, navigate};
+use scen::planners::online::{Online, Options, navigate};
 use scen::scenario::Scenario;
 
 const MAP: &str = "maze512-32-9.map";
@@ -85,7 +85,12 @@ fn load(rows: &[usize]) -> Scenario {
 
 fn run(s: &Scenario, name: &str, options: Options) -> scen::planners::PlanOutcome {
     let plan = s.plans.iter().find(|p| p.name == name).expect("a plan");
-    navigate(&s.world, &s.robots[plan.robot].shape, &plan.params, options)
+    let settings = plan
+        .settings
+        .as_any()
+        .downcast_ref::<Online>()
+        .expect("an online plan");
+    navigate(&plan.task(s), settings, options)
 }
 
 fn metric(out: &scen::planners::PlanOutcome, m: &str) -> f64 {

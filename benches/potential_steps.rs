@@ -40,9 +40,13 @@ fn bench(c: &mut Criterion) {
         let scenario = scen::load(&file).expect("the strip loads");
         let _ = std::fs::remove_dir_all(&dir);
         let plan = &scenario.plans[0];
-        let robot = &scenario.robots[plan.robot].shape;
-        let world = &scenario.world;
-        let once = potential::plan(world, robot, &plan.params);
+        let task = plan.task(&scenario);
+        let settings = plan
+            .settings
+            .as_any()
+            .downcast_ref::<potential::Potential>()
+            .expect("a potential plan");
+        let once = potential::plan(&task, settings);
         assert!(once.path.is_some(), "the walk reaches its goal");
         let steps = once.expanded;
         let minima = once.extra["minima"].as_f64();
@@ -50,7 +54,7 @@ fn bench(c: &mut Criterion) {
         eprintln!("{rungs} segments: {steps} steps per plan");
         group.throughput(Throughput::Elements(steps));
         group.bench_function(format!("{rungs}_segments"), |b| {
-            b.iter(|| black_box(potential::plan(world, robot, &plan.params)))
+            b.iter(|| black_box(potential::plan(&task, settings)))
         });
     }
     group.finish();

@@ -15,6 +15,7 @@ use std::collections::BTreeMap;
 
 use crate::geometry::polygon::distance_point_segment;
 use crate::geometry::{Config, angle_diff};
+use crate::scenario::schema::{DRIVE_PARAMS, DefaultValue};
 use crate::scenario::{Param, ParamValue};
 
 /// The most simulated steps of one drive; a drive that needs more stops
@@ -33,40 +34,37 @@ pub struct Unicycle {
     pub align: f64,
 }
 
-/// The defaults of [`crate::scenario::schema::DRIVE_PARAMS`] (a test
-/// checks that they are the values written there).
-impl Default for Unicycle {
-    fn default() -> Self {
+impl Unicycle {
+    /// The settings of a validated `drive unicycle { ... }` block: each key
+    /// as given, or its default in [`DRIVE_PARAMS`].
+    pub fn from_block(block: &BTreeMap<&'static str, Param>) -> Self {
+        let get = |key: &str| match block.get(key).map(|p| &p.value) {
+            Some(ParamValue::Num(x)) => *x,
+            _ => match DRIVE_PARAMS
+                .iter()
+                .find(|p| p.key == key)
+                .map(|p| p.default)
+            {
+                Some(DefaultValue::Num(x, _)) => x,
+                other => panic!("drive key `{key}` has no numeric default ({other:?})"),
+            },
+        };
         Unicycle {
-            dt: 0.01,
-            max_speed: 1.0,
-            max_turn_rate: 2.0,
-            gain: 2.0,
-            turn_gain: 8.0,
-            reach: 0.0009,
-            align: 0.5_f64.to_radians(),
+            dt: get("dt"),
+            max_speed: get("max_speed"),
+            max_turn_rate: get("max_turn_rate"),
+            gain: get("gain"),
+            turn_gain: get("turn_gain"),
+            reach: get("reach"),
+            align: get("align"),
         }
     }
 }
 
-impl Unicycle {
-    /// The settings of a validated `drive unicycle { ... }` block, with
-    /// defaults for keys not given.
-    pub fn from_block(block: &BTreeMap<&'static str, Param>) -> Self {
-        let d = Unicycle::default();
-        let get = |key: &str, default: f64| match block.get(key).map(|p| &p.value) {
-            Some(ParamValue::Num(x)) => *x,
-            _ => default,
-        };
-        Unicycle {
-            dt: get("dt", d.dt),
-            max_speed: get("max_speed", d.max_speed),
-            max_turn_rate: get("max_turn_rate", d.max_turn_rate),
-            gain: get("gain", d.gain),
-            turn_gain: get("turn_gain", d.turn_gain),
-            reach: get("reach", d.reach),
-            align: get("align", d.align),
-        }
+impl Default for Unicycle {
+    /// Every key at its default.
+    fn default() -> Self {
+        Unicycle::from_block(&BTreeMap::new())
     }
 }
 
@@ -294,7 +292,7 @@ mod tests {
         // A block giving every key its documented default, as written.
         let block: Vec<String> = crate::scenario::schema::DRIVE_PARAMS
             .iter()
-            .map(|p| format!("{} {}", p.key, p.default))
+            .map(|p| format!("{} {}", p.key, p.default.text()))
             .collect();
         let text = format!(
             "world {{ bounds (0, 0) (4, 4) }}\nrobot r point\n\
@@ -307,6 +305,10 @@ mod tests {
         };
         assert_eq!(given.len(), crate::scenario::schema::DRIVE_PARAMS.len());
         assert_eq!(Unicycle::from_block(given), Unicycle::default());
-        assert_eq!(Unicycle::from_block(&BTreeMap::new()), Unicycle::default());
+        // The values the simulation documents (DECISIONS.md).
+        let d = Unicycle::default();
+        assert_eq!((d.dt, d.max_speed, d.max_turn_rate), (0.01, 1.0, 2.0));
+        assert_eq!((d.gain, d.turn_gain, d.reach), (2.0, 8.0, 0.0009));
+        assert!((d.align - 0.5_f64.to_radians()).abs() < 1e-15);
     }
 }

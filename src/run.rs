@@ -11,7 +11,7 @@ use crate::checks;
 use crate::drive::{self, DriveOutcome, Unicycle};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
 use crate::geometry::{Config, RobotShape, angle_diff};
-use crate::planners::{self, MetricValue, Metrics, PlanOutcome};
+use crate::planners::{MetricValue, Metrics, PlanOutcome};
 use crate::scenario::{ParamValue, Plan, Scenario};
 
 /// The result of one plan.
@@ -107,17 +107,7 @@ fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
     let plan = &scenario.plans[index];
     let robot = &scenario.robots[plan.robot].shape;
     let began = Instant::now();
-    let outcome = match plan.kind {
-        "astar" => planners::astar::plan(&scenario.world, robot, &plan.params),
-        "online" => planners::online::plan(&scenario.world, robot, &plan.params),
-        "roadmap" => planners::roadmap::plan(&scenario.world, robot, &plan.params),
-        "potential" => planners::potential::plan(&scenario.world, robot, &plan.params),
-        "coverage" => planners::coverage::plan(&scenario.world, robot, &plan.params),
-        other => PlanOutcome {
-            notes: vec![format!("planner `{other}` is not implemented yet")],
-            ..PlanOutcome::default()
-        },
-    };
+    let outcome = plan.settings.plan(&plan.task(scenario));
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
     let validation = outcome
         .path

@@ -1,6 +1,7 @@
 //! The editor support (editors/) knows the whole language: every keyword of
 //! the pest grammar and every planner kind, parameter key, word value,
-//! limit kind and metric that the schemas (src/scenario/schema.rs) accept
+//! limit kind and metric that the planner registry
+//! (src/planners/registry.rs) and the common schemas (src/scenario/schema.rs) accept
 //! is coloured by the VS Code grammar and by the Vim syntax, in the right
 //! class, and every planner kind has a snippet listing its parameters. The
 //! lists come from the schemas, so a new parameter cannot be forgotten.
@@ -11,8 +12,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+use scen::planners::registry::PLANNERS;
 use scen::scenario::schema::{
-    COMMON_METRICS, COMMON_PARAMS, LIMIT_KINDS, PLANNERS, ParamSpec, ValueSpec,
+    COMMON_METRICS, COMMON_PARAMS, DRIVE_MODELS, LIMIT_KINDS, ParamSpec, ValueSpec,
 };
 use serde_json::Value;
 
@@ -20,9 +22,6 @@ use serde_json::Value;
 fn drive_keys() -> impl Iterator<Item = &'static str> {
     scen::scenario::schema::DRIVE_PARAMS.iter().map(|p| p.key)
 }
-
-/// The models of `drive` (`ValueSpec::Drive`).
-const DRIVE_MODELS: &[&str] = &["unicycle"];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -177,7 +176,7 @@ fn metrics() -> BTreeSet<&'static str> {
         .iter()
         .chain(PLANNERS.iter().flat_map(|p| p.metrics.iter()))
         .chain(scen::scenario::schema::DRIVE_METRICS.iter())
-        .map(|(m, _)| *m)
+        .map(|m| m.name)
         .collect()
 }
 

@@ -14,7 +14,6 @@ use std::path::PathBuf;
 
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use scen::planners::MetricValue;
-use scen::planners::online::plan;
 
 const ROWS: [usize; 5] = [500, 1000, 2000, 4000, 6000];
 
@@ -59,7 +58,7 @@ fn dstar_lite_crosses_the_unknown_maze() {
     let s = scen::load(&file).unwrap_or_else(|_| panic!("the scenario loads"));
     for (p, best) in s.plans.iter().zip(optimal) {
         let robot = &s.robots[p.robot].shape;
-        let out = plan(&s.world, robot, &p.params);
+        let out = p.settings.plan(&p.task(&s));
         assert!(!out.gave_up, "{}: gave up ({:?})", p.name, out.notes);
         let path = out
             .path

@@ -234,7 +234,7 @@ fn the_generator_reaches_every_planner_with_plans_that_run() {
         let Ok(s) = load(&file) else { continue };
         let report = run_scenario(s, &[]);
         if report.plans[0].outcome.path.is_some() {
-            found.insert(report.plan(&report.plans[0]).kind);
+            found.insert(report.plan(&report.plans[0]).kind());
         }
         if found.len() == 5 {
             break;

@@ -9,22 +9,97 @@
 //! rule). Start and goal are snapped to the nearest lattice points and
 //! joined to them by straight motions that must be collision-free too.
 
+use std::any::Any;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::time::Instant;
 
 use crate::geometry::collide::ObstacleIndex;
 use crate::geometry::{Config, Point, RobotShape, Shape, World, polygon};
-use crate::scenario::{Limits, Params};
+use crate::scenario::schema::{
+    DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, Word, YesNo, at_least, num,
+};
+use crate::scenario::{Limits, PlanArgs};
+use crate::word_enum;
 
-use super::lattice::LatticeSpec;
-use super::{MetricValue, PlanOutcome, Trace};
+use super::lattice::{LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
+use super::registry::{Planner, Settings, Task};
+use super::{MetricValue, PlanOutcome, layers};
 
-/// Edge cost metric (SPEC 3.1 `cost`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CostMetric {
-    Euclid,
-    L1,
+/// `astar` in the registry.
+pub static PLANNER: Planner = Planner {
+    kind: "astar",
+    summary: "A* on a lattice of configurations",
+    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
+    params: &[
+        LATTICE_PARAMS[0],
+        LATTICE_PARAMS[1],
+        LATTICE_PARAMS[2],
+        ParamSpec::new(
+            "layers",
+            ValueSpec::IntOrWord(&["auto"]),
+            DefaultValue::Word("auto"),
+            "θ layers for rotating robots; `auto` = ⌈2πR/δ⌉",
+        ),
+        ParamSpec::word("cost", CostMetric::WORDS, "euclid", "edge cost metric"),
+        ParamSpec::new(
+            "turn_cost",
+            at_least(0.0, false),
+            DefaultValue::Derived("R of the robot"),
+            "cost of one radian of rotation",
+        ),
+        ParamSpec::new(
+            "weight",
+            at_least(1.0, false),
+            num(1.0, "1"),
+            "heuristic inflation w ≥ 1",
+        ),
+        ParamSpec::word(
+            "heuristic",
+            Heuristic::WORDS,
+            "metric",
+            "`metric` (admissible) or `zero` (Dijkstra)",
+        ),
+        ParamSpec::new(
+            "rotate",
+            ValueSpec::Word(YesNo::WORDS),
+            DefaultValue::Derived("yes for polygons"),
+            "search in θ too",
+        ),
+    ],
+    metrics: &[
+        MetricSpec::num("cells", "lattice configurations"),
+        MetricSpec::num(
+            "free_cells",
+            "lattice configurations where the robot is free",
+        ),
+        MetricSpec::num(
+            "layers",
+            "θ layers of the lattice (1 for robots that do not rotate)",
+        ),
+        MetricSpec::num("generated", "configurations put on the open list"),
+    ],
+    limits: &["expansions", "time", "cells"],
+    needs_goal: true,
+    check,
+};
+
+word_enum! {
+    /// Edge cost metric (SPEC 3.1 `cost`).
+    pub enum CostMetric {
+        Euclid = "euclid",
+        L1 = "l1",
+    }
+}
+
+word_enum! {
+    /// SPEC 3.1 `heuristic`.
+    pub enum Heuristic {
+        /// The cost metric to the goal (admissible and consistent).
+        Metric = "metric",
+        /// h = 0: Dijkstra.
+        Zero = "zero",
+    }
 }
 
 impl CostMetric {
@@ -34,6 +109,63 @@ impl CostMetric {
             CostMetric::Euclid => (dx * dx + dy * dy).sqrt(),
             CostMetric::L1 => dx + dy,
         }
+    }
+}
+
+/// The settings of an `astar` plan.
+#[derive(Clone, Debug)]
+pub struct Astar {
+    /// The lattice (θ layers included for a rotating robot).
+    pub lattice: LatticeSpec,
+    /// Whether the lattice has θ layers: a polygon robot without `rotate no`.
+    pub rotating: bool,
+    /// 4 or 8 on an (x, y) lattice, 6 or 26 on an (x, y, θ) lattice.
+    pub connect: u8,
+    pub cost: CostMetric,
+    /// Cost of one radian of rotation.
+    pub turn_cost: f64,
+    /// Heuristic inflation w ≥ 1.
+    pub weight: f64,
+    pub heuristic: Heuristic,
+}
+
+fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
+    let robot = &args.robot.shape;
+    let rotating = robot.rotates() && args.opt_word::<YesNo>("rotate") != Some(YesNo::No);
+    let connect = check_connect(args, rotating);
+    let layers = if rotating {
+        args.opt_num("layers").unwrap_or_else(|| {
+            (std::f64::consts::TAU * robot.radius() / args.num("cell"))
+                .ceil()
+                .max(1.0)
+        })
+    } else {
+        1.0
+    };
+    let lattice = check_lattice(args, layers)?;
+    Some(Box::new(Astar {
+        lattice,
+        rotating,
+        connect: connect?,
+        cost: args.word("cost"),
+        turn_cost: args
+            .opt_num("turn_cost")
+            .unwrap_or_else(|| args.robot.shape.radius()),
+        weight: args.num("weight"),
+        heuristic: args.word("heuristic"),
+    }))
+}
+
+impl Settings for Astar {
+    fn plan(&self, task: &Task<'_>) -> PlanOutcome {
+        match task.robot {
+            RobotShape::Polygon(p) => super::astar_rotating::plan(task, self, p),
+            _ => plan_xy(task, self),
+        }
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }
 
@@ -51,16 +183,20 @@ pub struct SearchConfig {
 }
 
 impl SearchConfig {
-    pub fn from_params(params: &Params) -> Self {
+    /// The search of an `astar` plan (or of `online`'s A*), with `limits`.
+    pub fn new(
+        connect: u8,
+        cost: CostMetric,
+        weight: f64,
+        heuristic: Heuristic,
+        limits: Limits,
+    ) -> Self {
         SearchConfig {
-            connect: params.num("connect").map(|c| c as u8).unwrap_or(8),
-            cost: match params.word("cost") {
-                Some("l1") => CostMetric::L1,
-                _ => CostMetric::Euclid,
-            },
-            weight: params.num("weight").unwrap_or(1.0),
-            heuristic: params.word("heuristic") != Some("zero"),
-            limits: params.limits,
+            connect,
+            cost,
+            weight,
+            heuristic: heuristic == Heuristic::Metric,
+            limits,
         }
     }
 }
@@ -464,14 +600,17 @@ pub fn search_with(
 }
 
 /// Runs an `astar` plan for a point or disk robot.
-pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
-    let radius = match robot {
-        RobotShape::Point => 0.0,
-        RobotShape::Disk(r) => *r,
-        RobotShape::Polygon(p) => return super::astar_rotating::plan(world, p, params),
-    };
-    let spec = LatticeSpec::from_params(world, robot, params);
-    let cfg = SearchConfig::from_params(params);
+fn plan_xy(task: &Task<'_>, settings: &Astar) -> PlanOutcome {
+    let world = task.world;
+    let radius = task.robot.radius();
+    let spec = settings.lattice;
+    let cfg = SearchConfig::new(
+        settings.connect,
+        settings.cost,
+        settings.weight,
+        settings.heuristic,
+        task.limits,
+    );
     let index = ObstacleIndex::new(world);
     let mut lat = GridLattice::build(spec, &index, radius);
     let mut out = PlanOutcome::default();
@@ -483,12 +622,10 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     );
     out.extra
         .insert("layers".into(), MetricValue::Num(spec.layers as f64));
-    out.trace = Trace {
-        grown_obstacles: grown_obstacles(world, radius),
-        ..Trace::default()
-    };
-    let start = params.start;
-    let goal = params.goal.unwrap_or(start);
+    out.layers
+        .extend(layers::grown(grown_obstacles(world, radius)));
+    let start = task.start;
+    let goal = task.goal.unwrap_or(start);
     let (s_node, g_node) = match snap_ends(&lat, &index, start, goal) {
         Ok(ends) => ends,
         Err(note) => {
@@ -503,15 +640,12 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
     out.gave_up = r.gave_up;
     out.extra
         .insert("generated".into(), MetricValue::Num(r.generated as f64));
-    out.trace.expansions = r
+    let expanded: Vec<Point> = r
         .expansion_order
         .iter()
-        .map(|&n| {
-            let (i, j) = spec.coords(n);
-            let p = spec.point(i, j);
-            Config::new(p.x, p.y, 0.0)
-        })
+        .map(|&n| spec.point_of(n))
         .collect();
+    out.layers.extend(layers::search(&expanded));
     if let Some(nodes) = r.nodes {
         let (s_pt, g_pt) = (spec.point_of(s_node), spec.point_of(g_node));
         let cost = cfg.cost.between(start.xy(), s_pt) + r.cost + cfg.cost.between(g_pt, goal.xy());

@@ -37,16 +37,20 @@ use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
+use super::astar::{Astar, CostMetric, Heuristic, Open};
+use super::lattice::LatticeSpec;
+use super::layers::{Colour, Drawing, Layer, Style};
+use super::registry::Task;
+use super::{MetricValue, PlanOutcome};
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
 use crate::geometry::union::union_boundary;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World};
 use crate::geometry::{angle_diff, polygon};
-use crate::scenario::Params;
 
-use super::astar::{CostMetric, Open};
-use super::lattice::LatticeSpec;
-use super::{CLayerTrace, MetricValue, PlanOutcome};
+/// The most C-obstacle outlines drawn over all layers; beyond it (e.g.
+/// large grids) layers are left out of the picture, not the search.
+pub const MAX_TRACED_C_OBSTACLES: usize = 200_000;
 
 /// One lattice move.
 #[derive(Clone, Copy, Debug)]
@@ -301,53 +305,45 @@ impl Lattice<'_> {
 }
 
 /// Runs an `astar` plan for a convex polygon robot.
-pub fn plan(world: &World, robot: &ConvexPolygon, params: &Params) -> PlanOutcome {
-    run(world, robot, params, false).0
+pub fn plan(task: &Task<'_>, settings: &Astar, robot: &ConvexPolygon) -> PlanOutcome {
+    run(task, settings, robot, false).0
 }
 
 /// [`plan`], measuring where the time goes (for benchmarks).
 pub fn plan_profiled(
-    world: &World,
+    task: &Task<'_>,
+    settings: &Astar,
     robot: &ConvexPolygon,
-    params: &Params,
 ) -> (PlanOutcome, Profile) {
-    run(world, robot, params, true)
+    run(task, settings, robot, true)
 }
 
 fn run(
-    world: &World,
+    task: &Task<'_>,
+    settings: &Astar,
     robot: &ConvexPolygon,
-    params: &Params,
     profiling: bool,
 ) -> (PlanOutcome, Profile) {
     let began = Instant::now();
+    let world = task.world;
     let mut profile = Profile::default();
     let shape = RobotShape::Polygon(robot.clone());
     let radius = shape.radius();
-    let rotating = params.word("rotate") != Some("no");
-    let spec = LatticeSpec::from_params(world, &shape, params);
-    let start = params.start;
-    let goal = params.goal.unwrap_or(start);
+    let rotating = settings.rotating;
+    let spec = settings.lattice;
+    let start = task.start;
+    let goal = task.goal.unwrap_or(start);
     let n_layers = spec.layers.max(1);
     let thetas: Vec<f64> = if rotating {
         (0..n_layers).map(|k| layer_angle(k, n_layers)).collect()
     } else {
         vec![start.theta]
     };
-    let cost = match params.word("cost") {
-        Some("l1") => CostMetric::L1,
-        _ => CostMetric::Euclid,
-    };
-    let turn_cost = params.num("turn_cost").unwrap_or(radius);
-    let weight = params.num("weight").unwrap_or(1.0);
-    let use_h = params.word("heuristic") != Some("zero");
-    let connect = match params.num("connect").map(|c| c as u8) {
-        Some(c) if rotating => c,
-        Some(6) | Some(4) => 4,
-        Some(_) => 8,
-        None if rotating => 26,
-        None => 8,
-    };
+    let cost = settings.cost;
+    let turn_cost = settings.turn_cost;
+    let weight = settings.weight;
+    let use_h = settings.heuristic == Heuristic::Metric;
+    let connect = settings.connect;
     let step = if rotating { TAU / n_layers as f64 } else { 0.0 };
     // The rotation of |dk| = 1: the shorter arc (π for two layers).
     let dtheta = step.min(TAU - step);
@@ -382,27 +378,14 @@ fn run(
     profile.cspace = lap.elapsed();
     let lap = Instant::now();
     if !rotating {
-        out.trace.grown_obstacles = layers[0]
+        let grown = layers[0]
             .c_obstacles
             .iter()
             .map(|c| c.vertices.clone())
             .collect();
-    } else if layers.iter().map(|l| l.c_obstacles.len()).sum::<usize>()
-        <= super::MAX_TRACED_C_OBSTACLES
-    {
-        use rayon::prelude::*;
-        out.trace.cspace_layers = layers
-            .par_iter()
-            .map(|l| {
-                let outlines: Vec<Vec<Point>> =
-                    l.c_obstacles.iter().map(|c| c.vertices.clone()).collect();
-                CLayerTrace {
-                    theta: l.theta,
-                    boundary: union_boundary(&outlines),
-                    c_obstacles: l.sources.iter().copied().zip(outlines).collect(),
-                }
-            })
-            .collect();
+        out.layers.extend(super::layers::grown(grown));
+    } else if layers.iter().map(|l| l.c_obstacles.len()).sum::<usize>() <= MAX_TRACED_C_OBSTACLES {
+        out.layers.extend(cspace_layers(world, &layers));
     }
     profile.trace = lap.elapsed();
     let lap = Instant::now();
@@ -538,11 +521,12 @@ fn run(
         });
     }
     let search_began = Instant::now();
+    let mut expanded_at: Vec<Point> = Vec::new();
     let mut expanded = 0u64;
     let mut generated = 1u64;
     let mut gave_up = false;
     let mut found = None;
-    let limits = params.limits;
+    let limits = task.limits;
     while let Some(Open { g, node, .. }) = heap.pop() {
         let node = node as usize;
         if mark[node] == 2 || g > gs[node] {
@@ -561,7 +545,7 @@ fn run(
         }
         mark[node] = 2;
         expanded += 1;
-        out.trace.expansions.push(lat.config(node));
+        expanded_at.push(lat.config(node).xy());
         if node == g_node {
             found = Some(g);
             break;
@@ -611,6 +595,7 @@ fn run(
     }
     out.expanded = expanded;
     out.gave_up = gave_up;
+    out.layers.extend(super::layers::search(&expanded_at));
     out.extra
         .insert("generated".into(), MetricValue::Num(generated as f64));
     match found {
@@ -640,6 +625,61 @@ fn run(
         ..profile
     };
     (out, profile)
+}
+
+/// The configuration space for the viewer (SPEC §6): per θ layer K the
+/// boundary of the union of its C-obstacles at height θ_K
+/// (`cspace/layer_K`; stacked, the layered C-space), and per world obstacle
+/// its C-obstacles over all layers (`cspace/obstacles/NAME`, the "twisted
+/// worm").
+fn cspace_layers(world: &World, layers: &[CLayer]) -> Vec<Layer> {
+    use rayon::prelude::*;
+    let grey = Style::new(Colour::Grey, 0.0, 10.0);
+    let at = |p: &Point, z: f64| [p.x, p.y, z];
+    let boundaries: Vec<Vec<Vec<[f64; 3]>>> = layers
+        .par_iter()
+        .map(|l| {
+            let outlines: Vec<Vec<Point>> =
+                l.c_obstacles.iter().map(|c| c.vertices.clone()).collect();
+            union_boundary(&outlines)
+                .iter()
+                .map(|(a, b)| vec![at(a, l.theta), at(b, l.theta)])
+                .collect()
+        })
+        .collect();
+    let mut out: Vec<Layer> = boundaries
+        .into_iter()
+        .enumerate()
+        .map(|(k, strips)| {
+            Layer::new(
+                format!("cspace/layer_{k}"),
+                Drawing::Polylines3D(strips),
+                grey,
+            )
+        })
+        .collect();
+    let mut worms: Vec<Vec<Vec<[f64; 3]>>> = vec![Vec::new(); world.obstacles.len()];
+    for l in layers {
+        for (&obstacle, c) in l.sources.iter().zip(&l.c_obstacles) {
+            let mut strip: Vec<[f64; 3]> = c.vertices.iter().map(|p| at(p, l.theta)).collect();
+            if let Some(&first) = strip.first() {
+                strip.push(first);
+            }
+            if let Some(w) = worms.get_mut(obstacle) {
+                w.push(strip);
+            }
+        }
+    }
+    for (o, strips) in world.obstacles.iter().zip(worms) {
+        if !strips.is_empty() {
+            out.push(Layer::new(
+                format!("cspace/obstacles/{}", o.name),
+                Drawing::Polylines3D(strips),
+                grey,
+            ));
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -678,10 +718,8 @@ robot rod polygon [(0,0), (8,0), (8,1), (0,1)]
             .iter()
             .map(|p| {
                 let robot = &s.robots[p.robot].shape;
-                let RobotShape::Polygon(poly) = robot else {
-                    panic!("a polygon robot");
-                };
-                let out = plan(&s.world, poly, &p.params);
+                assert!(matches!(robot, RobotShape::Polygon(_)), "a polygon robot");
+                let out = p.settings.plan(&p.task(&s));
                 if let Some(path) = &out.path {
                     assert_eq!(path.first(), Some(&p.params.start));
                     assert_eq!(path.last(), p.params.goal.as_ref());

@@ -18,27 +18,224 @@
 //! D-cells are indexed `(i, j)` with `i` the column from the left and `j`
 //! the row from the bottom.
 
+use std::any::Any;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::time::Instant;
 
+use crate::diagnostics::Diag;
 use crate::geometry::collide::{box_overlaps, segment_meets_open_box};
 use crate::geometry::{Aabb, Config, Grid, Point, RobotShape, Shape, World};
-use crate::scenario::Params;
+use crate::scenario::PlanArgs;
+use crate::scenario::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, Word};
+use crate::word_enum;
 
-use super::{CoverageTrace, MetricValue, PlanOutcome, Trace};
+use super::layers::{Colour, Drawing, Layer, Style, Svg};
+use super::registry::{Planner, Settings, Task};
+use super::{MetricValue, PlanOutcome};
+
+/// `coverage` in the registry.
+pub static PLANNER: Planner = Planner {
+    kind: "coverage",
+    summary: "spanning tree coverage of a grid",
+    robots: &[RobotKind::Disk, RobotKind::Polygon],
+    params: &[
+        ParamSpec::new(
+            "on",
+            ValueSpec::ObstacleName,
+            DefaultValue::None,
+            "the `grid` obstacle to cover",
+        ),
+        ParamSpec::positive(
+            "tool",
+            DefaultValue::Derived("the grid's cell"),
+            "side D of the square the robot covers",
+        ),
+        ParamSpec::word(
+            "weights",
+            EdgeWeights::WORDS,
+            "max",
+            "mega-cell edge weights",
+        ),
+    ],
+    metrics: &[
+        MetricSpec::num(
+            "coverage",
+            "visited D-cells / D-cells of the free mega-cells reachable from the start (0..1)",
+        ),
+        MetricSpec::num(
+            "cells_total",
+            "D-cells of the free mega-cells reachable from the start",
+        ),
+        MetricSpec::num("cells_visited", "D-cells the tour visits"),
+        MetricSpec::num("revisits", "visits to a D-cell already visited (0 for STC)"),
+        MetricSpec::bool("returns_to_start", "the tour ends in the start's D-cell"),
+        MetricSpec::num(
+            "uncovered",
+            "free D-cells in partly blocked mega-cells, which STC cannot cover",
+        ),
+        MetricSpec::num("tree_edges", "edges of the spanning tree"),
+        MetricSpec::num("tree_weight", "total weight of the spanning tree"),
+    ],
+    limits: &["expansions", "time"],
+    needs_goal: false,
+    check,
+};
+
+/// The settings of a `coverage` plan.
+#[derive(Clone, Debug)]
+pub struct Coverage {
+    /// Index of the `on` grid in `world.obstacles`.
+    pub on: usize,
+    /// Grid cells per D-cell side (`tool` / the grid's cell).
+    pub k: usize,
+    pub weights: EdgeWeights,
+}
+
+/// `on` names a grid, `tool` is a multiple of its cell and holds the
+/// robot's footprint, and the start (when it is valid at all) lies in a
+/// free D-cell of a free mega-cell (SPEC 3.5).
+fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
+    let world = args.world;
+    let Some(name) = args.name("on") else {
+        let grid = world
+            .obstacles
+            .iter()
+            .find(|o| matches!(o.shape, Shape::Grid(_)))
+            .map(|o| o.name.as_str());
+        let head = args.head;
+        args.error(
+            Diag::error(
+                "scen::analyze::missing_key",
+                "a `coverage` plan needs `on`, the grid to cover",
+            )
+            .at(head, "needs `on`")
+            .help(match grid {
+                Some(g) => format!("add `on {g}` to the plan's block"),
+                None => "add a `grid` obstacle to the world and name it with `on NAME`".into(),
+            }),
+        );
+        return None;
+    };
+    let on_span = args.span("on");
+    let Some(on) = world.obstacles.iter().position(|o| o.name == name) else {
+        args.error(
+            Diag::error(
+                "scen::analyze::unknown_obstacle",
+                format!("unknown obstacle `{name}`"),
+            )
+            .at(on_span, "no obstacle of this name")
+            .help("name a `grid` obstacle of the world"),
+        );
+        return None;
+    };
+    let Shape::Grid(grid) = &world.obstacles[on].shape else {
+        args.error(
+            Diag::error(
+                "scen::analyze::not_a_grid",
+                format!("obstacle `{name}` is not a `grid`"),
+            )
+            .at(on_span, "not a grid")
+            .help("`coverage` covers the free cells of a `grid` obstacle"),
+        );
+        return None;
+    };
+    let tool = args.opt_num("tool").unwrap_or(grid.cell);
+    let tool_span = args.span("tool");
+    let k = (tool / grid.cell).round();
+    if (tool / grid.cell - k).abs() > 1e-9 * k.max(1.0) || k < 1.0 {
+        args.error(
+            Diag::error(
+                "scen::analyze::tool_not_multiple",
+                format!(
+                    "`tool` {tool} is not a multiple of grid `{name}`'s cell {}",
+                    grid.cell
+                ),
+            )
+            .at(tool_span, "not a multiple of the cell")
+            .help(format!(
+                "use a whole number of cells, e.g. `tool {}`",
+                grid.cell * k.max(1.0)
+            )),
+        );
+        return None;
+    }
+    let half = tool / 2.0 + 1e-9;
+    let start = args.params.start;
+    let robot = args.robot;
+    let fits = match &robot.shape {
+        RobotShape::Disk(r) => *r <= half,
+        shape => shape
+            .placed_vertices(Config::new(0.0, 0.0, start.theta))
+            .iter()
+            .all(|v| v.x.abs() <= half && v.y.abs() <= half),
+    };
+    if !fits {
+        args.error(
+            Diag::error(
+                "scen::analyze::robot_exceeds_tool",
+                format!(
+                    "robot `{}` does not fit in a {tool} × {tool} D-cell centred on its frame origin",
+                    robot.name
+                ),
+            )
+            .at(tool_span, "the D-cell side")
+            .with_related(robot.span, "the robot")
+            .help("the tour puts the robot's frame origin at D-cell centres: use a larger `tool`, or a smaller robot centred on its origin"),
+        );
+        return None;
+    }
+    let k = k as usize;
+    if args.start_valid {
+        let others = Others::new(world, grid);
+        if let Err(e) = start_cell(grid, &others, k, start.xy()) {
+            let start_span = args.params.start_span;
+            args.error(
+                Diag::error(
+                    "scen::analyze::coverage_start",
+                    format!("the start {}", e.message(world, name)),
+                )
+                .at(start_span, "cannot start a coverage tour here")
+                .help(format!(
+                    "put the start inside a free {tool} × {tool} D-cell whose 2 × 2 mega-cell is free, within the grid from ({}, {}) to ({}, {})",
+                    grid.origin.x,
+                    grid.origin.y,
+                    grid.extent().max.x,
+                    grid.extent().max.y
+                )),
+            );
+            return None;
+        }
+    }
+    Some(Box::new(Coverage {
+        on,
+        k,
+        weights: args.word("weights"),
+    }))
+}
+
+impl Settings for Coverage {
+    fn plan(&self, task: &Task<'_>) -> PlanOutcome {
+        plan(task, self)
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
 
 /// The most boxes or edges of each kind kept in the trace for drawing; the
 /// metrics always count everything.
 pub const MAX_TRACED: usize = 100_000;
 
-/// How mega-cell weights combine into an edge weight (`weights`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EdgeWeights {
-    /// max(w_i, w_j), as in the seed.
-    Max,
-    /// w_i + w_j.
-    Sum,
+word_enum! {
+    /// How mega-cell weights combine into an edge weight (`weights`).
+    pub enum EdgeWeights {
+        /// max(w_i, w_j), as in the seed.
+        Max = "max",
+        /// w_i + w_j.
+        Sum = "sum",
+    }
 }
 
 impl EdgeWeights {
@@ -535,28 +732,25 @@ pub fn tour(cells: &Cells, tree: &Tree, start: (usize, usize)) -> Vec<(usize, us
 /// Plans a coverage tour (SPEC 3.5). The robot does not change the tour:
 /// the analyzer checked that its footprint fits a D-cell centred on its
 /// frame origin.
-pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome {
+pub fn plan(task: &Task<'_>, settings: &Coverage) -> PlanOutcome {
+    let world = task.world;
     let mut out = PlanOutcome::default();
-    let grid = params.word("on").and_then(|name| {
-        world.obstacles.iter().find_map(|o| match &o.shape {
-            Shape::Grid(g) if o.name == name => Some(g),
+    let grid = world
+        .obstacles
+        .get(settings.on)
+        .and_then(|o| match &o.shape {
+            Shape::Grid(g) => Some((g, o.name.as_str())),
             _ => None,
-        })
-    });
-    let Some(grid) = grid else {
+        });
+    let Some((grid, name)) = grid else {
         out.notes.push("`on` names no grid".into());
         return out;
     };
-    let k = cells_per_tool(grid, params.num("tool").unwrap_or(grid.cell));
-    let weights = match params.word("weights") {
-        Some("sum") => EdgeWeights::Sum,
-        _ => EdgeWeights::Max,
-    };
+    let (k, weights) = (settings.k, settings.weights);
     let others = Others::new(world, grid);
-    let start = match start_cell(grid, &others, k, params.start.xy()) {
+    let start = match start_cell(grid, &others, k, task.start.xy()) {
         Ok(s) => s,
         Err(e) => {
-            let name = params.word("on").unwrap_or("?");
             out.notes
                 .push(format!("the start {}", e.message(world, name)));
             return out;
@@ -565,11 +759,11 @@ pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome 
     let began = Instant::now();
     let cells = Cells::with_others(grid, &others, k);
     let root = (start.1 / 2) * cells.mcols + start.0 / 2;
-    let deadline = params
+    let deadline = task
         .limits
         .time
         .map(|s| began + std::time::Duration::from_secs_f64(s));
-    let tree = prim(&cells, root, weights, params.limits.expansions, deadline);
+    let tree = prim(&cells, root, weights, task.limits.expansions, deadline);
     out.expanded = tree.order.len() as u64;
     out.gave_up = tree.gave_up;
     let uncovered: Vec<(usize, usize)> = cells.uncovered().collect();
@@ -580,26 +774,27 @@ pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome 
         .insert("tree_weight".into(), MetricValue::Num(tree.weight as f64));
     let total = 4 * tree.order.len();
     out.extra.insert("cells_total".into(), num(total));
-    let mut trace = CoverageTrace {
-        tool: cells.d,
-        mega_cells: tree
-            .order
-            .iter()
-            .take(MAX_TRACED)
-            .map(|&m| cells.mega_box(m % cells.mcols, m / cells.mcols))
-            .collect(),
-        uncovered: uncovered
-            .iter()
-            .take(MAX_TRACED)
-            .map(|&(i, j)| cells.dcell_box(i, j))
-            .collect(),
-        tree: tree
-            .edges
-            .iter()
-            .take(MAX_TRACED)
-            .map(|&(p, c)| (mega_center(&cells, p), mega_center(&cells, c)))
-            .collect(),
-    };
+    let mega_cells: Vec<Aabb> = tree
+        .order
+        .iter()
+        .take(MAX_TRACED)
+        .map(|&m| cells.mega_box(m % cells.mcols, m / cells.mcols))
+        .collect();
+    let uncovered_boxes: Vec<Aabb> = uncovered
+        .iter()
+        .take(MAX_TRACED)
+        .map(|&(i, j)| cells.dcell_box(i, j))
+        .collect();
+    out.layers.push(Layer::new(
+        "mega_cells",
+        Drawing::Boxes(mega_cells),
+        Style::new(Colour::Faint, 0.5, 3.0).svg(Svg::fill(0.08).outlined(0.3)),
+    ));
+    out.layers.push(Layer::new(
+        "uncovered",
+        Drawing::Boxes(uncovered_boxes),
+        Style::new(Colour::Grey, 0.0, 4.0).svg(Svg::fill(0.35)),
+    ));
     if tree.order.len() > MAX_TRACED || uncovered.len() > MAX_TRACED {
         out.notes.push(format!(
             "the picture shows the first {MAX_TRACED} mega-cells, tree edges and uncovered cells"
@@ -613,13 +808,19 @@ pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome 
             .insert("returns_to_start".into(), MetricValue::Bool(false));
         out.notes
             .push("a limit stopped the spanning tree before it spanned the free mega-cells".into());
-        trace.tree.clear();
-        out.trace = Trace {
-            coverage: Some(trace),
-            ..Trace::default()
-        };
         return out;
     }
+    let tree_edges = tree
+        .edges
+        .iter()
+        .take(MAX_TRACED)
+        .map(|&(p, c)| (mega_center(&cells, p), mega_center(&cells, c)))
+        .collect();
+    out.layers.push(Layer::new(
+        "tree",
+        Drawing::Segments(tree_edges),
+        Style::new(Colour::Plan, 1.0, 28.0).svg(Svg::line(0.7)),
+    ));
     let cycle = tour(&cells, &tree, start);
     let mut seen = vec![false; cells.dcells.len()];
     let mut visited = 0usize;
@@ -648,10 +849,10 @@ pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome 
         "returns_to_start".into(),
         MetricValue::Bool(cycle.last() == Some(&start)),
     );
-    let theta = params.start.theta;
+    let theta = task.start.theta;
     let at = |p: Point| Config::new(p.x, p.y, theta);
     let mut path: Vec<Config> = Vec::with_capacity(cycle.len() + 2);
-    let s = params.start;
+    let s = task.start;
     let centre = cells.dcell_center(start.0, start.1);
     let off_centre = s.x != centre.x || s.y != centre.y;
     if off_centre {
@@ -662,10 +863,6 @@ pub fn plan(world: &World, _robot: &RobotShape, params: &Params) -> PlanOutcome 
         path.push(s);
     }
     out.path = Some(path);
-    out.trace = Trace {
-        coverage: Some(trace),
-        ..Trace::default()
-    };
     out
 }
 
@@ -678,14 +875,13 @@ fn mega_center(cells: &Cells, m: usize) -> Point {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnostics::Span;
     use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
     use crate::geometry::{ConvexPolygon, Obstacle};
-    use crate::scenario::{Limits, Param, ParamValue};
+    use crate::scenario::Limits;
     use petgraph::data::Element;
     use petgraph::graph::UnGraph;
     use proptest::prelude::*;
-    use std::collections::{BTreeMap, HashMap, VecDeque};
+    use std::collections::{HashMap, VecDeque};
 
     /// A random grid: `density` of its cells blocked, the others weighted
     /// 1..=9 (SplitMix64 on `seed`).
@@ -721,24 +917,33 @@ mod tests {
         }
     }
 
-    fn params(start: Config, tool: f64, weights: &str, limits: Limits) -> Params {
-        let param = |value| Param {
-            value,
-            span: Span::default(),
+    /// Plans the tour of grid `G` of `world` from `start` with D = `tool`.
+    fn cover(
+        world: &World,
+        robot: &RobotShape,
+        start: Config,
+        tool: f64,
+        weights: EdgeWeights,
+        limits: Limits,
+    ) -> PlanOutcome {
+        let on = world
+            .obstacles
+            .iter()
+            .position(|o| o.name == "G")
+            .expect("a grid G");
+        let Shape::Grid(grid) = &world.obstacles[on].shape else {
+            panic!("G is a grid");
         };
-        let mut values = BTreeMap::new();
-        values.insert("on", param(ParamValue::Word("G".into())));
-        values.insert("tool", param(ParamValue::Num(tool)));
-        values.insert("weights", param(ParamValue::Word(weights.into())));
-        Params {
+        let task = Task {
+            world,
+            robot,
             start,
-            start_span: Span::default(),
             goal: None,
-            goal_span: None,
             limits,
             seed: 0,
-            values,
-        }
+        };
+        let k = cells_per_tool(grid, tool);
+        plan(&task, &Coverage { on, k, weights })
     }
 
     /// The model the planner must agree with, computed directly from the
@@ -905,9 +1110,9 @@ mod tests {
                 grid.origin.y + (s.1 as f64 + fy) * d,
                 0.0,
             );
-            let weights = if sum { "sum" } else { "max" };
+            let weights = if sum { EdgeWeights::Sum } else { EdgeWeights::Max };
             let robot = RobotShape::Disk(d / 2.0);
-            let out = plan(&world_of(&grid), &robot, &params(start, d, weights, Limits::default()));
+            let out = cover(&world_of(&grid), &robot, start, d, weights, Limits::default());
             let path = out.path.clone().expect("a tour");
             // Closed: it ends where it began.
             prop_assert_eq!(path.first(), path.last());
@@ -946,9 +1151,13 @@ mod tests {
             prop_assert_eq!(num(&out, "tree_edges"), comp.len() as f64 - 1.0);
             prop_assert_eq!(num(&out, "tree_weight"), f64::from(model.mst_weight(&grid, &comp, sum)));
             prop_assert_eq!(num(&out, "uncovered"), model.uncovered(&grid) as f64);
-            let trace = out.trace.coverage.as_ref().unwrap();
-            prop_assert_eq!(trace.mega_cells.len(), comp.len());
-            prop_assert_eq!(trace.tree.len(), comp.len() - 1);
+            let drawn = |entity: &str| match out.layer(entity).map(|l| &l.drawing) {
+                Some(Drawing::Boxes(b)) => b.len(),
+                Some(Drawing::Segments(s)) => s.len(),
+                other => panic!("{entity}: {other:?}"),
+            };
+            prop_assert_eq!(drawn("mega_cells"), comp.len());
+            prop_assert_eq!(drawn("tree"), comp.len() - 1);
         }
     }
 
@@ -1113,7 +1322,7 @@ mod tests {
             ],
         });
         for robot in [RobotShape::Disk(half), square] {
-            let out = plan(world, &robot, &params(start, d, "max", Limits::default()));
+            let out = cover(world, &robot, start, d, EdgeWeights::Max, Limits::default());
             let path = out.path.expect("a tour");
             prop_assert_eq!(path[0], start);
             let v = validate_path(world, &robot, &path, DEFAULT_TOLERANCE);
@@ -1202,10 +1411,13 @@ mod tests {
     #[test]
     fn a_lone_mega_cell_is_toured_counter_clockwise() {
         let g = open_grid(2, 2);
-        let out = plan(
+        let out = cover(
             &world_of(&g),
             &RobotShape::Disk(0.5),
-            &params(Config::new(0.5, 0.5, 0.0), 1.0, "max", Limits::default()),
+            Config::new(0.5, 0.5, 0.0),
+            1.0,
+            EdgeWeights::Max,
+            Limits::default(),
         );
         let xy: Vec<(f64, f64)> = out.path.unwrap().iter().map(|c| (c.x, c.y)).collect();
         assert_eq!(
@@ -1228,19 +1440,19 @@ mod tests {
             0.0,
         );
         let run = || {
-            plan(
+            cover(
                 &world_of(&g),
                 &RobotShape::Disk(0.25),
-                &params(start, g.cell, "sum", Limits::default()),
+                start,
+                g.cell,
+                EdgeWeights::Sum,
+                Limits::default(),
             )
         };
         let (a, b) = (run(), run());
         assert_eq!(a.path, b.path);
         assert_eq!(a.extra, b.extra);
-        assert_eq!(
-            a.trace.coverage.unwrap().tree,
-            b.trace.coverage.unwrap().tree
-        );
+        assert_eq!(a.layers, b.layers);
     }
 
     #[test]
@@ -1250,10 +1462,13 @@ mod tests {
             expansions: Some(5),
             ..Limits::default()
         };
-        let out = plan(
+        let out = cover(
             &world_of(&g),
             &RobotShape::Disk(0.5),
-            &params(Config::new(0.5, 0.5, 0.0), 1.0, "max", limits),
+            Config::new(0.5, 0.5, 0.0),
+            1.0,
+            EdgeWeights::Max,
+            limits,
         );
         assert!(out.gave_up);
         assert!(out.path.is_none());

@@ -1,17 +1,109 @@
-//! The lattice of configurations shared by `astar` (and later `online`):
-//! sample points in x and y (SPEC 3.1 `sample`), θ layers, and the size
-//! computed before anything is allocated.
+//! The lattice of configurations shared by `astar` and `online`: sample
+//! points in x and y (SPEC 3.1 `sample`), θ layers, the size computed
+//! before anything is allocated, and the parameters and checks both
+//! planners share (`cell`, `sample`, `connect`, the size cap).
 
-use crate::geometry::{Config, Point, RobotShape, World};
-use crate::scenario::Params;
+use crate::diagnostics::Diag;
+use crate::geometry::{Config, Point, World};
+use crate::scenario::schema::{DefaultValue, ParamSpec, ValueSpec, num};
+use crate::scenario::{DEFAULT_CELL_CAP, PlanArgs};
+use crate::word_enum;
 
-/// Where lattice points sit in each cell.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Sample {
-    /// x = xmin + (i + ½)δ
-    Center,
-    /// x = xmin + iδ
-    Corner,
+word_enum! {
+    /// Where lattice points sit in each cell.
+    pub enum Sample {
+        /// x = xmin + (i + ½)δ
+        Center = "center",
+        /// x = xmin + iδ
+        Corner = "corner",
+    }
+}
+
+/// `cell`, `sample` and `connect`: the lattice parameters of `astar` and
+/// `online`.
+pub const LATTICE_PARAMS: [ParamSpec; 3] = [
+    ParamSpec::positive("cell", num(1.0, "1"), "lattice spacing δ in x and y"),
+    ParamSpec::word(
+        "sample",
+        <Sample as crate::scenario::schema::Word>::WORDS,
+        "center",
+        "lattice points at cell centres or corners",
+    ),
+    ParamSpec::new(
+        "connect",
+        ValueSpec::IntChoice(&[4, 8, 6, 26]),
+        DefaultValue::Derived("8 (26 for rotating robots)"),
+        "lattice neighbours: 4 or 8 in (x, y), 6 or 26 in (x, y, θ)",
+    ),
+];
+
+/// `connect` as given, checked against the lattice: 4 or 8 on an (x, y)
+/// lattice, 6 or 26 on a rotating robot's (x, y, θ) lattice; the default
+/// is 8, or 26 when `rotating`. `None` after reporting a bad value.
+pub fn check_connect(args: &mut PlanArgs<'_>, rotating: bool) -> Option<u8> {
+    let Some(x) = args.opt_num("connect") else {
+        return Some(if rotating { 26 } else { 8 });
+    };
+    let polygon = args.robot.shape.rotates();
+    let (ok, list, lattice, help) = match (rotating, polygon) {
+        (true, _) => (
+            x == 6.0 || x == 26.0,
+            "`6` or `26`",
+            " for a rotating robot's (x, y, θ) lattice",
+            "use `connect 6` or `connect 26`, or add `rotate no` to plan in (x, y) at the start's θ"
+                .to_string(),
+        ),
+        (false, true) => (
+            x == 4.0 || x == 8.0,
+            "`4` or `8`",
+            " with `rotate no` (an (x, y) lattice at the start's θ)",
+            "use `connect 4` or `connect 8`, or remove `rotate no`".to_string(),
+        ),
+        (false, false) => (
+            x == 4.0 || x == 8.0,
+            "`4` or `8`",
+            " for an (x, y) lattice",
+            format!("`connect`: {}", args.spec("connect").help),
+        ),
+    };
+    if ok {
+        return Some(x as u8);
+    }
+    let span = args.span("connect");
+    args.error(
+        Diag::error(
+            "scen::analyze::out_of_range",
+            format!("`connect` must be {list}{lattice}, got {x}"),
+        )
+        .at(span, "not accepted")
+        .help(help),
+    );
+    None
+}
+
+/// The lattice a plan asks for (`cell`, `sample`, `layers` θ layers over
+/// the world's bounds), refused before anything is allocated when it
+/// exceeds the cap (`limit cells N`, default [`DEFAULT_CELL_CAP`]).
+pub fn check_lattice(args: &mut PlanArgs<'_>, layers: f64) -> Option<LatticeSpec> {
+    let spec = LatticeSpec::new(args.world, args.num("cell"), args.word("sample"), layers);
+    let cap = args.params.limits.cells.unwrap_or(DEFAULT_CELL_CAP);
+    let cells = spec.cells_f64();
+    if cells > cap as f64 {
+        let at = args.span("cell");
+        let plan = args.plan;
+        args.error(
+            Diag::error(
+                "scen::analyze::lattice_too_large",
+                format!(
+                    "the lattice of plan `{plan}` would have {cells:.3e} cells, over the cap of {cap}"
+                ),
+            )
+            .at(at, format!("{} × {} × {} layers", spec.nx, spec.ny, spec.layers))
+            .help("use a larger `cell` (or fewer `layers`), or raise the cap with `limit cells N`"),
+        );
+        return None;
+    }
+    Some(spec)
 }
 
 /// The shape of a lattice: spacing, sampling and counts per axis.
@@ -30,28 +122,6 @@ pub struct LatticeSpec {
 }
 
 impl LatticeSpec {
-    /// The lattice a plan asks for: `cell`, `sample`, `layers` (rotating
-    /// robots only), over the world's bounds.
-    pub fn from_params(world: &World, robot: &RobotShape, params: &Params) -> Self {
-        let cell = params.num("cell").unwrap_or(1.0);
-        let sample = match params.word("sample") {
-            Some("corner") => Sample::Corner,
-            _ => Sample::Center,
-        };
-        let rotating = robot.rotates() && params.word("rotate") != Some("no");
-        let layers = if rotating {
-            match params.num("layers") {
-                Some(n) => n,
-                None => (std::f64::consts::TAU * robot.radius() / cell)
-                    .ceil()
-                    .max(1.0),
-            }
-        } else {
-            1.0
-        };
-        Self::new(world, cell, sample, layers)
-    }
-
     pub fn new(world: &World, cell: f64, sample: Sample, layers: f64) -> Self {
         let b = world.bounds;
         let count = |extent: f64| -> f64 {

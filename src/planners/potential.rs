@@ -45,6 +45,7 @@
 
 mod field;
 
+use std::any::Any;
 use std::f64::consts::TAU;
 use std::time::Instant;
 
@@ -53,9 +54,99 @@ pub use field::{FieldIndex, Forces, Gains, Near, Source};
 use crate::geometry::collide::ObstacleIndex;
 use crate::geometry::{Aabb, Config, Point, RobotShape, Vector, World};
 use crate::rng::SplitMix64;
-use crate::scenario::Params;
+use crate::scenario::PlanArgs;
+use crate::scenario::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, Word, num};
+use crate::word_enum;
 
-use super::{FieldTrace, ForceSample, MetricValue, PlanOutcome, Trace};
+use super::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
+use super::registry::{Planner, Settings, Task};
+use super::{MetricValue, PlanOutcome};
+
+/// `potential` in the registry.
+pub static PLANNER: Planner = Planner {
+    kind: "potential",
+    summary: "potential field with random-walk escape",
+    robots: &[RobotKind::Point, RobotKind::Disk],
+    params: &[
+        ParamSpec::positive("attract", num(1.0, "1"), "attractive gain η"),
+        ParamSpec::positive("repulse", num(1.0, "1"), "repulsive gain d"),
+        ParamSpec::positive("influence", num(2.0, "2"), "influence distance ρ0"),
+        ParamSpec::positive("step", num(0.05, "0.05"), "step length ε"),
+        ParamSpec::positive(
+            "tolerance",
+            DefaultValue::Derived("= step"),
+            "goal tolerance",
+        ),
+        ParamSpec::word(
+            "escape",
+            EscapeMode::WORDS,
+            "random_walk",
+            "how to leave local minima",
+        ),
+        ParamSpec::positive(
+            "jump",
+            DefaultValue::Derived("5 × influence"),
+            "longest random-walk jump",
+        ),
+    ],
+    metrics: &[
+        MetricSpec::num(
+            "steps",
+            "moves on the path: gradient steps, jumps and the landing on the goal",
+        ),
+        MetricSpec::num("minima", "local minima detected"),
+        MetricSpec::num("escapes", "random-walk jumps taken"),
+    ],
+    limits: &["steps", "expansions", "time"],
+    needs_goal: true,
+    check,
+};
+
+word_enum! {
+    /// How to leave a local minimum (SPEC 3.4 `escape`).
+    pub enum EscapeMode {
+        None = "none",
+        RandomWalk = "random_walk",
+    }
+}
+
+/// The settings of a `potential` plan.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Potential {
+    pub gains: Gains,
+    /// ε.
+    pub step: f64,
+    pub tolerance: f64,
+    pub escape: EscapeMode,
+    /// Longest jump.
+    pub jump: f64,
+}
+
+fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
+    let influence = args.num("influence");
+    let step = args.num("step");
+    Some(Box::new(Potential {
+        gains: Gains {
+            attract: args.num("attract"),
+            repulse: args.num("repulse"),
+            influence,
+        },
+        step,
+        tolerance: args.opt_num("tolerance").unwrap_or(step),
+        escape: args.word("escape"),
+        jump: args.opt_num("jump").unwrap_or(5.0 * influence),
+    }))
+}
+
+impl Settings for Potential {
+    fn plan(&self, task: &Task<'_>) -> PlanOutcome {
+        plan(task, self)
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
 
 /// Moves allowed when the plan sets no `limit steps` (SPEC: nothing hangs).
 pub const DEFAULT_STEP_LIMIT: u64 = 1_000_000;
@@ -89,9 +180,9 @@ const SMART_VERTICES: usize = 4;
 /// is dropped and the sampling stride doubles).
 const MAX_FORCE_SAMPLES: usize = 4096;
 
-/// A plan's settings, with SPEC 3.4's defaults applied.
+/// A run's settings: the plan's, its limits and its seed.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Settings {
+pub struct Run {
     pub gains: Gains,
     /// ε.
     pub step: f64,
@@ -109,30 +200,24 @@ pub struct Settings {
     pub seed: u64,
 }
 
-impl Settings {
-    pub fn from_params(params: &Params) -> Self {
-        let influence = params.num("influence").unwrap_or(2.0);
-        let step = params.num("step").unwrap_or(0.05);
-        let limits = params.limits;
+impl Run {
+    pub fn new(p: &Potential, task: &Task<'_>) -> Self {
+        let limits = task.limits;
         let max_steps = match (limits.steps, limits.expansions) {
             (Some(a), Some(b)) => a.min(b),
             (Some(a), None) | (None, Some(a)) => a,
             (None, None) => DEFAULT_STEP_LIMIT,
         };
-        Settings {
-            gains: Gains {
-                attract: params.num("attract").unwrap_or(1.0),
-                repulse: params.num("repulse").unwrap_or(1.0),
-                influence,
-            },
-            step,
-            tolerance: params.num("tolerance").unwrap_or(step),
-            escape: params.word("escape") != Some("none"),
-            jump: params.num("jump").unwrap_or(5.0 * influence),
+        Run {
+            gains: p.gains,
+            step: p.step,
+            tolerance: p.tolerance,
+            escape: p.escape == EscapeMode::RandomWalk,
+            jump: p.jump,
             max_steps,
             default_steps: limits.steps.is_none() && limits.expansions.is_none(),
             max_time: limits.time,
-            seed: params.seed,
+            seed: task.seed,
         }
     }
 }
@@ -180,7 +265,7 @@ struct Walker<'a> {
     bounds: Aabb,
     radius: f64,
     goal: Point,
-    s: &'a Settings,
+    s: &'a Run,
     /// cos 179°: the opposition test's threshold.
     cos_opposed: f64,
 }
@@ -276,8 +361,9 @@ enum Escape {
 }
 
 /// Runs a `potential` plan for a point or disk robot.
-pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
-    let radius = match robot {
+pub fn plan(task: &Task<'_>, settings: &Potential) -> PlanOutcome {
+    let world = task.world;
+    let radius = match task.robot {
         RobotShape::Point => 0.0,
         RobotShape::Disk(r) => *r,
         RobotShape::Polygon(_) => {
@@ -287,10 +373,10 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
             };
         }
     };
-    let s = Settings::from_params(params);
+    let s = Run::new(settings, task);
     let field = FieldIndex::new(world, radius, s.gains);
     let obstacles = ObstacleIndex::new(world);
-    let goal = params.goal.unwrap_or(params.start);
+    let goal = task.goal.unwrap_or(task.start);
     let walker = Walker {
         world,
         field: &field,
@@ -301,7 +387,7 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
         s: &s,
         cos_opposed: 179f64.to_radians().cos(),
     };
-    walk(&walker, params.start, goal)
+    walk(&walker, task.start, goal)
 }
 
 /// The main loop: descend, detect minima, escape, until the goal or a limit.
@@ -433,17 +519,90 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         .insert("minima".into(), MetricValue::Num(minima as f64));
     out.extra
         .insert("escapes".into(), MetricValue::Num(escapes as f64));
-    let unfinished = if found { Vec::new() } else { path.clone() };
+    if !found {
+        out.trajectory = path.clone();
+    }
     out.path = found.then_some(path);
-    out.trace = Trace {
-        field: Some(trace),
-        unfinished,
-        ..Trace::default()
-    };
+    let b = w.bounds;
+    out.layers = field_layers(&trace, 0.03 * b.width().max(b.height()));
     out
 }
 
-fn out_of_time(began: Instant, s: &Settings) -> bool {
+/// One sampled step of a walk: where, and the forces there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ForceSample {
+    /// Index into the path.
+    step: usize,
+    at: Point,
+    attract: Vector,
+    repulse: Vector,
+    total: Vector,
+}
+
+/// What a walk leaves for the viewer.
+#[derive(Clone, Debug, Default)]
+struct FieldTrace {
+    /// Forces at sampled steps (not every step: at most a few thousand).
+    forces: Vec<ForceSample>,
+    /// Local minima detected: the path index and the position.
+    minima: Vec<(usize, Point)>,
+    /// Escape jumps taken: the path index where the jump starts, from, to.
+    escapes: Vec<(usize, Point, Point)>,
+}
+
+/// The forces as arrows on timeline `step` (`field/attract`, `repulse`,
+/// `total`: directions only, all `length` long, since forces span orders of
+/// magnitude), the minima (`field/minima`) and the escape jumps with where
+/// they land (`field/escapes`).
+fn field_layers(trace: &FieldTrace, length: f64) -> Vec<Layer> {
+    let arrow = |v: Vector| {
+        let n = v.norm();
+        if n > 0.0 && n.is_finite() {
+            v * (length / n)
+        } else {
+            Vector::zeros()
+        }
+    };
+    let mut out = Vec::new();
+    for f in &trace.forces {
+        for (entity, v, colour) in [
+            ("field/attract", f.attract, Colour::Green),
+            ("field/repulse", f.repulse, Colour::Red),
+            ("field/total", f.total, Colour::Blue),
+        ] {
+            out.push(
+                Layer::new(
+                    entity,
+                    Drawing::Arrows(vec![(f.at, arrow(v))]),
+                    Style::new(colour, 0.0, 35.0),
+                )
+                .at(Timeline::Step, f.step as i64),
+            );
+        }
+    }
+    if !trace.minima.is_empty() {
+        out.push(Layer::new(
+            "field/minima",
+            Drawing::Points(trace.minima.iter().map(|&(_, p)| p).collect()),
+            Style::new(Colour::Red, 5.0, 36.0).svg(Svg::line(1.0)),
+        ));
+    }
+    if !trace.escapes.is_empty() {
+        out.push(Layer::new(
+            "field/escapes",
+            Drawing::Segments(trace.escapes.iter().map(|&(_, a, b)| (a, b)).collect()),
+            Style::new(Colour::Plan, 1.0, 36.0).svg(Svg::line(1.0).dashed()),
+        ));
+        out.push(Layer::new(
+            "field/escapes",
+            Drawing::Points(trace.escapes.iter().map(|&(_, _, b)| b).collect()),
+            Style::new(Colour::Plan, 4.0, 36.0),
+        ));
+    }
+    out
+}
+
+fn out_of_time(began: Instant, s: &Run) -> bool {
     s.max_time
         .is_some_and(|t| began.elapsed().as_secs_f64() > t)
 }

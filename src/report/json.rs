@@ -57,7 +57,7 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
         None => Value::Null,
     };
     let mut obj = Map::new();
-    obj.insert("kind".into(), plan.kind.into());
+    obj.insert("kind".into(), plan.kind().into());
     obj.insert("robot".into(), robot.map(|r| r.name.clone()).into());
     obj.insert("metrics".into(), metrics_json(&run.metrics));
     obj.insert("path".into(), path);
@@ -131,14 +131,13 @@ fn float_json(x: f64) -> Value {
 
 #[cfg(test)]
 mod tests {
-    use std::collections::BTreeMap;
     use std::path::PathBuf;
 
     use super::*;
     use crate::diagnostics::{SourceMap, Span};
     use crate::geometry::{Aabb, ConvexPolygon, Point, RobotShape, World};
     use crate::planners::PlanOutcome;
-    use crate::scenario::{Check, Limits, Params, Robot};
+    use crate::scenario::{Check, Robot};
     use crate::syntax::ast::{Expr, ExprKind};
 
     fn robot(name: &str, shape: RobotShape) -> Robot {
@@ -149,22 +148,11 @@ mod tests {
         }
     }
 
-    fn plan(name: &str, kind: &'static str, robot: usize) -> Plan {
-        Plan {
-            name: name.into(),
-            kind,
-            robot,
-            params: Params {
-                start: Config::new(0.0, 0.0, 0.0),
-                start_span: Span::default(),
-                goal: Some(Config::new(4.0, 2.0, 0.0)),
-                goal_span: None,
-                limits: Limits::default(),
-                seed: 0,
-                values: BTreeMap::new(),
-            },
-            span: Span::default(),
-        }
+    /// A plan of the `k`-th planner of the registry.
+    fn plan(name: &str, k: usize, robot: usize) -> Plan {
+        let planner = crate::planners::registry::PLANNERS[k];
+        let (start, goal) = (Config::new(0.0, 0.0, 0.0), Config::new(4.0, 2.0, 0.0));
+        Plan::fixture(name, planner, robot, start, Some(goal))
     }
 
     fn metrics(entries: &[(&str, MetricValue)]) -> Metrics {
@@ -194,7 +182,7 @@ mod tests {
                 robot("rod", RobotShape::Polygon(rod)),
                 robot("disk", RobotShape::Disk(0.5)),
             ],
-            plans: vec![plan("zeta", "astar", 0), plan("alpha", "roadmap", 1)],
+            plans: vec![plan("zeta", 0, 0), plan("alpha", 2, 1)],
             checks: vec![
                 Check {
                     expr: Expr {
@@ -262,12 +250,13 @@ mod tests {
     #[test]
     fn document_has_the_spec_5_shape() {
         let doc = to_json(&report());
+        let kind = |k: usize| crate::planners::registry::PLANNERS[k].kind;
         let expected = serde_json::json!({
             "file": "scenarios/demo.scen",
             "scenario": "Demo \"quoted\"",
             "plans": {
                 "zeta": {
-                    "kind": "astar", "robot": "rod",
+                    "kind": kind(0), "robot": "rod",
                     "metrics": {
                         "found": true, "cost": 79.1, "expanded": 5786,
                         "turn": null, "skew": null, "offset": -3
@@ -275,7 +264,7 @@ mod tests {
                     "path": [[0.0, 0.0, 0.0], [4.0, 2.0, 1.5]]
                 },
                 "alpha": {
-                    "kind": "roadmap", "robot": "disk",
+                    "kind": kind(2), "robot": "disk",
                     "metrics": {"found": false},
                     "path": null
                 }

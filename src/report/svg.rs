@@ -1,6 +1,8 @@
 //! A static SVG picture of a run (`scen run --svg`): the world, each plan's
-//! grown obstacles and path in the plan's colour, the robot's body at start
-//! and goal, a legend and the title — for people without the viewer.
+//! layers that its planner marked for the picture (grown obstacles, graphs,
+//! trees; [`crate::planners::layers`]) and its path in the plan's colour,
+//! the robot's body at start and goal, a legend and the title — for people
+//! without the viewer.
 //!
 //! The picture is drawn in pixels: the world (the bounds, grown by a margin
 //! and the largest robot's radius) is scaled so its longer side is
@@ -10,10 +12,11 @@
 use std::fmt::Write as _;
 
 use crate::geometry::{Aabb, Config, Point, RobotShape, Shape};
+use crate::planners::layers::{Drawing, Layer, Svg};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 use crate::viz::{
-    FAIL_RED, OBSTACLE_GREY, blocked_boxes, plan_colour, weight_boxes, weight_colour,
+    FAIL_RED, OBSTACLE_GREY, blocked_boxes, plan_colour, role_colour, weight_boxes, weight_colour,
 };
 
 /// Pixels along the longer side of the drawn world.
@@ -248,19 +251,12 @@ fn draw_obstacles(svg: &mut String, view: &View, scenario: &Scenario) {
 fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, run: &PlanRun) {
     let colour = hex(plan_colour(run.plan));
     let _ = writeln!(svg, "<g id=\"plan-{}\">", escape(&plan.name));
-    if !run.outcome.trace.grown_obstacles.is_empty() {
-        let _ = writeln!(
-            svg,
-            "<g fill=\"{colour}\" fill-opacity=\"0.07\" stroke=\"{colour}\" \
-             stroke-opacity=\"0.6\" stroke-width=\"1\" stroke-dasharray=\"4 3\">"
-        );
-        for grown in &run.outcome.trace.grown_obstacles {
-            let _ = writeln!(svg, "<polygon points=\"{}\"/>", view.points(grown));
+    for layer in &run.outcome.layers {
+        if let Some(style) = layer.style.svg {
+            draw_layer(svg, view, layer, style, run.plan);
         }
-        svg.push_str("</g>\n");
     }
-
-    draw_extras(svg, view, run, &colour);
+    draw_motions(svg, view, run, &colour);
 
     let path = run.outcome.path.as_deref().filter(|p| !p.is_empty());
     if let Some(path) = path {
@@ -302,87 +298,94 @@ fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, ru
     svg.push_str("</g>\n");
 }
 
-/// The planner-specific parts under the path: coverage mega-cells and
-/// tree, roadmap edges, what an online robot found blocked, potential-field
-/// minima and escape jumps, and a driven robot's trajectory.
-fn draw_extras(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
-    let trace = &run.outcome.trace;
-    let segments = |svg: &mut String, segs: &[(Point, Point)], attrs: &str| {
-        let _ = writeln!(svg, "<g {attrs}>");
-        for (a, b) in segs {
-            let _ = writeln!(
-                svg,
-                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
-                num(view.x(a.x)),
-                num(view.y(a.y)),
-                num(view.x(b.x)),
-                num(view.y(b.y))
-            );
-        }
-        svg.push_str("</g>\n");
+/// One layer the planner marked for the SVG ([`Layer::style`]).
+fn draw_layer(svg: &mut String, view: &View, layer: &Layer, style: Svg, plan: usize) {
+    let [r, g, b, _] = role_colour(layer.style.colour, plan);
+    let colour = hex([r, g, b]);
+    let width = if layer.style.width > 0.0 {
+        layer.style.width
+    } else {
+        1.0
     };
-    let boxes = |svg: &mut String, bs: &[Aabb], attrs: &str| {
-        if bs.is_empty() {
-            return;
-        }
-        let d: String = bs.iter().map(|b| view.box_path(b)).collect();
-        let _ = writeln!(svg, "<path {attrs} d=\"{d}\"/>");
-    };
-    if let Some(coverage) = &trace.coverage {
-        let attrs = format!(
-            "fill=\"{colour}\" fill-opacity=\"0.08\" stroke=\"{colour}\" stroke-opacity=\"0.3\" stroke-width=\"0.5\""
-        );
-        boxes(svg, &coverage.mega_cells, &attrs);
-        let grey = hex(OBSTACLE_GREY);
-        boxes(
-            svg,
-            &coverage.uncovered,
-            &format!("fill=\"{grey}\" fill-opacity=\"0.35\""),
-        );
-        let attrs = format!("stroke=\"{colour}\" stroke-width=\"1\" stroke-opacity=\"0.7\"");
-        segments(svg, &coverage.tree, &attrs);
+    let mut attrs = String::new();
+    if style.fill > 0.0 {
+        let _ = write!(attrs, "fill=\"{colour}\" fill-opacity=\"{}\"", style.fill);
+    } else {
+        attrs.push_str("fill=\"none\"");
     }
-    if !trace.roadmap_edges.is_empty() {
-        let attrs = format!("stroke=\"{colour}\" stroke-width=\"0.5\" stroke-opacity=\"0.35\"");
-        segments(svg, &trace.roadmap_edges, &attrs);
-    }
-    if let Some(online) = &trace.online {
-        let half = online.cell / 2.0;
-        let blocked: Vec<Aabb> = online
-            .sensed
-            .iter()
-            .flatten()
-            .filter(|(_, blocked)| *blocked)
-            .map(|&(p, _)| {
-                Aabb::from_corners(
-                    Point::new(p.x - half, p.y - half),
-                    Point::new(p.x + half, p.y + half),
-                )
-            })
-            .collect();
-        let grey = hex(OBSTACLE_GREY);
-        boxes(
-            svg,
-            &blocked,
-            &format!("fill=\"{grey}\" fill-opacity=\"0.6\""),
+    if style.stroke > 0.0 {
+        let _ = write!(
+            attrs,
+            " stroke=\"{colour}\" stroke-opacity=\"{}\" stroke-width=\"{width}\"",
+            style.stroke
         );
-    }
-    if let Some(field) = &trace.field {
-        let jumps: Vec<(Point, Point)> = field.escapes.iter().map(|&(_, a, b)| (a, b)).collect();
-        let attrs = format!("stroke=\"{colour}\" stroke-width=\"1.5\" stroke-dasharray=\"5 3\"");
-        segments(svg, &jumps, &attrs);
-        let red = hex(FAIL_RED);
-        for (_, m) in &field.minima {
-            let _ = writeln!(
-                svg,
-                "<circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"none\" stroke=\"{red}\" stroke-width=\"1.5\"/>",
-                num(view.x(m.x)),
-                num(view.y(m.y))
-            );
+        if style.dashed {
+            attrs.push_str(" stroke-dasharray=\"4 3\"");
         }
     }
-    if trace.unfinished.len() > 1 {
-        let xy: Vec<Point> = trace.unfinished.iter().map(Config::xy).collect();
+    let _ = writeln!(svg, "<g {attrs}>");
+    match &layer.drawing {
+        Drawing::Segments(segments) => {
+            for (a, b) in segments {
+                let _ = writeln!(
+                    svg,
+                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
+                    num(view.x(a.x)),
+                    num(view.y(a.y)),
+                    num(view.x(b.x)),
+                    num(view.y(b.y))
+                );
+            }
+        }
+        Drawing::Polylines(lines) => {
+            for line in lines {
+                let _ = writeln!(svg, "<polyline points=\"{}\"/>", view.points(line));
+            }
+        }
+        Drawing::Polygons(outlines) => {
+            for outline in outlines {
+                let _ = writeln!(svg, "<polygon points=\"{}\"/>", view.points(outline));
+            }
+        }
+        Drawing::Boxes(boxes) if !boxes.is_empty() => {
+            let d: String = boxes.iter().map(|b| view.box_path(b)).collect();
+            let _ = writeln!(svg, "<path d=\"{d}\"/>");
+        }
+        Drawing::Points(points) => {
+            for p in points {
+                let _ = writeln!(
+                    svg,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
+                    num(view.x(p.x)),
+                    num(view.y(p.y)),
+                    num(f64::from(width))
+                );
+            }
+        }
+        Drawing::Arrows(arrows) => {
+            for (p, v) in arrows {
+                let _ = writeln!(
+                    svg,
+                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
+                    num(view.x(p.x)),
+                    num(view.y(p.y)),
+                    num(view.x(p.x + v.x)),
+                    num(view.y(p.y + v.y))
+                );
+            }
+        }
+        // Text, boxes without boxes, and 3D lines are the viewer's.
+        Drawing::Boxes(_) | Drawing::Text(_) | Drawing::Polylines3D(_) => {}
+    }
+    svg.push_str("</g>\n");
+}
+
+/// Motions that are not the path: what a run executed before it stopped
+/// short of the goal, and a driven robot's trajectory.
+fn draw_motions(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
+    let trajectory = &run.outcome.trajectory;
+    if trajectory.len() > 1 {
+        let xy: Vec<Point> = trajectory.iter().map(Config::xy).collect();
         let _ = writeln!(
             svg,
             "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\" stroke-opacity=\"0.6\" stroke-dasharray=\"6 3\"/>",
@@ -451,7 +454,7 @@ fn draw_legend(svg: &mut String, report: &RunReport, runs: &[(&Plan, &PlanRun)],
             num(PAD + 32.0),
             num(y + 4.5),
             escape(&plan.name),
-            escape(plan.kind),
+            escape(plan.kind()),
             escape(&status)
         );
     }
@@ -523,26 +526,13 @@ mod tests {
     use super::*;
     use crate::diagnostics::{SourceMap, Span};
     use crate::geometry::{ConvexPolygon, Grid, Obstacle, World};
-    use crate::planners::{MetricValue, PlanOutcome, Trace};
+    use crate::planners::{MetricValue, PlanOutcome, layers};
     use crate::run::CheckOutcome;
-    use crate::scenario::{Limits, Params, Robot};
+    use crate::scenario::Robot;
 
     fn plan(name: &str, robot: usize, goal: Config) -> Plan {
-        Plan {
-            name: name.into(),
-            kind: "astar",
-            robot,
-            params: Params {
-                start: Config::new(1.0, 1.0, 0.0),
-                start_span: Span::default(),
-                goal: Some(goal),
-                goal_span: None,
-                limits: Limits::default(),
-                seed: 0,
-                values: BTreeMap::new(),
-            },
-            span: Span::default(),
-        }
+        let planner = crate::planners::registry::PLANNERS[0];
+        Plan::fixture(name, planner, robot, Config::new(1.0, 1.0, 0.0), Some(goal))
     }
 
     fn run(plan: usize, path: Option<Vec<Config>>) -> PlanRun {
@@ -551,16 +541,13 @@ mod tests {
             plan,
             outcome: PlanOutcome {
                 path,
-                trace: Trace {
-                    expansions: Vec::new(),
-                    grown_obstacles: vec![vec![
-                        Point::new(3.0, 3.0),
-                        Point::new(6.0, 3.0),
-                        Point::new(6.0, 6.0),
-                    ]],
-                    cspace_layers: Vec::new(),
-                    ..Trace::default()
-                },
+                layers: layers::grown(vec![vec![
+                    Point::new(3.0, 3.0),
+                    Point::new(6.0, 3.0),
+                    Point::new(6.0, 6.0),
+                ]])
+                .into_iter()
+                .collect(),
                 ..PlanOutcome::default()
             },
             metrics: [
@@ -752,8 +739,9 @@ mod tests {
         }
         // Without a title, the file name stands in.
         assert!(svg.contains("<title>demo.scen</title>"));
-        assert!(svg.contains("a (astar): found, length 12.346"));
-        assert!(svg.contains("b (astar): not found"));
+        let kind = crate::planners::registry::PLANNERS[0].kind;
+        assert!(svg.contains(&format!("a ({kind}): found, length 12.346")));
+        assert!(svg.contains(&format!("b ({kind}): not found")));
         assert!(svg.contains("checks: 0 passed, 1 failed"));
     }
 

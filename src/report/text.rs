@@ -51,7 +51,10 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
         let _ = writeln!(
             s,
             "\nplan {} ({}, robot {}): {}",
-            plan.name, plan.kind, robot.name, status
+            plan.name,
+            plan.kind(),
+            robot.name,
+            status
         );
         let mut parts = Vec::new();
         for k in KEY_METRICS {

@@ -13,9 +13,12 @@ use crate::geometry::{
 };
 use crate::syntax::ast::{self, Expr, ExprKind, ParamToken, Value, ValueKind};
 
+use crate::planners::registry::{self, PLANNERS, Planner};
+
 use super::loader::{LoadFailure, MAX_MAP_BYTES, SourcedStmt, read_text};
-use super::schema::{self, MetricType, PlannerSchema, RobotKind, ValueSpec, did_you_mean};
-use super::{Check, DEFAULT_CELL_CAP, Limits, Param, ParamValue, Params, Plan, Robot, Scenario};
+use super::movingai::{grid_char, parse_movingai};
+use super::schema::{self, MetricType, RobotKind, ValueSpec, did_you_mean};
+use super::{Check, Limits, Param, ParamValue, Params, Plan, PlanArgs, Robot, Scenario};
 
 /// Analyses the statements of a scenario (includes already spliced in).
 pub(crate) fn analyze(
@@ -62,39 +65,31 @@ struct Analyzer {
     invalid_robots: Vec<String>,
 }
 
-/// A plan kind's name, its schema, and the robot it plans for.
+/// A plan's name and planner, for typing `expect`.
 struct PlanInfo<'s> {
     name: &'s str,
-    schema: &'static PlannerSchema,
+    planner: &'static Planner,
     /// The plan has `drive`: it has the drive metrics too.
     drives: bool,
 }
 
 impl PlanInfo<'_> {
     fn metric(&self, name: &str) -> Option<MetricType> {
-        self.schema.metric(name).or_else(|| {
+        self.planner.metric(name).or_else(|| {
             self.drives
-                .then(|| schema::DRIVE_METRICS.iter().find(|(m, _)| *m == name))
+                .then(|| schema::DRIVE_METRICS.iter().find(|m| m.name == name))
                 .flatten()
-                .map(|(_, t)| *t)
+                .map(|m| m.ty)
         })
     }
 
     fn metric_names(&self) -> Vec<&'static str> {
         let drive = schema::DRIVE_METRICS.iter().filter(|_| self.drives);
-        self.schema
+        self.planner
             .all_metrics()
             .chain(drive)
-            .map(|(m, _)| *m)
+            .map(|m| m.name)
             .collect()
-    }
-}
-
-fn robot_kind(shape: &RobotShape) -> RobotKind {
-    match shape {
-        RobotShape::Point => RobotKind::Point,
-        RobotShape::Disk(_) => RobotKind::Disk,
-        RobotShape::Polygon(_) => RobotKind::Polygon,
     }
 }
 
@@ -807,8 +802,8 @@ impl Analyzer {
     }
 
     fn plan(&mut self, p: &ast::PlanDecl, world: Option<&World>, robots: &[Robot]) -> Option<Plan> {
-        let Some(schema) = schema::planner(&p.kind.value) else {
-            let kinds: Vec<&str> = schema::PLANNERS.iter().map(|s| s.kind).collect();
+        let Some(planner) = registry::planner(&p.kind.value) else {
+            let kinds: Vec<&str> = PLANNERS.iter().map(|s| s.kind).collect();
             let mut d = Diag::error(
                 "scen::analyze::unknown_planner",
                 format!("unknown planner `{}`", p.kind.value),
@@ -827,7 +822,7 @@ impl Analyzer {
         let robot_index = robots.iter().position(|r| r.name == p.robot.value);
         if robot_index.is_none() && self.invalid_robots.contains(&p.robot.value) {
             // The robot's own error was reported; check the parameters only.
-            self.params(p, schema, None, None);
+            self.params(p, planner);
             return None;
         }
         let Some(robot_index) = robot_index else {
@@ -844,52 +839,67 @@ impl Analyzer {
             };
             self.error(d);
             // Still check the parameters, so their errors show up too.
-            self.params(p, schema, None, None);
+            self.params(p, planner);
             return None;
         };
         let robot = &robots[robot_index];
-        let kind = robot_kind(&robot.shape);
-        if !schema.robots.contains(&kind) {
-            let ok: Vec<&str> = schema.robots.iter().map(|k| k.name()).collect();
+        let kind = RobotKind::of(&robot.shape);
+        let robot_ok = planner.plans_for(kind);
+        if !robot_ok {
+            let ok: Vec<&str> = planner.robots.iter().map(|k| k.name()).collect();
             self.error(
                 Diag::error(
                     "scen::analyze::robot_kind",
                     format!(
                         "planner `{}` does not plan for {} robots",
-                        schema.kind,
+                        planner.kind,
                         kind.name()
                     ),
                 )
                 .at(p.robot.span, format!("a {} robot", kind.name()))
                 .help(format!(
                     "`{}` plans for {} robots",
-                    schema.kind,
+                    planner.kind,
                     ok.join(" and ")
                 )),
             );
         }
-        let params = self.params(p, schema, Some(robot), world)?;
+        let params = self.params(p, planner)?;
+        let world = world?;
+        let before = self.diags.len();
+        self.check_pose(world, robot, params.start, params.start_span, "start");
+        let start_ok = self.diags.len() == before;
+        if let (Some(g), Some(gs)) = (params.goal, params.goal_span) {
+            self.check_pose(world, robot, g, gs, "goal");
+        }
+        // The planner's check may assume a robot it plans for.
+        if !robot_ok {
+            return None;
+        }
+        let head = p.name.span.to(p.robot.span);
+        let mut args = PlanArgs::new(planner, &p.name.value, head, world, robot, &params);
+        args.start_valid = start_ok;
+        let settings = (planner.check)(&mut args);
+        let ok = args.ok();
+        self.diags.extend(args.into_diags());
+        let settings = settings.filter(|_| ok)?;
         Some(Plan {
             name: p.name.value.clone(),
-            kind: schema.kind,
+            planner,
             robot: robot_index,
             params,
+            settings: settings.into(),
             span: p.span,
         })
     }
 
-    /// Groups the plan body's tokens into parameters and validates them.
-    fn params(
-        &mut self,
-        p: &ast::PlanDecl,
-        schema: &'static PlannerSchema,
-        robot: Option<&Robot>,
-        world: Option<&World>,
-    ) -> Option<Params> {
+    /// Groups the plan body's tokens into parameters and validates each
+    /// against the planner's schema (types, ranges, required keys).
+    fn params(&mut self, p: &ast::PlanDecl, planner: &'static Planner) -> Option<Params> {
         let set = ParamSet {
-            owner: format!("planner `{}`", schema.kind),
-            name: format!("`{}`", schema.kind),
-            specs: schema.all_params().collect(),
+            owner: format!("planner `{}`", planner.kind),
+            name: format!("`{}`", planner.kind),
+            specs: planner.all_params().collect(),
             nested: schema::DRIVE_PARAMS,
         };
         let mut limits = Limits::default();
@@ -897,9 +907,15 @@ impl Analyzer {
         let (mut values, given, ok) =
             self.param_list(&p.body, &set, |this, spec, next, tokens, i| {
                 match spec.value {
-                    ValueSpec::Limit => {
-                        this.limit(spec, next, tokens, i, &mut limits, &mut limit_spans)
-                    }
+                    ValueSpec::Limit => this.limit(
+                        planner,
+                        spec,
+                        next,
+                        tokens,
+                        i,
+                        &mut limits,
+                        &mut limit_spans,
+                    ),
                     ValueSpec::Drive => {
                         let ParamToken::Word(model) = next else {
                             this.wrong_value(spec, next);
@@ -915,7 +931,7 @@ impl Analyzer {
                         this.drive_block(model, block)
                     }
                     _ => this
-                        .param_value(spec, next, robot)
+                        .param_value(spec, next)
                         .map_or(Parsed::Bad, Parsed::Value),
                 }
             });
@@ -932,7 +948,7 @@ impl Analyzer {
                 .help("add `start (x, y)` to the plan's block"),
             );
         }
-        if schema.needs_goal && goal.is_none() && !given.contains(&"goal") {
+        if planner.needs_goal && goal.is_none() && !given.contains(&"goal") {
             self.error(
                 Diag::error(
                     "scen::analyze::missing_key",
@@ -945,7 +961,7 @@ impl Analyzer {
         let (true, Some(start)) = (ok, start) else {
             return None;
         };
-        if schema.needs_goal && goal.is_none() {
+        if planner.needs_goal && goal.is_none() {
             return None;
         }
         let ParamValue::Pose(start_c) = start.value else {
@@ -962,10 +978,7 @@ impl Analyzer {
             ParamValue::Num(x) => Some(x as u64),
             _ => None,
         });
-        if !ok {
-            return None;
-        }
-        let params = Params {
+        Some(Params {
             start: start_c,
             start_span: start.span,
             goal: goal_c,
@@ -973,25 +986,7 @@ impl Analyzer {
             limits,
             seed: seed.unwrap_or(0),
             values,
-        };
-        if let (Some(world), Some(robot)) = (world, robot) {
-            let before = self.diags.len();
-            self.check_pose(world, robot, start_c, start.span, "start");
-            let start_ok = self.diags.len() == before;
-            if let (Some(g), Some(gs)) = (goal_c, &goal) {
-                self.check_pose(world, robot, g, gs.span, "goal");
-            }
-            if schema.kind == "astar" {
-                self.check_connect(robot, &params);
-            }
-            if schema.kind == "astar" || schema.kind == "online" {
-                self.check_lattice_size(world, robot, &params, p)?;
-            }
-            if schema.kind == "coverage" {
-                self.check_coverage(world, robot, &params, start_ok, plan_head);
-            }
-        }
-        Some(params)
+        })
     }
 
     /// `drive unicycle { key value ... }`: the model word and the block's
@@ -1016,7 +1011,7 @@ impl Analyzer {
             nested: &[],
         };
         let (values, _, block_ok) = self.param_list(block, &set, |this, spec, next, _, _| {
-            this.param_value(spec, next, None)
+            this.param_value(spec, next)
                 .map_or(Parsed::Bad, Parsed::Value)
         });
         if ok && block_ok {
@@ -1072,7 +1067,8 @@ impl Analyzer {
                 ) {
                     (Some(p), _) => d.help(format!(
                         "put it in the drive block: `drive unicycle {{ {} {} }}`",
-                        p.key, p.default
+                        p.key,
+                        p.default.text()
                     )),
                     (None, Some(k)) => {
                         d.help(format!("did you mean `{k}`? accepted: {}", set.keys()))
@@ -1114,14 +1110,7 @@ impl Analyzer {
             };
             // A known key right after a key means the value is missing.
             if let ParamToken::Word(w) = next
-                && !matches!(
-                    spec.value,
-                    ValueSpec::Word(_)
-                        | ValueSpec::IntOrWord(_)
-                        | ValueSpec::ObstacleName
-                        | ValueSpec::Limit
-                        | ValueSpec::Drive
-                )
+                && !spec.value.takes_word()
                 && set.get(&w.value).is_some()
             {
                 self.missing_value(spec, key.span);
@@ -1147,8 +1136,10 @@ impl Analyzer {
     }
 
     /// `limit KIND AMOUNT` (repeatable, each kind once), stored in `limits`.
+    #[allow(clippy::too_many_arguments)]
     fn limit(
         &mut self,
+        planner: &Planner,
         spec: &schema::ParamSpec,
         next: &ParamToken,
         tokens: &[ParamToken],
@@ -1168,7 +1159,11 @@ impl Analyzer {
                     format!("unknown limit `{}`", which.value),
                 )
                 .at(which.span, "not a limit")
-                .help(format!("`limit` takes {}", spec.value.describe())),
+                .help(format!(
+                    "`{}` stops at {}",
+                    planner.kind,
+                    limits_of(planner)
+                )),
             );
             if let Some(ParamToken::Value(_)) = amount {
                 *i += 1; // its amount
@@ -1189,6 +1184,21 @@ impl Analyzer {
         };
         *i += 1;
         let mut ok = true;
+        if !planner.limits.contains(k) {
+            self.error(
+                Diag::error(
+                    "scen::analyze::bad_limit",
+                    format!("`{}` does not honour `limit {k}`", planner.kind),
+                )
+                .at(which.span, "not a limit of this planner")
+                .help(format!(
+                    "`{}` stops at {}",
+                    planner.kind,
+                    limits_of(planner)
+                )),
+            );
+            ok = false;
+        }
         if let Some(first) = spans.get(k) {
             self.error(
                 Diag::error(
@@ -1220,6 +1230,7 @@ impl Analyzer {
                 match *k {
                     "expansions" => limits.expansions = Some(n),
                     "steps" => limits.steps = Some(n),
+                    "iterations" => limits.iterations = Some(n),
                     _ => limits.cells = Some(n),
                 }
             }
@@ -1269,21 +1280,16 @@ impl Analyzer {
                 "`{}`: {} (default {})",
                 spec.key,
                 spec.help,
-                if spec.default.is_empty() {
+                if spec.default.text().is_empty() {
                     "none"
                 } else {
-                    spec.default
+                    spec.default.text()
                 }
             )),
         );
     }
 
-    fn param_value(
-        &mut self,
-        spec: &schema::ParamSpec,
-        tok: &ParamToken,
-        robot: Option<&Robot>,
-    ) -> Option<ParamValue> {
+    fn param_value(&mut self, spec: &schema::ParamSpec, tok: &ParamToken) -> Option<ParamValue> {
         match (spec.value, tok) {
             (ValueSpec::Pose, ParamToken::Value(v)) => self
                 .expect_pose(v, &format!("`{}`", spec.key))
@@ -1313,40 +1319,19 @@ impl Analyzer {
                     self.wrong_value(spec, tok);
                     return None;
                 };
-                // `connect` depends on the lattice: (x, y) or (x, y, θ).
-                let rotating = robot.is_some_and(|r| r.shape.rotates());
-                // A rotating robot may also take 4 or 8 with `rotate no`
-                // (checked once all parameters are known: `check_connect`).
-                let allowed: Vec<i64> = if spec.key == "connect" {
-                    if rotating {
-                        vec![6, 26, 4, 8]
-                    } else {
-                        vec![4, 8]
-                    }
-                } else {
-                    choices.to_vec()
-                };
-                if x.fract() == 0.0 && allowed.contains(&(x as i64)) {
+                if x.fract() == 0.0 && choices.contains(&(x as i64)) {
                     Some(ParamValue::Num(x))
                 } else {
-                    let list = allowed
-                        .iter()
-                        .map(|c| format!("`{c}`"))
-                        .collect::<Vec<_>>()
-                        .join(" or ");
-                    let why = if spec.key == "connect" {
-                        if rotating {
-                            " (6 or 26 for a rotating robot's (x, y, θ) lattice, 4 or 8 with `rotate no`)"
-                        } else {
-                            " for an (x, y) lattice"
-                        }
-                    } else {
-                        ""
+                    let all: Vec<String> = choices.iter().map(|c| format!("`{c}`")).collect();
+                    let list = match all.split_last() {
+                        Some((last, [])) => last.clone(),
+                        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+                        None => String::new(),
                     };
                     self.error(
                         Diag::error(
                             "scen::analyze::out_of_range",
-                            format!("`{}` must be {list}{why}, got {x}", spec.key),
+                            format!("`{}` must be {list}, got {x}", spec.key),
                         )
                         .at(v.span, "not accepted")
                         .help(format!("`{}`: {}", spec.key, spec.help)),
@@ -1386,6 +1371,19 @@ impl Analyzer {
             (ValueSpec::Seconds { max }, ParamToken::Value(v)) => match v.kind {
                 ValueKind::Number(x) | ValueKind::Duration(x) => {
                     self.in_range(spec, v, x, x > 0.0 && x <= max, &format!("{x}"))
+                }
+                _ => {
+                    self.wrong_value(spec, tok);
+                    None
+                }
+            },
+            (ValueSpec::Fraction { min, max }, ParamToken::Value(v)) => match v.kind {
+                ValueKind::Percent(x) | ValueKind::Number(x) => {
+                    let shown = match v.kind {
+                        ValueKind::Percent(_) => format!("{}%", x * 100.0),
+                        _ => format!("{x}"),
+                    };
+                    self.in_range(spec, v, x, x >= min && x <= max, &shown)
                 }
                 _ => {
                     self.wrong_value(spec, tok);
@@ -1509,203 +1507,6 @@ impl Analyzer {
         }
     }
 
-    /// `connect` of a rotating robot: 6 or 26 on its (x, y, θ) lattice, 4
-    /// or 8 with `rotate no` (an (x, y) lattice at the start's θ).
-    fn check_connect(&mut self, robot: &Robot, params: &Params) {
-        let (Some(c), true) = (params.values.get("connect"), robot.shape.rotates()) else {
-            return;
-        };
-        let ParamValue::Num(x) = c.value else {
-            return;
-        };
-        let fixed = params.word("rotate") == Some("no");
-        let (ok, list, lattice, help) = if fixed {
-            (
-                x == 4.0 || x == 8.0,
-                "`4` or `8`",
-                "with `rotate no` (an (x, y) lattice at the start's θ)",
-                "use `connect 4` or `connect 8`, or remove `rotate no`",
-            )
-        } else {
-            (
-                x == 6.0 || x == 26.0,
-                "`6` or `26`",
-                "for a rotating robot's (x, y, θ) lattice",
-                "use `connect 6` or `connect 26`, or add `rotate no` to plan in (x, y) at the start's θ",
-            )
-        };
-        if !ok {
-            self.error(
-                Diag::error(
-                    "scen::analyze::out_of_range",
-                    format!("`connect` must be {list} {lattice}, got {x}"),
-                )
-                .at(c.span, "not accepted")
-                .help(help),
-            );
-        }
-    }
-
-    fn check_lattice_size(
-        &mut self,
-        world: &World,
-        robot: &Robot,
-        params: &Params,
-        p: &ast::PlanDecl,
-    ) -> Option<()> {
-        let size = crate::planners::lattice::LatticeSpec::from_params(world, &robot.shape, params);
-        let cap = params.limits.cells.unwrap_or(DEFAULT_CELL_CAP);
-        let cells = size.cells_f64();
-        if cells > cap as f64 {
-            let at = params
-                .values
-                .get("cell")
-                .map(|c| c.span)
-                .unwrap_or(p.name.span.to(p.robot.span));
-            self.error(
-                Diag::error(
-                    "scen::analyze::lattice_too_large",
-                    format!(
-                        "the lattice of plan `{}` would have {cells:.3e} cells, over the cap of {cap}",
-                        p.name.value
-                    ),
-                )
-                .at(at, format!("{} × {} × {} layers", size.nx, size.ny, size.layers))
-                .help("use a larger `cell` (or fewer `layers`), or raise the cap with `limit cells N`"),
-            );
-            return None;
-        }
-        Some(())
-    }
-
-    /// `coverage`: `on` names a grid, `tool` is a multiple of its cell and
-    /// holds the robot's footprint, and the start (when `start_ok`: clear
-    /// of obstacles and inside the bounds) lies in a free D-cell of a free
-    /// mega-cell (SPEC 3.5).
-    fn check_coverage(
-        &mut self,
-        world: &World,
-        robot: &Robot,
-        params: &Params,
-        start_ok: bool,
-        plan_head: Span,
-    ) {
-        use crate::planners::coverage;
-        if !params.values.contains_key("on") {
-            let grids: Vec<&str> = world
-                .obstacles
-                .iter()
-                .filter(|o| matches!(o.shape, Shape::Grid(_)))
-                .map(|o| o.name.as_str())
-                .collect();
-            self.error(
-                Diag::error(
-                    "scen::analyze::missing_key",
-                    "a `coverage` plan needs `on`, the grid to cover",
-                )
-                .at(plan_head, "needs `on`")
-                .help(match grids.first() {
-                    Some(g) => format!("add `on {g}` to the plan's block"),
-                    None => "add a `grid` obstacle to the world and name it with `on NAME`".into(),
-                }),
-            );
-        }
-        if let Some(Param {
-            value: ParamValue::Word(name),
-            span,
-        }) = params.values.get("on")
-        {
-            let found = world.obstacles.iter().find(|o| &o.name == name);
-            match found {
-                Some(Obstacle {
-                    shape: Shape::Grid(grid),
-                    ..
-                }) => {
-                    let tool = params.num("tool").unwrap_or(grid.cell);
-                    let tool_span = params.values.get("tool").map_or(plan_head, |p| p.span);
-                    let k = (tool / grid.cell).round();
-                    if (tool / grid.cell - k).abs() > 1e-9 * k.max(1.0) || k < 1.0 {
-                        self.error(
-                            Diag::error(
-                                "scen::analyze::tool_not_multiple",
-                                format!(
-                                    "`tool` {tool} is not a multiple of grid `{name}`'s cell {}",
-                                    grid.cell
-                                ),
-                            )
-                            .at(tool_span, "not a multiple of the cell")
-                            .help(format!(
-                                "use a whole number of cells, e.g. `tool {}`",
-                                grid.cell * k.max(1.0)
-                            )),
-                        );
-                        return;
-                    }
-                    let half = tool / 2.0 + 1e-9;
-                    let fits = match &robot.shape {
-                        RobotShape::Disk(r) => *r <= half,
-                        shape => shape
-                            .placed_vertices(Config::new(0.0, 0.0, params.start.theta))
-                            .iter()
-                            .all(|v| v.x.abs() <= half && v.y.abs() <= half),
-                    };
-                    if !fits {
-                        self.error(
-                            Diag::error(
-                                "scen::analyze::robot_exceeds_tool",
-                                format!(
-                                    "robot `{}` does not fit in a {tool} × {tool} D-cell centred on its frame origin",
-                                    robot.name
-                                ),
-                            )
-                            .at(tool_span, "the D-cell side")
-                            .with_related(robot.span, "the robot")
-                            .help("the tour puts the robot's frame origin at D-cell centres: use a larger `tool`, or a smaller robot centred on its origin"),
-                        );
-                        return;
-                    }
-                    if !start_ok {
-                        return;
-                    }
-                    let k = k as usize;
-                    let others = coverage::Others::new(world, grid);
-                    if let Err(e) = coverage::start_cell(grid, &others, k, params.start.xy()) {
-                        self.error(
-                            Diag::error(
-                                "scen::analyze::coverage_start",
-                                format!("the start {}", e.message(world, name)),
-                            )
-                            .at(params.start_span, "cannot start a coverage tour here")
-                            .help(format!(
-                                "put the start inside a free {tool} × {tool} D-cell whose 2 × 2 mega-cell is free, within the grid from ({}, {}) to ({}, {})",
-                                grid.origin.x,
-                                grid.origin.y,
-                                grid.extent().max.x,
-                                grid.extent().max.y
-                            )),
-                        );
-                    }
-                }
-                Some(_) => self.error(
-                    Diag::error(
-                        "scen::analyze::not_a_grid",
-                        format!("obstacle `{name}` is not a `grid`"),
-                    )
-                    .at(*span, "not a grid")
-                    .help("`coverage` covers the free cells of a `grid` obstacle"),
-                ),
-                None => self.error(
-                    Diag::error(
-                        "scen::analyze::unknown_obstacle",
-                        format!("unknown obstacle `{name}`"),
-                    )
-                    .at(*span, "no obstacle of this name")
-                    .help("name a `grid` obstacle of the world"),
-                ),
-            }
-        }
-    }
-
     // ----------------------------------------------------------------- checks
 
     fn checks(&mut self, statements: &[SourcedStmt], plans: &[Plan]) -> Vec<Check> {
@@ -1718,9 +1519,9 @@ impl Analyzer {
                     .body
                     .iter()
                     .any(|t| matches!(t, ParamToken::Word(w) if w.value == "drive"));
-                let info = schema::planner(&p.kind.value).map(|schema| PlanInfo {
+                let info = registry::planner(&p.kind.value).map(|planner| PlanInfo {
                     name: &p.name.value,
-                    schema,
+                    planner,
                     drives,
                 });
                 known.entry(p.name.value.clone()).or_insert(info);
@@ -1807,13 +1608,12 @@ impl Analyzer {
                             "scen::analyze::unknown_metric",
                             format!(
                                 "plan `{}` ({}) has no metric `{}`",
-                                info.name, info.schema.kind, metric.value
+                                info.name, info.planner.kind, metric.value
                             ),
                         )
                         .at(metric.span, "unknown metric");
-                        let drive_metric = schema::DRIVE_METRICS
-                            .iter()
-                            .any(|(m, _)| *m == metric.value);
+                        let drive_metric =
+                            schema::DRIVE_METRICS.iter().any(|m| m.name == metric.value);
                         d = match did_you_mean(&metric.value, names.iter().copied()) {
                             _ if drive_metric => d.help(format!(
                                 "`{}` is measured when the plan drives its path: add `drive unicycle` to plan `{}`",
@@ -1821,12 +1621,12 @@ impl Analyzer {
                             )),
                             Some(n) => d.help(format!(
                                 "did you mean `{n}`? metrics of `{}`: {}",
-                                info.schema.kind,
+                                info.planner.kind,
                                 schema::backticked(&names)
                             )),
                             None => d.help(format!(
                                 "metrics of `{}`: {}",
-                                info.schema.kind,
+                                info.planner.kind,
                                 schema::backticked(&names)
                             )),
                         };
@@ -1901,9 +1701,9 @@ impl Analyzer {
 /// The parameters a list may give (a plan's, a `drive` block's), and how
 /// messages name its owner.
 struct ParamSet {
-    /// After "unknown parameter `k` for": "planner `astar`".
+    /// After "unknown parameter `k` for": "planner `KIND`".
     owner: String,
-    /// After "parameters of": "`astar`".
+    /// After "parameters of": "`KIND`".
     name: String,
     specs: Vec<&'static schema::ParamSpec>,
     /// The keys of the `drive` block nested in this list, for a help line
@@ -1931,6 +1731,22 @@ enum Parsed {
     Bad,
 }
 
+/// The limits a planner honours, as a user writes them.
+fn limits_of(planner: &Planner) -> String {
+    planner
+        .limits
+        .iter()
+        .map(|&l| {
+            if l == "time" {
+                "`limit time 2s`".to_string()
+            } else {
+                format!("`limit {l} N`")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 fn stmt_span(s: &ast::Stmt) -> Span {
     match s {
         ast::Stmt::Scenario { span, .. } | ast::Stmt::Include { span, .. } => *span,
@@ -1939,102 +1755,4 @@ fn stmt_span(s: &ast::Stmt) -> Span {
         ast::Stmt::Plan(p) => p.span,
         ast::Stmt::Expect(e) => e.span,
     }
-}
-
-/// The weight of a grid character: 0 blocked, 1..=9 free (SPEC 2.3).
-pub fn grid_char(c: char) -> Option<u8> {
-    match c {
-        '.' | 'G' | 'S' => Some(1),
-        '1'..='9' => Some(c as u8 - b'0'),
-        '@' | 'O' | 'T' | 'W' | '#' => Some(0),
-        _ => None,
-    }
-}
-
-/// The largest grid accepted from a map file (cells).
-const MAX_MAP_CELLS: usize = 50_000_000;
-
-/// Parses a MovingAI `.map` file: `(width, height, cells)`, or the 1-based
-/// line of the first problem and a message.
-pub fn parse_movingai(text: &str) -> Result<(usize, usize, Vec<u8>), (usize, String)> {
-    let mut lines = text.lines().map(|l| l.trim_end_matches('\r')).enumerate();
-    let mut height = None;
-    let mut width = None;
-    loop {
-        let Some((n, line)) = lines.next() else {
-            return Err((n_lines(text), "missing `map` line before the rows".into()));
-        };
-        let mut words = line.split_whitespace();
-        match (words.next(), words.next()) {
-            (Some("type"), _) => {}
-            (Some("height"), Some(h)) => {
-                height = Some(
-                    h.parse::<usize>()
-                        .map_err(|_| (n + 1, format!("bad height `{h}`")))?,
-                )
-            }
-            (Some("width"), Some(w)) => {
-                width = Some(
-                    w.parse::<usize>()
-                        .map_err(|_| (n + 1, format!("bad width `{w}`")))?,
-                )
-            }
-            (Some("map"), None) => break,
-            (None, _) => {}
-            _ => {
-                return Err((
-                    n + 1,
-                    format!("unexpected header line `{}`", truncate(line)),
-                ));
-            }
-        }
-    }
-    let (Some(h), Some(w)) = (height, width) else {
-        return Err((1, "the header must give `height` and `width`".into()));
-    };
-    if h == 0 || w == 0 || h.saturating_mul(w) > MAX_MAP_CELLS {
-        return Err((
-            1,
-            format!("a {w} × {h} map is empty or too large (limit {MAX_MAP_CELLS} cells)"),
-        ));
-    }
-    let mut cells = Vec::with_capacity(w * h);
-    for r in 0..h {
-        let Some((n, line)) = lines.next() else {
-            return Err((
-                n_lines(text),
-                format!("the map has {r} rows, the header says {h}"),
-            ));
-        };
-        if line.chars().count() != w {
-            return Err((
-                n + 1,
-                format!(
-                    "row {} has {} cells, the header says {w}",
-                    r + 1,
-                    line.chars().count()
-                ),
-            ));
-        }
-        for (c, ch) in line.chars().enumerate() {
-            match grid_char(ch) {
-                Some(x) => cells.push(x),
-                None => {
-                    return Err((
-                        n + 1,
-                        format!("`{ch}` in column {} is not a map cell", c + 1),
-                    ));
-                }
-            }
-        }
-    }
-    Ok((w, h, cells))
-}
-
-fn n_lines(text: &str) -> usize {
-    text.lines().count().max(1)
-}
-
-fn truncate(s: &str) -> String {
-    s.chars().take(40).collect()
 }

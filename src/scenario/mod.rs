@@ -3,17 +3,22 @@
 //! against their planner's schema, expressions typed.
 
 mod analyze;
+mod args;
 pub mod loader;
+pub mod movingai;
 pub mod schema;
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use crate::diagnostics::{SourceMap, Span};
 use crate::geometry::{Config, Point, RobotShape, World};
+use crate::planners::registry::{Planner, Settings, Task};
 use crate::syntax::ast::Expr;
 
 pub(crate) use analyze::analyze;
+pub use args::PlanArgs;
 pub use loader::load;
 
 /// A fully analysed scenario, ready to run.
@@ -41,17 +46,78 @@ pub struct Robot {
 #[derive(Clone, Debug)]
 pub struct Plan {
     pub name: String,
-    /// The planner kind (`astar`, `online`, ...), as in the schema registry.
-    pub kind: &'static str,
+    /// Its planner, from the registry.
+    pub planner: &'static Planner,
     /// Index into `Scenario::robots`.
     pub robot: usize,
     pub params: Params,
+    /// The planner's typed settings, built from `params` by its `check`.
+    pub settings: Arc<dyn Settings>,
     pub span: Span,
 }
 
-/// Validated parameters of a plan. Planner-specific values are looked up by
-/// key; keys not given by the user are absent (the planner applies the
-/// schema's default).
+impl Plan {
+    /// The planner kind (`astar`, `online`, ...).
+    pub fn kind(&self) -> &'static str {
+        self.planner.kind
+    }
+
+    /// The planning problem of this plan in `scenario`.
+    pub fn task<'s>(&self, scenario: &'s Scenario) -> Task<'s> {
+        Task {
+            world: &scenario.world,
+            robot: &scenario.robots[self.robot].shape,
+            start: self.params.start,
+            goal: self.params.goal,
+            limits: self.params.limits,
+            seed: self.params.seed,
+        }
+    }
+}
+
+#[cfg(test)]
+impl Plan {
+    /// A plan of `planner` from `start` to `goal` with no parameters, for
+    /// tests of the sinks: its settings cannot run (they panic if asked).
+    pub(crate) fn fixture(
+        name: &str,
+        planner: &'static Planner,
+        robot: usize,
+        start: Config,
+        goal: Option<Config>,
+    ) -> Plan {
+        #[derive(Debug)]
+        struct NotRun;
+        impl Settings for NotRun {
+            fn plan(&self, _: &Task<'_>) -> crate::planners::PlanOutcome {
+                unreachable!("a fixture plan is never run")
+            }
+            fn as_any(&self) -> &dyn std::any::Any {
+                self
+            }
+        }
+        Plan {
+            name: name.into(),
+            planner,
+            robot,
+            params: Params {
+                start,
+                start_span: Span::default(),
+                goal,
+                goal_span: None,
+                limits: Limits::default(),
+                seed: 0,
+                values: BTreeMap::new(),
+            },
+            settings: Arc::new(NotRun),
+            span: Span::default(),
+        }
+    }
+}
+
+/// Validated parameters of a plan, as written: keys not given by the user
+/// are absent (the planner's `check` reads the schema's defaults through
+/// [`PlanArgs`]).
 #[derive(Clone, Debug)]
 pub struct Params {
     pub start: Config,
@@ -67,20 +133,6 @@ impl Params {
     pub fn get(&self, key: &str) -> Option<&ParamValue> {
         self.values.get(key).map(|p| &p.value)
     }
-
-    pub fn num(&self, key: &str) -> Option<f64> {
-        match self.get(key) {
-            Some(ParamValue::Num(x)) => Some(*x),
-            _ => None,
-        }
-    }
-
-    pub fn word(&self, key: &str) -> Option<&str> {
-        match self.get(key) {
-            Some(ParamValue::Word(w)) => Some(w.as_str()),
-            _ => None,
-        }
-    }
 }
 
 /// Limits of SPEC 2.5 (`limit expansions N`, `limit time 2s`, ...).
@@ -92,6 +144,8 @@ pub struct Limits {
     pub time: Option<f64>,
     /// Lattice-size cap (default [`DEFAULT_CELL_CAP`]).
     pub cells: Option<u64>,
+    /// Samples drawn, for the sampling-based planners.
+    pub iterations: Option<u64>,
 }
 
 /// The default cap on lattice sizes (SPEC 3.1).

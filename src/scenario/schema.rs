@@ -1,7 +1,10 @@
-//! Per-planner schemas: the parameters each planner kind accepts (name,
-//! value type, default, range, help), the robots it handles and the metrics
-//! it reports. The analyzer validates plans against these tables; a new
-//! planner is a new table here plus one line in [`PLANNERS`].
+//! The language of plan parameters and metrics: what a parameter's value
+//! may be (type, range), its default, its help; what a metric is. Each
+//! planner declares its own parameters and metrics with these types in its
+//! file ([`crate::planners::registry`]); the analyzer validates plans
+//! against them, and the editors' word lists, the generated planner docs
+//! and the language server read them. The parameters and metrics every
+//! planner has (SPEC 2.5, SPEC 3) are declared here.
 
 /// What a robot is, for the robot compatibility tables.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,10 +22,19 @@ impl RobotKind {
             RobotKind::Polygon => "polygon",
         }
     }
+
+    pub fn of(shape: &crate::geometry::RobotShape) -> Self {
+        use crate::geometry::RobotShape;
+        match shape {
+            RobotShape::Point => RobotKind::Point,
+            RobotShape::Disk(_) => RobotKind::Disk,
+            RobotShape::Polygon(_) => RobotKind::Polygon,
+        }
+    }
 }
 
 /// The type and range of a parameter's value.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ValueSpec {
     /// `(x, y)` or `(x, y, θ)`.
     Pose,
@@ -35,13 +47,13 @@ pub enum ValueSpec {
     },
     /// One of a few integers (`connect 4|8|6|26`).
     IntChoice(&'static [i64]),
-    /// One of a few words.
+    /// One of a few words: a [`Word`] enum's [`Word::WORDS`].
     Word(&'static [&'static str]),
     /// A positive integer or one of a few words (`layers 51|auto`).
     IntOrWord(&'static [&'static str]),
     /// The name of a world obstacle (`on G`).
     ObstacleName,
-    /// `expansions N | steps N | time DURATION | cells N`.
+    /// `expansions N | steps N | time DURATION | cells N | iterations N`.
     Limit,
     /// A word with an optional `{ ... }` block (`drive unicycle { dt 0.02 }`).
     Drive,
@@ -50,6 +62,9 @@ pub enum ValueSpec {
     /// A positive angle written with its unit (`0.5deg`), at most `max`
     /// radians; stored in radians.
     Angle { max: f64 },
+    /// A percentage (`5%`, stored as 0.05) or a plain fraction, in
+    /// [`min`, `max`].
+    Fraction { min: f64, max: f64 },
 }
 
 impl ValueSpec {
@@ -81,10 +96,18 @@ impl ValueSpec {
             ValueSpec::Word(w) => format!("one of {}", backticked(w)),
             ValueSpec::IntOrWord(w) => format!("a positive integer or {}", backticked(w)),
             ValueSpec::ObstacleName => "the name of a `grid` obstacle of the world".into(),
-            ValueSpec::Limit => {
-                "`expansions N`, `steps N`, `time DURATION` (e.g. `2s`, `500ms`) or `cells N`"
-                    .into()
-            }
+            ValueSpec::Limit => format!(
+                "{} (e.g. `time 2s`, `expansions 10000`)",
+                LIMIT_KINDS
+                    .iter()
+                    .map(|k| if *k == "time" {
+                        "`time DURATION`".to_string()
+                    } else {
+                        format!("`{k} N`")
+                    })
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
             ValueSpec::Drive => "`unicycle`, optionally followed by `{ ... }`".into(),
             ValueSpec::Seconds { max } => {
                 format!("a positive number of seconds or a duration (`10ms`), at most {max}s")
@@ -93,6 +116,34 @@ impl ValueSpec {
                 "a positive angle with its unit (`0.5deg`), at most {}deg",
                 max.to_degrees()
             ),
+            ValueSpec::Fraction { min, max } => format!(
+                "a percentage from {}% to {}% (or a fraction from {min} to {max})",
+                min * 100.0,
+                max * 100.0
+            ),
+        }
+    }
+
+    /// Whether a plain word may be this parameter's value (so that a word
+    /// right after the key is read as its value, not as the next key).
+    pub fn takes_word(&self) -> bool {
+        matches!(
+            self,
+            ValueSpec::Word(_)
+                | ValueSpec::IntOrWord(_)
+                | ValueSpec::ObstacleName
+                | ValueSpec::Limit
+                | ValueSpec::Drive
+        )
+    }
+
+    /// The words this value may be, for completion and the editors.
+    pub fn words(&self) -> &'static [&'static str] {
+        match self {
+            ValueSpec::Word(w) | ValueSpec::IntOrWord(w) => w,
+            ValueSpec::Limit => LIMIT_KINDS,
+            ValueSpec::Drive => DRIVE_MODELS,
+            _ => &[],
         }
     }
 }
@@ -105,34 +156,85 @@ pub fn backticked(words: &[&str]) -> String {
         .join(", ")
 }
 
+/// A parameter's default: written once, here, in the schema.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum DefaultValue {
+    /// Required, or absent unless given (`start`, `on`).
+    None,
+    /// A number (durations in seconds, angles in radians), and how it is
+    /// written in a scenario (`10ms`, `0.5deg`); a test checks that the
+    /// written form reads as the number.
+    Num(f64, &'static str),
+    /// A word of the parameter's [`ValueSpec::Word`] list.
+    Word(&'static str),
+    /// Derived from the robot or from other parameters by the planner's
+    /// `check` (`R of the robot`, `= step`); the text says how.
+    Derived(&'static str),
+}
+
+impl DefaultValue {
+    /// The default as a user reads it in docs and help lines (empty for
+    /// [`DefaultValue::None`]).
+    pub fn text(&self) -> &'static str {
+        match self {
+            DefaultValue::None => "",
+            DefaultValue::Num(_, written) => written,
+            DefaultValue::Word(w) | DefaultValue::Derived(w) => w,
+        }
+    }
+}
+
 /// One parameter of a planner.
 #[derive(Clone, Copy, Debug)]
 pub struct ParamSpec {
     pub key: &'static str,
     pub value: ValueSpec,
-    /// The default, as the user would write it ("" when required or none).
-    pub default: &'static str,
+    pub default: DefaultValue,
     pub help: &'static str,
     /// May be given several times (`limit`).
     pub repeatable: bool,
 }
 
-const fn p(
-    key: &'static str,
-    value: ValueSpec,
-    default: &'static str,
-    help: &'static str,
-) -> ParamSpec {
-    ParamSpec {
-        key,
-        value,
-        default,
-        help,
-        repeatable: false,
+impl ParamSpec {
+    /// A parameter with its type, default and one line of help.
+    pub const fn new(
+        key: &'static str,
+        value: ValueSpec,
+        default: DefaultValue,
+        help: &'static str,
+    ) -> Self {
+        ParamSpec {
+            key,
+            value,
+            default,
+            help,
+            repeatable: false,
+        }
+    }
+
+    /// A number > 0 (integer or not), default `default` written as `written`.
+    pub const fn positive(key: &'static str, default: DefaultValue, help: &'static str) -> Self {
+        Self::new(key, positive(false), default, help)
+    }
+
+    /// One of the words of `W`, default `default` (which must be one of them).
+    pub const fn word(
+        key: &'static str,
+        words: &'static [&'static str],
+        default: &'static str,
+        help: &'static str,
+    ) -> Self {
+        Self::new(
+            key,
+            ValueSpec::Word(words),
+            DefaultValue::Word(default),
+            help,
+        )
     }
 }
 
-const fn positive(integer: bool) -> ValueSpec {
+/// A number > 0.
+pub const fn positive(integer: bool) -> ValueSpec {
     ValueSpec::Number {
         min: 0.0,
         min_open: true,
@@ -141,7 +243,8 @@ const fn positive(integer: bool) -> ValueSpec {
     }
 }
 
-const fn at_least(min: f64, integer: bool) -> ValueSpec {
+/// A number ≥ `min`.
+pub const fn at_least(min: f64, integer: bool) -> ValueSpec {
     ValueSpec::Number {
         min,
         min_open: false,
@@ -150,41 +253,8 @@ const fn at_least(min: f64, integer: bool) -> ValueSpec {
     }
 }
 
-/// The kinds of `limit` (SPEC 2.5): `limit expansions N`, `steps N`,
-/// `time DURATION`, `cells N`.
-pub const LIMIT_KINDS: &[&str] = &["expansions", "steps", "time", "cells"];
-
-/// Parameters every planner accepts (SPEC 2.5).
-pub const COMMON_PARAMS: &[ParamSpec] = &[
-    p("start", ValueSpec::Pose, "", "start configuration"),
-    p("goal", ValueSpec::Pose, "", "goal configuration"),
-    ParamSpec {
-        key: "limit",
-        value: ValueSpec::Limit,
-        default: "",
-        help: "give up when reached: `expansions N`, `steps N`, `time 2s`, `cells N`",
-        repeatable: true,
-    },
-    p(
-        "seed",
-        ValueSpec::Number {
-            min: 0.0,
-            min_open: false,
-            max: 9.007_199_254_740_992e15,
-            integer: true,
-        },
-        "0",
-        "random seed",
-    ),
-    p(
-        "drive",
-        ValueSpec::Drive,
-        "",
-        "simulate a differential-drive robot following the path",
-    ),
-];
-
-const fn up_to(max: f64) -> ValueSpec {
+/// A number in (0, `max`].
+pub const fn up_to(max: f64) -> ValueSpec {
     ValueSpec::Number {
         min: 0.0,
         min_open: true,
@@ -193,52 +263,155 @@ const fn up_to(max: f64) -> ValueSpec {
     }
 }
 
-/// The sub-parameters of `drive unicycle { ... }` (SPEC 3.6). The values
-/// the simulation takes for keys not given are
-/// [`crate::drive::Unicycle::default`]'s, the defaults written here.
+/// A number with its written form, for [`DefaultValue::Num`].
+pub const fn num(value: f64, written: &'static str) -> DefaultValue {
+    DefaultValue::Num(value, written)
+}
+
+/// The word values of a parameter as a Rust enum: the analyzer checks the
+/// written word against [`Word::WORDS`], and the planner reads the enum, so
+/// a word can never be missing on one side. Declare one with
+/// [`word_enum!`](crate::word_enum).
+pub trait Word: Copy + std::fmt::Debug + 'static {
+    /// The words, in the order of the enum's variants.
+    const WORDS: &'static [&'static str];
+    /// The variant of `WORDS[index]`.
+    fn from_index(index: usize) -> Option<Self>;
+    /// The word of this variant.
+    fn word(self) -> &'static str;
+}
+
+/// Declares an enum whose variants are the words of a parameter:
+/// `word_enum! { pub enum Sample { Center = "center", Corner = "corner" } }`
+/// gives `Sample::WORDS == ["center", "corner"]` and the [`Word`] impl.
+#[macro_export]
+macro_rules! word_enum {
+    ($(#[$meta:meta])* $vis:vis enum $name:ident {
+        $($(#[$vmeta:meta])* $variant:ident = $word:literal),+ $(,)?
+    }) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        $vis enum $name {
+            $($(#[$vmeta])* $variant),+
+        }
+
+        impl $crate::scenario::schema::Word for $name {
+            const WORDS: &'static [&'static str] = &[$($word),+];
+
+            fn from_index(index: usize) -> Option<Self> {
+                const ALL: &[$name] = &[$($name::$variant),+];
+                ALL.get(index).copied()
+            }
+
+            fn word(self) -> &'static str {
+                match self {
+                    $($name::$variant => $word),+
+                }
+            }
+        }
+    };
+}
+
+word_enum! {
+    /// `yes` / `no` parameters (`rotate`, `informed`).
+    pub enum YesNo {
+        Yes = "yes",
+        No = "no",
+    }
+}
+
+/// The kinds of `limit` (SPEC 2.5, 3.7): `limit expansions N`, `steps N`,
+/// `time DURATION`, `cells N`, `iterations N`.
+pub const LIMIT_KINDS: &[&str] = &["expansions", "steps", "time", "cells", "iterations"];
+
+/// The models of `drive` (SPEC 3.6).
+pub const DRIVE_MODELS: &[&str] = &["unicycle"];
+
+/// Parameters every planner accepts (SPEC 2.5).
+pub const COMMON_PARAMS: &[ParamSpec] = &[
+    ParamSpec::new(
+        "start",
+        ValueSpec::Pose,
+        DefaultValue::None,
+        "start configuration",
+    ),
+    ParamSpec::new(
+        "goal",
+        ValueSpec::Pose,
+        DefaultValue::None,
+        "goal configuration",
+    ),
+    ParamSpec {
+        key: "limit",
+        value: ValueSpec::Limit,
+        default: DefaultValue::None,
+        help: "give up when reached: `expansions N`, `steps N`, `time 2s`, `cells N`, `iterations N`",
+        repeatable: true,
+    },
+    ParamSpec::new(
+        "seed",
+        ValueSpec::Number {
+            min: 0.0,
+            min_open: false,
+            max: 9.007_199_254_740_992e15,
+            integer: true,
+        },
+        num(0.0, "0"),
+        "random seed",
+    ),
+    ParamSpec::new(
+        "drive",
+        ValueSpec::Drive,
+        DefaultValue::None,
+        "simulate a differential-drive robot following the path",
+    ),
+];
+
+/// The sub-parameters of `drive unicycle { ... }` (SPEC 3.6), with the
+/// defaults the simulation takes for keys not given.
 pub const DRIVE_PARAMS: &[ParamSpec] = &[
-    p(
+    ParamSpec::new(
         "dt",
         ValueSpec::Seconds { max: 1.0 },
-        "10ms",
+        num(0.01, "10ms"),
         "integration step in seconds (a number or a duration such as `10ms`)",
     ),
-    p(
+    ParamSpec::new(
         "max_speed",
         up_to(1e6),
-        "1",
+        num(1.0, "1"),
         "largest linear speed, world units per second",
     ),
-    p(
+    ParamSpec::new(
         "max_turn_rate",
         ValueSpec::Angle { max: 1e6 },
-        "2rad",
+        num(2.0, "2rad"),
         "largest turn rate, an angle per second (e.g. `120deg`)",
     ),
-    p(
+    ParamSpec::new(
         "gain",
         up_to(1e6),
-        "2",
+        num(2.0, "2"),
         "go-to-cell gain: speed = gain × distance (1/s)",
     ),
-    p(
+    ParamSpec::new(
         "turn_gain",
         up_to(1e6),
-        "8",
+        num(8.0, "8"),
         "go-to-orientation gain: turn rate = turn_gain × heading error (1/s)",
     ),
-    p(
+    ParamSpec::new(
         "reach",
         up_to(1e6),
-        "0.0009",
+        num(0.0009, "0.0009"),
         "distance to a path point at which it counts as reached",
     ),
-    p(
+    ParamSpec::new(
         "align",
         ValueSpec::Angle {
             max: std::f64::consts::FRAC_PI_2,
         },
-        "0.5deg",
+        num(0.008_726_646_259_971_648, "0.5deg"),
         "heading error under which the robot stops turning in place and drives",
     ),
 ];
@@ -250,256 +423,77 @@ pub enum MetricType {
     Num,
 }
 
-use MetricType::{Bool, Num};
+/// One metric a planner reports.
+#[derive(Clone, Copy, Debug)]
+pub struct MetricSpec {
+    pub name: &'static str,
+    pub ty: MetricType,
+    pub help: &'static str,
+}
 
-/// Metrics every planner reports (SPEC 3).
-pub const COMMON_METRICS: &[(&str, MetricType)] = &[
-    ("found", Bool),
-    ("gave_up", Bool),
-    ("cost", Num),
-    ("length", Num),
-    ("turn", Num),
-    ("nodes", Num),
-    ("expanded", Num),
-    ("time_ms", Num),
-    ("collision_free", Bool),
-    ("reaches_goal", Bool),
+impl MetricSpec {
+    pub const fn num(name: &'static str, help: &'static str) -> Self {
+        MetricSpec {
+            name,
+            ty: MetricType::Num,
+            help,
+        }
+    }
+
+    pub const fn bool(name: &'static str, help: &'static str) -> Self {
+        MetricSpec {
+            name,
+            ty: MetricType::Bool,
+            help,
+        }
+    }
+}
+
+/// Metrics every planner reports (SPEC 3), computed by the runner from the
+/// path the same way for every planner.
+pub const COMMON_METRICS: &[MetricSpec] = &[
+    MetricSpec::bool("found", "a path from start to goal was found"),
+    MetricSpec::bool("gave_up", "a limit was reached first"),
+    MetricSpec::num(
+        "cost",
+        "the path's cost in the planner's own metric (+∞ without a path)",
+    ),
+    MetricSpec::num(
+        "length",
+        "Euclidean length of the path's (x, y) polyline (+∞ without a path)",
+    ),
+    MetricSpec::num("turn", "total absolute rotation along the path, in radians"),
+    MetricSpec::num("nodes", "number of configurations in the path"),
+    MetricSpec::num(
+        "expanded",
+        "search nodes expanded, or iterations for non-search planners",
+    ),
+    MetricSpec::num("time_ms", "wall time of the plan, in milliseconds"),
+    MetricSpec::bool(
+        "collision_free",
+        "the path passed the independent validator (SPEC 3.0)",
+    ),
+    MetricSpec::bool(
+        "reaches_goal",
+        "the path's last configuration is within 1e-9 of `goal`",
+    ),
 ];
 
 /// Metrics of a plan with `drive` (SPEC 3.6), whatever its planner.
-pub const DRIVE_METRICS: &[(&str, MetricType)] = &[
-    ("drive_time", Num),
-    ("drive_max_deviation", Num),
-    ("drive_collision_free", Bool),
-];
-
-/// A planner kind.
-#[derive(Clone, Copy, Debug)]
-pub struct PlannerSchema {
-    pub kind: &'static str,
-    /// One line for help texts.
-    pub summary: &'static str,
-    /// Which robots it plans for, and whether this version implements that.
-    pub robots: &'static [RobotKind],
-    pub params: &'static [ParamSpec],
-    pub metrics: &'static [(&'static str, MetricType)],
-    pub needs_goal: bool,
-}
-
-impl PlannerSchema {
-    pub fn param(&self, key: &str) -> Option<&'static ParamSpec> {
-        COMMON_PARAMS
-            .iter()
-            .chain(self.params.iter())
-            .find(|p| p.key == key)
-    }
-
-    pub fn all_params(&self) -> impl Iterator<Item = &'static ParamSpec> {
-        COMMON_PARAMS.iter().chain(self.params.iter())
-    }
-
-    pub fn metric(&self, name: &str) -> Option<MetricType> {
-        COMMON_METRICS
-            .iter()
-            .chain(self.metrics.iter())
-            .find(|(m, _)| *m == name)
-            .map(|(_, t)| *t)
-    }
-
-    pub fn all_metrics(&self) -> impl Iterator<Item = &'static (&'static str, MetricType)> {
-        COMMON_METRICS.iter().chain(self.metrics.iter())
-    }
-}
-
-const LATTICE_PARAMS: [ParamSpec; 3] = [
-    p("cell", positive(false), "1", "lattice spacing δ in x and y"),
-    p(
-        "sample",
-        ValueSpec::Word(&["center", "corner"]),
-        "center",
-        "lattice points at cell centres or corners",
+pub const DRIVE_METRICS: &[MetricSpec] = &[
+    MetricSpec::num(
+        "drive_time",
+        "seconds the simulated robot took to the path's end",
     ),
-    p(
-        "connect",
-        ValueSpec::IntChoice(&[4, 8, 6, 26]),
-        "8 (26 for rotating robots)",
-        "lattice neighbours: 4 or 8 in (x, y), 6 or 26 in (x, y, θ)",
+    MetricSpec::num(
+        "drive_max_deviation",
+        "largest distance of the driven robot from the planned path",
+    ),
+    MetricSpec::bool(
+        "drive_collision_free",
+        "the driven trajectory passed the validator",
     ),
 ];
-
-pub const ASTAR: PlannerSchema = PlannerSchema {
-    kind: "astar",
-    summary: "A* on a lattice of configurations",
-    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
-    params: &[
-        LATTICE_PARAMS[0],
-        LATTICE_PARAMS[1],
-        LATTICE_PARAMS[2],
-        p(
-            "layers",
-            ValueSpec::IntOrWord(&["auto"]),
-            "auto",
-            "θ layers for rotating robots; `auto` = ⌈2πR/δ⌉",
-        ),
-        p(
-            "cost",
-            ValueSpec::Word(&["euclid", "l1"]),
-            "euclid",
-            "edge cost metric",
-        ),
-        p(
-            "turn_cost",
-            at_least(0.0, false),
-            "R of the robot",
-            "cost of one radian of rotation",
-        ),
-        p(
-            "weight",
-            at_least(1.0, false),
-            "1",
-            "heuristic inflation w ≥ 1",
-        ),
-        p(
-            "heuristic",
-            ValueSpec::Word(&["metric", "zero"]),
-            "metric",
-            "`metric` (admissible) or `zero` (Dijkstra)",
-        ),
-        p(
-            "rotate",
-            ValueSpec::Word(&["yes", "no"]),
-            "yes for polygons",
-            "search in θ too",
-        ),
-    ],
-    metrics: &[
-        ("cells", Num),
-        ("free_cells", Num),
-        ("layers", Num),
-        ("generated", Num),
-    ],
-    needs_goal: true,
-};
-
-pub const ONLINE: PlannerSchema = PlannerSchema {
-    kind: "online",
-    summary: "navigation in an unknown world",
-    robots: &[RobotKind::Point, RobotKind::Disk],
-    params: &[
-        LATTICE_PARAMS[0],
-        LATTICE_PARAMS[1],
-        LATTICE_PARAMS[2],
-        p(
-            "strategy",
-            ValueSpec::Word(&["backtrack", "shortcut", "replan", "dstar_lite"]),
-            "replan",
-            "how the robot explores",
-        ),
-        p(
-            "sense",
-            at_least(1.0, true),
-            "1",
-            "sensing range in cells (Chebyshev)",
-        ),
-    ],
-    metrics: &[
-        ("traveled", Num),
-        ("steps", Num),
-        ("replans", Num),
-        ("sensed", Num),
-    ],
-    needs_goal: true,
-};
-
-pub const ROADMAP: PlannerSchema = PlannerSchema {
-    kind: "roadmap",
-    summary: "visibility graph and Dijkstra",
-    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
-    params: &[p(
-        "arc_segments",
-        ValueSpec::Number {
-            min: 8.0,
-            min_open: false,
-            max: crate::planners::roadmap::MAX_ARC_SEGMENTS as f64,
-            integer: true,
-        },
-        "32",
-        "segments per full circle for grown disks",
-    )],
-    metrics: &[("graph_nodes", Num), ("graph_edges", Num)],
-    needs_goal: true,
-};
-
-pub const POTENTIAL: PlannerSchema = PlannerSchema {
-    kind: "potential",
-    summary: "potential field with random-walk escape",
-    robots: &[RobotKind::Point, RobotKind::Disk],
-    params: &[
-        p("attract", positive(false), "1", "attractive gain η"),
-        p("repulse", positive(false), "1", "repulsive gain d"),
-        p("influence", positive(false), "2", "influence distance ρ0"),
-        p("step", positive(false), "0.05", "step length ε"),
-        p("tolerance", positive(false), "= step", "goal tolerance"),
-        p(
-            "escape",
-            ValueSpec::Word(&["none", "random_walk"]),
-            "random_walk",
-            "how to leave local minima",
-        ),
-        p(
-            "jump",
-            positive(false),
-            "5 × influence",
-            "longest random-walk jump",
-        ),
-    ],
-    metrics: &[("steps", Num), ("minima", Num), ("escapes", Num)],
-    needs_goal: true,
-};
-
-pub const COVERAGE: PlannerSchema = PlannerSchema {
-    kind: "coverage",
-    summary: "spanning tree coverage of a grid",
-    robots: &[RobotKind::Disk, RobotKind::Polygon],
-    params: &[
-        p(
-            "on",
-            ValueSpec::ObstacleName,
-            "",
-            "the `grid` obstacle to cover",
-        ),
-        p(
-            "tool",
-            positive(false),
-            "the grid's cell",
-            "side D of the square the robot covers",
-        ),
-        p(
-            "weights",
-            ValueSpec::Word(&["max", "sum"]),
-            "max",
-            "mega-cell edge weights",
-        ),
-    ],
-    metrics: &[
-        ("coverage", Num),
-        ("cells_total", Num),
-        ("cells_visited", Num),
-        ("revisits", Num),
-        ("returns_to_start", Bool),
-        ("uncovered", Num),
-        ("tree_edges", Num),
-        ("tree_weight", Num),
-    ],
-    needs_goal: false,
-};
-
-/// Every planner kind of SPEC 3.
-pub const PLANNERS: &[PlannerSchema] = &[ASTAR, ONLINE, ROADMAP, POTENTIAL, COVERAGE];
-
-pub fn planner(kind: &str) -> Option<&'static PlannerSchema> {
-    PLANNERS.iter().find(|s| s.kind == kind)
-}
 
 /// The closest of `candidates` to `word` by edit distance, if close enough
 /// to be a likely typo.
@@ -535,19 +529,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn keys_are_unique_per_planner() {
-        for s in PLANNERS {
-            let keys: Vec<_> = s.all_params().map(|p| p.key).collect();
-            let mut sorted = keys.clone();
-            sorted.sort();
-            sorted.dedup();
-            assert_eq!(keys.len(), sorted.len(), "duplicate key in {}", s.kind);
-        }
-    }
-
-    #[test]
     fn did_you_mean_finds_typos() {
         assert_eq!(did_you_mean("cel", ["cell", "sample"]), Some("cell"));
         assert_eq!(did_you_mean("zzzz", ["cell", "sample"]), None);
+    }
+
+    word_enum! {
+        enum Fruit { Apple = "apple", Pear = "pear" }
+    }
+
+    #[test]
+    fn word_enums_map_words_and_variants_both_ways() {
+        assert_eq!(Fruit::WORDS, &["apple", "pear"]);
+        for (i, w) in Fruit::WORDS.iter().enumerate() {
+            let f = Fruit::from_index(i).expect("a variant per word");
+            assert_eq!(f.word(), *w);
+        }
+        assert_eq!(Fruit::from_index(2), None);
+        assert_eq!(Fruit::Pear.word(), "pear");
     }
 }

@@ -5,7 +5,6 @@
 //!
 //! All coordinates are world units with y up; angles are radians.
 
-mod rerun_extras;
 pub mod rerun_sink;
 
 pub use rerun_sink::{ViewerError, ViewerTarget, stream};
@@ -13,9 +12,26 @@ pub use rerun_sink::{ViewerError, ViewerTarget, stream};
 use std::collections::BTreeMap;
 
 use crate::geometry::{Aabb, Config, Grid, Point, RobotShape, Shape};
+use crate::planners::layers::Colour;
 
 /// Obstacles are grey in every sink (SPEC 6).
 pub(crate) const OBSTACLE_GREY: [u8; 3] = [140, 140, 140];
+
+/// The RGBA colour of a layer's colour role in the plan of declaration
+/// index `plan` (SPEC 6: obstacles grey, plans their own colour).
+pub(crate) fn role_colour(colour: Colour, plan: usize) -> [u8; 4] {
+    let [r, g, b] = match colour {
+        Colour::Plan | Colour::Faint => plan_colour(plan),
+        Colour::Grey => OBSTACLE_GREY,
+        Colour::Free => [170, 215, 170],
+        Colour::Blocked => [90, 90, 90],
+        Colour::Red => [214, 39, 40],
+        Colour::Green => [44, 160, 44],
+        Colour::Blue => [31, 119, 180],
+    };
+    let alpha = if colour == Colour::Faint { 110 } else { 255 };
+    [r, g, b, alpha]
+}
 
 /// Failed checks are red in every sink (SPEC 6).
 pub(crate) const FAIL_RED: [u8; 3] = [211, 47, 47];

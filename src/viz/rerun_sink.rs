@@ -7,49 +7,39 @@
 //! |---|---|---|
 //! | `world/bounds` | LineStrips2D, closed | static |
 //! | `world/obstacles/NAME` | LineStrips2D (closed; disks as 64-gons), Boxes2D for a grid's blocked cells | static |
-//! | `plans/NAME/grown` | LineStrips2D, closed: the planner's grown obstacles | static |
+//! | `world/weights/NAME` | Points2D: a grid's weighted cells | static |
 //! | `plans/NAME/path` | LineStrips2D: the path in (x, y) | static |
 //! | `plans/NAME/unfinished` | LineStrips2D, faint: the motion of a plan that stopped short of the goal | static |
 //! | `plans/NAME/cspace/path` | LineStrips3D: the path in (x, y, θ), θ in radians as z (rotating robots) | static |
-//! | `plans/NAME/cspace/layer_K` | LineStrips3D: the boundary of the union of layer K's C-obstacles at height θ_K (rotating robots; stacked, the layered C-space) | static |
-//! | `plans/NAME/cspace/obstacles/OBSTACLE` | LineStrips3D: that obstacle's C-obstacles in every layer, the "twisted worm" | static |
 //! | `plans/NAME/trail/B` | LineStrips2D: piece B of the path, drawn from the step where it starts (at most 100 pieces), so the path grows with the robot | `step` |
 //! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross; at most 10 000 poses, evenly spread) | `step` = i |
-//! | `plans/NAME/search` | Points2D: the expansions, in batches | `expansion` |
-//! | planner-specific entities | see [`super::rerun_extras`] | |
+//! | `plans/NAME/drive/path`, `plans/NAME/drive/robot` | LineStrips2D: a driven trajectory and the body along it | static, `time` (s) |
+//! | `plans/NAME/LAYER` | the planner's drawable layers ([`crate::planners::layers`]): `search`, `grown`, `cspace/layer_K`, `roadmap`, `tree`, ... as each planner documents them | static or its timeline |
 //! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
-//!
-//! The search is logged in at most [`SEARCH_BATCHES`] batches; each batch
-//! holds only the configurations expanded since the previous one and is
-//! logged at the `expansion` index of its last node. The viewer shows the
-//! latest batch at the current time (the frontier moving); to see the
-//! whole closed set grow, set the view's visible time range on `expansion`
-//! to start at the beginning (the search is not re-sent cumulatively, which
-//! would multiply its size by the number of batches).
 //!
 //! Colours: obstacles grey, each plan its [`plan_colour`], failed checks red.
 //! The automatic `log_time` timeline is switched off, so a recording only
 //! has the timelines above.
 
-use std::collections::BTreeMap;
 use std::net::{TcpStream, ToSocketAddrs};
 use std::path::PathBuf;
 use std::time::Duration;
 
 use rerun::external::re_uri::RedapUri;
 use rerun::{
-    Boxes2D, Color, EntityPath, EntityPathPart, LineStrips2D, LineStrips3D, Points2D, Radius,
-    RecordingStream, RecordingStreamBuilder, RecordingStreamResult, SpawnError, SpawnOptions,
-    TextLog, TextLogLevel,
+    Arrows2D, Boxes2D, Color, EntityPath, EntityPathPart, LineStrips2D, LineStrips3D, Points2D,
+    Radius, RecordingStream, RecordingStreamBuilder, RecordingStreamResult, SpawnError,
+    SpawnOptions, TextLog, TextLogLevel,
 };
 
-use super::rerun_extras as extras;
 use super::{
     FAIL_RED, MAX_WEIGHT_CELLS, OBSTACLE_GREY, blocked_boxes, closed, obstacle_outline,
-    plan_colour, robot_outline, weight_colour,
+    plan_colour, robot_outline, role_colour, weight_colour,
 };
-use crate::geometry::{Config, Point, Shape};
-use crate::planners::{CLayerTrace, MetricValue};
+use crate::drive::DriveOutcome;
+use crate::geometry::{Config, Point, RobotShape, Shape};
+use crate::planners::MetricValue;
+use crate::planners::layers::{Drawing, Layer};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 
@@ -95,8 +85,8 @@ pub enum ViewerError {
     Stream(String),
 }
 
-/// Batches of the search stream, at most.
-pub(crate) const SEARCH_BATCHES: usize = 100;
+/// The most poses of a driven robot sent on timeline `time`.
+pub(crate) const DRIVE_POSES: usize = 2_000;
 
 /// The most pieces the progressively drawn path (`plans/NAME/trail/B`) is
 /// sent in.
@@ -318,40 +308,20 @@ fn log_plan(
     let colour = rgb([r, g, b]);
     let faint = Color::from_unmultiplied_rgba(r, g, b, 110);
     let name = plan.name.as_str();
-
-    let grown = &run.outcome.trace.grown_obstacles;
-    if !grown.is_empty() {
-        rec.log_static(
-            entity(&["plans", name, "grown"]),
-            &LineStrips2D::new(grown.iter().map(|p| strip(&closed(p.clone()))))
-                .with_colors([faint])
-                .with_draw_order(15.0),
-        )?;
+    for layer in &run.outcome.layers {
+        log_layer(rec, name, layer, run.plan)?;
     }
-
-    let trace = &run.outcome.trace;
-    log_search(rec, name, &trace.expansions, faint)?;
-    log_cspace_layers(rec, scenario, name, &trace.cspace_layers)?;
-    extras::log_roadmap(rec, name, &trace.roadmap_edges, faint)?;
-    if let Some(online) = &trace.online {
-        extras::log_online(rec, name, online, colour)?;
-    }
+    rec.reset_time();
     let bounds = scenario.world.bounds;
-    if let Some(field) = &trace.field {
-        let length = 0.03 * bounds.width().max(bounds.height());
-        extras::log_field(rec, name, field, length, colour)?;
-    }
-    if let Some(coverage) = &trace.coverage {
-        extras::log_coverage(rec, name, coverage, colour, faint)?;
-    }
     // A point robot is drawn as a cross 1% of the world's size.
     let mark = 0.01 * bounds.width().max(bounds.height());
     if let (Some(drive), Some(robot)) = (&run.drive, scenario.robots.get(plan.robot)) {
-        extras::log_drive(rec, name, drive, &robot.shape, mark, colour)?;
+        log_drive(rec, name, drive, &robot.shape, mark, colour)?;
     }
 
-    if trace.unfinished.len() > 1 {
-        let xy: Vec<Point> = trace.unfinished.iter().map(Config::xy).collect();
+    let trajectory = &run.outcome.trajectory;
+    if trajectory.len() > 1 {
+        let xy: Vec<Point> = trajectory.iter().map(Config::xy).collect();
         rec.log_static(
             entity(&["plans", name, "unfinished"]),
             &LineStrips2D::new([strip(&xy)])
@@ -419,64 +389,118 @@ fn log_plan(
     Ok(())
 }
 
-/// The configuration space of a rotating robot: per θ layer the boundary
-/// of the union of its C-obstacles at height θ (radians), one entity per
-/// layer, stacked into the layered C-space; and per world obstacle its
-/// C-obstacles over all layers, the "twisted worm" of that obstacle.
-fn log_cspace_layers(
-    rec: &RecordingStream,
-    scenario: &Scenario,
-    name: &str,
-    layers: &[CLayerTrace],
-) -> RecordingStreamResult<()> {
-    let at = |p: &Point, z: f32| [p.x as f32, p.y as f32, z];
-    let mut worms: BTreeMap<usize, Vec<Vec<[f32; 3]>>> = BTreeMap::new();
-    for (k, layer) in layers.iter().enumerate() {
-        let z = layer.theta as f32;
-        let strips = layer.boundary.iter().map(|(a, b)| vec![at(a, z), at(b, z)]);
-        rec.log_static(
-            entity(&["plans", name, "cspace", &format!("layer_{k}")]),
-            &LineStrips3D::new(strips).with_colors([rgb(OBSTACLE_GREY)]),
-        )?;
-        for (obstacle, outline) in &layer.c_obstacles {
-            let strip = closed(outline.clone()).iter().map(|p| at(p, z)).collect();
-            worms.entry(*obstacle).or_default().push(strip);
-        }
-    }
-    for (obstacle, strips) in worms {
-        let Some(o) = scenario.world.obstacles.get(obstacle) else {
-            continue;
-        };
-        rec.log_static(
-            entity(&["plans", name, "cspace", "obstacles", &o.name]),
-            &LineStrips3D::new(strips).with_colors([rgb(OBSTACLE_GREY)]),
-        )?;
-    }
-    Ok(())
-}
-
-/// The expansions in at most [`SEARCH_BATCHES`] batches of new nodes, each
-/// at the `expansion` index of its last node (see the module docs).
-fn log_search(
+/// One layer of a plan (see [`crate::planners::layers`]): its drawing
+/// as the matching archetype, at its timeline index or static.
+fn log_layer(
     rec: &RecordingStream,
     plan: &str,
-    expansions: &[Config],
-    colour: Color,
+    layer: &Layer,
+    plan_index: usize,
 ) -> RecordingStreamResult<()> {
-    if expansions.is_empty() {
+    if layer.drawing.is_empty() {
         return Ok(());
     }
-    let search = entity(&["plans", plan, "search"]);
-    let batch = expansions.len().div_ceil(SEARCH_BATCHES);
-    for (k, nodes) in expansions.chunks(batch).enumerate() {
-        let last = k * batch + nodes.len() - 1;
-        rec.set_time_sequence("expansion", last as i64);
-        rec.log(
-            search.clone(),
-            &Points2D::new(nodes.iter().map(|c| [c.x as f32, c.y as f32]))
+    let mut parts = vec!["plans", plan];
+    parts.extend(layer.entity.split('/'));
+    let path = entity(&parts);
+    let style = layer.style;
+    let [r, g, b, a] = role_colour(style.colour, plan_index);
+    let colour = Color::from_unmultiplied_rgba(r, g, b, a);
+    let radius = (style.width > 0.0).then(|| Radius::new_ui_points(style.width));
+    let log = |archetype: &dyn rerun::AsComponents| match layer.time {
+        Some((timeline, at)) => {
+            rec.set_time_sequence(timeline.name(), at);
+            rec.log(path.clone(), archetype)
+        }
+        None => rec.log_static(path.clone(), archetype),
+    };
+    let strips2 = |strips: Vec<Vec<[f32; 2]>>| {
+        let mut a = LineStrips2D::new(strips)
+            .with_colors([colour])
+            .with_draw_order(style.order);
+        if let Some(r) = radius {
+            a = a.with_radii([r]);
+        }
+        a
+    };
+    match &layer.drawing {
+        Drawing::Segments(segments) => log(&strips2(
+            segments.iter().map(|(a, b)| strip(&[*a, *b])).collect(),
+        )),
+        Drawing::Polylines(lines) => log(&strips2(lines.iter().map(|l| strip(l)).collect())),
+        Drawing::Polygons(outlines) => log(&strips2(
+            outlines.iter().map(|o| strip(&closed(o.clone()))).collect(),
+        )),
+        Drawing::Boxes(boxes) => {
+            let centres = boxes.iter().map(|b| {
+                [
+                    ((b.min.x + b.max.x) / 2.0) as f32,
+                    ((b.min.y + b.max.y) / 2.0) as f32,
+                ]
+            });
+            let halves = boxes
+                .iter()
+                .map(|b| [(b.width() / 2.0) as f32, (b.height() / 2.0) as f32]);
+            log(&Boxes2D::from_centers_and_half_sizes(centres, halves)
                 .with_colors([colour])
-                .with_radii([Radius::new_ui_points(2.0)])
-                .with_draw_order(20.0),
+                .with_draw_order(style.order))
+        }
+        Drawing::Points(points) => {
+            let mut a = Points2D::new(points.iter().map(|p| [p.x as f32, p.y as f32]))
+                .with_colors([colour])
+                .with_draw_order(style.order);
+            if let Some(r) = radius {
+                a = a.with_radii([r]);
+            }
+            log(&a)
+        }
+        Drawing::Arrows(arrows) => log(&Arrows2D::from_vectors(
+            arrows.iter().map(|(_, v)| [v.x as f32, v.y as f32]),
+        )
+        .with_origins(arrows.iter().map(|(p, _)| [p.x as f32, p.y as f32]))
+        .with_colors([colour])
+        .with_draw_order(style.order)),
+        Drawing::Text(text) => log(&TextLog::new(text.as_str()).with_level(TextLogLevel::INFO)),
+        Drawing::Polylines3D(strips) => log(&LineStrips3D::new(strips.iter().map(|s| {
+            s.iter()
+                .map(|p| [p[0] as f32, p[1] as f32, p[2] as f32])
+                .collect::<Vec<_>>()
+        }))
+        .with_colors([colour])),
+    }
+}
+
+/// The driven trajectory and the body along it on timeline `time`, at
+/// most [`DRIVE_POSES`] poses evenly spread (the last one included).
+fn log_drive(
+    rec: &RecordingStream,
+    name: &str,
+    drive: &DriveOutcome,
+    shape: &RobotShape,
+    mark: f64,
+    colour: Color,
+) -> RecordingStreamResult<()> {
+    if drive.samples.is_empty() {
+        return Ok(());
+    }
+    let xy: Vec<Point> = drive.samples.iter().map(|(_, c)| c.xy()).collect();
+    rec.log_static(
+        entity(&["plans", name, "drive", "path"]),
+        &LineStrips2D::new([strip(&xy)])
+            .with_colors([colour])
+            .with_radii([Radius::new_ui_points(1.0)])
+            .with_draw_order(31.0),
+    )?;
+    let body = entity(&["plans", name, "drive", "robot"]);
+    for (t, c) in drive.thinned(DRIVE_POSES) {
+        rec.set_duration_secs("time", t);
+        let strips = robot_outline(shape, c, mark);
+        rec.log(
+            body.clone(),
+            &LineStrips2D::new(strips.iter().map(|s| strip(s)))
+                .with_colors([colour])
+                .with_radii([Radius::new_ui_points(1.5)])
+                .with_draw_order(41.0),
         )?;
     }
     rec.reset_time();
@@ -555,27 +579,15 @@ mod tests {
     use super::*;
     use crate::diagnostics::{SourceMap, Span};
     use crate::geometry::{Aabb, ConvexPolygon, Grid, Obstacle, RobotShape, World};
-    use crate::planners::{PlanOutcome, Trace};
+    use crate::planners::{PlanOutcome, layers};
     use crate::run::CheckOutcome;
-    use crate::scenario::{Check, Limits, Params, Robot};
+    use crate::scenario::{Check, Robot};
     use crate::syntax::ast::{Expr, ExprKind};
 
     fn plan(name: &str, robot: usize) -> Plan {
-        Plan {
-            name: name.into(),
-            kind: "astar",
-            robot,
-            params: Params {
-                start: Config::new(1.0, 1.0, 0.0),
-                start_span: Span::default(),
-                goal: Some(Config::new(9.0, 4.0, 0.0)),
-                goal_span: None,
-                limits: Limits::default(),
-                seed: 0,
-                values: BTreeMap::new(),
-            },
-            span: Span::default(),
-        }
+        let planner = crate::planners::registry::PLANNERS[0];
+        let (start, goal) = (Config::new(1.0, 1.0, 0.0), Config::new(9.0, 4.0, 0.0));
+        Plan::fixture(name, planner, robot, start, Some(goal))
     }
 
     /// A rod and a point robot among a rectangle, a disk, a wall and a
@@ -660,23 +672,20 @@ mod tests {
             Config::new(6.0, 2.5, -3.0),
             Config::new(9.0, 4.0, 0.0),
         ];
-        let expansions: Vec<Config> = (0..250)
-            .map(|i| Config::new(f64::from(i % 10), f64::from(i / 50), 0.0))
+        let expansions: Vec<Point> = (0..250)
+            .map(|i| Point::new(f64::from(i % 10), f64::from(i / 50)))
             .collect();
+        let mut layers = layers::search(&expansions);
+        layers.extend(layers::grown(vec![vec![
+            Point::new(3.5, 0.0),
+            Point::new(5.5, 0.0),
+            Point::new(5.5, 2.5),
+        ]]));
         let run = |plan, path| PlanRun {
             plan,
             outcome: PlanOutcome {
                 path,
-                trace: Trace {
-                    expansions: expansions.clone(),
-                    grown_obstacles: vec![vec![
-                        Point::new(3.5, 0.0),
-                        Point::new(5.5, 0.0),
-                        Point::new(5.5, 2.5),
-                    ]],
-                    cspace_layers: Vec::new(),
-                    ..Trace::default()
-                },
+                layers: layers.clone(),
                 ..PlanOutcome::default()
             },
             metrics: BTreeMap::new(),
@@ -715,42 +724,54 @@ mod tests {
         assert!(size > 0, "empty recording");
     }
 
-    /// Every planner-specific trace and a driven robot go into the
-    /// recording (the entities are checked with `rerun rrd print` in
-    /// tests/outputs.rs on the real scenarios).
+    /// Every kind of drawing, static or on a timeline, and a driven robot
+    /// go into the recording under the plan's entities (the entities of
+    /// each planner are checked with `rerun rrd print` in tests/outputs.rs
+    /// on the real scenarios).
     #[test]
-    fn saves_every_kind_of_trace() {
+    fn saves_every_kind_of_layer() {
         use crate::drive::DriveOutcome;
         use crate::geometry::Vector;
-        use crate::planners::{CoverageTrace, FieldTrace, ForceSample, OnlineTrace};
+        use crate::planners::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
         let mut r = report();
         let p = |x: f64, y: f64| Point::new(x, y);
-        let trace = &mut r.plans[0].outcome.trace;
-        trace.roadmap_edges = vec![(p(0.0, 0.0), p(1.0, 1.0))];
-        trace.online = Some(OnlineTrace {
-            cell: 1.0,
-            sensed: (0..250)
-                .map(|k| vec![(p(f64::from(k % 10), 1.0), k % 3 == 0)])
-                .collect(),
-            plans: vec![vec![p(0.0, 0.0), p(2.0, 2.0)]; 250],
-        });
-        trace.field = Some(FieldTrace {
-            forces: vec![ForceSample {
-                step: 3,
-                at: p(1.0, 1.0),
-                attract: Vector::new(1.0, 0.0),
-                repulse: Vector::new(0.0, 1.0),
-                total: Vector::new(1.0, 1.0),
-            }],
-            minima: vec![(3, p(1.0, 1.0))],
-            escapes: vec![(3, p(1.0, 1.0), p(2.0, 1.0))],
-        });
-        trace.coverage = Some(CoverageTrace {
-            tool: 1.0,
-            mega_cells: vec![Aabb::from_corners(p(0.0, 0.0), p(2.0, 2.0))],
-            uncovered: vec![Aabb::from_corners(p(2.0, 0.0), p(3.0, 1.0))],
-            tree: vec![(p(1.0, 1.0), p(3.0, 1.0))],
-        });
+        let style = Style::new(Colour::Plan, 1.0, 20.0).svg(Svg::line(1.0));
+        let drawings = [
+            (
+                "segments",
+                Drawing::Segments(vec![(p(0.0, 0.0), p(1.0, 1.0))]),
+            ),
+            (
+                "lines",
+                Drawing::Polylines(vec![vec![p(0.0, 0.0), p(1.0, 1.0), p(2.0, 0.0)]]),
+            ),
+            (
+                "outlines",
+                Drawing::Polygons(vec![vec![p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0)]]),
+            ),
+            (
+                "boxes",
+                Drawing::Boxes(vec![Aabb::from_corners(p(0.0, 0.0), p(2.0, 2.0))]),
+            ),
+            ("points", Drawing::Points(vec![p(1.0, 1.0)])),
+            (
+                "arrows",
+                Drawing::Arrows(vec![(p(1.0, 1.0), Vector::new(0.5, 0.0))]),
+            ),
+            ("note", Drawing::Text("a note".into())),
+            (
+                "deep/in/3d",
+                Drawing::Polylines3D(vec![vec![[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]]),
+            ),
+        ];
+        let timelines = [Timeline::Step, Timeline::Expansion, Timeline::Iteration];
+        for (k, (entity, drawing)) in drawings.into_iter().enumerate() {
+            let layer = Layer::new(entity, drawing, style);
+            r.plans[0].outcome.layers.push(match k % 4 {
+                3 => layer,
+                i => layer.at(timelines[i], k as i64),
+            });
+        }
         r.plans[0].drive = Some(DriveOutcome {
             samples: (0..5000)
                 .map(|i| {
@@ -791,26 +812,21 @@ mod tests {
         let _ = std::fs::remove_file(&path);
         let text = String::from_utf8_lossy(&print.stdout);
         for e in [
-            "/plans/dot/roadmap ",
-            "/plans/dot/known/free/0000 ",
-            "/plans/dot/known/blocked/0000 ",
-            "/plans/dot/known/blocked/0083 ",
-            "/plans/dot/plan ",
-            "/plans/dot/field/attract ",
-            "/plans/dot/field/repulse ",
-            "/plans/dot/field/total ",
-            "/plans/dot/field/minima ",
-            "/plans/dot/field/escapes ",
-            "/plans/dot/mega_cells ",
-            "/plans/dot/uncovered ",
-            "/plans/dot/tree ",
+            "/plans/dot/segments ",
+            "/plans/dot/lines ",
+            "/plans/dot/outlines ",
+            "/plans/dot/boxes ",
+            "/plans/dot/points ",
+            "/plans/dot/arrows ",
+            "/plans/dot/note ",
+            "/plans/dot/deep/in/3d ",
+            "/plans/dot/search ",
+            "/plans/dot/grown ",
             "/plans/dot/drive/path ",
             "/plans/dot/drive/robot ",
         ] {
             assert!(text.contains(e), "no {e} in:\n{text}");
         }
-        // 250 steps of sensing in batches of 3 steps (at most 100 batches).
-        assert!(!text.contains("/plans/dot/known/blocked/0084 "));
     }
 
     #[test]

@@ -84,8 +84,8 @@ syn keyword scenParamKey contained arc_segments
 syn keyword scenParamKey contained attract repulse influence step tolerance escape jump
 syn keyword scenParamKey contained on tool weights
 syn keyword scenParamKey contained dt max_speed max_turn_rate gain turn_gain reach align
-" `limit expansions N | steps N | time DURATION | cells N`
-syn keyword scenLimitKind contained expansions steps time cells
+" `limit expansions N | steps N | time DURATION | cells N | iterations N`
+syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
 syn keyword scenWord contained center corner auto euclid l1 metric zero yes no
 syn keyword scenWord contained backtrack shortcut replan dstar_lite none random_walk max sum

@@ -16,7 +16,7 @@ fn run(text: &str) -> Vec<PlanOutcome> {
         .iter()
         .map(|p| {
             let robot = &s.robots[p.robot].shape;
-            let out = plan(&s.world, robot, &p.params);
+            let out = p.settings.plan(&p.task(&s));
             if let Some(path) = &out.path {
                 assert_eq!(path.first(), Some(&p.params.start));
                 assert_eq!(path.last(), p.params.goal.as_ref());
@@ -27,6 +27,14 @@ fn run(text: &str) -> Vec<PlanOutcome> {
             out
         })
         .collect()
+}
+
+/// The points of a `Points` layer.
+fn points(out: &PlanOutcome, entity: &str) -> Vec<Point> {
+    match out.layer(entity).map(|l| &l.drawing) {
+        Some(Drawing::Points(p)) => p.clone(),
+        other => panic!("{entity}: {other:?}"),
+    }
 }
 
 fn metric(out: &PlanOutcome, name: &str) -> f64 {
@@ -97,9 +105,8 @@ fn u_trap_stops_pure_descent_and_the_random_walk_escapes() {
         assert!(!o.gave_up);
         assert!(metric(o, "minima") >= 1.0);
         assert_eq!(metric(o, "escapes"), 0.0);
-        let field = o.trace.field.as_ref().unwrap();
         // The minimum is against the bottom of the U, inside it.
-        let (_, m) = field.minima[0];
+        let m = points(o, "field/minima")[0];
         assert!(m.x > 7.0 && m.x < 10.0 && (m.y - 5.0).abs() < 1.0, "{m:?}");
         assert!(o.notes[0].contains("local minimum"));
     }
@@ -107,16 +114,22 @@ fn u_trap_stops_pure_descent_and_the_random_walk_escapes() {
         assert!(o.path.is_some(), "{:?}", o.notes);
         assert!(metric(o, "minima") >= 1.0);
         assert!(metric(o, "escapes") >= 1.0);
-        let field = o.trace.field.as_ref().unwrap();
-        assert_eq!(field.escapes.len() as f64, metric(o, "escapes"));
-        assert_eq!(field.minima.len() as f64, metric(o, "minima"));
-        // Each escape starts where the path is, and the next point is its end.
+        let jumps = match o.layer("field/escapes").map(|l| &l.drawing) {
+            Some(Drawing::Segments(s)) => s.clone(),
+            other => panic!("escapes: {other:?}"),
+        };
+        assert_eq!(jumps.len() as f64, metric(o, "escapes"));
+        assert_eq!(points(o, "field/minima").len() as f64, metric(o, "minima"));
+        // Each escape is a move of the path: from one point to the next.
         let path = o.path.as_ref().unwrap();
-        for &(i, from, to) in &field.escapes {
-            assert_eq!(path[i].xy(), from);
-            assert_eq!(path[i + 1].xy(), to);
+        for (from, to) in jumps {
+            assert!(
+                path.windows(2)
+                    .any(|w| w[0].xy() == from && w[1].xy() == to),
+                "the jump {from:?} → {to:?} is not on the path"
+            );
         }
-        assert!(!field.forces.is_empty());
+        assert!(o.layers_of("field/total").count() > 0);
     }
 }
 

@@ -21,6 +21,7 @@
 pub mod arrangement;
 pub mod sweep;
 
+use std::any::Any;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
@@ -35,8 +36,61 @@ use crate::geometry::minkowski::{c_obstacle_points, disk_polygon, minkowski_sum_
 use crate::geometry::{
     Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff,
 };
-use crate::planners::{MetricValue, PlanOutcome, Trace};
-use crate::scenario::Params;
+use crate::planners::registry::{Planner, Settings, Task};
+use crate::planners::{MetricValue, PlanOutcome, layers};
+use crate::scenario::PlanArgs;
+use crate::scenario::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, num};
+
+/// `roadmap` in the registry.
+pub static PLANNER: Planner = Planner {
+    kind: "roadmap",
+    summary: "visibility graph and Dijkstra",
+    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
+    params: &[ParamSpec::new(
+        "arc_segments",
+        ValueSpec::Number {
+            min: 8.0,
+            min_open: false,
+            max: MAX_ARC_SEGMENTS as f64,
+            integer: true,
+        },
+        num(DEFAULT_ARC_SEGMENTS as f64, "32"),
+        "segments per full circle for grown disks",
+    )],
+    metrics: &[
+        MetricSpec::num(
+            "graph_nodes",
+            "roadmap nodes (a wall vertex counts once per sector)",
+        ),
+        MetricSpec::num("graph_edges", "visibility edges"),
+    ],
+    limits: &["expansions", "time"],
+    needs_goal: true,
+    check,
+};
+
+/// The settings of a `roadmap` plan.
+#[derive(Clone, Debug)]
+pub struct RoadmapSettings {
+    /// Segments per full circle of a disk turned into a polygon, 8..=4096.
+    pub arc_segments: usize,
+}
+
+fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
+    Some(Box::new(RoadmapSettings {
+        arc_segments: args.num("arc_segments").round() as usize,
+    }))
+}
+
+impl Settings for RoadmapSettings {
+    fn plan(&self, task: &Task<'_>) -> PlanOutcome {
+        plan(task, self)
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
 
 use arrangement::{Arrangement, Grown, PolygonIndex, WallIn, strictly_inside};
 use sweep::{SweepBuffers, Visible};
@@ -288,25 +342,18 @@ impl Ord for Queued {
 }
 
 /// Runs a `roadmap` plan.
-pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
+pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
+    let (world, robot) = (task.world, task.robot);
     let mut out = PlanOutcome::default();
     // Zero until a graph is built (every early return keeps the metrics).
     out.extra
         .insert("graph_nodes".into(), MetricValue::Num(0.0));
     out.extra
         .insert("graph_edges".into(), MetricValue::Num(0.0));
-    let arc = params
-        .num("arc_segments")
-        .unwrap_or(DEFAULT_ARC_SEGMENTS as f64);
-    if !(arc.is_finite() && arc >= 8.0 && arc <= MAX_ARC_SEGMENTS as f64) {
-        out.notes.push(format!(
-            "`arc_segments` must lie between 8 and {MAX_ARC_SEGMENTS}"
-        ));
-        return out;
-    }
-    let arc = arc.round() as usize;
-    let start = params.start;
-    let goal = params.goal.unwrap_or(start);
+    // The schema keeps it in 8..=MAX_ARC_SEGMENTS.
+    let arc = settings.arc_segments.clamp(8, MAX_ARC_SEGMENTS);
+    let start = task.start;
+    let goal = task.goal.unwrap_or(start);
     if robot.rotates() && angle_diff(start.theta, goal.theta).abs() > 1e-12 {
         out.notes.push(
             "the roadmap robot only translates (at the start's θ): give the goal the start's θ"
@@ -322,10 +369,9 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
         ));
         return out;
     }
-    out.trace = Trace {
-        grown_obstacles: polys.iter().map(|p| p.vertices.clone()).collect(),
-        ..Trace::default()
-    };
+    out.layers.extend(layers::grown(
+        polys.iter().map(|p| p.vertices.clone()).collect(),
+    ));
     // The analyzer refused poses in collision with the true obstacles; the
     // grown disks are a little larger (circumscribed polygons).
     if !polys.is_empty() {
@@ -351,7 +397,7 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
             }
         }
     }
-    let deadline = params
+    let deadline = task
         .limits
         .time
         .map(|s| Instant::now() + std::time::Duration::from_secs_f64(s.clamp(0.0, 1e9)));
@@ -386,13 +432,14 @@ pub fn plan(world: &World, robot: &RobotShape, params: &Params) -> PlanOutcome {
         MetricValue::Num(roadmap.graph.edge_count() as f64),
     );
     let pts = &roadmap.arrangement.points;
-    out.trace.roadmap_edges = roadmap
+    let edges = roadmap
         .visible
         .iter()
         .take(MAX_TRACED_EDGES)
         .map(|e| (pts[e.a as usize], pts[e.b as usize]))
         .collect();
-    match roadmap.shortest_path(params.limits.expansions) {
+    out.layers.extend(layers::graph("roadmap", edges));
+    match roadmap.shortest_path(task.limits.expansions) {
         Err(expanded) => {
             out.expanded = expanded;
             out.gave_up = true;

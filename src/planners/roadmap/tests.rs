@@ -1,13 +1,12 @@
-use std::collections::BTreeMap;
-
 use proptest::prelude::*;
 
 use super::*;
-use crate::diagnostics::Span;
 use crate::geometry::polygon::convex_hull;
 use crate::geometry::validator::{Validator, validate_path};
 use crate::geometry::{Aabb, Obstacle, Shape};
-use crate::scenario::{Limits, Param, ParamValue};
+use crate::planners::astar::{Astar, CostMetric, Heuristic};
+use crate::planners::lattice::{LatticeSpec, Sample};
+use crate::scenario::Limits;
 
 fn p(x: f64, y: f64) -> Point {
     Point::new(x, y)
@@ -35,27 +34,42 @@ fn seg(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
     Shape::Segment(p(x0, y0), p(x1, y1))
 }
 
-fn params(start: (f64, f64), goal: (f64, f64), values: &[(&'static str, ParamValue)]) -> Params {
-    Params {
+/// A roadmap problem: start, goal, `arc_segments` and limits.
+#[derive(Clone, Copy)]
+struct Case {
+    start: Config,
+    goal: Config,
+    arc: usize,
+    limits: Limits,
+}
+
+fn params(start: (f64, f64), goal: (f64, f64), arc: usize) -> Case {
+    Case {
         start: Config::new(start.0, start.1, 0.0),
-        start_span: Span::default(),
-        goal: Some(Config::new(goal.0, goal.1, 0.0)),
-        goal_span: None,
+        goal: Config::new(goal.0, goal.1, 0.0),
+        arc,
         limits: Limits::default(),
-        seed: 0,
-        values: values
-            .iter()
-            .map(|(k, v)| {
-                (
-                    *k,
-                    Param {
-                        value: v.clone(),
-                        span: Span::default(),
-                    },
-                )
-            })
-            .collect::<BTreeMap<_, _>>(),
     }
+}
+
+fn task<'a>(w: &'a World, robot: &'a RobotShape, c: &Case) -> Task<'a> {
+    Task {
+        world: w,
+        robot,
+        start: c.start,
+        goal: Some(c.goal),
+        limits: c.limits,
+        seed: 0,
+    }
+}
+
+fn run(w: &World, robot: &RobotShape, c: &Case) -> PlanOutcome {
+    plan(
+        &task(w, robot, c),
+        &RoadmapSettings {
+            arc_segments: c.arc,
+        },
+    )
 }
 
 fn box_robot(w: f64, h: f64) -> RobotShape {
@@ -72,7 +86,7 @@ fn length(path: &[Config]) -> f64 {
 
 /// Plans, checks the path with the validator, returns its length.
 fn plan_length(w: &World, robot: &RobotShape, start: (f64, f64), goal: (f64, f64)) -> Option<f64> {
-    let out = plan(w, robot, &params(start, goal, &[]));
+    let out = run(w, robot, &params(start, goal, 32));
     let path = out.path?;
     validate_path(w, robot, &path, 0.01).expect("the roadmap path validates");
     let l = length(&path);
@@ -243,33 +257,29 @@ fn poses_inside_the_circumscribed_disk_and_turning_goals_are_refused() {
         }],
     );
     let a = std::f64::consts::PI / 8.0;
-    let out = plan(
+    let out = run(
         &w,
         &RobotShape::Point,
-        &params(
-            (1.03 * a.cos(), 1.03 * a.sin()),
-            (3.0, 3.0),
-            &[("arc_segments", ParamValue::Num(8.0))],
-        ),
+        &params((1.03 * a.cos(), 1.03 * a.sin()), (3.0, 3.0), 8),
     );
     assert!(out.path.is_none());
     assert!(out.notes[0].contains("`o0`"), "{:?}", out.notes);
-    let mut pr = params((3.0, 0.0), (-3.0, 0.0), &[]);
-    pr.goal = Some(Config::new(-3.0, 0.0, 1.0));
-    let out = plan(&w, &box_robot(1.0, 1.0), &pr);
+    let mut pr = params((3.0, 0.0), (-3.0, 0.0), 32);
+    pr.goal = Config::new(-3.0, 0.0, 1.0);
+    let out = run(&w, &box_robot(1.0, 1.0), &pr);
     assert!(out.path.is_none() && !out.notes.is_empty());
 }
 
 #[test]
 fn limits_are_honoured() {
     let w = world((-5.0, -5.0, 10.0, 5.0), vec![rect(1.0, -1.0, 3.0, 1.0)]);
-    let mut pr = params((0.0, 0.0), (4.0, 0.0), &[]);
+    let mut pr = params((0.0, 0.0), (4.0, 0.0), 32);
     pr.limits.expansions = Some(1);
-    let out = plan(&w, &RobotShape::Point, &pr);
+    let out = run(&w, &RobotShape::Point, &pr);
     assert!(out.gave_up && out.path.is_none());
-    let mut pr = params((0.0, 0.0), (4.0, 0.0), &[]);
+    let mut pr = params((0.0, 0.0), (4.0, 0.0), 32);
     pr.limits.time = Some(0.0);
-    let out = plan(&w, &RobotShape::Point, &pr);
+    let out = run(&w, &RobotShape::Point, &pr);
     assert!(out.gave_up && out.path.is_none());
 }
 
@@ -412,11 +422,17 @@ proptest! {
         for c in [s, g] {
             prop_assume!(v.config_collision(&lattice_robot, Config::new(c.0, c.1, 0.0)).is_none());
         }
-        let out = plan(&w, &robot, &params(s, g, &[("arc_segments", ParamValue::Num(k))]));
-        let lat = crate::planners::astar::plan(&w, &lattice_robot, &params(s, g, &[
-            ("cell", ParamValue::Num(0.1)),
-            ("rotate", ParamValue::Word("no".into())),
-        ]));
+        let out = run(&w, &robot, &params(s, g, k as usize));
+        let lattice = Astar {
+            lattice: LatticeSpec::new(&w, 0.1, Sample::Center, 1.0),
+            rotating: false,
+            connect: 8,
+            cost: CostMetric::Euclid,
+            turn_cost: 0.0,
+            weight: 1.0,
+            heuristic: Heuristic::Metric,
+        };
+        let lat = lattice.plan(&task(&w, &lattice_robot, &params(s, g, 32)));
         if let Some(path) = &out.path {
             let r = v.validate_path(&robot, path, 0.01);
             prop_assert!(r.is_ok(), "{:?}", r);
@@ -434,19 +450,19 @@ proptest! {
 #[test]
 fn deterministic() {
     let w = random_world(7, 30, 5, 20.0, 2.0);
-    let a = plan(
+    let a = run(
         &w,
         &RobotShape::Disk(0.2),
-        &params((0.1, 0.1), (19.9, 19.9), &[]),
+        &params((0.1, 0.1), (19.9, 19.9), 32),
     );
-    let b = plan(
+    let b = run(
         &w,
         &RobotShape::Disk(0.2),
-        &params((0.1, 0.1), (19.9, 19.9), &[]),
+        &params((0.1, 0.1), (19.9, 19.9), 32),
     );
     assert_eq!(a.path, b.path);
     assert_eq!(a.extra, b.extra);
-    assert_eq!(a.trace.roadmap_edges, b.trace.roadmap_edges);
+    assert_eq!(a.layers, b.layers);
 }
 
 /// Timing of the phases on a random world (`-- --ignored --nocapture`).
@@ -493,14 +509,10 @@ fn huge_worlds_are_refused_not_hung() {
         })
         .collect();
     let w = world((0.0, 0.0, 25.0, 10.0), disks);
-    let out = plan(
+    let out = run(
         &w,
         &RobotShape::Point,
-        &params(
-            (0.0, 0.0),
-            (24.0, 9.0),
-            &[("arc_segments", ParamValue::Num(4096.0))],
-        ),
+        &params((0.0, 0.0), (24.0, 9.0), 4096),
     );
     assert!(out.path.is_none());
     assert!(out.notes[0].contains("vertices"), "{:?}", out.notes);

@@ -1,0 +1,179 @@
+//! The planner registry: every planner kind of SPEC 3, one line each.
+//!
+//! A planner is one file that declares a [`Planner`]: its kind, the robots
+//! it plans for, its parameters (type, default, range, help), its metrics,
+//! the limits it honours, and a `check` that reads the validated parameters
+//! into the planner's own typed [`Settings`] (reporting cross-parameter
+//! problems with spans). The settings' [`Settings::plan`] runs the plan.
+//! The analyzer, the runner, the editors' word lists, the generated
+//! planner reference (`docs/planners.md`) and the contract test
+//! (`tests/contract.rs`) read this registry; none of them names a planner.
+//!
+//! # Adding a planner
+//! 1. Write `src/planners/KIND.rs` with `pub static PLANNER: Planner`, its
+//!    settings struct (word values as [`word_enum!`](crate::word_enum)
+//!    enums, defaults only in the schema) and `impl Settings`.
+//! 2. Add `pub mod KIND;` to `src/planners/mod.rs` and `&KIND::PLANNER` to
+//!    [`PLANNERS`] below.
+//! 3. Run `SCEN_BLESS=1 cargo test --release --test docs` to regenerate
+//!    `docs/planners.md`, and add the new words to the editors' files (the
+//!    editor test says which are missing).
+//! 4. Add scenarios under `scenarios/` and the planner's own tests; the
+//!    contract test covers it already (metrics, validator, determinism,
+//!    limits) for every robot kind it declares.
+
+use std::any::Any;
+use std::fmt;
+
+use crate::geometry::{Config, RobotShape, World};
+use crate::scenario::schema::{
+    COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec, RobotKind,
+};
+use crate::scenario::{Limits, PlanArgs};
+
+use super::PlanOutcome;
+use super::{astar, coverage, online, potential, roadmap};
+
+/// Every planner kind, in the order the docs list them.
+pub static PLANNERS: &[&Planner] = &[
+    &astar::PLANNER,
+    &online::PLANNER,
+    &roadmap::PLANNER,
+    &potential::PLANNER,
+    &coverage::PLANNER,
+];
+
+/// The planner of a kind.
+pub fn planner(kind: &str) -> Option<&'static Planner> {
+    PLANNERS.iter().copied().find(|p| p.kind == kind)
+}
+
+/// What a planner is, for the analyzer, the runner and the tools.
+pub struct Planner {
+    /// The kind as written in `plan NAME KIND ROBOT { ... }`.
+    pub kind: &'static str,
+    /// One line for help texts and the docs.
+    pub summary: &'static str,
+    /// The robots it plans for.
+    pub robots: &'static [RobotKind],
+    /// Its own parameters (the common ones of SPEC 2.5 come on top).
+    pub params: &'static [ParamSpec],
+    /// Its own metrics (the common ones of SPEC 3 come on top).
+    pub metrics: &'static [MetricSpec],
+    /// The `limit` kinds it honours; others are analysis errors.
+    pub limits: &'static [&'static str],
+    /// Whether a plan must have a `goal`.
+    pub needs_goal: bool,
+    /// Reads the validated parameters into the planner's settings. Problems
+    /// that involve several parameters, the world or the robot are reported
+    /// through [`PlanArgs::error`] with spans; `None` (or any error
+    /// reported) means the plan does not run.
+    pub check: fn(&mut PlanArgs<'_>) -> Option<Box<dyn Settings>>,
+}
+
+impl Planner {
+    /// A parameter of this planner, common ones included.
+    pub fn param(&self, key: &str) -> Option<&'static ParamSpec> {
+        self.all_params().find(|p| p.key == key)
+    }
+
+    /// The common parameters, then the planner's own.
+    pub fn all_params(&self) -> impl Iterator<Item = &'static ParamSpec> + use<> {
+        let own: &'static [ParamSpec] = self.params;
+        COMMON_PARAMS.iter().chain(own.iter())
+    }
+
+    /// The type of a metric of this planner (common ones included; the
+    /// drive metrics are the analyzer's business).
+    pub fn metric(&self, name: &str) -> Option<MetricType> {
+        self.all_metrics().find(|m| m.name == name).map(|m| m.ty)
+    }
+
+    /// The common metrics, then the planner's own.
+    pub fn all_metrics(&self) -> impl Iterator<Item = &'static MetricSpec> + use<> {
+        let own: &'static [MetricSpec] = self.metrics;
+        COMMON_METRICS.iter().chain(own.iter())
+    }
+
+    /// Whether it plans for robots of this kind.
+    pub fn plans_for(&self, robot: RobotKind) -> bool {
+        self.robots.contains(&robot)
+    }
+}
+
+impl fmt::Debug for Planner {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Planner").field("kind", &self.kind).finish()
+    }
+}
+
+/// One planning problem, as the runner hands it to a planner.
+#[derive(Clone, Copy, Debug)]
+pub struct Task<'a> {
+    pub world: &'a World,
+    pub robot: &'a RobotShape,
+    pub start: Config,
+    /// `None` only for planners that need no goal.
+    pub goal: Option<Config>,
+    pub limits: Limits,
+    pub seed: u64,
+}
+
+/// A plan's typed settings, built once by its planner's `check`; running
+/// the plan is a function of the settings and the [`Task`].
+pub trait Settings: fmt::Debug + Send + Sync {
+    /// Runs the plan. Planners know nothing of output: they return the path,
+    /// their metrics and drawable layers.
+    fn plan(&self, task: &Task<'_>) -> PlanOutcome;
+
+    /// For benchmarks and tests that call a planner's own entry points with
+    /// its concrete settings.
+    fn as_any(&self) -> &dyn Any;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::schema::{DefaultValue, LIMIT_KINDS, ValueSpec};
+
+    #[test]
+    fn kinds_keys_and_metrics_are_unique() {
+        let mut kinds: Vec<_> = PLANNERS.iter().map(|p| p.kind).collect();
+        kinds.sort();
+        kinds.dedup();
+        assert_eq!(kinds.len(), PLANNERS.len());
+        for p in PLANNERS {
+            let mut keys: Vec<_> = p.all_params().map(|s| s.key).collect();
+            keys.sort();
+            let n = keys.len();
+            keys.dedup();
+            assert_eq!(keys.len(), n, "duplicate key in {}", p.kind);
+            let mut metrics: Vec<_> = p.all_metrics().map(|m| m.name).collect();
+            metrics.sort();
+            let n = metrics.len();
+            metrics.dedup();
+            assert_eq!(metrics.len(), n, "duplicate metric in {}", p.kind);
+        }
+    }
+
+    #[test]
+    fn every_declaration_is_complete() {
+        for p in PLANNERS {
+            assert!(!p.summary.is_empty() && !p.robots.is_empty(), "{}", p.kind);
+            assert!(
+                p.limits.iter().all(|l| LIMIT_KINDS.contains(l)),
+                "{}",
+                p.kind
+            );
+            for s in p.params {
+                assert!(!s.help.is_empty(), "{}.{} has no help", p.kind, s.key);
+                if let (ValueSpec::Word(words), DefaultValue::Word(w)) = (s.value, s.default) {
+                    assert!(words.contains(&w), "{}.{}: default `{w}`", p.kind, s.key);
+                }
+            }
+            for m in p.metrics {
+                assert!(!m.help.is_empty(), "{}.{} has no help", p.kind, m.name);
+            }
+        }
+    }
+}
