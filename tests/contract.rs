@@ -1,0 +1,278 @@
+//! The planner contract, driven by the registry: every planner, for every
+//! robot kind it declares, on a small world (a grid with a block, so that
+//! `on`-style planners have a grid to work on):
+//! - the metrics it reports are exactly the common ones of SPEC 3 and the
+//!   ones its schema declares, with the declared types;
+//! - a path it finds starts at `start`, ends at `goal` (for planners that
+//!   have one) and passes the independent validator;
+//! - the same input and seed give byte-identical JSON (timings aside);
+//! - its limits are honoured: a tiny `limit expansions|steps|iterations`
+//!   stops it (no path, `gave_up`, at most that many counted), `limit cells`
+//!   refuses a lattice at analysis, `limit time` ends the run;
+//! - robots it does not plan for are refused at analysis.
+//!
+//! A new planner gets all of this by its registry line; a required
+//! parameter of a kind this test cannot fill makes the test say so.
+
+mod common;
+
+use std::collections::BTreeMap;
+
+use common::TempDir;
+use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+use scen::planners::MetricValue;
+use scen::planners::registry::{PLANNERS, Planner};
+use scen::report::json::to_json;
+use scen::scenario::schema::{COMMON_METRICS, DefaultValue, MetricType, RobotKind, ValueSpec};
+use scen::{Scenario, run_scenario};
+
+/// 16 × 16 unit cells; a 3 × 3 block off the diagonal between the start
+/// and the goal.
+const WORLD: &str = r#"world {
+  bounds (0, 0) (16, 16)
+  grid G cell 1 origin (0, 0) {
+    "................"
+    "................"
+    "................"
+    ".........###...."
+    ".........###...."
+    ".........###...."
+    "................"
+    "................"
+    "................"
+    "................"
+    "................"
+    "................"
+    "................"
+    "................"
+    "................"
+    "................"
+  }
+}
+"#;
+
+const START: (f64, f64) = (1.5, 1.5);
+const GOAL: (f64, f64) = (13.5, 14.5);
+
+fn robot(kind: RobotKind) -> &'static str {
+    match kind {
+        RobotKind::Point => "point",
+        RobotKind::Disk => "disk 0.4",
+        // Centred on its frame origin, so that it fits a unit D-cell too.
+        RobotKind::Polygon => "polygon [(-0.4, -0.3), (0.4, -0.3), (0.4, 0.3), (-0.4, 0.3)]",
+    }
+}
+
+/// The plan's required parameters, filled for this world.
+fn required(planner: &Planner) -> Vec<String> {
+    planner
+        .params
+        .iter()
+        .filter(|p| p.default == DefaultValue::None)
+        .map(|p| match p.value {
+            ValueSpec::ObstacleName => format!("{} G", p.key),
+            other => panic!(
+                "the contract test cannot fill the required `{}` of `{}` ({other:?}): teach it",
+                p.key, planner.kind
+            ),
+        })
+        .collect()
+}
+
+fn scenario_text(planner: &Planner, kind: RobotKind, extra: &str) -> String {
+    let goal = if planner.needs_goal {
+        format!("goal ({}, {})", GOAL.0, GOAL.1)
+    } else {
+        String::new()
+    };
+    format!(
+        "scenario \"contract {kind}\"\n{WORLD}robot r {robot}\nplan p {kind} r {{\n  start ({}, {}) {goal} seed 3\n  {}\n  {extra}\n}}\n",
+        START.0,
+        START.1,
+        required(planner).join(" "),
+        kind = planner.kind,
+        robot = robot(kind),
+    )
+}
+
+/// Loads a scenario written to a temporary file; the diagnostics' codes on
+/// failure.
+fn load(text: &str) -> Result<Scenario, Vec<String>> {
+    let dir = TempDir::new("contract");
+    let file = dir.path().join("contract.scen");
+    std::fs::write(&file, text).expect("write the scenario");
+    scen::load(&file).map_err(|f| f.diags.iter().map(|d| d.code.to_string()).collect())
+}
+
+fn loaded(planner: &Planner, kind: RobotKind, extra: &str) -> Scenario {
+    let text = scenario_text(planner, kind, extra);
+    load(&text).unwrap_or_else(|codes| panic!("{} / {kind:?}: {codes:?}\n{text}", planner.kind))
+}
+
+/// The JSON document without its timings.
+fn json(scenario: &Scenario) -> String {
+    let report = run_scenario(scenario.clone(), &[]);
+    let mut doc = to_json(&report);
+    for plan in doc["plans"].as_object_mut().expect("plans").values_mut() {
+        plan["metrics"]
+            .as_object_mut()
+            .expect("metrics")
+            .remove("time_ms");
+    }
+    doc.to_string()
+}
+
+#[test]
+fn every_planner_honours_its_contract() {
+    let mut problems = Vec::new();
+    let mut found_any: BTreeMap<&str, bool> = BTreeMap::new();
+    for planner in PLANNERS {
+        for &kind in planner.robots {
+            let label = format!("{} / {kind:?}", planner.kind);
+            let scenario = loaded(planner, kind, "");
+            let report = run_scenario(scenario.clone(), &[]);
+            let run = &report.plans[0];
+
+            // Exactly the declared metrics, with their types.
+            let declared: BTreeMap<&str, MetricType> = COMMON_METRICS
+                .iter()
+                .chain(planner.metrics)
+                .map(|m| (m.name, m.ty))
+                .collect();
+            let reported: Vec<&str> = run.metrics.keys().map(String::as_str).collect();
+            let expected: Vec<&str> = declared.keys().copied().collect();
+            if reported != expected {
+                problems.push(format!(
+                    "{label}: metrics {reported:?}, declared {expected:?}"
+                ));
+            }
+            for (name, value) in &run.metrics {
+                let ok = matches!(
+                    (declared.get(name.as_str()), value),
+                    (Some(MetricType::Bool), MetricValue::Bool(_))
+                        | (Some(MetricType::Num), MetricValue::Num(_))
+                );
+                if !ok {
+                    problems.push(format!(
+                        "{label}: metric `{name}` = {value:?} has the wrong type"
+                    ));
+                }
+            }
+
+            // A found path: from start to goal, valid.
+            if let Some(path) = &run.outcome.path {
+                *found_any.entry(planner.kind).or_default() = true;
+                let robot = &scenario.robots[0].shape;
+                let first = path.first().map(|c| (c.x, c.y));
+                if first != Some(START) {
+                    problems.push(format!("{label}: the path starts at {first:?}"));
+                }
+                let last = path.last().map(|c| (c.x, c.y));
+                if planner.needs_goal && last != Some(GOAL) {
+                    problems.push(format!("{label}: the path ends at {last:?}"));
+                }
+                if let Err(e) = validate_path(&scenario.world, robot, path, DEFAULT_TOLERANCE) {
+                    problems.push(format!("{label}: the path fails the validator: {e:?}"));
+                }
+                if run.metrics.get("collision_free") != Some(&MetricValue::Bool(true)) {
+                    problems.push(format!("{label}: a valid path without collision_free"));
+                }
+            } else {
+                found_any.entry(planner.kind).or_default();
+            }
+
+            // Deterministic: the same input gives the same bytes.
+            let (a, b) = (json(&scenario), json(&scenario));
+            if a != b {
+                problems.push(format!("{label}: two runs differ:\n{a}\n{b}"));
+            }
+        }
+    }
+    for (kind, found) in found_any {
+        if !found {
+            problems.push(format!(
+                "{kind}: no robot kind found a path, the contract is vacuous"
+            ));
+        }
+    }
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}
+
+#[test]
+fn every_planner_honours_its_limits() {
+    let mut problems = Vec::new();
+    for planner in PLANNERS {
+        let kind = planner.robots[0];
+        for &limit in planner.limits {
+            let label = format!("{} / limit {limit}", planner.kind);
+            match limit {
+                "time" => {
+                    // The run ends (no hang) and a path found in time is
+                    // still a path, else the run says it gave up.
+                    let scenario = loaded(planner, kind, "limit time 1ms");
+                    let report = run_scenario(scenario, &[]);
+                    let run = &report.plans[0];
+                    if run.outcome.path.is_none() && !run.outcome.gave_up {
+                        problems.push(format!("{label}: stopped without a path nor gave_up"));
+                    }
+                }
+                "cells" => match load(&scenario_text(planner, kind, "limit cells 10")) {
+                    Err(codes)
+                        if codes
+                            .iter()
+                            .any(|c| c == "scen::analyze::lattice_too_large") => {}
+                    other => problems.push(format!(
+                        "{label}: a 10-cell cap did not refuse the lattice: {:?}",
+                        other.err()
+                    )),
+                },
+                counted => {
+                    let scenario = loaded(planner, kind, &format!("limit {counted} 3"));
+                    let report = run_scenario(scenario, &[]);
+                    let run = &report.plans[0];
+                    if run.outcome.path.is_some() || !run.outcome.gave_up {
+                        problems.push(format!(
+                            "{label}: 3 was not enough for this world, yet: found {}, gave_up {}",
+                            run.outcome.path.is_some(),
+                            run.outcome.gave_up
+                        ));
+                    }
+                    // What the limit counts stays within it.
+                    let metric = match counted {
+                        "expansions" => "expanded",
+                        other if planner.metric(other).is_some() => other,
+                        _ => "expanded",
+                    };
+                    let n = run.metrics.get(metric).map_or(f64::NAN, |v| v.as_f64());
+                    if !(n <= 3.0) {
+                        problems.push(format!(
+                            "{label}: `{metric}` = {n} after `limit {counted} 3`"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}
+
+#[test]
+fn robots_a_planner_does_not_declare_are_refused() {
+    let mut problems = Vec::new();
+    for planner in PLANNERS {
+        for kind in [RobotKind::Point, RobotKind::Disk, RobotKind::Polygon] {
+            if planner.plans_for(kind) {
+                continue;
+            }
+            match load(&scenario_text(planner, kind, "")) {
+                Err(codes) if codes.iter().any(|c| c == "scen::analyze::robot_kind") => {}
+                other => problems.push(format!(
+                    "{} / {kind:?}: not refused as `robot_kind`: {:?}",
+                    planner.kind,
+                    other.err()
+                )),
+            }
+        }
+    }
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}
