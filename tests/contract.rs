@@ -276,3 +276,61 @@ fn robots_a_planner_does_not_declare_are_refused() {
     }
     assert!(problems.is_empty(), "\n{}", problems.join("\n"));
 }
+
+/// A numeric default is written once, in the schema, with the form a user
+/// would type (`10ms`, `0.5deg`): written in a plan, that form reads as the
+/// default's value, for every planner's parameters and the `drive` block's.
+#[test]
+fn written_defaults_read_as_their_values() {
+    use scen::scenario::ParamValue;
+    use scen::scenario::schema::DRIVE_PARAMS;
+    let mut problems = Vec::new();
+    for planner in PLANNERS {
+        let numeric: Vec<(&str, f64, &str)> = planner
+            .params
+            .iter()
+            .filter_map(|p| match p.default {
+                DefaultValue::Num(x, written) => Some((p.key, x, written)),
+                _ => None,
+            })
+            .collect();
+        let given: Vec<String> = numeric.iter().map(|(k, _, w)| format!("{k} {w}")).collect();
+        let drive: Vec<String> = DRIVE_PARAMS
+            .iter()
+            .map(|p| format!("{} {}", p.key, p.default.text()))
+            .collect();
+        let extra = format!(
+            "{} drive unicycle {{ {} }}",
+            given.join(" "),
+            drive.join(" ")
+        );
+        let scenario = loaded(planner, planner.robots[0], &extra);
+        let values = &scenario.plans[0].params.values;
+        for (key, x, written) in numeric {
+            match values.get(key).map(|p| &p.value) {
+                Some(ParamValue::Num(v)) if *v == x => {}
+                other => problems.push(format!(
+                    "{}.{key}: `{written}` reads as {other:?}, the default is {x}",
+                    planner.kind
+                )),
+            }
+        }
+        let Some(ParamValue::Block(_, block)) = values.get("drive").map(|p| &p.value) else {
+            problems.push(format!("{}: no drive block", planner.kind));
+            continue;
+        };
+        for p in DRIVE_PARAMS {
+            let DefaultValue::Num(x, written) = p.default else {
+                continue;
+            };
+            match block.get(p.key).map(|p| &p.value) {
+                Some(ParamValue::Num(v)) if (*v - x).abs() <= 1e-15 * x.abs() => {}
+                other => problems.push(format!(
+                    "drive.{}: `{written}` reads as {other:?}, the default is {x}",
+                    p.key
+                )),
+            }
+        }
+    }
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}

@@ -131,6 +131,77 @@ pub trait Settings: fmt::Debug + Send + Sync {
     fn as_any(&self) -> &dyn Any;
 }
 
+/// The planner reference (`docs/planners.md`): every planner's robots,
+/// limits, parameters and metrics, and the common ones, as Markdown.
+pub fn reference() -> String {
+    use crate::scenario::schema::{DRIVE_METRICS, DRIVE_PARAMS, DefaultValue};
+    use std::fmt::Write as _;
+    let mut md = String::from(
+        "# Planners\n\n\
+         Generated from the planner registry (`src/planners/registry.rs`) by\n\
+         `SCEN_BLESS=1 cargo test --release --test docs`; do not edit by hand.\n",
+    );
+    let params = |md: &mut String, specs: &mut dyn Iterator<Item = &ParamSpec>| {
+        md.push_str("\n| key | value | default | meaning |\n|---|---|---|---|\n");
+        for p in specs {
+            let default = match p.default {
+                DefaultValue::None => "—".to_string(),
+                DefaultValue::Derived(how) => how.to_string(),
+                other => format!("`{}`", other.text()),
+            };
+            let _ = writeln!(
+                md,
+                "| `{}` | {} | {default} | {} |",
+                p.key,
+                p.value.describe(),
+                p.help
+            );
+        }
+    };
+    let metrics = |md: &mut String, specs: &mut dyn Iterator<Item = &MetricSpec>| {
+        md.push_str("\n| metric | type | meaning |\n|---|---|---|\n");
+        for m in specs {
+            let ty = match m.ty {
+                MetricType::Bool => "true/false",
+                MetricType::Num => "number",
+            };
+            let _ = writeln!(md, "| `{}` | {ty} | {} |", m.name, m.help);
+        }
+    };
+    md.push_str("\n## Every planner\n\nParameters every plan takes (SPEC 2.5):\n");
+    params(&mut md, &mut COMMON_PARAMS.iter());
+    md.push_str("\nMetrics every plan reports (SPEC 3):\n");
+    metrics(&mut md, &mut COMMON_METRICS.iter());
+    md.push_str("\n`drive unicycle { ... }` (SPEC 3.6) takes:\n");
+    params(&mut md, &mut DRIVE_PARAMS.iter());
+    md.push_str("\nand adds the metrics:\n");
+    metrics(&mut md, &mut DRIVE_METRICS.iter());
+    for p in PLANNERS {
+        let robots: Vec<&str> = p.robots.iter().map(|r| r.name()).collect();
+        let limits: Vec<String> = p.limits.iter().map(|l| format!("`{l}`")).collect();
+        let _ = write!(
+            md,
+            "\n## `{}` — {}\n\nRobots: {}. Limits: {}. {}\n",
+            p.kind,
+            p.summary,
+            robots.join(", "),
+            limits.join(", "),
+            if p.needs_goal {
+                "Needs a `goal`."
+            } else {
+                "Needs no `goal`."
+            }
+        );
+        if !p.params.is_empty() {
+            params(&mut md, &mut p.params.iter());
+        }
+        if !p.metrics.is_empty() {
+            metrics(&mut md, &mut p.metrics.iter());
+        }
+    }
+    md
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -112,6 +112,9 @@ impl ValueSpec {
             ValueSpec::Seconds { max } => {
                 format!("a positive number of seconds or a duration (`10ms`), at most {max}s")
             }
+            ValueSpec::Angle { max } if *max >= 1e3 => {
+                "a positive angle with its unit (`0.5deg`)".into()
+            }
             ValueSpec::Angle { max } => format!(
                 "a positive angle with its unit (`0.5deg`), at most {}deg",
                 max.to_degrees()
