@@ -30,7 +30,7 @@ use super::ast::{
     ObstacleShape, ParamToken, PlanDecl, RobotDecl, RobotShape, Stmt, Value, ValueKind, WorldBlock,
     WorldItem,
 };
-use crate::diagnostics::{Diag, FileId, Span, Spanned, sort_diags};
+use crate::diagnostics::{Diag, FileId, Span, Spanned, edit_distance, sort_diags};
 
 #[derive(pest_derive::Parser)]
 #[grammar = "grammar/scen.pest"]
@@ -1037,29 +1037,13 @@ fn closest_keyword<'k>(word: &str, keywords: &[&'k str]) -> Option<&'k str> {
             let distance = if k.len() >= 3 && lower.starts_with(k) {
                 0
             } else {
-                edit_distance(&lower, k)
+                edit_distance(lower.as_bytes(), k.as_bytes())
             };
             (distance, k)
         })
         .filter(|&(distance, k)| distance <= (k.len() / 3).max(1))
         .min()
         .map(|(_, k)| k)
-}
-
-/// Levenshtein distance between two short ASCII words.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b = b.as_bytes();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.bytes().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let substitute = diagonal + usize::from(ca != cb);
-            diagonal = row[j + 1];
-            row[j + 1] = substitute.min(row[j] + 1).min(row[j + 1] + 1);
-        }
-    }
-    row[b.len()]
 }
 
 /// The operator that `text[from..at]` ends with, blanks ignored.
