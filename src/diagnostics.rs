@@ -322,3 +322,48 @@ pub fn sort_diags(diags: &mut [Diag]) {
             .unwrap_or((0, 0, 0))
     });
 }
+
+/// The Levenshtein distance between two sequences, for "did you mean"
+/// suggestions. Callers choose the unit: the parser compares the bytes of
+/// keywords, the analyzer the characters of names.
+pub(crate) fn edit_distance<T: PartialEq>(a: &[T], b: &[T]) -> usize {
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let substitute = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitute.min(row[j] + 1).min(row[j + 1] + 1);
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edit_distance_counts_insertions_deletions_and_substitutions() {
+        let bytes = |a: &str, b: &str| edit_distance(a.as_bytes(), b.as_bytes());
+        assert_eq!(bytes("", ""), 0);
+        assert_eq!(bytes("", "plan"), 4);
+        assert_eq!(bytes("plan", ""), 4);
+        assert_eq!(bytes("robot", "robot"), 0);
+        assert_eq!(bytes("dsk", "disk"), 1);
+        assert_eq!(bytes("robots", "robot"), 1);
+        assert_eq!(bytes("wrold", "world"), 2);
+        assert_eq!(bytes("kitten", "sitting"), 3);
+        // The unit matters beyond ASCII: `é` is two bytes but one character.
+        assert_eq!(bytes("\"xpéct", "expect"), 3);
+        let chars = |a: &str, b: &str| {
+            edit_distance(
+                &a.chars().collect::<Vec<_>>(),
+                &b.chars().collect::<Vec<_>>(),
+            )
+        };
+        assert_eq!(chars("\"xpéct", "expect"), 2);
+        assert_eq!(chars("kitten", "sitting"), 3);
+    }
+}

@@ -1,6 +1,17 @@
 //! Source text → [`ast::File`], with the grammar in `grammar/scen.pest`.
+//!
+//! [`parse`] is the entry point (`parser.rs`): the file is split into
+//! statement chunks (`scanner.rs`), pest parses each chunk, its pairs become
+//! AST nodes (`builder.rs`, and `expr.rs` for `expect` expressions), and
+//! pest's errors become readable diagnostics (`syntax_error.rs`).
 
 pub mod ast;
+mod builder;
+mod expr;
 mod parser;
+mod scanner;
+mod syntax_error;
+#[cfg(test)]
+mod testing;
 
 pub use parser::parse;
