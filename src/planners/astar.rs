@@ -10,9 +10,6 @@
 //! joined to them by straight motions that must be collision-free too.
 
 use std::any::Any;
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
-use std::time::Instant;
 
 use crate::geometry::collide::ObstacleIndex;
 use crate::geometry::{Config, Point, RobotShape, Shape, World, polygon};
@@ -24,6 +21,8 @@ use crate::word_enum;
 
 use super::lattice::{LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
 use super::registry::{Planner, Settings, Task};
+use super::search::{Edge, Graph, Tree, best_first};
+pub use super::search::{SearchBuffers, SearchResult};
 use super::{MetricValue, PlanOutcome, layers};
 
 /// `astar` in the registry.
@@ -345,98 +344,6 @@ impl GridLattice {
     }
 }
 
-/// An open-list entry: lowest f first, then highest g (deeper nodes first),
-/// then lowest index, so that searches are deterministic.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Open {
-    pub(crate) f: f64,
-    pub(crate) g: f64,
-    pub(crate) node: u32,
-}
-
-impl PartialEq for Open {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Open {}
-impl PartialOrd for Open {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Open {
-    fn cmp(&self, other: &Self) -> Ordering {
-        // BinaryHeap is a max-heap: "greater" pops first.
-        other
-            .f
-            .total_cmp(&self.f)
-            .then(self.g.total_cmp(&other.g))
-            .then(other.node.cmp(&self.node))
-    }
-}
-
-/// Per-node search state, packed so that one cache line serves a node.
-#[derive(Clone, Copy)]
-struct NodeState {
-    g: f64,
-    parent: u32,
-    /// `2·stamp` once seen in the current query, `2·stamp + 1` once closed;
-    /// anything smaller is from an earlier query.
-    mark: u32,
-}
-
-/// Reusable buffers, so that many queries on one lattice allocate once.
-#[derive(Default)]
-pub struct SearchBuffers {
-    nodes: Vec<NodeState>,
-    stamp: u32,
-    heap: BinaryHeap<Open>,
-}
-
-impl SearchBuffers {
-    /// The back-pointer of `node` in the last search (`None` for its start
-    /// and for nodes it did not reach). Final for nodes already expanded.
-    pub fn parent(&self, node: usize) -> Option<usize> {
-        match self.nodes.get(node) {
-            Some(s) if s.mark >= 2 * self.stamp && s.parent != u32::MAX => Some(s.parent as usize),
-            _ => None,
-        }
-    }
-
-    fn reset(&mut self, n: usize) {
-        let fresh = NodeState {
-            g: f64::INFINITY,
-            parent: u32::MAX,
-            mark: 0,
-        };
-        if self.nodes.len() != n {
-            self.nodes = vec![fresh; n];
-            self.stamp = 0;
-        }
-        self.stamp += 1;
-        if self.stamp >= u32::MAX / 2 {
-            self.nodes.fill(fresh);
-            self.stamp = 1;
-        }
-        self.heap.clear();
-    }
-}
-
-/// What one lattice search found.
-#[derive(Clone, Debug, Default)]
-pub struct SearchResult {
-    /// Lattice nodes from start to goal.
-    pub nodes: Option<Vec<usize>>,
-    /// g of the goal (lattice part only).
-    pub cost: f64,
-    pub expanded: u64,
-    pub generated: u64,
-    pub gave_up: bool,
-    /// Expanded nodes in order (when asked for).
-    pub expansion_order: Vec<usize>,
-}
-
 /// A* from `start` to `goal` on the lattice. With w = 1 and the metric
 /// heuristic (admissible and consistent for both cost metrics on this
 /// lattice) the path is optimal; nodes are never reopened.
@@ -453,7 +360,7 @@ pub fn search(
 }
 
 /// [`search`] with a hook called just before each node is expanded, with
-/// the node, the buffers (for [`SearchBuffers::parent`]) and the lattice,
+/// the node, the search tree so far (for [`Tree::parent`]) and the lattice,
 /// which the hook may update for points and edges the search has not used
 /// yet (an online robot walks to the node and senses there). The hook
 /// returns `false` to stop the search (it then ends with `gave_up`).
@@ -466,137 +373,102 @@ pub fn search_with(
     cfg: &SearchConfig,
     record: bool,
     buf: &mut SearchBuffers,
-    mut before_expand: impl FnMut(usize, &SearchBuffers, &mut GridLattice) -> bool,
+    before_expand: impl FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool,
 ) -> SearchResult {
-    let began = Instant::now();
-    let n = lat.spec.layer_len();
-    buf.reset(n);
-    let (seen, closed) = (2 * buf.stamp, 2 * buf.stamp + 1);
-    let spec = lat.spec;
-    let (nx, ny) = (spec.nx as i64, spec.ny as i64);
-    let goal_pt = {
-        let (i, j) = spec.coords(goal);
-        spec.point(i, j)
-    };
-    // h at lattice coordinates (i, j): the cost metric to the goal, inflated.
-    let h = |i: i64, j: i64| -> f64 {
-        if !cfg.heuristic {
-            return 0.0;
-        }
-        let p = Point::new(
-            spec.x0 + i as f64 * spec.cell,
-            spec.y0 + j as f64 * spec.cell,
-        );
-        cfg.weight * cfg.cost.between(p, goal_pt)
-    };
-    let mut out = SearchResult::default();
     if !lat.free[start] || !lat.free[goal] {
-        return out;
+        return SearchResult::default();
     }
-    buf.nodes[start] = NodeState {
-        g: 0.0,
-        parent: u32::MAX,
-        mark: seen,
-    };
-    let (si, sj) = spec.coords(start);
-    buf.heap.push(Open {
-        f: h(si as i64, sj as i64),
-        g: 0.0,
-        node: start as u32,
-    });
-    out.generated = 1;
-    let dirs = if cfg.connect == 4 { 4 } else { 8 };
+    let spec = lat.spec;
+    let nx = spec.nx as i64;
     let step_cost: [f64; 8] = DIRS.map(|(dx, dy)| {
         cfg.cost.between(
             Point::origin(),
             Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell),
         )
     });
-    // Index offsets of the neighbours, so that no division is needed per
-    // neighbour; bounds are checked on (i, j).
-    let delta: [i64; 8] = DIRS.map(|(dx, dy)| dx + dy * nx);
-    while let Some(Open { g, node, .. }) = buf.heap.pop() {
-        let node = node as usize;
-        if buf.nodes[node].mark == closed || g > buf.nodes[node].g {
-            continue; // a stale entry
-        }
-        if let Some(max) = cfg.limits.expansions
-            && out.expanded >= max
-        {
-            out.gave_up = true;
-            return out;
-        }
-        if let Some(t) = cfg.limits.time
-            && out.expanded % 256 == 0
-            && began.elapsed().as_secs_f64() > t
-        {
-            out.gave_up = true;
-            return out;
-        }
-        if !before_expand(node, buf, lat) {
-            out.gave_up = true;
-            return out;
-        }
-        buf.nodes[node].mark = closed;
-        out.expanded += 1;
-        if record {
-            out.expansion_order.push(node);
-        }
-        if node == goal {
-            let mut nodes = vec![goal];
-            let mut cur = goal;
-            while buf.nodes[cur].parent != u32::MAX {
-                cur = buf.nodes[cur].parent as usize;
-                nodes.push(cur);
-            }
-            nodes.reverse();
-            out.cost = g;
-            out.nodes = Some(nodes);
-            return out;
-        }
+    let mut graph = XyGraph {
+        lat,
+        index,
+        goal,
+        goal_pt: spec.point_of(goal),
+        cfg,
+        dirs: if cfg.connect == 4 { 4 } else { 8 },
+        step_cost,
+        // Index offsets of the neighbours, so that no division is needed
+        // per neighbour; bounds are checked on (i, j).
+        delta: DIRS.map(|(dx, dy)| dx + dy * nx),
+        hook: before_expand,
+    };
+    best_first(&mut graph, &[start], &cfg.limits, record, buf)
+}
+
+/// The (x, y) lattice as a graph for the search core: free neighbours, no
+/// corner cutting, motions checked lazily ([`GridLattice::edge_free`]).
+struct XyGraph<'a, F> {
+    lat: &'a mut GridLattice,
+    index: &'a ObstacleIndex,
+    goal: usize,
+    goal_pt: Point,
+    cfg: &'a SearchConfig,
+    dirs: usize,
+    step_cost: [f64; 8],
+    delta: [i64; 8],
+    hook: F,
+}
+
+impl<F: FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool> Graph for XyGraph<'_, F> {
+    fn node_count(&self) -> usize {
+        self.lat.spec.layer_len()
+    }
+
+    fn successors(&mut self, node: usize, out: &mut Vec<Edge>) {
+        let spec = &self.lat.spec;
+        let (nx, ny) = (spec.nx as i64, spec.ny as i64);
         let (i, j) = ((node % spec.nx) as i64, (node / spec.nx) as i64);
-        for d in 0..dirs {
-            let (dx, dy) = DIRS[d];
+        let free = &self.lat.free;
+        for (d, &(dx, dy)) in DIRS.iter().enumerate().take(self.dirs) {
             let (ni, nj) = (i + dx, j + dy);
             if ni < 0 || nj < 0 || ni >= nx || nj >= ny {
                 continue;
             }
-            let to = (node as i64 + delta[d]) as usize;
-            let state = buf.nodes[to];
-            if !lat.free[to] || state.mark == closed {
+            let to = (node as i64 + self.delta[d]) as usize;
+            if !free[to] {
                 continue;
             }
             // No corner cutting: both orthogonal neighbours must be free
             // (they are inside the lattice since the diagonal one is).
             if d >= 4
-                && !(lat.free[(node as i64 + dx) as usize]
-                    && lat.free[(node as i64 + dy * nx) as usize])
+                && !(free[(node as i64 + dx) as usize] && free[(node as i64 + dy * nx) as usize])
             {
                 continue;
             }
-            let ng = g + step_cost[d];
-            if state.mark == seen && ng >= state.g {
-                continue;
-            }
-            if !lat.edge_free(index, node, d, to) {
-                continue;
-            }
-            if state.mark != seen {
-                out.generated += 1;
-            }
-            buf.nodes[to] = NodeState {
-                g: ng,
-                parent: node as u32,
-                mark: seen,
-            };
-            buf.heap.push(Open {
-                f: ng + h(ni, nj),
-                g: ng,
-                node: to as u32,
+            out.push(Edge {
+                to,
+                cost: self.step_cost[d],
+                label: d as u32,
             });
         }
     }
-    out
+
+    fn usable(&mut self, from: usize, label: u32, to: usize) -> bool {
+        self.lat.edge_free(self.index, from, label as usize, to)
+    }
+
+    fn heuristic(&self, node: usize) -> f64 {
+        if !self.cfg.heuristic {
+            return 0.0;
+        }
+        let p = self.lat.spec.point_of(node);
+        self.cfg.weight * self.cfg.cost.between(p, self.goal_pt)
+    }
+
+    fn is_goal(&self, node: usize) -> bool {
+        node == self.goal
+    }
+
+    fn before_expand(&mut self, node: usize, tree: &Tree<'_>) -> bool {
+        (self.hook)(node, tree, self.lat)
+    }
 }
 
 /// Runs an `astar` plan for a point or disk robot.

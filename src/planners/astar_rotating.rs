@@ -33,20 +33,21 @@
 //!   Otherwise the validator itself decides on the 2-configuration path.
 
 use std::cell::Cell;
-use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
-use super::astar::{Astar, CostMetric, Heuristic, Open};
+use super::astar::{Astar, CostMetric, Heuristic};
 use super::lattice::LatticeSpec;
 use super::layers::{Colour, Drawing, Layer, Style};
 use super::registry::Task;
+use super::search::{Edge, Graph, SearchBuffers, best_first};
 use super::{MetricValue, PlanOutcome};
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
 use crate::geometry::union::union_boundary;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World};
 use crate::geometry::{angle_diff, polygon};
+use crate::scenario::Limits;
 
 /// The most C-obstacle outlines drawn over all layers; beyond it (e.g.
 /// large grids) layers are left out of the picture, not the search.
@@ -483,138 +484,54 @@ fn run(
     };
 
     // ------------------------------------------------------------ search
-    let (gi, gj, gk) = lat.coords(g_node);
-    let gpt = spec.point(gi, gj);
-    let h = |i: i64, j: i64, k: usize| -> f64 {
-        if !use_h {
-            return 0.0;
-        }
-        let dk = k.abs_diff(gk);
-        let dk = dk.min(n_layers - dk);
-        let dt = if rotating {
-            turn_cost * (dk as f64 * step).min(TAU - dk as f64 * step)
-        } else {
-            0.0
-        };
-        weight
-            * metric(
-                cost,
-                spec.x0 + i as f64 * cell - gpt.x,
-                spec.y0 + j as f64 * cell - gpt.y,
-                dt,
-            )
+    let (_, _, gk) = lat.coords(g_node);
+    let gpt = lat.config(g_node).xy();
+    let heuristic = RotHeuristic {
+        on: use_h,
+        goal: gpt,
+        goal_layer: gk,
+        layers: n_layers,
+        step: if rotating { step } else { 0.0 },
+        turn_cost,
+        weight,
+        cost,
     };
-    let (nx, ny, nl) = (spec.nx as i64, spec.ny as i64, lat.layers.len() as i64);
-    let mut gs = vec![f64::INFINITY; total];
-    let mut parent = vec![u32::MAX; total];
-    // 0 unseen, 1 open, 2 closed.
-    let mut mark = vec![0u8; total];
-    let mut heap = BinaryHeap::new();
-    gs[s_node] = 0.0;
-    mark[s_node] = 1;
-    {
-        let (i, j, k) = lat.coords(s_node);
-        heap.push(Open {
-            f: h(i as i64, j as i64, k),
-            g: 0.0,
-            node: s_node as u32,
-        });
-    }
     let search_began = Instant::now();
-    let mut expanded_at: Vec<Point> = Vec::new();
-    let mut expanded = 0u64;
-    let mut generated = 1u64;
-    let mut gave_up = false;
-    let mut found = None;
-    let limits = task.limits;
-    while let Some(Open { g, node, .. }) = heap.pop() {
-        let node = node as usize;
-        if mark[node] == 2 || g > gs[node] {
-            continue;
-        }
-        if limits.expansions.is_some_and(|max| expanded >= max) {
-            gave_up = true;
-            break;
-        }
-        if let Some(t) = limits.time
-            && expanded.is_multiple_of(256)
-            && began.elapsed().as_secs_f64() > t
-        {
-            gave_up = true;
-            break;
-        }
-        mark[node] = 2;
-        expanded += 1;
-        expanded_at.push(lat.config(node).xy());
-        if node == g_node {
-            found = Some(g);
-            break;
-        }
-        let (i, j, k) = lat.coords(node);
-        let (i, j, k) = (i as i64, j as i64, k as i64);
-        for m in 0..lat.moves.len() {
-            let mv = lat.moves[m];
-            let (ni, nj) = (i + mv.dx, j + mv.dy);
-            if ni < 0 || nj < 0 || ni >= nx || nj >= ny {
-                continue;
-            }
-            let nk = (k + mv.dk).rem_euclid(nl);
-            let at = |i: i64, j: i64, k: i64| (k * nx * ny + j * nx + i) as usize;
-            let to = at(ni, nj, nk);
-            if !lat.free[to] || mark[to] == 2 {
-                continue;
-            }
-            if mv.dx != 0
-                && mv.dy != 0
-                && !(lat.free[at(ni, j, k)]
-                    && lat.free[at(i, nj, k)]
-                    && lat.free[at(ni, j, nk)]
-                    && lat.free[at(i, nj, nk)])
-            {
-                continue;
-            }
-            let ng = g + mv.cost;
-            if mark[to] == 1 && ng >= gs[to] {
-                continue;
-            }
-            if !lat.edge_free(node, m, to) {
-                continue;
-            }
-            if mark[to] == 0 {
-                generated += 1;
-            }
-            mark[to] = 1;
-            gs[to] = ng;
-            parent[to] = node as u32;
-            heap.push(Open {
-                f: ng + h(ni, nj, nk as usize),
-                g: ng,
-                node: to as u32,
-            });
-        }
-    }
-    out.expanded = expanded;
-    out.gave_up = gave_up;
+    // `limit time` counts from the start of the plan.
+    let limits = Limits {
+        time: task
+            .limits
+            .time
+            .map(|t| (t - began.elapsed().as_secs_f64()).max(0.0)),
+        ..task.limits
+    };
+    let mut graph = RotGraph {
+        lat: &mut lat,
+        goal: g_node,
+        h: heuristic,
+    };
+    let mut buf = SearchBuffers::default();
+    let r = best_first(&mut graph, &[s_node], &limits, true, &mut buf);
+    let expanded_at: Vec<Point> = r
+        .expansion_order
+        .iter()
+        .map(|&n| lat.config(n).xy())
+        .collect();
+    out.expanded = r.expanded;
+    out.gave_up = r.gave_up;
     out.layers.extend(super::layers::search(&expanded_at));
     out.extra
-        .insert("generated".into(), MetricValue::Num(generated as f64));
-    match found {
-        Some(g) => {
-            let mut nodes = vec![g_node];
-            let mut cur = g_node;
-            while parent[cur] != u32::MAX {
-                cur = parent[cur] as usize;
-                nodes.push(cur);
-            }
-            nodes.reverse();
+        .insert("generated".into(), MetricValue::Num(r.generated as f64));
+    match r.nodes {
+        Some(nodes) => {
             let mut path = vec![start];
             path.extend(nodes.iter().map(|&n| lat.config(n)));
             path.push(goal);
             path.dedup();
-            out.cost = Some(cost_between(start, s_cfg) + g + cost_between(g_cfg, goal));
+            out.cost = Some(cost_between(start, s_cfg) + r.cost + cost_between(g_cfg, goal));
             out.path = Some(path);
         }
-        None if gave_up => out.notes.push("a limit was reached before the goal".into()),
+        None if r.gave_up => out.notes.push("a limit was reached before the goal".into()),
         None => {}
     }
     profile = Profile {
@@ -625,6 +542,94 @@ fn run(
         ..profile
     };
     (out, profile)
+}
+
+/// The heuristic on the (x, y, θ) lattice: the cost metric from a lattice
+/// configuration to the goal's, θ by the shorter way round, inflated by
+/// `weight` (0 with `heuristic zero`).
+struct RotHeuristic {
+    on: bool,
+    goal: Point,
+    goal_layer: usize,
+    layers: usize,
+    /// The rotation between neighbouring layers (0 without θ layers).
+    step: f64,
+    turn_cost: f64,
+    weight: f64,
+    cost: CostMetric,
+}
+
+impl RotHeuristic {
+    fn at(&self, p: Point, k: usize) -> f64 {
+        if !self.on {
+            return 0.0;
+        }
+        let dk = k.abs_diff(self.goal_layer);
+        let dk = dk.min(self.layers - dk);
+        let dt = self.turn_cost * (dk as f64 * self.step).min(TAU - dk as f64 * self.step);
+        self.weight * metric(self.cost, p.x - self.goal.x, p.y - self.goal.y, dt)
+    }
+}
+
+/// The (x, y, θ) lattice as a graph for the search core.
+struct RotGraph<'l, 'w> {
+    lat: &'l mut Lattice<'w>,
+    goal: usize,
+    h: RotHeuristic,
+}
+
+impl Graph for RotGraph<'_, '_> {
+    fn node_count(&self) -> usize {
+        self.lat.free.len()
+    }
+
+    fn successors(&mut self, node: usize, out: &mut Vec<Edge>) {
+        let lat = &*self.lat;
+        let spec = &lat.spec;
+        let (nx, ny, nl) = (spec.nx as i64, spec.ny as i64, lat.layers.len() as i64);
+        let at = |i: i64, j: i64, k: i64| (k * nx * ny + j * nx + i) as usize;
+        let (i, j, k) = lat.coords(node);
+        let (i, j, k) = (i as i64, j as i64, k as i64);
+        for (m, mv) in lat.moves.iter().enumerate() {
+            let (ni, nj) = (i + mv.dx, j + mv.dy);
+            if ni < 0 || nj < 0 || ni >= nx || nj >= ny {
+                continue;
+            }
+            let nk = (k + mv.dk).rem_euclid(nl);
+            let to = at(ni, nj, nk);
+            if !lat.free[to] {
+                continue;
+            }
+            // No corner cutting, in the start and in the end layer.
+            if mv.dx != 0
+                && mv.dy != 0
+                && !(lat.free[at(ni, j, k)]
+                    && lat.free[at(i, nj, k)]
+                    && lat.free[at(ni, j, nk)]
+                    && lat.free[at(i, nj, nk)])
+            {
+                continue;
+            }
+            out.push(Edge {
+                to,
+                cost: mv.cost,
+                label: m as u32,
+            });
+        }
+    }
+
+    fn usable(&mut self, from: usize, label: u32, to: usize) -> bool {
+        self.lat.edge_free(from, label as usize, to)
+    }
+
+    fn heuristic(&self, node: usize) -> f64 {
+        let (i, j, k) = self.lat.coords(node);
+        self.h.at(self.lat.spec.point(i, j), k)
+    }
+
+    fn is_goal(&self, node: usize) -> bool {
+        node == self.goal
+    }
 }
 
 /// The configuration space for the viewer (SPEC §6): per θ layer K the

@@ -73,3 +73,4 @@ pub mod online;
 pub mod potential;
 pub mod registry;
 pub mod roadmap;
+pub mod search;

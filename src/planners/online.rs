@@ -44,6 +44,7 @@ use super::astar::{
 use super::lattice::{LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
 use super::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
 use super::registry::{Planner, Settings, Task};
+use super::search::Tree;
 use super::{MetricValue, PlanOutcome};
 
 /// `online` in the registry.
@@ -660,8 +661,8 @@ fn explore(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize, shortcu
         &cfg,
         traced,
         &mut buf,
-        |node, buf, belief| {
-            let route = walk_between(rover.pos, node, buf, shortcut, &mut chain);
+        |node, tree, belief| {
+            let route = walk_between(rover.pos, node, tree, shortcut, &mut chain);
             for k in 0..route.len() {
                 rover.hold_plan(std::iter::once(rover.pos).chain(route[k..].iter().copied()));
                 if rover.advance(belief, route[k]).is_err() {
@@ -682,21 +683,21 @@ fn explore(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize, shortcu
     }
 }
 
-/// The points to walk from `from` to `to` in the search tree of `buf`
+/// The points to walk from `from` to `to` in the search `tree`
 /// (excluding `from`): up the back-pointers to the start and down to `to`,
 /// or with `shortcut` only up to their deepest common ancestor. `chain` is
 /// scratch space.
 fn walk_between(
     from: usize,
     to: usize,
-    buf: &SearchBuffers,
+    tree: &Tree<'_>,
     shortcut: bool,
     chain: &mut Vec<usize>,
 ) -> Vec<usize> {
     let ancestors = |mut n: usize, out: &mut Vec<usize>| {
         out.clear();
         out.push(n);
-        while let Some(p) = buf.parent(n) {
+        while let Some(p) = tree.parent(n) {
             out.push(p);
             n = p;
         }

@@ -22,8 +22,6 @@ pub mod arrangement;
 pub mod sweep;
 
 use std::any::Any;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
 use std::time::Instant;
 
@@ -37,9 +35,10 @@ use crate::geometry::{
     Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff,
 };
 use crate::planners::registry::{Planner, Settings, Task};
+use crate::planners::search::{Edge, Graph, SearchBuffers, best_first};
 use crate::planners::{MetricValue, PlanOutcome, layers};
-use crate::scenario::PlanArgs;
 use crate::scenario::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, num};
+use crate::scenario::{Limits, PlanArgs};
 
 /// `roadmap` in the registry.
 pub static PLANNER: Planner = Planner {
@@ -269,75 +268,63 @@ impl Roadmap {
         max_expansions: Option<u64>,
     ) -> Result<Option<(Vec<Point>, f64, u64)>, u64> {
         let arr = &self.arrangement;
-        let g = &self.graph;
-        let n = g.node_count();
-        let mut dist = vec![f64::INFINITY; n];
-        let mut prev = vec![usize::MAX; n];
-        let mut closed = vec![false; n];
-        let mut heap = BinaryHeap::new();
-        for s in self.nodes_of(arr.start) {
-            dist[s.index()] = 0.0;
-            heap.push(Reverse(Queued(0.0, s.index())));
+        let starts: Vec<usize> = self.nodes_of(arr.start).map(|s| s.index()).collect();
+        let limits = Limits {
+            expansions: max_expansions,
+            ..Limits::default()
+        };
+        let mut graph = Visibility(self);
+        let r = best_first(
+            &mut graph,
+            &starts,
+            &limits,
+            false,
+            &mut SearchBuffers::default(),
+        );
+        if r.gave_up {
+            return Err(r.expanded);
         }
-        let is_goal = |i: usize| g[NodeIndex::new(i)].0 == arr.goal;
-        let mut expanded = 0u64;
-        while let Some(Reverse(Queued(d, u))) = heap.pop() {
-            if closed[u] {
-                continue;
-            }
-            closed[u] = true;
-            expanded += 1;
-            if is_goal(u) {
-                let mut nodes = vec![u];
-                while prev[*nodes.last().unwrap_or(&u)] != usize::MAX {
-                    let last = *nodes.last().unwrap_or(&u);
-                    nodes.push(prev[last]);
-                }
-                nodes.reverse();
-                let mut points: Vec<Point> = nodes
-                    .iter()
-                    .map(|&i| arr.points[g[NodeIndex::new(i)].0 as usize])
-                    .collect();
-                points.dedup();
-                return Ok(Some((points, d, expanded)));
-            }
-            if max_expansions.is_some_and(|m| expanded >= m) {
-                return Err(expanded);
-            }
-            for e in g.edges(NodeIndex::new(u)) {
-                let v = if e.source().index() == u {
-                    e.target().index()
-                } else {
-                    e.source().index()
-                };
-                let nd = d + *e.weight();
-                if nd < dist[v] {
-                    dist[v] = nd;
-                    prev[v] = u;
-                    heap.push(Reverse(Queued(nd, v)));
-                }
-            }
-        }
-        Ok(None)
+        Ok(r.nodes.map(|nodes| {
+            let mut points: Vec<Point> = nodes
+                .iter()
+                .map(|&i| arr.points[self.graph[NodeIndex::new(i)].0 as usize])
+                .collect();
+            points.dedup();
+            (points, r.cost, r.expanded)
+        }))
     }
 }
 
-/// A queue entry of Dijkstra: distance and node, ordered by distance (then
-/// node, for determinism).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Queued(f64, usize);
+/// The visibility graph for the search core: Dijkstra (h = 0) to any node
+/// of the goal.
+struct Visibility<'r>(&'r Roadmap);
 
-impl Eq for Queued {}
-
-impl PartialOrd for Queued {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
+impl Graph for Visibility<'_> {
+    fn node_count(&self) -> usize {
+        self.0.graph.node_count()
     }
-}
 
-impl Ord for Queued {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
+    fn successors(&mut self, node: usize, out: &mut Vec<Edge>) {
+        for e in self.0.graph.edges(NodeIndex::new(node)) {
+            let to = if e.source().index() == node {
+                e.target().index()
+            } else {
+                e.source().index()
+            };
+            out.push(Edge {
+                to,
+                cost: *e.weight(),
+                label: 0,
+            });
+        }
+    }
+
+    fn heuristic(&self, _: usize) -> f64 {
+        0.0
+    }
+
+    fn is_goal(&self, node: usize) -> bool {
+        self.0.graph[NodeIndex::new(node)].0 == self.0.arrangement.goal
     }
 }
 
