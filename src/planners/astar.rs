@@ -397,6 +397,7 @@ pub fn search_with(
         // Index offsets of the neighbours, so that no division is needed
         // per neighbour; bounds are checked on (i, j).
         delta: DIRS.map(|(dx, dy)| dx + dy * nx),
+        from: (0, 0),
         hook: before_expand,
     };
     best_first(&mut graph, &[start], &cfg.limits, record, buf)
@@ -413,7 +414,27 @@ struct XyGraph<'a, F> {
     dirs: usize,
     step_cost: [f64; 8],
     delta: [i64; 8],
+    /// The lattice coordinates of the node whose successors were listed
+    /// last (the neighbours' heuristic needs no division).
+    from: (i64, i64),
     hook: F,
+}
+
+impl<F> XyGraph<'_, F> {
+    /// h at lattice coordinates (i, j): the cost metric to the goal,
+    /// inflated.
+    #[inline]
+    fn h(&self, i: i64, j: i64) -> f64 {
+        if !self.cfg.heuristic {
+            return 0.0;
+        }
+        let spec = &self.lat.spec;
+        let p = Point::new(
+            spec.x0 + i as f64 * spec.cell,
+            spec.y0 + j as f64 * spec.cell,
+        );
+        self.cfg.weight * self.cfg.cost.between(p, self.goal_pt)
+    }
 }
 
 impl<F: FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool> Graph for XyGraph<'_, F> {
@@ -425,6 +446,7 @@ impl<F: FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool> Graph for XyGraph<'_,
         let spec = &self.lat.spec;
         let (nx, ny) = (spec.nx as i64, spec.ny as i64);
         let (i, j) = ((node % spec.nx) as i64, (node / spec.nx) as i64);
+        self.from = (i, j);
         let free = &self.lat.free;
         for (d, &(dx, dy)) in DIRS.iter().enumerate().take(self.dirs) {
             let (ni, nj) = (i + dx, j + dy);
@@ -455,11 +477,13 @@ impl<F: FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool> Graph for XyGraph<'_,
     }
 
     fn heuristic(&self, node: usize) -> f64 {
-        if !self.cfg.heuristic {
-            return 0.0;
-        }
-        let p = self.lat.spec.point_of(node);
-        self.cfg.weight * self.cfg.cost.between(p, self.goal_pt)
+        let (i, j) = self.lat.spec.coords(node);
+        self.h(i as i64, j as i64)
+    }
+
+    fn edge_heuristic(&self, edge: &Edge) -> f64 {
+        let (dx, dy) = DIRS[edge.label as usize];
+        self.h(self.from.0 + dx, self.from.1 + dy)
     }
 
     fn is_goal(&self, node: usize) -> bool {

@@ -54,6 +54,14 @@ pub trait Graph {
     /// The heuristic at `node` (already inflated by any weight).
     fn heuristic(&self, node: usize) -> f64;
 
+    /// The heuristic at the end of `edge`, a successor of the node last
+    /// passed to [`Graph::successors`]: the same as `heuristic(edge.to)`;
+    /// a lattice may compute it from the neighbour's offset instead of
+    /// from its index.
+    fn edge_heuristic(&self, edge: &Edge) -> f64 {
+        self.heuristic(edge.to)
+    }
+
     /// Whether `node` ends the search.
     fn is_goal(&self, node: usize) -> bool;
 
@@ -396,7 +404,7 @@ fn run<G: Graph, S: States>(
                 },
             );
             buf.heap.push(Open {
-                f: ng + graph.heuristic(e.to),
+                f: ng + graph.edge_heuristic(e),
                 g: ng,
                 node: e.to as u32,
             });
