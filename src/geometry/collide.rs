@@ -26,6 +26,7 @@
 //! boundary), and the square of half-width `2·TOUCH_EPS` around a grid corner
 //! whose four cells are blocked — because those lie inside the obstacle.
 
+use super::buckets::Buckets;
 use super::polygon::{self, distance_point_segment};
 use super::{Aabb, Point, Shape, TOUCH_EPS, Vector, World};
 
@@ -84,19 +85,6 @@ enum Kind {
         u0: f64,
         u1: f64,
     },
-}
-
-/// Piece indices by square bucket, in compressed rows: bucket (col, k)
-/// (k from the bottom) holds `items[start[i] .. start[i + 1]]`, i = k·nx + col.
-struct Buckets {
-    origin: Point,
-    cell: f64,
-    /// 1 / `cell`.
-    inv: f64,
-    nx: usize,
-    ny: usize,
-    start: Vec<u32>,
-    items: Vec<u32>,
 }
 
 struct IndexedGrid {
@@ -316,7 +304,8 @@ impl ObstacleIndex {
                 }
             }
         }
-        let buckets = Buckets::new(world.bounds, &pieces);
+        let boxes: Vec<Aabb> = pieces.iter().map(|p| p.aabb).collect();
+        let buckets = Buckets::new(world.bounds, &boxes, 128);
         ObstacleIndex {
             pieces,
             edges,
@@ -382,8 +371,7 @@ impl ObstacleIndex {
         let mut found = None;
         let b = &self.buckets;
         visit_cells_along(b.origin, b.cell, b.inv, (b.nx, b.ny), probe, |col, k| {
-            let i = k * b.nx + col;
-            for &item in &b.items[b.start[i] as usize..b.start[i + 1] as usize] {
+            for &item in b.items(col, k) {
                 let piece = &self.pieces[item as usize];
                 if piece.aabb.meets(&probe.aabb) && self.piece_hit(piece, probe) {
                     found = Some(piece.owner as usize);
@@ -416,72 +404,6 @@ impl ObstacleIndex {
                 }
             }
         }
-    }
-}
-
-impl Buckets {
-    /// About four buckets per piece, at most 128 × 128, over `bounds` grown
-    /// to hold every piece.
-    fn new(bounds: Aabb, pieces: &[Piece]) -> Self {
-        let ext = pieces.iter().fold(bounds, |e, p| union(&e, &p.aabb));
-        let side = ext.width().max(ext.height());
-        let per_side = ((4.0 * pieces.len() as f64).sqrt().ceil() as usize).clamp(1, 128);
-        let cell = if side > 0.0 && side.is_finite() {
-            side / per_side as f64
-        } else {
-            1.0
-        };
-        let nx = ((ext.width() / cell).ceil() as usize).clamp(1, 128);
-        let ny = ((ext.height() / cell).ceil() as usize).clamp(1, 128);
-        let mut buckets = Buckets {
-            origin: ext.min,
-            cell,
-            inv: 1.0 / cell,
-            nx,
-            ny,
-            start: vec![0; nx * ny + 1],
-            items: Vec::new(),
-        };
-        let ranges: Vec<_> = pieces.iter().map(|p| buckets.range(&p.aabb)).collect();
-        // Count, then fill.
-        let mut counts = vec![0u32; nx * ny];
-        for &(cols, rows) in &ranges {
-            for k in rows.0..=rows.1 {
-                for c in cols.0..=cols.1 {
-                    counts[k * nx + c] += 1;
-                }
-            }
-        }
-        for (i, count) in counts.iter().enumerate() {
-            buckets.start[i + 1] = buckets.start[i] + count;
-        }
-        buckets.items = vec![0; buckets.start[nx * ny] as usize];
-        let mut next: Vec<u32> = buckets.start[..nx * ny].to_vec();
-        for (j, &(cols, rows)) in ranges.iter().enumerate() {
-            for k in rows.0..=rows.1 {
-                for c in cols.0..=cols.1 {
-                    let slot = &mut next[k * nx + c];
-                    buckets.items[*slot as usize] = j as u32;
-                    *slot += 1;
-                }
-            }
-        }
-        buckets
-    }
-
-    /// Inclusive column and row ranges of the buckets that `b` meets.
-    fn range(&self, b: &Aabb) -> ((usize, usize), (usize, usize)) {
-        let index =
-            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        let cols = (
-            index(b.min.x, self.origin.x, self.nx),
-            index(b.max.x, self.origin.x, self.nx),
-        );
-        let rows = (
-            index(b.min.y, self.origin.y, self.ny),
-            index(b.max.y, self.origin.y, self.ny),
-        );
-        (cols, rows)
     }
 }
 
@@ -886,13 +808,6 @@ fn distance_point_box(x: Point, b: &Aabb) -> f64 {
     let dx = (b.min.x - x.x).max(x.x - b.max.x).max(0.0);
     let dy = (b.min.y - x.y).max(x.y - b.max.y).max(0.0);
     dx.hypot(dy)
-}
-
-fn union(a: &Aabb, b: &Aabb) -> Aabb {
-    Aabb {
-        min: Point::new(a.min.x.min(b.min.x), a.min.y.min(b.min.y)),
-        max: Point::new(a.max.x.max(b.max.x), a.max.y.max(b.max.y)),
-    }
 }
 
 fn grow(b: Aabb, by: f64) -> Aabb {

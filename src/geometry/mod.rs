@@ -3,6 +3,7 @@
 //!
 //! Everything is in f64 world units; angles are radians, counter-clockwise.
 
+mod buckets;
 pub mod collide;
 pub mod cspace;
 #[cfg(test)]
