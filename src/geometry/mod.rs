@@ -9,6 +9,7 @@ pub mod cspace;
 #[cfg(test)]
 mod fixtures;
 pub mod minkowski;
+pub mod motion;
 pub mod polygon;
 pub mod union;
 pub mod validator;
