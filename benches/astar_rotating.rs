@@ -54,8 +54,7 @@ fn bench(c: &mut Criterion) {
     eprintln!(
         "split (median of 7): C-space build {:.1} ms, display trace {:.1} ms, \
          classification {:.1} ms ({:.1} M configurations/s), search {:.1} ms \
-         ({:.2} M expansions/s) of which edge validation {:.1} ms ({} edges, \
-         {} rotations left to the validator)",
+         ({:.2} M expansions/s) of which edge validation {:.1} ms ({} edges)",
         ms(p.cspace),
         ms(p.trace),
         ms(p.classify),
@@ -64,7 +63,6 @@ fn bench(c: &mut Criterion) {
         once.expanded as f64 / p.search.as_secs_f64() / 1e6,
         ms(p.edge_validation),
         p.edges_checked,
-        p.rotation_fallbacks,
     );
 
     let mut group = c.benchmark_group("apartment_rod_fine");

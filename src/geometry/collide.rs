@@ -26,6 +26,7 @@
 //! boundary), and the square of half-width `2·TOUCH_EPS` around a grid corner
 //! whose four cells are blocked — because those lie inside the obstacle.
 
+use super::buckets::Buckets;
 use super::polygon::{self, distance_point_segment};
 use super::{Aabb, Point, Shape, TOUCH_EPS, Vector, World};
 
@@ -84,19 +85,6 @@ enum Kind {
         u0: f64,
         u1: f64,
     },
-}
-
-/// Piece indices by square bucket, in compressed rows: bucket (col, k)
-/// (k from the bottom) holds `items[start[i] .. start[i + 1]]`, i = k·nx + col.
-struct Buckets {
-    origin: Point,
-    cell: f64,
-    /// 1 / `cell`.
-    inv: f64,
-    nx: usize,
-    ny: usize,
-    start: Vec<u32>,
-    items: Vec<u32>,
 }
 
 struct IndexedGrid {
@@ -316,7 +304,8 @@ impl ObstacleIndex {
                 }
             }
         }
-        let buckets = Buckets::new(world.bounds, &pieces);
+        let boxes: Vec<Aabb> = pieces.iter().map(|p| p.aabb).collect();
+        let buckets = Buckets::new(world.bounds, &boxes, 128);
         ObstacleIndex {
             pieces,
             edges,
@@ -382,8 +371,7 @@ impl ObstacleIndex {
         let mut found = None;
         let b = &self.buckets;
         visit_cells_along(b.origin, b.cell, b.inv, (b.nx, b.ny), probe, |col, k| {
-            let i = k * b.nx + col;
-            for &item in &b.items[b.start[i] as usize..b.start[i + 1] as usize] {
+            for &item in b.items(col, k) {
                 let piece = &self.pieces[item as usize];
                 if piece.aabb.meets(&probe.aabb) && self.piece_hit(piece, probe) {
                     found = Some(piece.owner as usize);
@@ -416,72 +404,6 @@ impl ObstacleIndex {
                 }
             }
         }
-    }
-}
-
-impl Buckets {
-    /// About four buckets per piece, at most 128 × 128, over `bounds` grown
-    /// to hold every piece.
-    fn new(bounds: Aabb, pieces: &[Piece]) -> Self {
-        let ext = pieces.iter().fold(bounds, |e, p| union(&e, &p.aabb));
-        let side = ext.width().max(ext.height());
-        let per_side = ((4.0 * pieces.len() as f64).sqrt().ceil() as usize).clamp(1, 128);
-        let cell = if side > 0.0 && side.is_finite() {
-            side / per_side as f64
-        } else {
-            1.0
-        };
-        let nx = ((ext.width() / cell).ceil() as usize).clamp(1, 128);
-        let ny = ((ext.height() / cell).ceil() as usize).clamp(1, 128);
-        let mut buckets = Buckets {
-            origin: ext.min,
-            cell,
-            inv: 1.0 / cell,
-            nx,
-            ny,
-            start: vec![0; nx * ny + 1],
-            items: Vec::new(),
-        };
-        let ranges: Vec<_> = pieces.iter().map(|p| buckets.range(&p.aabb)).collect();
-        // Count, then fill.
-        let mut counts = vec![0u32; nx * ny];
-        for &(cols, rows) in &ranges {
-            for k in rows.0..=rows.1 {
-                for c in cols.0..=cols.1 {
-                    counts[k * nx + c] += 1;
-                }
-            }
-        }
-        for (i, count) in counts.iter().enumerate() {
-            buckets.start[i + 1] = buckets.start[i] + count;
-        }
-        buckets.items = vec![0; buckets.start[nx * ny] as usize];
-        let mut next: Vec<u32> = buckets.start[..nx * ny].to_vec();
-        for (j, &(cols, rows)) in ranges.iter().enumerate() {
-            for k in rows.0..=rows.1 {
-                for c in cols.0..=cols.1 {
-                    let slot = &mut next[k * nx + c];
-                    buckets.items[*slot as usize] = j as u32;
-                    *slot += 1;
-                }
-            }
-        }
-        buckets
-    }
-
-    /// Inclusive column and row ranges of the buckets that `b` meets.
-    fn range(&self, b: &Aabb) -> ((usize, usize), (usize, usize)) {
-        let index =
-            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
-        let cols = (
-            index(b.min.x, self.origin.x, self.nx),
-            index(b.max.x, self.origin.x, self.nx),
-        );
-        let rows = (
-            index(b.min.y, self.origin.y, self.ny),
-            index(b.max.y, self.origin.y, self.ny),
-        );
-        (cols, rows)
     }
 }
 
@@ -888,13 +810,6 @@ fn distance_point_box(x: Point, b: &Aabb) -> f64 {
     dx.hypot(dy)
 }
 
-fn union(a: &Aabb, b: &Aabb) -> Aabb {
-    Aabb {
-        min: Point::new(a.min.x.min(b.min.x), a.min.y.min(b.min.y)),
-        max: Point::new(a.max.x.max(b.max.x), a.max.y.max(b.max.y)),
-    }
-}
-
 fn grow(b: Aabb, by: f64) -> Aabb {
     let v = Vector::new(by, by);
     Aabb {
@@ -906,36 +821,13 @@ fn grow(b: Aabb, by: f64) -> Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::fixtures::{grid, rect};
+    use crate::geometry::fixtures::{grid, polygon_shape, random_world, rect, world};
     use crate::geometry::validator::{Validator, config_collision};
-    use crate::geometry::{Config, ConvexPolygon, Grid, Obstacle, RobotShape};
+    use crate::geometry::{Config, Grid, RobotShape};
     use proptest::prelude::*;
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
-    }
-
-    fn world(shapes: Vec<Shape>) -> World {
-        World {
-            bounds: Aabb {
-                min: p(0.0, 0.0),
-                max: p(10.0, 10.0),
-            },
-            obstacles: shapes
-                .into_iter()
-                .enumerate()
-                .map(|(i, shape)| Obstacle {
-                    name: format!("o{i}"),
-                    shape,
-                })
-                .collect(),
-        }
-    }
-
-    fn polygon_shape(v: &[Point]) -> Option<Shape> {
-        let outline = polygon::normalize_simple_polygon(v).ok()?;
-        let pieces = polygon::convex_decomposition(&outline);
-        Some(Shape::Polygon { outline, pieces })
     }
 
     #[test]
@@ -1122,94 +1014,6 @@ mod tests {
     }
 
     // ------------------------------------------------ agreement with the validator
-
-    /// A small random world: convex and non-convex polygons, rects, disks,
-    /// segments and a small grid, in and around [0, 10]².
-    fn random_world() -> impl Strategy<Value = World> {
-        let pt = || (0.0..10.0f64, 0.0..10.0f64).prop_map(|(x, y)| p(x, y));
-        let convex = (
-            pt(),
-            prop::collection::vec((-1.5..1.5f64, -1.5..1.5f64), 3..8),
-        )
-            .prop_filter_map("flat", |(c, v)| {
-                let hull = polygon::convex_hull(
-                    &v.iter()
-                        .map(|&(x, y)| p(c.x + x, c.y + y))
-                        .collect::<Vec<_>>(),
-                );
-                (hull.len() >= 3).then(|| Shape::Polygon {
-                    outline: hull.clone(),
-                    pieces: vec![ConvexPolygon { vertices: hull }],
-                })
-            });
-        let star = (
-            pt(),
-            prop::collection::vec((0.0..1.0f64, 0.3..2.0f64), 4..9),
-        )
-            .prop_filter_map("bad", |(c, v)| {
-                let k = v.len() as f64;
-                let pts: Vec<Point> = v
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &(j, r))| {
-                        let a = (i as f64 + 0.8 * j) * std::f64::consts::TAU / k;
-                        p(c.x + r * a.cos(), c.y + r * a.sin())
-                    })
-                    .collect();
-                polygon_shape(&pts)
-            });
-        let rect =
-            (pt(), 0.1..3.0f64, 0.1..3.0f64).prop_map(|(a, w, h)| rect(a.x, a.y, a.x + w, a.y + h));
-        let disk = (pt(), 0.1..2.0f64).prop_map(|(c, r)| Shape::Disk {
-            center: c,
-            radius: r,
-        });
-        let wall = (pt(), pt()).prop_map(|(a, b)| Shape::Segment(a, b));
-        let raster = (
-            pt(),
-            0.3..2.0f64,
-            1..7usize,
-            1..7usize,
-            prop::collection::vec(prop::bool::weighted(0.45), 36),
-        )
-            .prop_map(|(o, cell, w, h, bits)| {
-                let cells = (0..w * h)
-                    .map(|i| if bits[i % 36] { 0 } else { 1 })
-                    .collect();
-                Shape::Grid(Grid {
-                    cell,
-                    origin: p(o.x - 3.0, o.y - 3.0),
-                    width: w,
-                    height: h,
-                    cells,
-                })
-            });
-        (
-            prop::collection::vec(convex, 0..3),
-            prop::collection::vec(star, 0..2),
-            prop::collection::vec(rect, 0..3),
-            prop::collection::vec(disk, 0..3),
-            prop::collection::vec(wall, 0..3),
-            prop::option::of(raster),
-        )
-            .prop_map(|(a, b, c, d, e, f)| {
-                let shapes: Vec<Shape> = a
-                    .into_iter()
-                    .chain(b)
-                    .chain(c)
-                    .chain(d)
-                    .chain(e)
-                    .chain(f)
-                    .collect();
-                let mut w = world(shapes);
-                // The validator also checks bounds; make them irrelevant.
-                w.bounds = Aabb {
-                    min: p(-100.0, -100.0),
-                    max: p(100.0, 100.0),
-                };
-                w
-            })
-    }
 
     fn probe_radius() -> impl Strategy<Value = f64> {
         prop_oneof![Just(0.0), 0.01..1.5f64]

@@ -75,28 +75,9 @@ impl ObstaclePieces {
     pub fn with_disk_sides(world: &World, disk_sides: usize) -> Self {
         let mut pieces = Vec::new();
         for (obstacle, o) in world.obstacles.iter().enumerate() {
-            let mut push = |points: Vec<Point>| pieces.push(Piece { obstacle, points });
-            match &o.shape {
-                Shape::Polygon { outline, pieces } => {
-                    if pieces.is_empty() {
-                        for p in polygon::convex_decomposition(outline) {
-                            push(p.vertices);
-                        }
-                    } else {
-                        for p in pieces {
-                            push(p.vertices.clone());
-                        }
-                    }
-                }
-                Shape::Rect(r) => push(r.corners().to_vec()),
-                Shape::Segment(a, b) => push(if a == b { vec![*a] } else { vec![*a, *b] }),
-                Shape::Disk { center, radius } => push(disk_polygon(*center, *radius, disk_sides)),
-                Shape::Grid(g) => {
-                    for r in grid_rectangles(g) {
-                        push(r.corners().to_vec());
-                    }
-                }
-            }
+            shape_pieces(&o.shape, disk_sides, |points| {
+                pieces.push(Piece { obstacle, points })
+            });
         }
         ObstaclePieces { pieces }
     }
@@ -127,6 +108,33 @@ impl ObstaclePieces {
             .into_par_iter()
             .map(|k| self.layer(robot, layer_angle(k, n)))
             .collect()
+    }
+}
+
+/// Calls `push` with each convex piece of `shape`, as in
+/// [`ObstaclePieces::with_disk_sides`]: counter-clockwise points (2 for a
+/// segment, 1 for a point).
+pub(crate) fn shape_pieces(shape: &Shape, disk_sides: usize, mut push: impl FnMut(Vec<Point>)) {
+    match shape {
+        Shape::Polygon { outline, pieces } => {
+            if pieces.is_empty() {
+                for p in polygon::convex_decomposition(outline) {
+                    push(p.vertices);
+                }
+            } else {
+                for p in pieces {
+                    push(p.vertices.clone());
+                }
+            }
+        }
+        Shape::Rect(r) => push(r.corners().to_vec()),
+        Shape::Segment(a, b) => push(if a == b { vec![*a] } else { vec![*a, *b] }),
+        Shape::Disk { center, radius } => push(disk_polygon(*center, *radius, disk_sides)),
+        Shape::Grid(g) => {
+            for r in grid_rectangles(g) {
+                push(r.corners().to_vec());
+            }
+        }
     }
 }
 

@@ -3,11 +3,13 @@
 //!
 //! Everything is in f64 world units; angles are radians, counter-clockwise.
 
+mod buckets;
 pub mod collide;
 pub mod cspace;
 #[cfg(test)]
 mod fixtures;
 pub mod minkowski;
+pub mod motion;
 pub mod polygon;
 pub mod union;
 pub mod validator;

@@ -517,22 +517,32 @@ pub fn convex_hull(points: &[Point]) -> Vec<Point> {
         .copied()
         .filter(|p| p.x.is_finite() && p.y.is_finite())
         .collect();
-    pts.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    pts.dedup();
-    if pts.len() < 3 {
-        return pts;
+    let mut hull = Vec::with_capacity(2 * pts.len());
+    convex_hull_into(&mut pts, &mut hull);
+    hull
+}
+
+/// [`convex_hull`] of the finite `points`, written into `hull` (cleared
+/// first), allocating nothing once `hull` has room for `2·points.len()`
+/// points. `points` is sorted and deduplicated in place.
+pub fn convex_hull_into(points: &mut Vec<Point>, hull: &mut Vec<Point>) {
+    points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    points.dedup();
+    hull.clear();
+    if points.len() < 3 {
+        hull.extend_from_slice(points);
+        return;
     }
-    let mut hull: Vec<Point> = Vec::with_capacity(2 * pts.len());
     // Lower chain left to right, then upper chain right to left; each pops
     // the points where it would not turn strictly left.
-    for &p in &pts {
+    for &p in points.iter() {
         while hull.len() >= 2 && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
             hull.pop();
         }
         hull.push(p);
     }
     let lower_len = hull.len() + 1;
-    for &p in pts.iter().rev().skip(1) {
+    for &p in points.iter().rev().skip(1) {
         while hull.len() >= lower_len
             && orient(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
         {
@@ -541,7 +551,6 @@ pub fn convex_hull(points: &[Point]) -> Vec<Point> {
         hull.push(p);
     }
     hull.pop(); // the first point again
-    hull
 }
 
 #[cfg(test)]

@@ -25,14 +25,10 @@
 //!   the segment into `B ⊕ (−A(θ))` equals that of the swept body (the hull
 //!   of the robot's two end bodies) into `B`, which is what the validator
 //!   measures; the halved threshold absorbs rounding.
-//! * a rotation (alone or with a translation): first a conservative quick
-//!   test: every body point, during the motion, stays within
-//!   r = R·α²/8 (α the rotation) of the hull H of the two end bodies, and so
-//!   do the validator's sub-step hulls; if H is at least r away from every
-//!   obstacle piece (a separating axis with a gap ≥ r), the motion passes.
-//!   Otherwise the validator itself decides on the 2-configuration path.
+//! * a rotation (alone or with a translation): the planners' motion
+//!   checker ([`MotionChecker::motion_free`]), which accepts what the
+//!   validator accepts on the 2-configuration path, up to rounding.
 
-use std::cell::Cell;
 use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
@@ -42,11 +38,12 @@ use super::layers::{Colour, Drawing, Layer, Style};
 use super::registry::Task;
 use super::search::{Edge, Graph, SearchBuffers, best_first};
 use super::{MetricValue, PlanOutcome};
+use crate::geometry::angle_diff;
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
+use crate::geometry::motion::{MotionChecker, segment_depth};
 use crate::geometry::union::union_boundary;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World};
-use crate::geometry::{angle_diff, polygon};
 use crate::scenario::Limits;
 
 /// The most C-obstacle outlines drawn over all layers; beyond it (e.g.
@@ -105,73 +102,6 @@ fn metric(cost: CostMetric, dx: f64, dy: f64, dt: f64) -> f64 {
     }
 }
 
-/// The penetration depth of the segment `p`–`q` into the convex polygon
-/// `poly` (counter-clockwise, at least 3 vertices): the smallest
-/// translation that separates them, over the separating axes (the
-/// polygon's edge normals and the segment's normal). ≤ 0 when they are
-/// apart or touch.
-pub fn segment_depth(p: Point, q: Point, poly: &[Point]) -> f64 {
-    let mut depth = f64::INFINITY;
-    let mut axis = |nx: f64, ny: f64| {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for v in poly {
-            let s = nx * v.x + ny * v.y;
-            lo = lo.min(s);
-            hi = hi.max(s);
-        }
-        let (a, b) = (nx * p.x + ny * p.y, nx * q.x + ny * q.y);
-        let d = (hi - a.min(b)).min(a.max(b) - lo);
-        depth = depth.min(d);
-    };
-    for i in 0..poly.len() {
-        let d = poly[(i + 1) % poly.len()] - poly[i];
-        let len = d.norm();
-        if len > 0.0 {
-            axis(d.y / len, -d.x / len);
-        }
-    }
-    let d = q - p;
-    let len = d.norm();
-    if len > 0.0 {
-        axis(d.y / len, -d.x / len);
-    }
-    depth
-}
-
-/// A lower bound on the distance between the convex point sets `a` and `b`
-/// (polygons, segments or points): the largest gap between their
-/// projections on the edge normals of both. ≤ 0 when no such axis
-/// separates them.
-fn separation(a: &[Point], b: &[Point]) -> f64 {
-    let mut best = f64::NEG_INFINITY;
-    let mut axis = |nx: f64, ny: f64| {
-        let proj = |pts: &[Point]| {
-            pts.iter()
-                .map(|v| nx * v.x + ny * v.y)
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
-                    (lo.min(s), hi.max(s))
-                })
-        };
-        let ((alo, ahi), (blo, bhi)) = (proj(a), proj(b));
-        best = best.max(blo - ahi).max(alo - bhi);
-    };
-    for pts in [a, b] {
-        let n = pts.len();
-        if n < 2 {
-            continue;
-        }
-        let edges = if n == 2 { 1 } else { n };
-        for i in 0..edges {
-            let d = pts[(i + 1) % n] - pts[i];
-            let len = d.norm();
-            if len > 0.0 {
-                axis(d.y / len, -d.x / len);
-            }
-        }
-    }
-    best
-}
-
 fn boxes_meet(a: &Aabb, b: &Aabb, margin: f64) -> bool {
     a.min.x <= b.max.x + margin
         && b.min.x <= a.max.x + margin
@@ -195,8 +125,6 @@ pub struct Profile {
     pub edge_validation: Duration,
     /// Edges validated (each at most once).
     pub edges_checked: u64,
-    /// Rotation edges the quick test could not clear, left to the validator.
-    pub rotation_fallbacks: u64,
 }
 
 /// The (x, y, θ) lattice of one plan, its free configurations and the
@@ -207,21 +135,18 @@ struct Lattice<'w> {
     layers: Vec<CLayer>,
     /// Per layer, the bounding box of each C-obstacle.
     layer_boxes: Vec<Vec<Aabb>>,
-    /// The obstacle pieces with their bounding boxes (quick rotation test).
-    pieces: Vec<(Vec<Point>, Aabb)>,
+    /// Decides the rotation edges.
+    motion: MotionChecker,
     free: Vec<bool>,
     moves: Vec<Move>,
     /// Per node, bit m: the edge along move m was checked / passed.
     edge_checked: Vec<u32>,
     edge_ok: Vec<u32>,
     shape: RobotShape,
-    radius: f64,
     validator: Validator<'w>,
     /// Measure edge validation into `profile` (see [`plan_profiled`]).
     profiling: bool,
     profile: Profile,
-    /// Rotations the quick test left to the validator (when profiling).
-    fallbacks: Cell<u64>,
 }
 
 impl Lattice<'_> {
@@ -254,32 +179,6 @@ impl Lattice<'_> {
             })
     }
 
-    /// Whether the motion from `a` to `b` (a rotation, maybe with a
-    /// translation) passes the validator; the quick test first.
-    fn rotation_free(&self, a: Config, b: Config) -> bool {
-        let alpha = angle_diff(a.theta, b.theta).abs();
-        let r = self.radius * alpha * alpha / 8.0;
-        let mut pts = self.shape.placed_vertices(a);
-        pts.extend(self.shape.placed_vertices(b));
-        let hull = polygon::convex_hull(&pts);
-        if hull.len() >= 3 {
-            let hb = Aabb::around(&hull);
-            let clear = self
-                .pieces
-                .iter()
-                .all(|(piece, pb)| !boxes_meet(pb, &hb, r + 1e-6) || separation(&hull, piece) >= r);
-            if clear {
-                return true;
-            }
-        }
-        if self.profiling {
-            self.fallbacks.set(self.fallbacks.get() + 1);
-        }
-        self.validator
-            .validate_path(&self.shape, &[a, b], DEFAULT_TOLERANCE)
-            .is_ok()
-    }
-
     /// Whether the edge along move `m` from `node` to `to` is usable.
     fn edge_free(&mut self, node: usize, m: usize, to: usize) -> bool {
         let bit = 1u32 << m;
@@ -290,7 +189,7 @@ impl Lattice<'_> {
                 let (_, _, k) = self.coords(node);
                 self.translation_free(k, a.xy(), b.xy())
             } else {
-                self.rotation_free(a, b)
+                self.motion.motion_free(a, b)
             };
             self.edge_checked[node] |= bit;
             if ok {
@@ -329,7 +228,6 @@ fn run(
     let world = task.world;
     let mut profile = Profile::default();
     let shape = RobotShape::Polygon(robot.clone());
-    let radius = shape.radius();
     let rotating = settings.rotating;
     let spec = settings.lattice;
     let start = task.start;
@@ -418,27 +316,21 @@ fn run(
                 .collect()
         })
         .collect();
-    let piece_list = pieces
-        .pieces
-        .iter()
-        .map(|p| (p.points.clone(), Aabb::around(&p.points)))
-        .collect();
+    let motion = MotionChecker::new(world, &shape);
     let mut lat = Lattice {
         spec,
         thetas,
         layers,
         layer_boxes,
-        pieces: piece_list,
+        motion,
         free,
         moves,
         edge_checked: vec![0; total],
         edge_ok: vec![0; total],
         shape,
-        radius,
         validator: Validator::new(world),
         profiling,
         profile: Profile::default(),
-        fallbacks: Cell::new(0),
     };
 
     let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
@@ -538,7 +430,6 @@ fn run(
         search: search_began.elapsed(),
         edge_validation: lat.profile.edge_validation,
         edges_checked: lat.profile.edges_checked,
-        rotation_fallbacks: lat.fallbacks.get(),
         ..profile
     };
     (out, profile)
@@ -901,29 +792,6 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
         assert_eq!(moves(8, 1, false).len(), 8);
     }
 
-    #[test]
-    fn segment_depth_known_cases() {
-        let sq = [
-            Point::new(0.0, 0.0),
-            Point::new(2.0, 0.0),
-            Point::new(2.0, 2.0),
-            Point::new(0.0, 2.0),
-        ];
-        let p = Point::new;
-        // Through the middle: 1 either way.
-        assert_eq!(segment_depth(p(-1.0, 1.0), p(3.0, 1.0), &sq), 1.0);
-        // Along an edge: touching.
-        assert_eq!(segment_depth(p(-1.0, 0.0), p(3.0, 0.0), &sq), 0.0);
-        // Apart.
-        assert!(segment_depth(p(-1.0, 3.0), p(3.0, 3.0), &sq) < 0.0);
-        // Cutting the corner at (2, 2) at distance d from it along the
-        // diagonal: every point is at most d/√2 deep, the segment d.
-        let d = 0.1;
-        let c = 2.0 - d / 2f64.sqrt();
-        let depth = segment_depth(p(c - 1.0, c + 1.0), p(c + 1.0, c - 1.0), &sq);
-        assert!((depth - d).abs() < 1e-12, "{depth}");
-    }
-
     fn rect_world(rects: &[(f64, f64, f64, f64)]) -> World {
         World {
             bounds: Aabb::from_corners(Point::new(-20.0, -20.0), Point::new(20.0, 20.0)),
@@ -959,21 +827,15 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
             thetas: thetas.to_vec(),
             layers,
             layer_boxes,
-            pieces: pieces
-                .pieces
-                .iter()
-                .map(|p| (p.points.clone(), Aabb::around(&p.points)))
-                .collect(),
+            motion: MotionChecker::new(world, &shape),
             free: Vec::new(),
             moves: Vec::new(),
             edge_checked: Vec::new(),
             edge_ok: Vec::new(),
-            radius: shape.radius(),
             shape,
             validator: Validator::new(world),
             profiling: false,
             profile: Profile::default(),
-            fallbacks: Cell::new(0),
         }
     }
 
@@ -1022,8 +884,8 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
             }
         }
 
-        /// The rotation test (quick test, then the validator) never accepts
-        /// a motion the validator rejects.
+        /// The rotation test (the motion checker) never accepts a motion the
+        /// validator rejects.
         #[test]
         fn rotations_are_sound(
             robot in robot_strategy(),
@@ -1035,7 +897,7 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
             let world = rect_world(&rects);
             let lat = lattice_for(&world, &robot, &[theta]);
             let (a, b) = (Config::new(x0, y0, theta), Config::new(x0 + dx, y0 + dy, theta + dtheta));
-            if lat.rotation_free(a, b) {
+            if lat.motion.motion_free(a, b) {
                 prop_assert!(validate_path(&world, &lat.shape, &[a, b], DEFAULT_TOLERANCE).is_ok());
             }
         }

@@ -1,0 +1,103 @@
+//! A uniform bucket grid over boxes: the broad phase of the planners'
+//! collision queries ([`super::collide`], [`super::motion`]).
+
+use super::{Aabb, Point};
+
+/// Indices of boxes by square bucket, in compressed rows: bucket (col, k)
+/// (k from the bottom) holds `items[start[i] .. start[i + 1]]`,
+/// i = k·nx + col. A box is listed in every bucket it meets; boxes outside
+/// the grid are listed in the buckets of its border.
+pub(crate) struct Buckets {
+    pub(crate) origin: Point,
+    /// Side of a bucket, in world units.
+    pub(crate) cell: f64,
+    /// 1 / `cell`.
+    pub(crate) inv: f64,
+    pub(crate) nx: usize,
+    pub(crate) ny: usize,
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Buckets {
+    /// About four buckets per box, at most `max_side` × `max_side`, over
+    /// `bounds` grown to hold every box; item `j` is `boxes[j]`.
+    pub(crate) fn new(bounds: Aabb, boxes: &[Aabb], max_side: usize) -> Self {
+        let max_side = max_side.max(1);
+        let ext = boxes.iter().fold(bounds, |e, b| union(&e, b));
+        let side = ext.width().max(ext.height());
+        let per_side = ((4.0 * boxes.len() as f64).sqrt().ceil() as usize).clamp(1, max_side);
+        let cell = if side > 0.0 && side.is_finite() {
+            side / per_side as f64
+        } else {
+            1.0
+        };
+        let nx = ((ext.width() / cell).ceil() as usize).clamp(1, max_side);
+        let ny = ((ext.height() / cell).ceil() as usize).clamp(1, max_side);
+        let mut buckets = Buckets {
+            origin: ext.min,
+            cell,
+            inv: 1.0 / cell,
+            nx,
+            ny,
+            start: vec![0; nx * ny + 1],
+            items: Vec::new(),
+        };
+        let ranges: Vec<_> = boxes.iter().map(|b| buckets.range(b)).collect();
+        // Count, then fill.
+        let mut counts = vec![0u32; nx * ny];
+        for &(cols, rows) in &ranges {
+            for k in rows.0..=rows.1 {
+                for c in cols.0..=cols.1 {
+                    counts[k * nx + c] += 1;
+                }
+            }
+        }
+        for (i, count) in counts.iter().enumerate() {
+            buckets.start[i + 1] = buckets.start[i] + count;
+        }
+        buckets.items = vec![0; buckets.start[nx * ny] as usize];
+        let mut next: Vec<u32> = buckets.start[..nx * ny].to_vec();
+        for (j, &(cols, rows)) in ranges.iter().enumerate() {
+            for k in rows.0..=rows.1 {
+                for c in cols.0..=cols.1 {
+                    let slot = &mut next[k * nx + c];
+                    buckets.items[*slot as usize] = j as u32;
+                    *slot += 1;
+                }
+            }
+        }
+        buckets
+    }
+
+    /// Inclusive column and row ranges of the buckets that `b` meets
+    /// (clamped to the grid).
+    pub(crate) fn range(&self, b: &Aabb) -> ((usize, usize), (usize, usize)) {
+        let index =
+            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        let cols = (
+            index(b.min.x, self.origin.x, self.nx),
+            index(b.max.x, self.origin.x, self.nx),
+        );
+        let rows = (
+            index(b.min.y, self.origin.y, self.ny),
+            index(b.max.y, self.origin.y, self.ny),
+        );
+        (cols, rows)
+    }
+
+    /// The items of bucket (col, k), k counted from the bottom.
+    #[inline]
+    pub(crate) fn items(&self, col: usize, k: usize) -> &[u32] {
+        let i = k * self.nx + col;
+        &self.items[self.start[i] as usize..self.start[i + 1] as usize]
+    }
+}
+
+/// The smallest box holding both.
+pub(crate) fn union(a: &Aabb, b: &Aabb) -> Aabb {
+    Aabb {
+        min: Point::new(a.min.x.min(b.min.x), a.min.y.min(b.min.y)),
+        max: Point::new(a.max.x.max(b.max.x), a.max.y.max(b.max.y)),
+    }
+}

@@ -1,0 +1,1239 @@
+//! The planners' motion checker: is the straight motion of a robot from
+//! configuration `a` to configuration `b` free? (SPEC 3.7: every motion a
+//! sampling planner adds is checked here; there is no collision-checking
+//! resolution.)
+//!
+//! # Contract
+//! [`MotionChecker::motion_free`] never accepts a motion that the validator
+//! ([`super::validator`], SPEC 3.0) rejects at [`DEFAULT_TOLERANCE`]; it
+//! rejects more only where the validator's verdict hangs on less than
+//! `TOUCH_EPS / 2` of overlap or on the rounding of a hull, where a polygon
+//! pokes a few `TOUCH_EPS` into the seam between two blocked grid cells,
+//! and (for points) where it touches a segment obstacle. [`MotionChecker::config_free`] likewise
+//! never accepts a configuration that [`super::validator::config_collision`]
+//! blocks or that lies outside the bounds.
+//!
+//! The motion is the validator's: x and y linear, θ along the shorter arc
+//! ([`angle_diff`]). Bounds are a closed box and convex, so both ends inside
+//! means the whole (x, y) path is inside; the validator's margin of
+//! `TOUCH_EPS` around the bounds is not granted.
+//!
+//! # Point and disk robots
+//! θ plays no part: [`ObstacleIndex::sweep_free`] decides the swept capsule
+//! (the segment for a point) exactly, with the validator's rule, except that
+//! a point may not even touch a segment obstacle. The validator lets a point
+//! touch a segment as long as its whole path stays on one side of the
+//! segments, which one motion alone cannot tell; refusing every contact is
+//! sound for any path made of such motions (see [`super::collide`]).
+//!
+//! # Convex polygon robots
+//! The validator cuts the motion into `n` equal sub-steps (1 for a
+//! translation, `⌈(|Δxy| + R·|Δθ|) / tolerance⌉` when it rotates, R the
+//! robot's [`RobotShape::radius`]) and requires the hull of the bodies at
+//! the two ends of each sub-step to overlap no convex obstacle piece deeper
+//! than `TOUCH_EPS`. The checker cuts the motion at the same configurations,
+//! computed by the same formula, and decides *groups* of consecutive
+//! sub-steps at once.
+//!
+//! ## Groups
+//! For a group of sub-steps `k0 .. k1`, let `A_i`, `B_i` be vertex `v_i` of
+//! the body at the group's two ends and α the group's rotation. During the
+//! group, `v_i` moves on `p(λ) = xy(λ) + Rot(θ(λ))·v_i` with xy and θ linear
+//! in λ ∈ [0, 1]. Its deviation from the chord `(1−λ)·A_i + λ·B_i` is
+//! `f(λ) = Rot(θ(λ))·v_i − (1−λ)·Rot(θ(0))·v_i − λ·Rot(θ(1))·v_i` (the
+//! translation is linear and cancels): `f(0) = f(1) = 0` and
+//! `|f''| = α²·|v_i|`, so for every unit u, `|u·f(λ)| ≤ λ(1−λ)·k_i` with
+//! `k_i = |v_i|·α²/2`. Hence
+//!
+//! ```text
+//! u·p(λ) ≤ (1−λ)·u·A_i + λ·u·B_i + λ(1−λ)·k_i,
+//! ```
+//!
+//! a parabola in λ whose largest value on [0, 1] ([`bulge`]) is at most
+//! `max(u·A_i, u·B_i) + |v_i|·α²/8`, and is exactly `max(u·A_i, u·B_i)`
+//! when `|u·B_i − u·A_i| ≥ k_i` (so a robot pivoting on a wall it touches,
+//! or turning away from one, is cleared without cutting the motion down to
+//! the sub-step where it touches).
+//! Every body during the group is a convex polygon, extreme along u at a
+//! vertex, so along every unit axis u all of them project into the interval
+//! between those bounds for `−u` and `u`, and so does the hull of any two
+//! of them: every validator sub-step inside the group. If along some axis
+//! that interval and an obstacle piece's projection overlap by at most
+//! `TOUCH_EPS / 2` (their *gap* is at least `−TOUCH_EPS / 2`), no sub-step
+//! of the group overlaps that piece deeper than `TOUCH_EPS / 2`, since the
+//! penetration depth is the smallest overlap over all directions.
+//!
+//! The axes tried are ±x and ±y (the boxes of both), the edge normals of the
+//! hull `H` of the `A_i` and `B_i`, the piece's own edge normals, and for a
+//! disk obstacle the direction from its centre's nearest point of `H`. A
+//! group none of whose pieces fails passes; the pieces that fail are handed
+//! to the two halves of the group (split at a sub-step boundary), since a
+//! piece cleared for the group is cleared for every sub-step in it. A single
+//! sub-step is decided with `k_i = 0`: then the interval along u is exactly
+//! `H`'s projection, the axes are all the separating-axis candidates of the
+//! two convex sets (and the exact nearest-point axis for disks), and the
+//! largest gap is exactly minus the penetration depth: the validator's test,
+//! with the threshold `TOUCH_EPS / 2` instead of `TOUCH_EPS` so that
+//! rounding never tips a verdict the wrong way. So the checker accepts what
+//! the validator accepts up to that margin, and in free space it needs a
+//! handful of group tests (the bound shrinks 4-fold per halving) rather
+//! than `n`.
+//!
+//! ## Obstacle pieces
+//! Polygons give their convex pieces, rectangles themselves, segments their
+//! two ends (a segment has no interior, but overlapping it deeper than
+//! `TOUCH_EPS` is a collision, exactly as for a flat polygon), grids the
+//! rectangles of [`super::cspace::grid_rectangles`], disks their exact circle. A merged
+//! grid rectangle contains the cells it is made of, so the depth into it is
+//! at least the depth into any of them: conservative (see the
+//! [`super::cspace`] documentation for the few contacts it refuses). The
+//! seams of multi-piece obstacles play no part: a robot with area cannot
+//! lie on a seam without overlapping a piece (the validator's rule too).
+//!
+//! # Cost
+//! A uniform bucket grid of the pieces' boxes ([`Buckets`]) gives the
+//! pieces near the box of the whole motion; each is reported once (in the
+//! first bucket that both boxes meet). The groups are visited depth first,
+//! left half first, so a motion that collides late would first have every
+//! sub-step before its collision cleared: when the whole motion fails, the
+//! bodies at its end, middle and quarters are tested first (a body in
+//! collision fails the sub-steps around it anyway, so this changes no
+//! verdict beyond rounding; it finds most collisions at once). Nothing is allocated per query once
+//! the calling thread has checked one motion (a thread-local scratch), and
+//! the checker itself is immutable, hence `Sync`. Figures: BENCHMARKS.md.
+
+use std::cell::RefCell;
+
+use super::angle_diff;
+use super::buckets::Buckets;
+use super::collide::ObstacleIndex;
+use super::cspace::shape_pieces;
+use super::minkowski::DISK_SIDES;
+use super::polygon::{closest_point_on_segment, convex_hull_into};
+use super::validator::DEFAULT_TOLERANCE;
+use super::{Aabb, Config, ConvexPolygon, Point, RobotShape, Shape, TOUCH_EPS, Vector, World};
+
+/// A gap of at least this along an axis clears a piece: an overlap of at
+/// most `TOUCH_EPS / 2`, half the validator's threshold.
+const SLACK: f64 = -TOUCH_EPS / 2.0;
+
+/// Where [`PolygonChecker::witness`] looks, in eighths of the motion.
+const WITNESSES: [u128; 4] = [8, 4, 2, 6];
+
+/// The buckets of the broad phase have at most this many per side.
+const MAX_BUCKETS_PER_SIDE: usize = 512;
+
+/// Whether straight motions of one robot in one world are free (see the
+/// module documentation). Build it once per plan; queries take `&self`.
+pub struct MotionChecker {
+    bounds: Aabb,
+    robot: Robot,
+}
+
+enum Robot {
+    /// A point (radius 0) or a disk of that radius.
+    Round {
+        index: ObstacleIndex,
+        radius: f64,
+    },
+    Polygon(PolygonChecker),
+}
+
+impl MotionChecker {
+    /// Prepares `world` for `robot`: O(size of the obstacles), grids merged
+    /// into rectangles for polygon robots.
+    pub fn new(world: &World, robot: &RobotShape) -> Self {
+        let robot = match robot {
+            RobotShape::Point => Robot::Round {
+                index: ObstacleIndex::new(world),
+                radius: 0.0,
+            },
+            RobotShape::Disk(r) => Robot::Round {
+                index: ObstacleIndex::new(world),
+                radius: r.max(0.0),
+            },
+            RobotShape::Polygon(p) => Robot::Polygon(PolygonChecker::new(world, p)),
+        };
+        MotionChecker {
+            bounds: world.bounds,
+            robot,
+        }
+    }
+
+    /// Whether the robot at `c` is inside the (closed) bounds and its body
+    /// overlaps no obstacle interior deeper than `TOUCH_EPS / 2` (a point
+    /// also keeps off segment obstacles). `false` for non-finite `c`.
+    pub fn config_free(&self, c: Config) -> bool {
+        self.in_bounds(c)
+            && match &self.robot {
+                Robot::Round { index, radius } => index.disk_free(c.xy(), *radius),
+                Robot::Polygon(p) => p.free(&Cut::still(c)),
+            }
+    }
+
+    /// Whether the straight motion from `a` to `b` (θ along the shorter arc)
+    /// is free: both ends inside the (closed) bounds, and every validator
+    /// sub-step clear of every obstacle piece (see the module
+    /// documentation). If it returns `true`, the validator accepts the path
+    /// `[a, b]` at [`DEFAULT_TOLERANCE`].
+    pub fn motion_free(&self, a: Config, b: Config) -> bool {
+        self.in_bounds(a)
+            && self.in_bounds(b)
+            && match &self.robot {
+                Robot::Round { index, radius } => index.sweep_free(a.xy(), b.xy(), *radius),
+                Robot::Polygon(p) => p.free(&Cut::new(a, b, p.radius)),
+            }
+    }
+
+    fn in_bounds(&self, c: Config) -> bool {
+        c.theta.is_finite() && c.x.is_finite() && c.y.is_finite() && self.bounds.contains(c.xy())
+    }
+}
+
+// ------------------------------------------------------------ polygons
+
+/// The obstacle pieces prepared for one convex polygon robot.
+struct PolygonChecker {
+    /// The robot's vertices in its own frame, counter-clockwise.
+    vertices: Vec<Point>,
+    /// `|v_i|` for each vertex.
+    lever: Vec<f64>,
+    /// R, as the validator computes it ([`RobotShape::radius`]).
+    radius: f64,
+    pieces: Vec<Piece>,
+    /// The points of the convex pieces, piece after piece.
+    points: Vec<Point>,
+    /// The edge normals of the convex pieces, piece after piece.
+    axes: Vec<Axis>,
+    buckets: Buckets,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    aabb: Aabb,
+    /// The first bucket column and row that `aabb` meets.
+    first: (u32, u32),
+    kind: Kind,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    /// `points[points.0 .. points.1]` (1 for a point, 2 for a segment, else
+    /// a counter-clockwise convex polygon) and `axes[axes.0 .. axes.1]`.
+    Convex {
+        points: (u32, u32),
+        axes: (u32, u32),
+    },
+    Disk {
+        center: Point,
+        radius: f64,
+    },
+}
+
+/// An outward unit edge normal `n` of a piece, other than ±x and ±y (which
+/// the piece's box covers), and the piece's largest projection on it.
+#[derive(Clone, Copy, Debug)]
+struct Axis {
+    n: Vector,
+    support: f64,
+}
+
+impl PolygonChecker {
+    fn new(world: &World, robot: &ConvexPolygon) -> Self {
+        let mut pieces = Vec::new();
+        let mut points = Vec::new();
+        let mut axes = Vec::new();
+        for o in &world.obstacles {
+            match &o.shape {
+                Shape::Disk { center, radius } => {
+                    let r = Vector::new(*radius, *radius);
+                    pieces.push(Piece {
+                        aabb: Aabb {
+                            min: center - r,
+                            max: center + r,
+                        },
+                        first: (0, 0),
+                        kind: Kind::Disk {
+                            center: *center,
+                            radius: *radius,
+                        },
+                    });
+                }
+                shape => shape_pieces(shape, DISK_SIDES, |pts| {
+                    pieces.push(convex_piece(&pts, &mut points, &mut axes));
+                }),
+            }
+        }
+        let boxes: Vec<Aabb> = pieces.iter().map(|p| p.aabb).collect();
+        let buckets = Buckets::new(world.bounds, &boxes, MAX_BUCKETS_PER_SIDE);
+        for piece in &mut pieces {
+            let ((c, _), (k, _)) = buckets.range(&piece.aabb);
+            piece.first = (c as u32, k as u32);
+        }
+        let shape = RobotShape::Polygon(robot.clone());
+        PolygonChecker {
+            vertices: robot.vertices.clone(),
+            lever: robot.vertices.iter().map(|v| v.coords.norm()).collect(),
+            radius: shape.radius(),
+            pieces,
+            points,
+            axes,
+            buckets,
+        }
+    }
+
+    /// Whether every validator sub-step of `cut` is clear of every piece.
+    fn free(&self, cut: &Cut) -> bool {
+        with_scratch(|Scratch { region, pending }| {
+            region.set(self, cut, 0, cut.steps);
+            pending.clear();
+            let ((c0, c1), (k0, k1)) = self.buckets.range(&region.aabb);
+            for k in k0..=k1 {
+                for c in c0..=c1 {
+                    for &item in self.buckets.items(c, k) {
+                        let (pc, pk) = self.pieces[item as usize].first;
+                        if (pc as usize).max(c0) == c && (pk as usize).max(k0) == k {
+                            pending.push(item);
+                        }
+                    }
+                }
+            }
+            self.decide(cut, 0, cut.steps, pending, region)
+        })
+    }
+
+    /// Whether sub-steps `k0 .. k1` of `cut` are clear of the pieces
+    /// `pending`; `region` is set to that group. Reorders `pending`.
+    fn decide(
+        &self,
+        cut: &Cut,
+        k0: usize,
+        k1: usize,
+        pending: &mut [u32],
+        region: &mut Region,
+    ) -> bool {
+        // The pieces the group does not clear go to the front; one is enough
+        // to fail a single sub-step.
+        let single = k1 - k0 == 1;
+        let mut failing = 0;
+        for i in 0..pending.len() {
+            if !self.clear(&self.pieces[pending[i] as usize], region) {
+                if single {
+                    return false;
+                }
+                pending.swap(i, failing);
+                failing += 1;
+            }
+        }
+        if failing == 0 {
+            return true;
+        }
+        let pending = &mut pending[..failing];
+        if k1 - k0 == cut.steps && self.witness(cut, pending, region) {
+            return false;
+        }
+        let mid = k0 + (k1 - k0) / 2;
+        region.set(self, cut, k0, mid);
+        if !self.decide(cut, k0, mid, pending, region) {
+            return false;
+        }
+        region.set(self, cut, mid, k1);
+        self.decide(cut, mid, k1, pending, region)
+    }
+
+    /// Whether the body at one of a few sub-step boundaries (the end first,
+    /// then the middle, then the quarters and eighths) overlaps one of the
+    /// pieces `pending` deeper than `TOUCH_EPS / 2`. Then the sub-steps on
+    /// either side of it fail too (their hulls hold that body), but a
+    /// colliding motion is found without first clearing every sub-step
+    /// before its collision.
+    fn witness(&self, cut: &Cut, pending: &[u32], region: &mut Region) -> bool {
+        WITNESSES.iter().any(|&j| {
+            let k = (cut.steps as u128 * j / 8) as usize;
+            region.set(self, cut, k, k);
+            pending
+                .iter()
+                .any(|&i| !self.clear(&self.pieces[i as usize], region))
+        })
+    }
+
+    /// Whether some axis shows every body of the region's group at most
+    /// `TOUCH_EPS / 2` into `piece` (see the module documentation).
+    fn clear(&self, piece: &Piece, region: &mut Region) -> bool {
+        let (b, w) = (&piece.aabb, &region.aabb);
+        let gap = (b.min.x - w.max.x)
+            .max(w.min.x - b.max.x)
+            .max(b.min.y - w.max.y)
+            .max(w.min.y - b.max.y);
+        if gap >= SLACK {
+            return true;
+        }
+        match piece.kind {
+            Kind::Convex { points, axes } => {
+                let own = &self.axes[axes.0 as usize..axes.1 as usize];
+                if own.iter().any(|a| region.low(a.n) - a.support >= SLACK) {
+                    return true;
+                }
+                region.ensure_hull();
+                let pts = &self.points[points.0 as usize..points.1 as usize];
+                region.normals.iter().any(|&(m, high)| {
+                    let low = pts
+                        .iter()
+                        .map(|p| m.dot(&p.coords))
+                        .fold(f64::INFINITY, f64::min);
+                    low - high >= SLACK
+                })
+            }
+            Kind::Disk { center, radius } => {
+                region.ensure_hull();
+                let c = center.coords;
+                if region
+                    .normals
+                    .iter()
+                    .any(|&(m, high)| m.dot(&c) - radius - high >= SLACK)
+                {
+                    return true;
+                }
+                // The direction from the hull's nearest point: for a single
+                // sub-step its gap is exactly the distance minus the radius.
+                let hull = &region.hull;
+                let h = hull.len();
+                let nearest = (0..h)
+                    .map(|i| closest_point_on_segment(center, hull[i], hull[(i + 1) % h]))
+                    .min_by(|p, q| {
+                        (p - center)
+                            .norm_squared()
+                            .total_cmp(&(q - center).norm_squared())
+                    });
+                let Some(q) = nearest else {
+                    return false;
+                };
+                let d = center - q;
+                let len = d.norm();
+                if len == 0.0 {
+                    return false;
+                }
+                let u = d / len;
+                u.dot(&c) - radius - region.high(u) >= SLACK
+            }
+        }
+    }
+}
+
+/// The piece of the convex `pts` (see [`Kind::Convex`]), its points and
+/// axes appended to `points` and `axes`.
+fn convex_piece(pts: &[Point], points: &mut Vec<Point>, axes: &mut Vec<Axis>) -> Piece {
+    let (p0, a0) = (points.len() as u32, axes.len() as u32);
+    points.extend_from_slice(pts);
+    let n = pts.len();
+    for i in 0..n {
+        let d = pts[(i + 1) % n] - pts[i];
+        let len = d.norm();
+        if len == 0.0 {
+            continue;
+        }
+        let normal = Vector::new(d.y, -d.x) / len;
+        if normal.x == 0.0 || normal.y == 0.0 {
+            continue;
+        }
+        // The largest projection over all points, not the edge's own: safe
+        // even if rounding made the piece slightly non-convex.
+        let support = pts
+            .iter()
+            .map(|p| normal.dot(&p.coords))
+            .fold(f64::NEG_INFINITY, f64::max);
+        axes.push(Axis { n: normal, support });
+    }
+    Piece {
+        aabb: Aabb::around(pts),
+        first: (0, 0),
+        kind: Kind::Convex {
+            points: (p0, points.len() as u32),
+            axes: (a0, axes.len() as u32),
+        },
+    }
+}
+
+/// A motion cut into sub-steps exactly as `Validator::check_motion` cuts it.
+#[derive(Clone, Copy, Debug)]
+struct Cut {
+    a: Config,
+    b: Config,
+    /// The rotation, along the shorter arc, in radians.
+    dtheta: f64,
+    steps: usize,
+}
+
+impl Cut {
+    /// `radius`: R of the robot.
+    fn new(a: Config, b: Config, radius: f64) -> Self {
+        let dtheta = angle_diff(a.theta, b.theta);
+        // The validator's count, to the bit: a group boundary must be one of
+        // its sub-step boundaries.
+        let steps = if dtheta == 0.0 {
+            1
+        } else {
+            let motion = (b.xy() - a.xy()).norm() + radius * dtheta.abs();
+            ((motion / DEFAULT_TOLERANCE).ceil() as usize).max(1)
+        };
+        Cut {
+            a,
+            b,
+            dtheta,
+            steps,
+        }
+    }
+
+    /// The robot standing at `c`.
+    fn still(c: Config) -> Self {
+        Cut {
+            a: c,
+            b: c,
+            dtheta: 0.0,
+            steps: 1,
+        }
+    }
+
+    /// The configuration after `k` sub-steps (the validator's formula).
+    fn at(&self, k: usize) -> Config {
+        let (a, b) = (self.a, self.b);
+        if k == 0 {
+            a
+        } else if k == self.steps {
+            b
+        } else {
+            let t = k as f64 / self.steps as f64;
+            Config::new(
+                a.x * (1.0 - t) + b.x * t,
+                a.y * (1.0 - t) + b.y * t,
+                a.theta + t * self.dtheta,
+            )
+        }
+    }
+}
+
+/// The bodies of one group of sub-steps, in a reusable buffer.
+struct Region {
+    /// Vertex i at the group's first configuration, then at its last:
+    /// `ends[2i]`, `ends[2i + 1]`.
+    ends: Vec<Point>,
+    /// `|v_i|·α²/2`, the bound on the second derivative of vertex i's
+    /// deviation from its chord (see [`bulge`]).
+    curvature: Vec<f64>,
+    /// The box of every body during the group.
+    aabb: Aabb,
+    /// The hull of `ends` (counter-clockwise), and its edge normals other
+    /// than ±x, ±y with the group's largest projection on each; valid when
+    /// `hull_ready`.
+    hull: Vec<Point>,
+    normals: Vec<(Vector, f64)>,
+    hull_ready: bool,
+    /// The group is one configuration: its body is its own hull.
+    still: bool,
+    /// Scratch for the hull.
+    sorted: Vec<Point>,
+}
+
+impl Region {
+    fn new() -> Self {
+        Region {
+            ends: Vec::new(),
+            curvature: Vec::new(),
+            aabb: Aabb::around(&[]),
+            hull: Vec::new(),
+            normals: Vec::new(),
+            hull_ready: false,
+            still: false,
+            sorted: Vec::new(),
+        }
+    }
+
+    /// The group of sub-steps `k0 .. k1` of `cut`.
+    fn set(&mut self, robot: &PolygonChecker, cut: &Cut, k0: usize, k1: usize) {
+        // A single sub-step is the validator's own hull: no deviation.
+        let alpha = if k1 - k0 <= 1 {
+            0.0
+        } else {
+            cut.dtheta.abs() * (k1 - k0) as f64 / cut.steps as f64
+        };
+        let spread = alpha * alpha / 2.0;
+        let (c0, c1) = (cut.at(k0), cut.at(k1));
+        // As `RobotShape::placed_vertices`, to the bit.
+        let (s0, co0) = c0.theta.sin_cos();
+        let (s1, co1) = c1.theta.sin_cos();
+        self.ends.clear();
+        self.curvature.clear();
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for (v, lever) in robot.vertices.iter().zip(&robot.lever) {
+            let p = Point::new(c0.x + co0 * v.x - s0 * v.y, c0.y + s0 * v.x + co0 * v.y);
+            let q = Point::new(c1.x + co1 * v.x - s1 * v.y, c1.y + s1 * v.x + co1 * v.y);
+            let k = lever * spread;
+            self.ends.push(p);
+            self.ends.push(q);
+            self.curvature.push(k);
+            lo.x = lo.x.min(-bulge(-p.x, -q.x, k));
+            lo.y = lo.y.min(-bulge(-p.y, -q.y, k));
+            hi.x = hi.x.max(bulge(p.x, q.x, k));
+            hi.y = hi.y.max(bulge(p.y, q.y, k));
+        }
+        self.aabb = Aabb { min: lo, max: hi };
+        self.hull_ready = false;
+        self.still = k0 == k1;
+        #[cfg(test)]
+        if k0 != k1 {
+            GROUPS.set(GROUPS.get() + 1);
+        }
+    }
+
+    /// The largest projection on the unit `u` of any body during the group.
+    #[inline]
+    fn high(&self, u: Vector) -> f64 {
+        self.ends
+            .chunks_exact(2)
+            .zip(&self.curvature)
+            .map(|(e, &k)| bulge(u.dot(&e[0].coords), u.dot(&e[1].coords), k))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// The smallest projection on the unit `u` of any body during the group.
+    #[inline]
+    fn low(&self, u: Vector) -> f64 {
+        -self.high(-u)
+    }
+
+    fn ensure_hull(&mut self) {
+        if self.hull_ready {
+            return;
+        }
+        if self.still {
+            // The robot's vertices are counter-clockwise, and so is any
+            // placement of them.
+            self.hull.clear();
+            self.hull.extend(self.ends.iter().step_by(2));
+        } else {
+            self.sorted.clear();
+            self.sorted.extend_from_slice(&self.ends);
+            convex_hull_into(&mut self.sorted, &mut self.hull);
+        }
+        self.normals.clear();
+        let h = self.hull.len();
+        for i in 0..h {
+            let d = self.hull[(i + 1) % h] - self.hull[i];
+            let len = d.norm();
+            if len == 0.0 {
+                continue;
+            }
+            let n = Vector::new(d.y, -d.x) / len;
+            if n.x != 0.0 && n.y != 0.0 {
+                let high = self.high(n);
+                self.normals.push((n, high));
+            }
+        }
+        self.hull_ready = true;
+    }
+}
+
+/// The largest value over λ ∈ [0, 1] of `(1−λ)·a + λ·b + k·λ(1−λ)`
+/// (`k ≥ 0`): a bound on `u·p(λ)` for a vertex whose projections at the
+/// group's ends are `a` and `b`, with `k = |v|·α²/2` (see the module
+/// documentation). `max(a, b)` for `k = 0`, and at most `max(a, b) + k/4`.
+#[inline]
+fn bulge(a: f64, b: f64, k: f64) -> f64 {
+    let d = b - a;
+    if d.abs() < k {
+        // The parabola's top lies inside (0, 1), at λ = (d + k) / 2k.
+        a + (d + k) * (d + k) / (4.0 * k)
+    } else {
+        a.max(b)
+    }
+}
+
+struct Scratch {
+    region: Region,
+    /// The pieces a motion still has to clear.
+    pending: Vec<u32>,
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Groups of sub-steps tested on this thread, witnesses not counted
+    /// (see the tests).
+    static GROUPS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch {
+        region: Region::new(),
+        pending: Vec::new(),
+    });
+}
+
+/// Runs `f` with this thread's scratch (a fresh one if it is in use).
+fn with_scratch<R>(f: impl FnOnce(&mut Scratch) -> R) -> R {
+    SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut s) => f(&mut s),
+        Err(_) => f(&mut Scratch {
+            region: Region::new(),
+            pending: Vec::new(),
+        }),
+    })
+}
+
+// ------------------------------------------------------------ C-space
+
+/// The penetration depth of the segment `p`–`q` into the convex polygon
+/// `poly` (counter-clockwise, at least 3 vertices): the smallest
+/// translation that separates them, over the separating axes (the
+/// polygon's edge normals and the segment's normal). ≤ 0 when they are
+/// apart or touch.
+///
+/// With `poly` the C-obstacle `B ⊕ (−A(θ))` of a piece `B` and `p`, `q`
+/// two positions of the robot `A(θ)`, this is the depth of the translating
+/// robot's swept hull into `B`: the validator's measure.
+pub fn segment_depth(p: Point, q: Point, poly: &[Point]) -> f64 {
+    let mut depth = f64::INFINITY;
+    let mut axis = |nx: f64, ny: f64| {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for v in poly {
+            let s = nx * v.x + ny * v.y;
+            lo = lo.min(s);
+            hi = hi.max(s);
+        }
+        let (a, b) = (nx * p.x + ny * p.y, nx * q.x + ny * q.y);
+        let d = (hi - a.min(b)).min(a.max(b) - lo);
+        depth = depth.min(d);
+    };
+    for i in 0..poly.len() {
+        let d = poly[(i + 1) % poly.len()] - poly[i];
+        let len = d.norm();
+        if len > 0.0 {
+            axis(d.y / len, -d.x / len);
+        }
+    }
+    let d = q - p;
+    let len = d.norm();
+    if len > 0.0 {
+        axis(d.y / len, -d.x / len);
+    }
+    depth
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+    use proptest::prelude::*;
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+
+    use super::*;
+    use crate::geometry::fixtures::{grid, polygon_shape, random_world, rect, world};
+    use crate::geometry::validator::{Validator, config_collision};
+    use crate::geometry::{Grid, polygon};
+    use crate::rng::SplitMix64;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    fn c(x: f64, y: f64, theta: f64) -> Config {
+        Config::new(x, y, theta)
+    }
+
+    fn polygon_robot(v: &[(f64, f64)]) -> RobotShape {
+        RobotShape::Polygon(ConvexPolygon {
+            vertices: v.iter().map(|&(x, y)| p(x, y)).collect(),
+        })
+    }
+
+    /// The 8 × 1 rod of SEEDS §A, its frame origin at a corner.
+    fn rod() -> RobotShape {
+        polygon_robot(&[(0.0, 0.0), (8.0, 0.0), (8.0, 1.0), (0.0, 1.0)])
+    }
+
+    fn valid(v: &Validator, robot: &RobotShape, a: Config, b: Config) -> bool {
+        v.validate_path(robot, &[a, b], DEFAULT_TOLERANCE).is_ok()
+    }
+
+    // ------------------------------------------------ known cases
+
+    #[test]
+    fn the_checker_is_sync() {
+        fn sync<T: Sync + Send>() {}
+        sync::<MotionChecker>();
+    }
+
+    #[test]
+    fn bounds_and_non_finite_configurations() {
+        let w = world(vec![rect(4.0, 4.0, 6.0, 6.0)]);
+        for robot in [RobotShape::Point, RobotShape::Disk(0.5), rod()] {
+            let m = MotionChecker::new(&w, &robot);
+            assert!(
+                m.config_free(c(0.0, 0.0, 0.0)),
+                "{robot:?}: the closed bounds"
+            );
+            assert!(!m.config_free(c(-0.1, 1.0, 0.0)));
+            assert!(!m.config_free(c(1.0, f64::NAN, 0.0)));
+            assert!(!m.config_free(c(1.0, 1.0, f64::INFINITY)));
+            assert!(m.motion_free(c(1.0, 1.0, 0.0), c(1.0, 2.0, 0.0)));
+            assert!(!m.motion_free(c(1.0, 1.0, 0.0), c(1.0, 10.5, 0.0)));
+            assert!(!m.motion_free(c(1.0, 1.0, 0.0), c(1.0, 2.0, f64::NAN)));
+        }
+    }
+
+    #[test]
+    fn a_rod_pivoting_on_a_wall_it_touches_is_free() {
+        // The rod's frame origin (a corner) sits on the wall x = 1 and the
+        // rod turns a quarter from hanging down to lying right of it: it
+        // touches the wall at the pivot all along, and its next vertex
+        // comes to rest on the wall. Bounds that know where each vertex
+        // is extreme clear that without cutting the motion down to its
+        // 1 000-odd sub-steps.
+        let mut w = world(vec![rect(-1.0, -20.0, 1.0, 20.0)]);
+        w.bounds = Aabb::from_corners(p(-20.0, -20.0), p(20.0, 20.0));
+        let (a, b) = (c(1.0, 0.0, -FRAC_PI_2), c(1.0, 0.0, 0.0));
+        let m = MotionChecker::new(&w, &rod());
+        assert!(valid(&Validator::new(&w), &rod(), a, b));
+        assert_eq!(Cut::new(a, b, 65f64.sqrt()).steps, 1267);
+        GROUPS.set(0);
+        assert!(m.motion_free(a, b));
+        assert!(m.motion_free(b, a));
+        // Each motion: the whole, then its two halves.
+        assert_eq!(GROUPS.get(), 6);
+        // Turning on, up from the wall, sweeps into it.
+        assert!(!m.motion_free(b, c(1.0, 0.0, FRAC_PI_2)));
+    }
+
+    #[test]
+    fn disk_obstacles_are_exact_circles() {
+        // 1e-6 from the unit disk: a circumscribed 32-gon would be 4.8e-3
+        // too big there.
+        let mut w = world(vec![Shape::Disk {
+            center: p(5.0, 5.0),
+            radius: 1.0,
+        }]);
+        w.bounds = Aabb::from_corners(p(-20.0, -20.0), p(20.0, 20.0));
+        let square = polygon_robot(&[(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]);
+        let m = MotionChecker::new(&w, &square);
+        let d = 1.0 + 0.5 + 1e-6;
+        assert!(m.motion_free(c(5.0 - d, 0.0, 0.0), c(5.0 - d, 10.0, 0.0)));
+        assert!(!m.motion_free(c(5.0 - d + 2e-6, 0.0, 0.0), c(5.0 - d + 2e-6, 10.0, 0.0)));
+        // A corner passing the disk diagonally, and the square turning
+        // beside it (its corners reach 0.5·√2 from its centre).
+        let q = 1.0 + 0.5 * 2f64.sqrt() + 1e-6;
+        assert!(m.config_free(c(5.0 + q / 2f64.sqrt(), 5.0 + q / 2f64.sqrt(), PI / 4.0)));
+        assert!(m.motion_free(c(5.0 + q, 5.0, 0.0), c(5.0 + q, 5.0, PI / 2.0)));
+        assert!(!m.motion_free(
+            c(5.0 + q - 1e-5, 5.0, 0.0),
+            c(5.0 + q - 1e-5, 5.0, PI / 2.0)
+        ));
+    }
+
+    #[test]
+    fn a_polygon_may_touch_but_not_cross_a_segment() {
+        let mut w = world(vec![Shape::Segment(p(0.0, 5.0), p(10.0, 5.0))]);
+        w.bounds = Aabb::from_corners(p(-20.0, -20.0), p(20.0, 20.0));
+        let m = MotionChecker::new(&w, &rod());
+        // Sliding along it, below and above.
+        assert!(m.motion_free(c(1.0, 4.0, 0.0), c(2.0, 4.0, 0.0)));
+        assert!(m.motion_free(c(1.0, 5.0, 0.0), c(2.0, 5.0, 0.0)));
+        // Across it, and turning through it.
+        assert!(!m.motion_free(c(1.0, 3.0, 0.0), c(1.0, 6.0, 0.0)));
+        assert!(!m.motion_free(c(1.0, 2.0, 0.0), c(1.0, 2.0, FRAC_PI_2)));
+        // Its end: a rod standing beside the end turns freely below it.
+        assert!(m.motion_free(c(10.5, 5.0, -FRAC_PI_2), c(10.5, 5.0, -PI)));
+    }
+
+    #[test]
+    fn grids_block_polygons_like_their_cells() {
+        let mut w = world(vec![grid(
+            1.0,
+            p(0.0, 0.0),
+            &["..........", "..####....", "..........", "......#..."],
+        )]);
+        w.bounds = Aabb::from_corners(p(-20.0, -20.0), p(20.0, 20.0));
+        let box1 = polygon_robot(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]);
+        let m = MotionChecker::new(&w, &box1);
+        // Row 1 (y from 2 to 3) is blocked from x = 2 to 6; row 3 (y from 0
+        // to 1) at x = 6.
+        assert!(m.motion_free(c(0.0, 1.0, 0.0), c(9.0, 1.0, 0.0)));
+        assert!(m.motion_free(c(0.0, 3.0, 0.0), c(9.0, 3.0, 0.0)));
+        assert!(!m.motion_free(c(0.0, 1.5, 0.0), c(9.0, 1.5, 0.0)));
+        assert!(!m.config_free(c(6.5, 0.5, 0.0)));
+        assert!(m.config_free(c(6.0, 1.0, 0.0)));
+    }
+
+    #[test]
+    fn segment_depth_known_cases() {
+        let sq = [p(0.0, 0.0), p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0)];
+        // Through the middle: 1 either way.
+        assert_eq!(segment_depth(p(-1.0, 1.0), p(3.0, 1.0), &sq), 1.0);
+        // Along an edge: touching.
+        assert_eq!(segment_depth(p(-1.0, 0.0), p(3.0, 0.0), &sq), 0.0);
+        // Apart.
+        assert!(segment_depth(p(-1.0, 3.0), p(3.0, 3.0), &sq) < 0.0);
+        // Cutting the corner at (2, 2) at distance d from it along the
+        // diagonal: every point is at most d/√2 deep, the segment d.
+        let d = 0.1;
+        let k = 2.0 - d / 2f64.sqrt();
+        let depth = segment_depth(p(k - 1.0, k + 1.0), p(k + 1.0, k - 1.0), &sq);
+        assert!((depth - d).abs() < 1e-12, "{depth}");
+    }
+
+    // ------------------------------------------------ against the validator
+
+    /// Point, disk, the rod, and small random convex polygons around (or
+    /// off) their frame origin.
+    fn robot_strategy() -> impl Strategy<Value = RobotShape> {
+        let convex = (
+            prop::collection::vec((-1.5..1.5f64, -1.5..1.5f64), 3..7),
+            (-1.0..1.0f64, -1.0..1.0f64),
+        )
+            .prop_filter_map("flat", |(v, (ox, oy))| {
+                let pts: Vec<Point> = v.iter().map(|&(x, y)| p(x + ox, y + oy)).collect();
+                let hull = polygon::convex_hull(&pts);
+                (hull.len() >= 3 && polygon::signed_area2(&hull) > 1e-3)
+                    .then_some(RobotShape::Polygon(ConvexPolygon { vertices: hull }))
+            });
+        prop_oneof![
+            1 => Just(RobotShape::Point),
+            1 => (0.01..1.5f64).prop_map(RobotShape::Disk),
+            2 => Just(rod()),
+            3 => convex,
+        ]
+    }
+
+    /// Translations, pure rotations up to π either way, and both at once,
+    /// from anywhere in and around the bounds [-1, 11]².
+    fn motion_strategy() -> impl Strategy<Value = (Config, Config)> {
+        let start = || (-2.0..12.0f64, -2.0..12.0f64, 0.0..TAU);
+        prop_oneof![
+            (start(), -4.0..4.0f64, -4.0..4.0f64)
+                .prop_map(|((x, y, t), dx, dy)| (c(x, y, t), c(x + dx, y + dy, t))),
+            (start(), -PI..=PI).prop_map(|((x, y, t), dt)| (c(x, y, t), c(x, y, t + dt))),
+            (start(), -3.0..3.0f64, -3.0..3.0f64, -PI..=PI)
+                .prop_map(|((x, y, t), dx, dy, dt)| { (c(x, y, t), c(x + dx, y + dy, t + dt)) }),
+        ]
+    }
+
+    fn with_bounds(mut w: World) -> World {
+        w.bounds = Aabb::from_corners(p(-1.0, -1.0), p(11.0, 11.0));
+        w
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        /// The contract: nothing the checker accepts fails the validator.
+        #[test]
+        fn never_accepts_what_the_validator_rejects(
+            w in random_world(),
+            robot in robot_strategy(),
+            (a, b) in motion_strategy(),
+        ) {
+            let w = with_bounds(w);
+            let checker = MotionChecker::new(&w, &robot);
+            let v = Validator::new(&w);
+            if checker.motion_free(a, b) {
+                prop_assert!(valid(&v, &robot, a, b), "{:?}: {:?} → {:?}", robot, a, b);
+            }
+            if checker.config_free(a) {
+                prop_assert!(w.bounds.contains(a.xy()));
+                prop_assert!(config_collision(&w, &robot, a).is_none(), "{:?} at {:?}", robot, a);
+            }
+        }
+    }
+
+    /// The kind of robot, for the figures.
+    fn kind(robot: &RobotShape) -> usize {
+        match robot {
+            RobotShape::Point => 0,
+            RobotShape::Disk(_) => 1,
+            RobotShape::Polygon(_) => 2,
+        }
+    }
+
+    /// Not vacuous: over a fixed sample of the property test's worlds,
+    /// robots and motions, the checker accepts nearly every motion the
+    /// validator accepts (points lose the ones that touch a segment).
+    #[test]
+    fn accepts_nearly_all_that_the_validator_accepts() {
+        let mut runner = TestRunner::deterministic();
+        let (worlds, robots, motions) = (random_world(), robot_strategy(), motion_strategy());
+        // Per kind: validator accepts, checker accepts too, checker alone.
+        let mut counts = [[0usize; 3]; 3];
+        // Polygon motions that turn: validator accepts, checker accepts too.
+        let mut turning = [0usize; 2];
+        let mut configs = [0usize; 2];
+        let mut drawn = 0;
+        while drawn < 3000 {
+            let (Ok(w), Ok(robot), Ok(ab)) = (
+                worlds.new_tree(&mut runner),
+                robots.new_tree(&mut runner),
+                motions.new_tree(&mut runner),
+            ) else {
+                continue;
+            };
+            drawn += 1;
+            let (w, robot, (a, b)) = (with_bounds(w.current()), robot.current(), ab.current());
+            let checker = MotionChecker::new(&w, &robot);
+            let (ours, referee) = (
+                checker.motion_free(a, b),
+                valid(&Validator::new(&w), &robot, a, b),
+            );
+            let k = &mut counts[kind(&robot)];
+            k[0] += usize::from(referee);
+            k[1] += usize::from(ours && referee);
+            k[2] += usize::from(ours && !referee);
+            if kind(&robot) == 2 && angle_diff(a.theta, b.theta) != 0.0 {
+                turning[0] += usize::from(referee);
+                turning[1] += usize::from(ours && referee);
+            }
+            let free = w.bounds.contains(a.xy()) && config_collision(&w, &robot, a).is_none();
+            configs[0] += usize::from(free);
+            configs[1] += usize::from(free && checker.config_free(a));
+        }
+        for (name, k) in ["point", "disk", "polygon"].iter().zip(&counts) {
+            eprintln!(
+                "{name}: the checker accepts {} of the {} motions the validator accepts ({:.2} %)",
+                k[1],
+                k[0],
+                100.0 * k[1] as f64 / k[0].max(1) as f64
+            );
+            assert_eq!(k[2], 0, "{name}: accepted what the validator rejects");
+        }
+        eprintln!(
+            "of which turning polygons: {} of {}; configurations: {} of {} free ones",
+            turning[1], turning[0], configs[1], configs[0]
+        );
+        let [_, disk, polygon] = counts;
+        assert!(
+            polygon[0] >= 200 && turning[0] >= 100 && disk[0] >= 100,
+            "too few free motions: {counts:?}, {turning:?}"
+        );
+        assert!(polygon[1] as f64 >= 0.95 * polygon[0] as f64, "{polygon:?}");
+        assert!(disk[1] as f64 >= 0.95 * disk[0] as f64, "{disk:?}");
+        assert!(configs[1] as f64 >= 0.95 * configs[0] as f64, "{configs:?}");
+    }
+
+    /// Convex polygon robots only, turning (with or without a translation).
+    fn turning_polygon() -> impl Strategy<Value = (RobotShape, (Config, Config))> {
+        let motion = motion_strategy().prop_filter("turns", |(a, b)| a.theta != b.theta);
+        (
+            robot_strategy().prop_filter("polygon", |r| kind(r) == 2),
+            motion,
+        )
+    }
+
+    /// The motion `(a, b)` moved by `s` along `d`.
+    fn shifted((a, b): (Config, Config), d: Vector, s: f64) -> (Config, Config) {
+        let m = |q: Config| c(q.x + s * d.x, q.y + s * d.y, q.theta);
+        (m(a), m(b))
+    }
+
+    /// Where along `d` (within 4 units) the validator's verdict on the
+    /// moved motion flips: a shift it accepts and one it rejects, a few
+    /// ulps apart.
+    fn flip(
+        v: &Validator,
+        robot: &RobotShape,
+        ab: (Config, Config),
+        d: Vector,
+    ) -> Option<(f64, f64)> {
+        let accepts = |s: f64| {
+            let (a, b) = shifted(ab, d, s);
+            valid(v, robot, a, b)
+        };
+        let (mut ok, mut bad) = match (accepts(0.0), accepts(4.0)) {
+            (true, false) => (0.0, 4.0),
+            (false, true) => (4.0, 0.0),
+            _ => return None,
+        };
+        loop {
+            let mid = 0.5 * (ok + bad);
+            if mid == ok || mid == bad {
+                return Some((ok, bad));
+            }
+            if accepts(mid) {
+                ok = mid;
+            } else {
+                bad = mid;
+            }
+        }
+    }
+
+    fn far_bounds(mut w: World) -> World {
+        w.bounds = Aabb::from_corners(p(-100.0, -100.0), p(100.0, 100.0));
+        w
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Turning motions moved right up to the validator's limit, where a
+        /// sub-step grazes an obstacle: the checker refuses the first
+        /// motion the validator refuses.
+        #[test]
+        fn grazing_turns_are_sound(
+            w in random_world(),
+            (robot, ab) in turning_polygon(),
+            phi in 0.0..TAU,
+        ) {
+            let w = far_bounds(w);
+            let v = Validator::new(&w);
+            let d = Vector::new(phi.cos(), phi.sin());
+            if let Some((ok, bad)) = flip(&v, &robot, ab, d) {
+                let checker = MotionChecker::new(&w, &robot);
+                let (a, b) = shifted(ab, d, bad);
+                prop_assert!(!checker.motion_free(a, b), "{:?}: {:?} → {:?}", robot, a, b);
+                let (a, b) = shifted(ab, d, ok);
+                if checker.motion_free(a, b) {
+                    prop_assert!(valid(&v, &robot, a, b));
+                }
+            }
+        }
+    }
+
+    /// And not much stricter there: 1e-7 short of the validator's limit,
+    /// the checker accepts too, nearly always.
+    #[test]
+    fn grazing_turns_are_accepted_just_short_of_the_limit() {
+        let mut runner = TestRunner::deterministic();
+        let (worlds, motions) = (random_world(), turning_polygon());
+        let (mut tried, mut accepted) = (0, 0);
+        let mut drawn = 0;
+        while drawn < 400 {
+            let (Ok(w), Ok(m), Ok(phi)) = (
+                worlds.new_tree(&mut runner),
+                motions.new_tree(&mut runner),
+                (0.0..TAU).new_tree(&mut runner),
+            ) else {
+                continue;
+            };
+            drawn += 1;
+            let (w, (robot, ab), phi) = (far_bounds(w.current()), m.current(), phi.current());
+            let v = Validator::new(&w);
+            let d = Vector::new(phi.cos(), phi.sin());
+            let Some((ok, bad)) = flip(&v, &robot, ab, d) else {
+                continue;
+            };
+            let (a, b) = shifted(ab, d, ok - 1e-7 * (bad - ok).signum());
+            if valid(&v, &robot, a, b) {
+                tried += 1;
+                accepted += usize::from(MotionChecker::new(&w, &robot).motion_free(a, b));
+            }
+        }
+        eprintln!(
+            "grazing turns 1e-7 short of the validator's limit: {accepted} of {tried} accepted"
+        );
+        assert!(tried >= 100, "{tried}");
+        assert!(
+            accepted as f64 >= 0.95 * tried as f64,
+            "{accepted} of {tried}"
+        );
+    }
+
+    /// A world on the integer lattice: rects, triangles, segments, a disk
+    /// and a grid of unit cells, all in [0, 12]².
+    fn lattice_world(rng: &mut SplitMix64) -> World {
+        let mut int = |lo: i32, hi: i32| lo + (rng.next_f64() * f64::from(hi - lo + 1)) as i32;
+        let mut shapes = Vec::new();
+        for _ in 0..int(2, 5) {
+            let (x, y) = (int(0, 10), int(0, 10));
+            let (w, h) = (int(1, 4), int(1, 4));
+            shapes.push(rect(x.into(), y.into(), (x + w).into(), (y + h).into()));
+        }
+        for _ in 0..int(0, 2) {
+            let (x, y) = (int(0, 9), int(0, 9));
+            let q = |dx: i32, dy: i32| p(f64::from(x + dx), f64::from(y + dy));
+            if let Some(s) = polygon_shape(&[q(0, 0), q(int(1, 3), 0), q(int(0, 3), int(1, 3))]) {
+                shapes.push(s);
+            }
+        }
+        for _ in 0..int(0, 2) {
+            let (x, y) = (int(0, 12), int(0, 12));
+            shapes.push(Shape::Segment(
+                p(x.into(), y.into()),
+                p(int(0, 12).into(), int(0, 12).into()),
+            ));
+        }
+        if int(0, 1) == 1 {
+            shapes.push(Shape::Disk {
+                center: p(int(1, 11).into(), int(1, 11).into()),
+                radius: int(1, 2).into(),
+            });
+        }
+        if int(0, 1) == 1 {
+            let (width, height) = (4, 4);
+            let cells = (0..width * height)
+                .map(|_| if int(0, 2) == 0 { 0 } else { 1 })
+                .collect();
+            shapes.push(Shape::Grid(Grid {
+                cell: 1.0,
+                origin: p(int(0, 8).into(), int(0, 8).into()),
+                width,
+                height,
+                cells,
+            }));
+        }
+        let mut w = world(shapes);
+        w.bounds = Aabb::from_corners(p(0.0, 0.0), p(12.0, 12.0));
+        w
+    }
+
+    /// Exact contacts: axis-aligned robots with half-integer sides at
+    /// half-integer positions translate among lattice obstacles, so that
+    /// their edges lie on obstacle edges, their corners on cell corners.
+    /// There the checker and the validator agree on every motion.
+    #[test]
+    fn translations_agree_exactly_with_the_validator_at_contacts() {
+        let mut rng = SplitMix64::new(20261122);
+        let (mut agreed, mut touching) = (0, 0);
+        for _ in 0..300 {
+            let w = lattice_world(&mut rng);
+            let v = Validator::new(&w);
+            let half =
+                |rng: &mut SplitMix64, lo: f64, hi: f64| (rng.range(lo, hi) * 2.0).floor() / 2.0;
+            let robot = if rng.coin() {
+                rod()
+            } else {
+                let (x0, y0) = (half(&mut rng, -1.0, 0.5), half(&mut rng, -1.0, 0.5));
+                let (wd, ht) = (half(&mut rng, 0.5, 3.0), half(&mut rng, 0.5, 2.0));
+                polygon_robot(&[(x0, y0), (x0 + wd, y0), (x0 + wd, y0 + ht), (x0, y0 + ht)])
+            };
+            let checker = MotionChecker::new(&w, &robot);
+            // A slightly larger robot: it collides where this one touches.
+            let RobotShape::Polygon(body) = &robot else {
+                unreachable!("polygon robots only");
+            };
+            let grown = RobotShape::Polygon(ConvexPolygon {
+                vertices: body
+                    .vertices
+                    .iter()
+                    .map(|v| p(v.x * 1.001, v.y * 1.001))
+                    .collect(),
+            });
+            for _ in 0..20 {
+                let theta = [0.0, FRAC_PI_2, PI, 3.0 * FRAC_PI_2][(rng.next_f64() * 4.0) as usize];
+                let (x, y) = (half(&mut rng, 0.0, 12.0), half(&mut rng, 0.0, 12.0));
+                let (dx, dy) = (half(&mut rng, -3.0, 3.5), half(&mut rng, -3.0, 3.5));
+                let (a, b) = (c(x, y, theta), c(x + dx, y + dy, theta));
+                let referee = valid(&v, &robot, a, b);
+                assert_eq!(
+                    checker.motion_free(a, b),
+                    referee,
+                    "{robot:?}: {a:?} → {b:?} in {w:?}"
+                );
+                let free = config_collision(&w, &robot, a).is_none();
+                assert_eq!(checker.config_free(a), free, "{robot:?} at {a:?} in {w:?}");
+                agreed += 1;
+                touching += usize::from(referee && !valid(&v, &grown, a, b));
+            }
+        }
+        eprintln!("{agreed} translations agree, {touching} of them accepted in contact");
+        assert!(touching >= 200, "too few contacts: {touching}");
+    }
+}
