@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use crate::checks;
 use crate::drive::{self, DriveOutcome, Unicycle};
-use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
+use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError, Validator};
 use crate::geometry::{Config, RobotShape, angle_diff};
 use crate::planners::{MetricValue, Metrics, PlanOutcome};
 use crate::scenario::{ParamValue, Plan, Scenario};
@@ -109,11 +109,21 @@ fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
     let began = Instant::now();
     let outcome = plan.settings.plan(&plan.task(scenario));
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
+    let referee = Validator::new(&scenario.world);
     let validation = outcome
         .path
         .as_ref()
-        .and_then(|p| validator::validate_path(&scenario.world, robot, p, DEFAULT_TOLERANCE).err());
+        .and_then(|p| referee.validate_path(robot, p, DEFAULT_TOLERANCE).err());
     let mut metrics = common_metrics(&outcome, robot, plan, time_ms, validation.is_none());
+    let path = outcome.path.as_deref();
+    metrics.insert(
+        "clearance".into(),
+        MetricValue::Num(path.map_or(0.0, |p| referee.clearance(robot, p, DEFAULT_TOLERANCE))),
+    );
+    metrics.insert(
+        "smoothness".into(),
+        MetricValue::Num(path.map_or(f64::INFINITY, smoothness)),
+    );
     let drive = drive_plan(scenario, plan, &outcome, &mut metrics);
     PlanRun {
         plan: index,
@@ -224,4 +234,69 @@ pub fn path_turn(path: &[Config]) -> f64 {
     path.windows(2)
         .map(|w| angle_diff(w[0].theta, w[1].theta).abs())
         .sum()
+}
+
+/// OMPL's smoothness of the (x, y) polyline (`PathGeometric::smoothness`):
+/// for consecutive segments of lengths a, b whose ends are c apart,
+/// k = 2(π − acos((a² + b² − c²)/(2ab)))/(a + b), summed as k². Zero-length
+/// segments are skipped; as in OMPL, a vertex where the cosine is not
+/// strictly inside (−1, 1) (a straight continuation, or a turn back)
+/// adds nothing. 0 for a straight path.
+pub fn smoothness(path: &[Config]) -> f64 {
+    let mut points: Vec<crate::geometry::Point> = Vec::with_capacity(path.len());
+    for c in path {
+        if points.last() != Some(&c.xy()) {
+            points.push(c.xy());
+        }
+    }
+    points
+        .windows(3)
+        .map(|w| {
+            let (a, b, c) = (
+                (w[1] - w[0]).norm(),
+                (w[2] - w[1]).norm(),
+                (w[2] - w[0]).norm(),
+            );
+            let cos = (a * a + b * b - c * c) / (2.0 * a * b);
+            if cos > -1.0 && cos < 1.0 {
+                let k = 2.0 * (std::f64::consts::PI - cos.acos()) / (a + b);
+                k * k
+            } else {
+                0.0
+            }
+        })
+        .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn path(points: &[(f64, f64)]) -> Vec<Config> {
+        points
+            .iter()
+            .map(|&(x, y)| Config::new(x, y, 0.0))
+            .collect()
+    }
+
+    #[test]
+    fn smoothness_is_omplish() {
+        // Straight, with a repeated point and a collinear vertex: 0.
+        assert_eq!(
+            smoothness(&path(&[(0.0, 0.0), (1.0, 0.0), (1.0, 0.0), (3.0, 0.0)])),
+            0.0
+        );
+        assert_eq!(smoothness(&path(&[(0.0, 0.0)])), 0.0);
+        // One right angle between unit segments: k = 2·(π/2)/2, k² = π²/4.
+        let s = smoothness(&path(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)]));
+        assert!(
+            (s - std::f64::consts::PI.powi(2) / 4.0).abs() < 1e-12,
+            "{s}"
+        );
+        // Sharper turns cost more; longer segments soften them.
+        let sharp = smoothness(&path(&[(0.0, 0.0), (1.0, 0.0), (0.0, 0.1)]));
+        assert!(sharp > s);
+        let long = smoothness(&path(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0)]));
+        assert!(long < s);
+    }
 }

@@ -241,38 +241,10 @@ impl<'w> Validator<'w> {
         tolerance: f64,
     ) -> Result<(), ValidationError> {
         self.check_config_in_bounds(segment, b)?;
-        let dtheta = if robot.rotates() {
-            angle_diff(a.theta, b.theta)
-        } else {
-            0.0
-        };
-        // A translating convex body sweeps exactly the hull of its two end
-        // bodies, so the union of sub-step hulls is that same hull: one
-        // sub-step is exact. Rotation needs sub-steps in which no point moves
-        // more than `tolerance` (|Δxy| + R·|Δθ| bounds every point's motion).
-        let steps = if dtheta == 0.0 {
-            1
-        } else {
-            let motion = (b.xy() - a.xy()).norm() + robot.radius() * dtheta.abs();
-            ((motion / tolerance).ceil() as usize).max(1)
-        };
-        let at = |k: usize| -> Config {
-            if k == 0 {
-                a
-            } else if k == steps {
-                b
-            } else {
-                let t = k as f64 / steps as f64;
-                Config::new(
-                    a.x * (1.0 - t) + b.x * t,
-                    a.y * (1.0 - t) + b.y * t,
-                    a.theta + t * dtheta,
-                )
-            }
-        };
+        let steps = SubSteps::new(robot, a, b, tolerance);
         // Bounds are convex: both ends inside means the whole motion is.
-        for k in 0..steps {
-            let (c0, c1) = (at(k), at(k + 1));
+        for k in 0..steps.count {
+            let (c0, c1) = (steps.at(k), steps.at(k + 1));
             let region = body_region(robot, c0, c1);
             if let Some(i) = self.first_hit(&region) {
                 // Name the start if the robot is already in collision there.
@@ -550,6 +522,50 @@ impl<'w> Validator<'w> {
         }
     }
 
+    /// The clearance of a path (SPEC 3): the smallest distance between the
+    /// robot and any obstacle over the sub-steps of [`Validator::validate_path`]
+    /// — the distance of each sub-step's swept hull, which for a
+    /// translation is exactly the smallest distance along the motion and for
+    /// a rotation is within the sub-step's deviation from the swept arcs
+    /// (far less than `tolerance`) of it.
+    ///
+    /// # Returns
+    /// The distance in world units: 0 when the robot touches (within
+    /// [`TOUCH_EPS`]) or overlaps an obstacle, +∞ for a world without
+    /// obstacles or an empty path. Distances to a disk robot are measured
+    /// from its boundary, to segment obstacles from the segment.
+    pub fn clearance(&self, robot: &RobotShape, path: &[Config], tolerance: f64) -> f64 {
+        let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
+            tolerance
+        } else {
+            DEFAULT_TOLERANCE
+        };
+        let mut best = f64::INFINITY;
+        let measure = |region: &Region, best: &mut f64| {
+            for o in &self.obstacles {
+                if aabb_distance(&region.aabb, &o.aabb) < *best {
+                    *best = best.min(body_distance(region, &o.body, *best));
+                }
+            }
+        };
+        match path {
+            [] => return f64::INFINITY,
+            [c] => measure(&body_region(robot, *c, *c), &mut best),
+            _ => {
+                for pair in path.windows(2) {
+                    let steps = SubSteps::new(robot, pair[0], pair[1], tolerance);
+                    for k in 0..steps.count {
+                        measure(&body_region(robot, steps.at(k), steps.at(k + 1)), &mut best);
+                        if best <= TOUCH_EPS {
+                            return 0.0;
+                        }
+                    }
+                }
+            }
+        }
+        if best <= TOUCH_EPS { 0.0 } else { best }
+    }
+
     /// The smallest index of an obstacle that `region` collides with.
     fn first_hit(&self, region: &Region) -> Option<usize> {
         let reach = grow(region.aabb, 2.0 * TOUCH_EPS);
@@ -557,6 +573,126 @@ impl<'w> Validator<'w> {
             .iter()
             .position(|o| aabbs_meet(&o.aabb, &reach) && collides(region, &o.body))
     }
+}
+
+/// The sub-steps of a motion from `a` to `b`. A translating convex body
+/// sweeps exactly the hull of its two end bodies, so the union of sub-step
+/// hulls is that same hull: one sub-step is exact. Rotation needs sub-steps
+/// in which no point moves more than `tolerance` (|Δxy| + R·|Δθ| bounds
+/// every point's motion).
+struct SubSteps {
+    a: Config,
+    b: Config,
+    dtheta: f64,
+    count: usize,
+}
+
+impl SubSteps {
+    fn new(robot: &RobotShape, a: Config, b: Config, tolerance: f64) -> Self {
+        let dtheta = if robot.rotates() {
+            angle_diff(a.theta, b.theta)
+        } else {
+            0.0
+        };
+        let count = if dtheta == 0.0 {
+            1
+        } else {
+            let motion = (b.xy() - a.xy()).norm() + robot.radius() * dtheta.abs();
+            ((motion / tolerance).ceil() as usize).max(1)
+        };
+        SubSteps {
+            a,
+            b,
+            dtheta,
+            count,
+        }
+    }
+
+    /// The configuration at the end of sub-step `k` (0: the start).
+    fn at(&self, k: usize) -> Config {
+        let (a, b) = (self.a, self.b);
+        if k == 0 {
+            a
+        } else if k == self.count {
+            b
+        } else {
+            let t = k as f64 / self.count as f64;
+            Config::new(
+                a.x * (1.0 - t) + b.x * t,
+                a.y * (1.0 - t) + b.y * t,
+                a.theta + t * self.dtheta,
+            )
+        }
+    }
+}
+
+/// The distance from `region` to `body`, or anything ≥ `best` when that is
+/// smaller than the distance (the caller keeps the minimum).
+fn body_distance(region: &Region, body: &Body, best: f64) -> f64 {
+    match body {
+        Body::Solid { pieces, .. } => pieces
+            .iter()
+            .map(|(core, radius)| {
+                core_distance(&region.core, core, best + region.radius + radius)
+                    - region.radius
+                    - radius
+            })
+            .fold(f64::INFINITY, f64::min),
+        Body::Wall(wall) => core_distance(&region.core, wall, best + region.radius) - region.radius,
+        Body::Grid(grid) => grid_distance(region, grid, best),
+    }
+}
+
+/// The distance between two cores, or a lower bound of it that is at least
+/// `beyond` (when the separating axes already show they are that far apart).
+fn core_distance(a: &Core, b: &Core, beyond: f64) -> f64 {
+    let gap = largest_gap(a, b);
+    match gap {
+        Some(g) if g >= beyond => return g,
+        Some(g) if g < 0.0 => return 0.0,
+        _ => {}
+    }
+    let d = a.with_shape(|pa, sa| b.with_shape(|pb, sb| query::distance(pa, sa, pb, sb)));
+    d.unwrap_or(0.0).max(gap.unwrap_or(0.0))
+}
+
+/// The distance from `region` to the blocked cells of `grid` (or anything
+/// ≥ `best`): cells in a window around the region, widened by doubling
+/// until a blocked cell is found inside it (the region's box includes its
+/// radius, so cells outside a window of margin m are farther than m).
+fn grid_distance(region: &Region, grid: &Grid, best: f64) -> f64 {
+    let extent = grid.extent();
+    let mut r = grid.cell;
+    loop {
+        let margin = r.min(best);
+        let window = grow(region.aabb, margin);
+        let (cols, rows) = grid.cells_overlapping(&window);
+        let mut d = f64::INFINITY;
+        for row in rows {
+            for col in cols.clone() {
+                if grid.is_blocked(col, row) {
+                    let cell = Core::from_aabb(&grid.cell_box(col, row));
+                    d = d
+                        .min(core_distance(&region.core, &cell, d + region.radius) - region.radius);
+                }
+            }
+        }
+        let covers = window.min.x <= extent.min.x
+            && window.min.y <= extent.min.y
+            && window.max.x >= extent.max.x
+            && window.max.y >= extent.max.y;
+        if d <= margin || r >= best || covers {
+            return d;
+        }
+        r *= 2.0;
+    }
+}
+
+/// The distance between two boxes (0 when they meet).
+fn aabb_distance(a: &Aabb, b: &Aabb) -> f64 {
+    let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
+    let dy = (b.min.y - a.max.y).max(a.min.y - b.max.y).max(0.0);
+    dx.hypot(dy)
 }
 
 /// The region swept by the robot from `c0` to `c1`: the hull of its bodies
@@ -1060,6 +1196,68 @@ mod tests {
 
     fn ok(w: &World, robot: &RobotShape, path: &[Config]) -> bool {
         validate_path(w, robot, path, DEFAULT_TOLERANCE).is_ok()
+    }
+
+    fn clearance(w: &World, robot: &RobotShape, path: &[Config]) -> f64 {
+        Validator::new(w).clearance(robot, path, DEFAULT_TOLERANCE)
+    }
+
+    #[test]
+    fn clearance_is_the_smallest_distance_along_the_path() {
+        let disk = RobotShape::Disk(0.5);
+        // No obstacle, no path: infinitely clear.
+        assert_eq!(
+            clearance(&world(vec![]), &disk, &[c(1.0, 1.0), c(9.0, 1.0)]),
+            f64::INFINITY
+        );
+        assert_eq!(
+            clearance(&world(vec![("B", rect(4.0, 4.0, 6.0, 6.0))]), &disk, &[]),
+            f64::INFINITY
+        );
+        // A disk passing under a box: 2 below it, minus its radius, in the
+        // middle of one straight motion (the ends are farther).
+        let w = world(vec![("B", rect(4.0, 3.0, 6.0, 4.0))]);
+        assert!((clearance(&w, &disk, &[c(0.5, 1.0), c(9.5, 1.0)]) - 1.5).abs() < 1e-12);
+        // A point passing a wall; a single configuration.
+        let w = world(vec![("W", Shape::Segment(p(5.0, 2.0), p(5.0, 6.0)))]);
+        assert!(
+            (clearance(&w, &RobotShape::Point, &[c(1.0, 1.0), c(9.0, 1.0)]) - 1.0).abs() < 1e-12
+        );
+        assert!((clearance(&w, &RobotShape::Point, &[c(3.0, 4.0)]) - 2.0).abs() < 1e-12);
+        // Touching counts as 0.
+        let w = world(vec![("B", rect(4.0, 4.0, 6.0, 6.0))]);
+        assert_eq!(clearance(&w, &disk, &[c(1.0, 3.5), c(9.0, 3.5)]), 0.0);
+        // A grid: the nearest blocked cell, found by widening windows.
+        let g = grid(
+            1.0,
+            p(0.0, 0.0),
+            &["#.........", "..........", ".........."],
+        );
+        let w = world(vec![("G", g)]);
+        // The blocked cell is the top row's first: [0, 1] × [2, 3].
+        let d = clearance(&w, &RobotShape::Point, &[c(9.5, 0.5), c(9.5, 1.0)]);
+        assert!((d - 8.5f64.hypot(1.0)).abs() < 1e-12, "{d}");
+    }
+
+    #[test]
+    fn clearance_of_a_rotation_is_within_the_tolerance() {
+        // The 8×1 rod turning about its first vertex at the origin from 0°
+        // to 90° reaches y = √65 at θ = atan 8 (its far corner); a wall at
+        // y = 8.5 is √65 short of that.
+        let rod = RobotShape::Polygon(ConvexPolygon {
+            vertices: vec![p(0.0, 0.0), p(8.0, 0.0), p(8.0, 1.0), p(0.0, 1.0)],
+        });
+        let mut w = world(vec![("W", Shape::Segment(p(-9.0, 8.5), p(9.0, 8.5)))]);
+        w.bounds.min = p(-10.0, -10.0);
+        let path = [
+            Config::new(0.0, 0.0, 0.0),
+            Config::new(0.0, 0.0, std::f64::consts::FRAC_PI_2),
+        ];
+        // The sub-step hulls cut each arc by its sagitta, far below the
+        // tolerance.
+        let d = clearance(&w, &rod, &path);
+        let truth = 8.5 - 65f64.sqrt();
+        assert!((d - truth).abs() <= DEFAULT_TOLERANCE, "{d} vs {truth}");
     }
 
     #[test]

@@ -482,6 +482,14 @@ pub const COMMON_METRICS: &[MetricSpec] = &[
         "reaches_goal",
         "the path's last configuration is within 1e-9 of `goal`",
     ),
+    MetricSpec::num(
+        "clearance",
+        "smallest distance between the robot and any obstacle along the path (0 when it touches or without a path, +∞ with no obstacle)",
+    ),
+    MetricSpec::num(
+        "smoothness",
+        "OMPL's smoothness of the (x, y) polyline: Σ k² of the turns (0 when straight, +∞ without a path)",
+    ),
 ];
 
 /// Metrics of a plan with `drive` (SPEC 3.6), whatever its planner.

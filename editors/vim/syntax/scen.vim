@@ -102,7 +102,7 @@ syn match   scenParen contained /[()]/
 syn match   scenAccessor contained /\.\ze\h/
 syn match   scenPlanRef contained /\<\h\w*\ze\.\h/
 syn match   scenOtherMetric contained /\.\@1<=\h\w*/
-syn match   scenMetric contained /\.\@1<=\%(found\|gave_up\|cost\|length\|turn\|nodes\|expanded\|time_ms\|collision_free\|reaches_goal\)\>/
+syn match   scenMetric contained /\.\@1<=\%(found\|gave_up\|cost\|length\|turn\|nodes\|expanded\|time_ms\|collision_free\|reaches_goal\|clearance\|smoothness\)\>/
 syn match   scenMetric contained /\.\@1<=\%(cells\|free_cells\|layers\|generated\)\>/
 syn match   scenMetric contained /\.\@1<=\%(traveled\|steps\|replans\|sensed\)\>/
 syn match   scenMetric contained /\.\@1<=\%(graph_nodes\|graph_edges\)\>/
