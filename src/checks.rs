@@ -1,20 +1,49 @@
-//! Evaluating `expect` expressions over the metrics of a run.
+//! Evaluating `expect` expressions over the metrics of a run and the
+//! series of a bench (SPEC 2.6, 2.7).
 
 use std::collections::BTreeMap;
 
 use crate::planners::{MetricValue, Metrics};
-use crate::syntax::ast::{ArithOp, CompareOp, Expr, ExprKind};
+use crate::syntax::ast::{ArithOp, CompareOp, Expr, ExprKind, Selection, Value, ValueKind};
 
-/// Evaluates a (well-typed) expression. `metrics` gives each plan's
-/// metrics by plan name; every metric read is recorded in `used` under
-/// `plan.metric`. A metric that is missing evaluates as NaN (so every
+/// What an expression reads: plans' metrics, and benches' series.
+pub trait Values {
+    /// The metrics of a plan that ran.
+    fn metrics(&self, plan: &str) -> Option<&Metrics>;
+
+    /// A bench's metric of one plan over the runs of the selected
+    /// configurations, in run order; `None` when the bench did not run.
+    fn series(
+        &self,
+        bench: &str,
+        plan: &str,
+        select: &[Selection],
+        metric: &str,
+    ) -> Option<Vec<MetricValue>>;
+}
+
+/// The size, smallest and largest value of a series a check aggregated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SeriesStats {
+    pub runs: usize,
+    pub min: f64,
+    pub max: f64,
+}
+
+/// What a check read: each metric and aggregate value by its text
+/// (`plan.metric`, `median(b.p.time_ms)`), and each series' statistics.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Used {
+    pub values: BTreeMap<String, MetricValue>,
+    pub series: BTreeMap<String, SeriesStats>,
+}
+
+/// Evaluates a (well-typed) expression, recording in `used` every value
+/// it read. A metric or series that is missing evaluates as NaN (so every
 /// comparison with it fails) — analysis makes that impossible for
-/// expressions it accepted.
-pub fn eval<'m>(
-    expr: &Expr,
-    metrics: &dyn Fn(&str) -> Option<&'m Metrics>,
-    used: &mut BTreeMap<String, MetricValue>,
-) -> MetricValue {
+/// expressions it accepted. An aggregate of no runs is NaN too, except
+/// `count` (0) and `sum` (0).
+pub fn eval(expr: &Expr, values: &dyn Values, used: &mut Used) -> MetricValue {
     use MetricValue::{Bool, Num};
     let num = |v: MetricValue| v.as_f64();
     let truth = |v: MetricValue| match v {
@@ -25,16 +54,38 @@ pub fn eval<'m>(
         ExprKind::Number(x) | ExprKind::Percent(x) => Num(*x),
         ExprKind::Bool(b) => Bool(*b),
         ExprKind::Metric { plan, metric } => {
-            let v = metrics(&plan.value)
+            let v = values
+                .metrics(&plan.value)
                 .and_then(|m| m.get(&metric.value).copied())
                 .unwrap_or(Num(f64::NAN));
-            used.insert(format!("{}.{}", plan.value, metric.value), v);
+            used.values
+                .insert(format!("{}.{}", plan.value, metric.value), v);
             v
         }
-        ExprKind::Neg(x) => Num(-num(eval(x, metrics, used))),
-        ExprKind::Not(x) => Bool(!truth(eval(x, metrics, used))),
+        // A series of one run used as a plain value (analysis allowed it).
+        ExprKind::Series { .. } | ExprKind::Where(..) => {
+            let s = eval_series(expr, values, used, false);
+            let v = match s.as_slice() {
+                [one] => *one,
+                _ => Num(f64::NAN),
+            };
+            used.values.insert(describe(expr), v);
+            v
+        }
+        ExprKind::Call { function, args } => {
+            let series = args
+                .first()
+                .map(|a| eval_series(a, values, used, true))
+                .unwrap_or_default();
+            let q = args.get(1).map(|q| num(eval(q, values, used)));
+            let v = aggregate(&function.value, &series, q);
+            used.values.insert(describe(expr), v);
+            v
+        }
+        ExprKind::Neg(x) => Num(-num(eval(x, values, used))),
+        ExprKind::Not(x) => Bool(!truth(eval(x, values, used))),
         ExprKind::Arith { op, lhs, rhs } => {
-            let (a, b) = (num(eval(lhs, metrics, used)), num(eval(rhs, metrics, used)));
+            let (a, b) = (num(eval(lhs, values, used)), num(eval(rhs, values, used)));
             Num(match op {
                 ArithOp::Add => a + b,
                 ArithOp::Sub => a - b,
@@ -43,7 +94,7 @@ pub fn eval<'m>(
             })
         }
         ExprKind::Compare { op, lhs, rhs } => {
-            let (a, b) = (eval(lhs, metrics, used), eval(rhs, metrics, used));
+            let (a, b) = (eval(lhs, values, used), eval(rhs, values, used));
             let (a, b) = (num(a), num(b));
             Bool(match op {
                 CompareOp::Lt => a < b,
@@ -55,25 +106,175 @@ pub fn eval<'m>(
             })
         }
         ExprKind::Approx { lhs, rhs, tol } => {
-            let a = num(eval(lhs, metrics, used));
-            let b = num(eval(rhs, metrics, used));
-            let t = num(eval(tol, metrics, used));
+            let a = num(eval(lhs, values, used));
+            let b = num(eval(rhs, values, used));
+            let t = num(eval(tol, values, used));
             Bool((a - b).abs() <= t)
         }
         // Both sides are always evaluated, so that every value a check
         // used is reported.
         ExprKind::And(a, b) => {
-            let (x, y) = (truth(eval(a, metrics, used)), truth(eval(b, metrics, used)));
+            let (x, y) = (truth(eval(a, values, used)), truth(eval(b, values, used)));
             Bool(x && y)
         }
         ExprKind::Or(a, b) => {
-            let (x, y) = (truth(eval(a, metrics, used)), truth(eval(b, metrics, used)));
+            let (x, y) = (truth(eval(a, values, used)), truth(eval(b, values, used)));
             Bool(x || y)
         }
     }
 }
 
-/// The plans an expression refers to.
+/// The runs' values of a series expression (`b.p.m`, `S where T`),
+/// recording its statistics when it is `aggregated`.
+fn eval_series(
+    expr: &Expr,
+    values: &dyn Values,
+    used: &mut Used,
+    aggregated: bool,
+) -> Vec<MetricValue> {
+    let out = match &expr.kind {
+        ExprKind::Series {
+            bench,
+            plan,
+            select,
+            metric,
+        } => values
+            .series(&bench.value, &plan.value, select, &metric.value)
+            .unwrap_or_default(),
+        ExprKind::Where(series, condition) => {
+            let s = eval_series(series, values, used, false);
+            let c = eval_series(condition, values, used, false);
+            s.into_iter()
+                .zip(c)
+                .filter(|(_, c)| *c == MetricValue::Bool(true))
+                .map(|(v, _)| v)
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    if !aggregated {
+        return out;
+    }
+    let xs: Vec<f64> = out.iter().map(|v| v.as_f64()).collect();
+    used.series.insert(
+        describe(expr),
+        SeriesStats {
+            runs: xs.len(),
+            min: xs.iter().copied().fold(f64::NAN, f64::min),
+            max: xs.iter().copied().fold(f64::NAN, f64::max),
+        },
+    );
+    out
+}
+
+/// An aggregate of a series (SPEC 2.7); `q` is `quantile`'s level.
+pub fn aggregate(function: &str, series: &[MetricValue], q: Option<f64>) -> MetricValue {
+    use MetricValue::Num;
+    let xs: Vec<f64> = series.iter().map(|v| v.as_f64()).collect();
+    let n = xs.len() as f64;
+    let sorted = || {
+        let mut s = xs.clone();
+        s.sort_by(f64::total_cmp);
+        s
+    };
+    let mean = xs.iter().sum::<f64>() / n;
+    Num(match function {
+        "count" => n,
+        "sum" => xs.iter().sum(),
+        "mean" => mean,
+        "rate" => {
+            series
+                .iter()
+                .filter(|v| **v == MetricValue::Bool(true))
+                .count() as f64
+                / n
+        }
+        "min" => xs.iter().copied().fold(f64::NAN, f64::min),
+        "max" => xs.iter().copied().fold(f64::NAN, f64::max),
+        "std" if xs.len() >= 2 => {
+            let ss: f64 = xs.iter().map(|x| (x - mean) * (x - mean)).sum();
+            if ss.is_nan() {
+                f64::NAN
+            } else {
+                (ss / (n - 1.0)).sqrt()
+            }
+        }
+        "median" => quantile(&sorted(), 0.5),
+        "quantile" => quantile(&sorted(), q.unwrap_or(f64::NAN)),
+        _ => f64::NAN,
+    })
+}
+
+/// The `q`-quantile of sorted values, interpolating linearly between the
+/// two nearest ranks (NaN for no values or `q` outside [0, 1]).
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() || !(0.0..=1.0).contains(&q) {
+        return f64::NAN;
+    }
+    let h = (sorted.len() - 1) as f64 * q;
+    let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
+    let (a, b) = (sorted[lo], sorted[hi]);
+    if a == b || lo == hi {
+        a
+    } else {
+        a + (h - lo as f64) * (b - a)
+    }
+}
+
+/// An expression as the report names it: `median(b.p[k = 1].time_ms)`.
+pub fn describe(expr: &Expr) -> String {
+    match &expr.kind {
+        ExprKind::Metric { plan, metric } => format!("{}.{}", plan.value, metric.value),
+        ExprKind::Series {
+            bench,
+            plan,
+            select,
+            metric,
+        } => {
+            let sel = if select.is_empty() {
+                String::new()
+            } else {
+                let parts: Vec<String> = select
+                    .iter()
+                    .map(|s| format!("{} = {}", s.key.value, value_text(&s.value)))
+                    .collect();
+                format!("[{}]", parts.join(", "))
+            };
+            format!("{}.{}{sel}.{}", bench.value, plan.value, metric.value)
+        }
+        ExprKind::Where(s, c) => format!("{} where {}", describe(s), describe(c)),
+        ExprKind::Call { function, args } => {
+            let args: Vec<String> = args.iter().map(describe).collect();
+            format!("{}({})", function.value, args.join(", "))
+        }
+        ExprKind::Number(x) => format_num(*x),
+        ExprKind::Percent(x) => format!("{}%", format_num(x * 100.0)),
+        ExprKind::Bool(b) => b.to_string(),
+        _ => "…".to_string(),
+    }
+}
+
+/// A literal value as written (for selections in reports).
+pub fn value_text(v: &Value) -> String {
+    match &v.kind {
+        ValueKind::Number(x) => format_num(*x),
+        ValueKind::Angle(x) => format!("{}deg", format_num(x.to_degrees())),
+        ValueKind::Percent(x) => format!("{}%", format_num(x * 100.0)),
+        ValueKind::Duration(x) => format!("{}s", format_num(*x)),
+        ValueKind::Str(s) => format!("{s:?}"),
+        ValueKind::Word(w) => w.clone(),
+        ValueKind::Tuple(xs) => format!(
+            "({})",
+            xs.iter().map(value_text).collect::<Vec<_>>().join(", ")
+        ),
+        ValueKind::List(xs) => format!(
+            "[{}]",
+            xs.iter().map(value_text).collect::<Vec<_>>().join(", ")
+        ),
+    }
+}
+
+/// The plans an expression refers to by `PLAN.METRIC`.
 pub fn plans_used(expr: &Expr, out: &mut Vec<String>) {
     match &expr.kind {
         ExprKind::Metric { plan, .. } => {
@@ -82,7 +283,11 @@ pub fn plans_used(expr: &Expr, out: &mut Vec<String>) {
             }
         }
         ExprKind::Neg(x) | ExprKind::Not(x) => plans_used(x, out),
-        ExprKind::Arith { lhs, rhs, .. } | ExprKind::Compare { lhs, rhs, .. } => {
+        ExprKind::Arith { lhs, rhs, .. }
+        | ExprKind::Compare { lhs, rhs, .. }
+        | ExprKind::Where(lhs, rhs)
+        | ExprKind::And(lhs, rhs)
+        | ExprKind::Or(lhs, rhs) => {
             plans_used(lhs, out);
             plans_used(rhs, out);
         }
@@ -91,11 +296,11 @@ pub fn plans_used(expr: &Expr, out: &mut Vec<String>) {
             plans_used(rhs, out);
             plans_used(tol, out);
         }
-        ExprKind::And(a, b) | ExprKind::Or(a, b) => {
-            plans_used(a, out);
-            plans_used(b, out);
-        }
-        ExprKind::Number(_) | ExprKind::Percent(_) | ExprKind::Bool(_) => {}
+        ExprKind::Call { args, .. } => args.iter().for_each(|a| plans_used(a, out)),
+        ExprKind::Number(_)
+        | ExprKind::Percent(_)
+        | ExprKind::Bool(_)
+        | ExprKind::Series { .. } => {}
     }
 }
 

@@ -12,6 +12,8 @@ use crate::run::{RunReport, run_scenario};
 use crate::scenario::loader::LoadFailure;
 use crate::viz::rerun_sink::{self, ViewerTarget};
 
+mod bench;
+
 /// Exit codes (SPEC 4).
 pub const EXIT_OK: i32 = 0;
 pub const EXIT_CHECK_FAILED: i32 = 1;
@@ -36,6 +38,9 @@ pub enum Command {
     Check(CheckArgs),
     /// Run every *.scen under the given paths as a regression suite.
     Test(TestArgs),
+    /// Run the benches of scenarios: tables, statistics, checks
+    /// (`scen bench merge PART.jsonl...` combines the parts of `--shard`).
+    Bench(BenchArgs),
     /// Convert another format into a scenario.
     Import {
         /// The format (`roadmap`: a SEEDS §D input.txt).
@@ -93,6 +98,49 @@ pub struct CheckArgs {
 pub struct TestArgs {
     /// Files or folders (default: the current folder).
     pub paths: Vec<PathBuf>,
+    /// Run only the K-th of N parts of the files (1 ≤ K ≤ N), e.g. on a CI
+    /// matrix.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
+    /// Write a JUnit XML report: one test case per check.
+    #[arg(long, value_name = "OUT.xml")]
+    pub junit: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Scenario files; or `merge` followed by the parts written with
+    /// `--shard K/N --out PART.jsonl`.
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
+    /// Run only this bench (repeatable).
+    #[arg(long = "bench", value_name = "NAME")]
+    pub benches: Vec<String>,
+    /// Print one JSON document per file instead of the tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Write every run as a CSV row.
+    #[arg(long, value_name = "OUT.csv")]
+    pub csv: Option<PathBuf>,
+    /// Write box plots of the metrics per configuration.
+    #[arg(long, value_name = "OUT.svg")]
+    pub svg: Option<PathBuf>,
+    /// Write one OMPL benchmark log per bench into DIR (for
+    /// `ompl_benchmark_statistics.py` and Planner Arena).
+    #[arg(long = "ompl-log", value_name = "DIR")]
+    pub ompl_log: Option<PathBuf>,
+    /// Run only the K-th of N parts of the runs (1 ≤ K ≤ N); needs `--out`.
+    #[arg(long, value_name = "K/N", requires = "out")]
+    pub shard: Option<String>,
+    /// Where `--shard` writes its part (JSON Lines).
+    #[arg(long, value_name = "PART.jsonl", requires = "shard")]
+    pub out: Option<PathBuf>,
+    /// The table's metric columns (default: time_ms,length,cost,expanded,clearance,smoothness).
+    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
+    pub metrics: Vec<String>,
+    /// Print only the checks' failures and the summary; no progress bar.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 /// Runs the CLI; returns the exit code.
@@ -121,6 +169,7 @@ pub fn main() -> i32 {
         Command::Run(args) => cmd_run(&args),
         Command::Check(args) => cmd_check(&args),
         Command::Test(args) => cmd_test(&args),
+        Command::Bench(args) => bench::cmd_bench(&args),
         Command::Import { format, file } => cmd_import(&format, &file),
     }
 }
@@ -152,7 +201,7 @@ pub fn render_diags(diags: &[Diag], sources: &SourceMap) -> String {
     s
 }
 
-fn print_failure(f: &LoadFailure) {
+pub(crate) fn print_failure(f: &LoadFailure) {
     eprint!("{}", render_diags(&f.diags, &f.sources));
     let errors = f.diags.iter().filter(|d| d.is_error()).count();
     eprintln!("{errors} error(s): the scenario was not run");
@@ -360,6 +409,14 @@ fn cmd_test(args: &TestArgs) -> i32 {
     } else {
         args.paths.clone()
     };
+    let shard = match args.shard.as_deref().map(crate::bench::Shard::parse) {
+        Some(Err(e)) => {
+            eprintln!("error: {e}");
+            return EXIT_BAD_INPUT;
+        }
+        Some(Ok(s)) => Some(s),
+        None => None,
+    };
     let mut files = Vec::new();
     for r in &roots {
         if !r.exists() {
@@ -379,101 +436,176 @@ fn cmd_test(args: &TestArgs) -> i32 {
         );
         return EXIT_BAD_INPUT;
     }
-    // Each file: (line, diagnostics text, passed, failed).
-    let results: Vec<(String, String, usize, usize)> = files
-        .par_iter()
-        .map(|f| {
-            let loaded = crate::load(f);
-            let expected = expected_errors(match &loaded {
-                Ok(s) => &s.sources,
-                Err(fail) => &fail.sources,
-            });
-            (f, loaded, expected)
-        })
-        .map(|(f, loaded, expected)| match (loaded, expected) {
-            (Err(fail), expected) if !expected.is_empty() => {
-                let missing: Vec<&String> = expected
-                    .iter()
-                    .filter(|code| !fail.diags.iter().any(|d| d.code == code.as_str()))
-                    .collect();
-                if missing.is_empty() {
-                    let line = format!("ok      {}  (expected errors reported)", f.display());
-                    (line, String::new(), 1, 0)
-                } else {
-                    let line = format!(
-                        "FAILED  {}  (expected error {} not reported)",
-                        f.display(),
-                        missing
-                            .iter()
-                            .map(|c| format!("`{c}`"))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    );
-                    (line, render_diags(&fail.diags, &fail.sources), 0, 1)
-                }
-            }
-            (Err(fail), _) => (
-                format!("FAILED  {}  (does not load)", f.display()),
-                render_diags(&fail.diags, &fail.sources),
-                0,
-                1,
-            ),
-            (Ok(_), expected) if !expected.is_empty() => (
-                format!(
-                    "FAILED  {}  (loads, but `# expect-error:` expects it not to)",
-                    f.display()
-                ),
-                String::new(),
-                0,
-                1,
-            ),
-            (Ok(s), _) => {
-                let report = run_scenario(s, &[]);
-                let invalid: Vec<String> = report
-                    .plans
-                    .iter()
-                    .filter(|p| p.validation.is_some())
-                    .map(|p| report.plan(p).name.clone())
-                    .collect();
-                let (passed, failed) = (report.passed(), report.failed() + invalid.len());
-                let diags: Vec<Diag> = report
-                    .checks
-                    .iter()
-                    .filter(|c| !c.passed)
-                    .map(|c| report::text::failed_check_diag(&report, c))
-                    .collect();
-                let mut text = render_diags(&diags, &report.scenario.sources);
-                for name in invalid {
-                    text.push_str(&format!(
-                        "plan `{name}` returned a path that fails the validator\n"
-                    ));
-                }
-                let line = if failed == 0 {
-                    format!("ok      {}  ({passed} checks)", f.display())
-                } else {
-                    format!(
-                        "FAILED  {}  ({failed} of {} checks failed)",
-                        f.display(),
-                        passed + failed
-                    )
-                };
-                (line, text, passed, failed)
-            }
-        })
-        .collect();
+    // `--shard K/N`: the files whose index in the sorted list is K − 1
+    // modulo N, so N machines test every file exactly once.
+    if let Some(s) = shard {
+        files = files
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| s.takes(*i as u64))
+            .map(|(_, f)| f)
+            .collect();
+    }
+    let results: Vec<report::junit::FileResult> = files.par_iter().map(|f| test_file(f)).collect();
     let (mut passed, mut failed) = (0, 0);
-    for (line, diags, p, f) in &results {
-        println!("{line}");
-        if !diags.is_empty() {
-            eprint!("{diags}");
+    for r in &results {
+        println!("{}", r.line);
+        if !r.diagnostics.is_empty() {
+            eprint!("{}", r.diagnostics);
         }
-        passed += p;
-        failed += f;
+        passed += r.cases.iter().filter(|c| c.failure.is_none()).count();
+        failed += r.cases.iter().filter(|c| c.failure.is_some()).count();
     }
     println!("{passed} passed, {failed} failed");
+    if let Some(junit) = &args.junit
+        && let Err(e) = std::fs::write(junit, report::junit::to_junit(&results))
+    {
+        eprintln!("error: cannot write `{}`: {e}", junit.display());
+        return EXIT_BAD_INPUT;
+    }
     if failed > 0 {
         EXIT_CHECK_FAILED
     } else {
         EXIT_OK
+    }
+}
+
+/// One file of `scen test`: its line, its diagnostics, its test cases.
+fn test_file(f: &Path) -> report::junit::FileResult {
+    use report::junit::{Case, FileResult};
+    let name = f.display().to_string();
+    let loaded = crate::load(f);
+    let expected = expected_errors(match &loaded {
+        Ok(s) => &s.sources,
+        Err(fail) => &fail.sources,
+    });
+    let case = |name: String, line: usize, failure: Option<String>| Case {
+        name,
+        line,
+        failure,
+    };
+    match (loaded, expected) {
+        (Err(fail), expected) if !expected.is_empty() => {
+            let missing: Vec<&String> = expected
+                .iter()
+                .filter(|code| !fail.diags.iter().any(|d| d.code == code.as_str()))
+                .collect();
+            let codes = expected.join(", ");
+            if missing.is_empty() {
+                FileResult {
+                    file: name.clone(),
+                    line: format!("ok      {name}  (expected errors reported)"),
+                    diagnostics: String::new(),
+                    cases: vec![case(format!("reports {codes}"), 1, None)],
+                }
+            } else {
+                let list = missing
+                    .iter()
+                    .map(|c| format!("`{c}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                let text = render_diags(&fail.diags, &fail.sources);
+                FileResult {
+                    file: name.clone(),
+                    line: format!("FAILED  {name}  (expected error {list} not reported)"),
+                    cases: vec![case(
+                        format!("reports {codes}"),
+                        1,
+                        Some(format!("expected error {list} not reported\n{text}")),
+                    )],
+                    diagnostics: text,
+                }
+            }
+        }
+        (Err(fail), _) => {
+            let text = render_diags(&fail.diags, &fail.sources);
+            FileResult {
+                file: name.clone(),
+                line: format!("FAILED  {name}  (does not load)"),
+                cases: vec![case("loads".into(), 1, Some(text.clone()))],
+                diagnostics: text,
+            }
+        }
+        (Ok(_), expected) if !expected.is_empty() => FileResult {
+            file: name.clone(),
+            line: format!("FAILED  {name}  (loads, but `# expect-error:` expects it not to)"),
+            diagnostics: String::new(),
+            cases: vec![case(
+                format!("reports {}", expected.join(", ")),
+                1,
+                Some("the file loads, but `# expect-error:` expects it not to".into()),
+            )],
+        },
+        (Ok(s), _) => {
+            // The plans, their checks, and the benches with theirs.
+            let report = if s.benches.is_empty() {
+                run_scenario(s, &[])
+            } else {
+                let ids = crate::bench::run_ids(&s, &[]);
+                let runs = crate::bench::run_all(&s, &ids, &|| {});
+                crate::bench::report(s, runs)
+            };
+            let mut cases: Vec<Case> = report
+                .checks
+                .iter()
+                .map(|c| {
+                    let check = &report.scenario.checks[c.check];
+                    let failure = (!c.passed).then(|| {
+                        format!(
+                            "{}\n{}",
+                            report::text::check_line(&report, c),
+                            render_diags(
+                                &[report::text::failed_check_diag(&report, c)],
+                                &report.scenario.sources
+                            )
+                        )
+                    });
+                    case(
+                        format!("line {}: {}", check.line, check.text),
+                        check.line,
+                        failure,
+                    )
+                })
+                .collect();
+            for p in report.plans.iter().filter(|p| p.validation.is_some()) {
+                let plan = report.plan(p);
+                cases.push(case(
+                    format!("plan {} passes the validator", plan.name),
+                    report.scenario.sources.line_of(plan.span),
+                    Some(format!(
+                        "plan `{}` returned a path that fails the validator",
+                        plan.name
+                    )),
+                ));
+            }
+            let failed = cases.iter().filter(|c| c.failure.is_some()).count();
+            let diags: Vec<Diag> = report
+                .checks
+                .iter()
+                .filter(|c| !c.passed)
+                .map(|c| report::text::failed_check_diag(&report, c))
+                .collect();
+            let mut text = render_diags(&diags, &report.scenario.sources);
+            for p in report.plans.iter().filter(|p| p.validation.is_some()) {
+                text.push_str(&format!(
+                    "plan `{}` returned a path that fails the validator\n",
+                    report.plan(p).name
+                ));
+            }
+            let line = if failed == 0 {
+                format!("ok      {name}  ({} checks)", cases.len())
+            } else {
+                format!(
+                    "FAILED  {name}  ({failed} of {} checks failed)",
+                    cases.len()
+                )
+            };
+            FileResult {
+                file: name,
+                line,
+                diagnostics: text,
+                cases,
+            }
+        }
     }
 }

@@ -90,6 +90,20 @@ pub struct SourceMap {
 }
 
 impl SourceMap {
+    /// A hash of every source's text, in the order they were read (FNV-1a,
+    /// 64 bits, as hex): the same files give the same hash on any machine,
+    /// whatever their paths.
+    pub fn content_hash(&self) -> String {
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for f in &self.files {
+            for b in f.text.bytes().chain(std::iter::once(0)) {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+        format!("{h:016x}")
+    }
+
     pub fn add(&mut self, path: &Path, text: impl Into<Arc<str>>) -> FileId {
         self.files.push(SourceFile {
             path: path.to_path_buf(),

@@ -4,6 +4,7 @@
 //! [`scenario::Scenario`] ─plan→ [`run::RunReport`] ─check→ report sinks
 //! ([`report`] for text, JSON and SVG; [`viz`] for the Rerun viewer).
 
+pub mod bench;
 pub mod checks;
 pub mod cli;
 pub mod diagnostics;

@@ -11,8 +11,10 @@ use crate::checks;
 use crate::drive::{self, DriveOutcome, Unicycle};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError, Validator};
 use crate::geometry::{Config, RobotShape, angle_diff};
+use crate::planners::registry::Task;
 use crate::planners::{MetricValue, Metrics, PlanOutcome};
-use crate::scenario::{ParamValue, Plan, Scenario};
+use crate::scenario::{Check, ParamValue, Plan, Scenario};
+use crate::syntax::ast::Selection;
 
 /// The result of one plan.
 #[derive(Clone, Debug)]
@@ -34,8 +36,11 @@ pub struct CheckOutcome {
     /// Index into `Scenario::checks`.
     pub check: usize,
     pub passed: bool,
-    /// The value of every metric the expression used, by `plan.metric`.
+    /// The value of every metric and aggregate the expression used, by its
+    /// text (`plan.metric`, `median(b.p.time_ms)`).
     pub values: BTreeMap<String, MetricValue>,
+    /// Every series the expression aggregated: its size, min and max.
+    pub series: BTreeMap<String, checks::SeriesStats>,
 }
 
 /// Everything a run produced, for the sinks.
@@ -43,6 +48,9 @@ pub struct CheckOutcome {
 pub struct RunReport {
     pub scenario: Scenario,
     pub plans: Vec<PlanRun>,
+    /// The runs of the benches (`scen bench`, `scen test`; empty for
+    /// `scen run`).
+    pub bench_runs: Vec<crate::bench::BenchRun>,
     pub checks: Vec<CheckOutcome>,
 }
 
@@ -70,34 +78,67 @@ pub fn run_scenario(scenario: Scenario, only: &[String]) -> RunReport {
         .par_iter()
         .map(|&i| run_plan(&scenario, i))
         .collect();
-    let outcomes = evaluate_checks(&scenario, &plans);
+    let values = RunValues {
+        plans: metrics_by_plan(&scenario, &plans),
+    };
+    let outcomes = evaluate_checks(&scenario, &values, |c| !c.bench);
     RunReport {
         scenario,
         plans,
+        bench_runs: Vec::new(),
         checks: outcomes,
     }
 }
 
-/// Evaluates the checks whose plans all ran.
-fn evaluate_checks(scenario: &Scenario, plans: &[PlanRun]) -> Vec<CheckOutcome> {
-    let by_name: BTreeMap<&str, &Metrics> = plans
+/// The metrics of the plans that ran, for the checks.
+struct RunValues<'a> {
+    plans: BTreeMap<&'a str, &'a Metrics>,
+}
+
+impl checks::Values for RunValues<'_> {
+    fn metrics(&self, plan: &str) -> Option<&Metrics> {
+        self.plans.get(plan).copied()
+    }
+
+    fn series(&self, _: &str, _: &str, _: &[Selection], _: &str) -> Option<Vec<MetricValue>> {
+        None
+    }
+}
+
+/// The metrics of each plan run, by plan name.
+pub(crate) fn metrics_by_plan<'a>(
+    scenario: &'a Scenario,
+    plans: &'a [PlanRun],
+) -> BTreeMap<&'a str, &'a Metrics> {
+    plans
         .iter()
         .map(|r| (scenario.plans[r.plan].name.as_str(), &r.metrics))
-        .collect();
-    let lookup = |name: &str| by_name.get(name).copied();
+        .collect()
+}
+
+/// Evaluates the checks that `wanted` selects and whose plans all ran.
+pub(crate) fn evaluate_checks(
+    scenario: &Scenario,
+    values: &dyn checks::Values,
+    wanted: impl Fn(&Check) -> bool,
+) -> Vec<CheckOutcome> {
     let mut outcomes = Vec::new();
     for (i, check) in scenario.checks.iter().enumerate() {
+        if !wanted(check) {
+            continue;
+        }
         let mut needed = Vec::new();
         checks::plans_used(&check.expr, &mut needed);
-        if !needed.iter().all(|p| by_name.contains_key(p.as_str())) {
+        if !needed.iter().all(|p| values.metrics(p).is_some()) {
             continue; // a plan it needs was not selected with --plan
         }
-        let mut values = BTreeMap::new();
-        let v = checks::eval(&check.expr, &lookup, &mut values);
+        let mut used = checks::Used::default();
+        let v = checks::eval(&check.expr, values, &mut used);
         outcomes.push(CheckOutcome {
             check: i,
             passed: v == MetricValue::Bool(true),
-            values,
+            values: used.values,
+            series: used.series,
         });
     }
     outcomes
@@ -105,9 +146,16 @@ fn evaluate_checks(scenario: &Scenario, plans: &[PlanRun]) -> Vec<CheckOutcome> 
 
 fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
     let plan = &scenario.plans[index];
+    run_task(scenario, index, plan, &plan.task(scenario))
+}
+
+/// Runs `plan` (plan `index` of the scenario, or one of a bench's
+/// configurations of it) on `task`, and measures and validates what it
+/// returned.
+pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Task<'_>) -> PlanRun {
     let robot = &scenario.robots[plan.robot].shape;
     let began = Instant::now();
-    let outcome = plan.settings.plan(&plan.task(scenario));
+    let outcome = plan.settings.plan(task);
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
     let referee = Validator::new(&scenario.world);
     let validation = outcome

@@ -80,6 +80,7 @@ pub static PLANNER: Planner = Planner {
     ],
     limits: &["expansions", "time", "cells"],
     needs_goal: true,
+    randomized: false,
     check,
 };
 

@@ -79,6 +79,7 @@ pub static PLANNER: Planner = Planner {
     ],
     limits: &["expansions", "time"],
     needs_goal: false,
+    randomized: false,
     check,
 };
 

@@ -99,6 +99,7 @@ pub static PLANNER: Planner = Planner {
     ],
     limits: &["steps", "expansions", "time"],
     needs_goal: true,
+    randomized: true,
     check,
 };
 

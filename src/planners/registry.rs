@@ -64,6 +64,9 @@ pub struct Planner {
     pub limits: &'static [&'static str],
     /// Whether a plan must have a `goal`.
     pub needs_goal: bool,
+    /// Whether it draws random numbers (from the plan's `seed`): a bench
+    /// runs such a planner `runs` times per configuration, others once.
+    pub randomized: bool,
     /// Reads the validated parameters into the planner's settings. Problems
     /// that involve several parameters, the world or the robot are reported
     /// through [`PlanArgs::error`] with spans; `None` (or any error

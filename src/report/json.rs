@@ -83,18 +83,33 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     Value::Object(obj)
 }
 
-/// `None` for an outcome whose check index is out of range.
-fn check_json(scenario: &Scenario, outcome: &CheckOutcome) -> Option<Value> {
+/// `None` for an outcome whose check index is out of range. A check that
+/// aggregated series also lists each series' size, min and max.
+pub(crate) fn check_json(scenario: &Scenario, outcome: &CheckOutcome) -> Option<Value> {
     let check = scenario.checks.get(outcome.check)?;
     let mut obj = Map::new();
     obj.insert("line".into(), check.line.into());
     obj.insert("expr".into(), check.text.clone().into());
     obj.insert("passed".into(), outcome.passed.into());
     obj.insert("values".into(), metrics_json(&outcome.values));
+    if !outcome.series.is_empty() {
+        let series = outcome
+            .series
+            .iter()
+            .map(|(name, s)| {
+                let mut o = Map::new();
+                o.insert("runs".into(), s.runs.into());
+                o.insert("min".into(), float_json(s.min));
+                o.insert("max".into(), float_json(s.max));
+                (name.clone(), Value::Object(o))
+            })
+            .collect();
+        obj.insert("series".into(), Value::Object(series));
+    }
     Some(Value::Object(obj))
 }
 
-fn metrics_json(metrics: &Metrics) -> Value {
+pub(crate) fn metrics_json(metrics: &Metrics) -> Value {
     Value::Object(
         metrics
             .iter()
@@ -125,7 +140,7 @@ fn config_json(c: Config, rotates: bool) -> Value {
     Value::Array(xs)
 }
 
-fn float_json(x: f64) -> Value {
+pub(crate) fn float_json(x: f64) -> Value {
     Number::from_f64(x).map_or(Value::Null, Value::Number)
 }
 
@@ -171,6 +186,7 @@ mod tests {
             ],
         };
         let scenario = Scenario {
+            benches: Vec::new(),
             file: PathBuf::from("scenarios/demo.scen"),
             title: Some("Demo \"quoted\"".into()),
             world: World {
@@ -185,6 +201,7 @@ mod tests {
             plans: vec![plan("zeta", 0, 0), plan("alpha", 2, 1)],
             checks: vec![
                 Check {
+                    bench: false,
                     expr: Expr {
                         kind: ExprKind::Bool(true),
                         span: Span::default(),
@@ -194,6 +211,7 @@ mod tests {
                     span: Span::default(),
                 },
                 Check {
+                    bench: false,
                     expr: Expr {
                         kind: ExprKind::Bool(true),
                         span: Span::default(),
@@ -230,15 +248,18 @@ mod tests {
             drive: None,
         };
         RunReport {
+            bench_runs: Vec::new(),
             scenario,
             plans: vec![alpha, zeta],
             checks: vec![
                 CheckOutcome {
+                    series: Default::default(),
                     check: 0,
                     passed: true,
                     values: [("zeta.cost".to_string(), MetricValue::Num(79.1))].into(),
                 },
                 CheckOutcome {
+                    series: Default::default(),
                     check: 1,
                     passed: false,
                     values: [("alpha.found".to_string(), MetricValue::Bool(false))].into(),

@@ -1,5 +1,7 @@
 //! Report sinks: the text report, JSON (SPEC 5) and SVG.
 
+pub mod bench;
 pub mod json;
+pub mod junit;
 pub mod svg;
 pub mod text;

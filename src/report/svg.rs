@@ -625,6 +625,7 @@ mod tests {
             span: Span::default(),
         };
         let scenario = Scenario {
+            benches: Vec::new(),
             file: PathBuf::from("scenarios/demo.scen"),
             title: title.map(String::from),
             world,
@@ -650,6 +651,7 @@ mod tests {
             ])
         };
         RunReport {
+            bench_runs: Vec::new(),
             plans: vec![
                 run(2, path(scenario.plans[2].params.start)),
                 run(0, path(Config::new(18.0, 2.0, 1.0))),
@@ -657,6 +659,7 @@ mod tests {
             ],
             scenario,
             checks: vec![CheckOutcome {
+                series: Default::default(),
                 check: 0,
                 passed: false,
                 values: BTreeMap::new(),

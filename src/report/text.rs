@@ -97,6 +97,14 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
             let _ = writeln!(s, "  {}", check_line(report, c));
         }
     }
+    let bench_checks = sc.checks.iter().filter(|c| c.bench).count();
+    if bench_checks > 0 && report.bench_runs.is_empty() {
+        let _ = writeln!(
+            s,
+            "\n{bench_checks} check(s) read the benches; `scen bench {}` runs them",
+            sc.file.display()
+        );
+    }
     let _ = writeln!(
         s,
         "\n{} passed, {} failed",
@@ -123,12 +131,24 @@ pub fn check_line(report: &RunReport, c: &CheckOutcome) -> String {
     )
 }
 
+/// The values a check read; for each series it aggregated, its size, min
+/// and max.
 pub fn values_text(c: &CheckOutcome) -> String {
-    c.values
+    let mut parts: Vec<String> = c
+        .values
         .iter()
         .map(|(k, v)| format!("{k} = {}", format_value(*v)))
-        .collect::<Vec<_>>()
-        .join(", ")
+        .collect();
+    for (name, s) in &c.series {
+        parts.push(format!(
+            "{name}: {} run{}, min {}, max {}",
+            s.runs,
+            if s.runs == 1 { "" } else { "s" },
+            format_num(s.min),
+            format_num(s.max)
+        ));
+    }
+    parts.join(", ")
 }
 
 /// A failed check as a diagnostic pointing at its expression.

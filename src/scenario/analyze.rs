@@ -11,14 +11,17 @@ use crate::geometry::polygon::{self, PolygonError};
 use crate::geometry::{
     Aabb, Config, ConvexPolygon, Grid, Obstacle, Point, RobotShape, Shape, World,
 };
-use crate::syntax::ast::{self, Expr, ExprKind, ParamToken, Value, ValueKind};
+use crate::syntax::ast::{self, ParamToken, Value, ValueKind};
 
 use crate::planners::registry::{self, PLANNERS, Planner};
 
 use super::loader::{LoadFailure, MAX_MAP_BYTES, SourcedStmt, read_text};
 use super::movingai::{grid_char, parse_movingai};
 use super::schema::{self, MetricType, RobotKind, ValueSpec, did_you_mean};
-use super::{Check, Limits, Param, ParamValue, Params, Plan, PlanArgs, Robot, Scenario};
+use super::{Limits, Param, ParamValue, Params, Plan, PlanArgs, Robot, Scenario};
+
+mod bench;
+mod expect;
 
 /// Analyses the statements of a scenario (includes already spliced in).
 pub(crate) fn analyze(
@@ -36,7 +39,13 @@ pub(crate) fn analyze(
     let robots = a.robots(&statements);
     let world_ok = !a.diags.iter().any(Diag::is_error);
     let plans = a.plans(&statements, world.as_ref().filter(|_| world_ok), &robots);
-    let checks = a.checks(&statements, &plans);
+    let benches = a.benches(
+        &statements,
+        &plans,
+        world.as_ref().filter(|_| world_ok),
+        &robots,
+    );
+    let checks = a.checks(&statements, &plans, &benches);
     let mut diags = a.diags;
     let sources = a.sources;
     match world {
@@ -47,6 +56,7 @@ pub(crate) fn analyze(
             obstacle_spans,
             robots,
             plans,
+            benches,
             checks,
             sources,
         }),
@@ -865,7 +875,24 @@ impl Analyzer {
             );
         }
         let params = self.params(p, planner)?;
-        let world = world?;
+        self.configured(p, planner, robot_index, robots, params, world?, robot_ok)
+    }
+
+    /// A plan from its validated parameters: the start and goal checked
+    /// against the world (SPEC 2.5), then the planner's own check, which
+    /// builds its settings (only for a robot it plans for).
+    #[allow(clippy::too_many_arguments)]
+    fn configured(
+        &mut self,
+        p: &ast::PlanDecl,
+        planner: &'static Planner,
+        robot_index: usize,
+        robots: &[Robot],
+        params: Params,
+        world: &World,
+        robot_ok: bool,
+    ) -> Option<Plan> {
+        let robot = &robots[robot_index];
         let before = self.diags.len();
         self.check_pose(world, robot, params.start, params.start_span, "start");
         let start_ok = self.diags.len() == before;
@@ -896,6 +923,18 @@ impl Analyzer {
     /// Groups the plan body's tokens into parameters and validates each
     /// against the planner's schema (types, ranges, required keys).
     fn params(&mut self, p: &ast::PlanDecl, planner: &'static Planner) -> Option<Params> {
+        self.params_of(p, &p.body, planner).0
+    }
+
+    /// [`Analyzer::params`] of `body` (the plan's own, or a bench's
+    /// configuration of it), with the keys given and the tokens each took.
+    #[allow(clippy::type_complexity)]
+    fn params_of(
+        &mut self,
+        p: &ast::PlanDecl,
+        body: &[ParamToken],
+        planner: &'static Planner,
+    ) -> (Option<Params>, Vec<(&'static str, std::ops::Range<usize>)>) {
         let set = ParamSet {
             owner: format!("planner `{}`", planner.kind),
             name: format!("`{}`", planner.kind),
@@ -904,41 +943,45 @@ impl Analyzer {
         };
         let mut limits = Limits::default();
         let mut limit_spans: HashMap<&'static str, Span> = HashMap::new();
-        let (mut values, given, ok) =
-            self.param_list(&p.body, &set, |this, spec, next, tokens, i| {
-                match spec.value {
-                    ValueSpec::Limit => this.limit(
-                        planner,
-                        spec,
-                        next,
-                        tokens,
-                        i,
-                        &mut limits,
-                        &mut limit_spans,
-                    ),
-                    ValueSpec::Drive => {
-                        let ParamToken::Word(model) = next else {
-                            this.wrong_value(spec, next);
-                            return Parsed::Bad;
-                        };
-                        let block = match tokens.get(*i) {
-                            Some(ParamToken::Block { tokens, .. }) => {
-                                *i += 1;
-                                tokens.as_slice()
-                            }
-                            _ => &[],
-                        };
-                        this.drive_block(model, block)
+        let list = self.param_list(body, &set, |this, spec, next, tokens, i| match spec.value {
+            ValueSpec::Limit => this.limit(
+                &[planner],
+                spec,
+                next,
+                tokens,
+                i,
+                &mut limits,
+                &mut limit_spans,
+            ),
+            ValueSpec::Drive => {
+                let ParamToken::Word(model) = next else {
+                    this.wrong_value(spec, next);
+                    return Parsed::Bad;
+                };
+                let block = match tokens.get(*i) {
+                    Some(ParamToken::Block { tokens, .. }) => {
+                        *i += 1;
+                        tokens.as_slice()
                     }
-                    _ => this
-                        .param_value(spec, next)
-                        .map_or(Parsed::Bad, Parsed::Value),
-                }
-            });
+                    _ => &[],
+                };
+                this.drive_block(model, block)
+            }
+            _ => this
+                .param_value(spec, next)
+                .map_or(Parsed::Bad, Parsed::Value),
+        });
         let plan_head = p.name.span.to(p.robot.span);
+        let list_gave_start = list.gave("start");
+        let list_gave_goal = list.gave("goal");
+        let ParamList {
+            mut values,
+            ok,
+            given,
+        } = list;
         let start = values.remove("start");
         let goal = values.remove("goal");
-        if start.is_none() && !given.contains(&"start") {
+        if start.is_none() && !list_gave_start {
             self.error(
                 Diag::error(
                     "scen::analyze::missing_key",
@@ -948,7 +991,7 @@ impl Analyzer {
                 .help("add `start (x, y)` to the plan's block"),
             );
         }
-        if planner.needs_goal && goal.is_none() && !given.contains(&"goal") {
+        if planner.needs_goal && goal.is_none() && !list_gave_goal {
             self.error(
                 Diag::error(
                     "scen::analyze::missing_key",
@@ -959,13 +1002,13 @@ impl Analyzer {
             );
         }
         let (true, Some(start)) = (ok, start) else {
-            return None;
+            return (None, given);
         };
         if planner.needs_goal && goal.is_none() {
-            return None;
+            return (None, given);
         }
         let ParamValue::Pose(start_c) = start.value else {
-            return None;
+            return (None, given);
         };
         let goal_c = match &goal {
             Some(Param {
@@ -978,7 +1021,7 @@ impl Analyzer {
             ParamValue::Num(x) => Some(x as u64),
             _ => None,
         });
-        Some(Params {
+        let params = Params {
             start: start_c,
             start_span: start.span,
             goal: goal_c,
@@ -986,7 +1029,8 @@ impl Analyzer {
             limits,
             seed: seed.unwrap_or(0),
             values,
-        })
+        };
+        (Some(params), given)
     }
 
     /// `drive unicycle { key value ... }`: the model word and the block's
@@ -1010,7 +1054,11 @@ impl Analyzer {
             specs: schema::DRIVE_PARAMS.iter().collect(),
             nested: &[],
         };
-        let (values, _, block_ok) = self.param_list(block, &set, |this, spec, next, _, _| {
+        let ParamList {
+            values,
+            ok: block_ok,
+            ..
+        } = self.param_list(block, &set, |this, spec, next, _, _| {
             this.param_value(spec, next)
                 .map_or(Parsed::Bad, Parsed::Value)
         });
@@ -1037,13 +1085,14 @@ impl Analyzer {
             &[ParamToken],
             &mut usize,
         ) -> Parsed,
-    ) -> (BTreeMap<&'static str, Param>, Vec<&'static str>, bool) {
+    ) -> ParamList {
         let mut values: BTreeMap<&'static str, Param> = BTreeMap::new();
-        let mut given: Vec<&'static str> = Vec::new();
+        let mut given: Vec<(&'static str, std::ops::Range<usize>)> = Vec::new();
         let mut ok = true;
         let mut i = 0;
         while i < tokens.len() {
             let tok = &tokens[i];
+            let key_at = i;
             i += 1;
             let ParamToken::Word(key) = tok else {
                 self.error(
@@ -1088,7 +1137,7 @@ impl Analyzer {
                 }
                 continue;
             };
-            given.push(spec.key);
+            given.push((spec.key, key_at..key_at + 1));
             if !spec.repeatable
                 && let Some(first) = values.get(spec.key)
             {
@@ -1118,7 +1167,11 @@ impl Analyzer {
                 continue;
             }
             i += 1;
-            match value(self, spec, next, tokens, &mut i) {
+            let parsed = value(self, spec, next, tokens, &mut i);
+            if let Some((_, range)) = given.last_mut() {
+                range.end = i;
+            }
+            match parsed {
                 Parsed::Value(value) => {
                     values.insert(
                         spec.key,
@@ -1132,14 +1185,15 @@ impl Analyzer {
                 Parsed::Bad => ok = false,
             }
         }
-        (values, given, ok)
+        ParamList { values, given, ok }
     }
 
-    /// `limit KIND AMOUNT` (repeatable, each kind once), stored in `limits`.
+    /// `limit KIND AMOUNT` (repeatable, each kind once), stored in
+    /// `limits`; each of `planners` must honour the kind.
     #[allow(clippy::too_many_arguments)]
     fn limit(
         &mut self,
-        planner: &Planner,
+        planners: &[&'static Planner],
         spec: &schema::ParamSpec,
         next: &ParamToken,
         tokens: &[ParamToken],
@@ -1159,11 +1213,10 @@ impl Analyzer {
                     format!("unknown limit `{}`", which.value),
                 )
                 .at(which.span, "not a limit")
-                .help(format!(
-                    "`{}` stops at {}",
-                    planner.kind,
-                    limits_of(planner)
-                )),
+                .help(match planners {
+                    [planner] => format!("`{}` stops at {}", planner.kind, limits_of(planner)),
+                    _ => format!("`limit` takes {}", spec.value.describe()),
+                }),
             );
             if let Some(ParamToken::Value(_)) = amount {
                 *i += 1; // its amount
@@ -1184,7 +1237,7 @@ impl Analyzer {
         };
         *i += 1;
         let mut ok = true;
-        if !planner.limits.contains(k) {
+        if let Some(planner) = planners.iter().find(|p| !p.limits.contains(k)) {
             self.error(
                 Diag::error(
                     "scen::analyze::bad_limit",
@@ -1506,196 +1559,6 @@ impl Analyzer {
             );
         }
     }
-
-    // ----------------------------------------------------------------- checks
-
-    fn checks(&mut self, statements: &[SourcedStmt], plans: &[Plan]) -> Vec<Check> {
-        // Plans that failed analysis are still known by name, so that their
-        // checks do not add "unknown plan" noise.
-        let mut known: HashMap<String, Option<PlanInfo<'_>>> = HashMap::new();
-        for s in statements {
-            if let ast::Stmt::Plan(p) = &s.stmt {
-                let drives = p
-                    .body
-                    .iter()
-                    .any(|t| matches!(t, ParamToken::Word(w) if w.value == "drive"));
-                let info = registry::planner(&p.kind.value).map(|planner| PlanInfo {
-                    name: &p.name.value,
-                    planner,
-                    drives,
-                });
-                known.entry(p.name.value.clone()).or_insert(info);
-            }
-        }
-        let _ = plans;
-        let mut checks = Vec::new();
-        for s in statements {
-            let ast::Stmt::Expect(e) = &s.stmt else {
-                continue;
-            };
-            let ty = self.type_expr(e, &known);
-            if ty.is_some_and(|t| t != MetricType::Bool) {
-                self.error(
-                    Diag::error("scen::analyze::not_a_condition", "an `expect` must be a condition, not a number")
-                        .at(e.span, "a number")
-                        .help("compare it: `plan.cost <= 90`, or approximately: `plan.length ~ 27.3 +- 0.01`"),
-                );
-            }
-            checks.push(Check {
-                expr: e.clone(),
-                text: self.sources.snippet(e.span).to_string(),
-                line: self.sources.line_of(e.span),
-                span: e.span,
-            });
-        }
-        checks
-    }
-
-    fn type_expr(
-        &mut self,
-        e: &Expr,
-        plans: &HashMap<String, Option<PlanInfo<'_>>>,
-    ) -> Option<MetricType> {
-        use MetricType::{Bool, Num};
-        let want =
-            |this: &mut Self, ty: Option<MetricType>, want: MetricType, e: &Expr, ctx: &str| {
-                if let Some(t) = ty
-                    && t != want
-                {
-                    let (what, help) = match want {
-                        Num => (
-                            "a number",
-                            "metrics such as `found` are true/false; compare numbers like `p.cost`",
-                        ),
-                        Bool => ("a condition", "write a comparison such as `p.cost <= 90`"),
-                    };
-                    this.error(
-                        Diag::error(
-                            "scen::analyze::type_mismatch",
-                            format!("{ctx} needs {what}"),
-                        )
-                        .at(e.span, format!("not {what}"))
-                        .help(help),
-                    );
-                }
-            };
-        match &e.kind {
-            ExprKind::Number(_) | ExprKind::Percent(_) => Some(Num),
-            ExprKind::Bool(_) => Some(Bool),
-            ExprKind::Metric { plan, metric } => {
-                let Some(info) = plans.get(&plan.value) else {
-                    let names: Vec<&str> = plans.keys().map(String::as_str).collect();
-                    let mut d = Diag::error(
-                        "scen::analyze::unknown_plan",
-                        format!("unknown plan `{}`", plan.value),
-                    )
-                    .at(plan.span, "no plan of this name");
-                    d = match did_you_mean(&plan.value, names.iter().copied()) {
-                        Some(n) => d.help(format!("did you mean `{n}`?")),
-                        None => d.help(
-                            "`expect` refers to metrics as `PLAN.METRIC`, e.g. `offline.found`",
-                        ),
-                    };
-                    self.error(d);
-                    return None;
-                };
-                let info = info.as_ref()?;
-                match info.metric(&metric.value) {
-                    Some(t) => Some(t),
-                    None => {
-                        let names = info.metric_names();
-                        let mut d = Diag::error(
-                            "scen::analyze::unknown_metric",
-                            format!(
-                                "plan `{}` ({}) has no metric `{}`",
-                                info.name, info.planner.kind, metric.value
-                            ),
-                        )
-                        .at(metric.span, "unknown metric");
-                        let drive_metric =
-                            schema::DRIVE_METRICS.iter().any(|m| m.name == metric.value);
-                        d = match did_you_mean(&metric.value, names.iter().copied()) {
-                            _ if drive_metric => d.help(format!(
-                                "`{}` is measured when the plan drives its path: add `drive unicycle` to plan `{}`",
-                                metric.value, info.name
-                            )),
-                            Some(n) => d.help(format!(
-                                "did you mean `{n}`? metrics of `{}`: {}",
-                                info.planner.kind,
-                                schema::backticked(&names)
-                            )),
-                            None => d.help(format!(
-                                "metrics of `{}`: {}",
-                                info.planner.kind,
-                                schema::backticked(&names)
-                            )),
-                        };
-                        self.error(d);
-                        None
-                    }
-                }
-            }
-            ExprKind::Neg(x) => {
-                let t = self.type_expr(x, plans);
-                want(self, t, Num, x, "`-`");
-                Some(Num)
-            }
-            ExprKind::Not(x) => {
-                let t = self.type_expr(x, plans);
-                want(self, t, Bool, x, "`not`");
-                Some(Bool)
-            }
-            ExprKind::Arith { op, lhs, rhs } => {
-                let (l, r) = (self.type_expr(lhs, plans), self.type_expr(rhs, plans));
-                want(self, l, Num, lhs, &format!("`{}`", op.symbol()));
-                want(self, r, Num, rhs, &format!("`{}`", op.symbol()));
-                Some(Num)
-            }
-            ExprKind::Compare { op, lhs, rhs } => {
-                let (l, r) = (self.type_expr(lhs, plans), self.type_expr(rhs, plans));
-                if matches!(op, ast::CompareOp::Eq | ast::CompareOp::Ne) {
-                    if let (Some(a), Some(b)) = (l, r)
-                        && a != b
-                    {
-                        self.error(
-                            Diag::error(
-                                "scen::analyze::type_mismatch",
-                                format!("`{}` compares a condition with a number", op.symbol()),
-                            )
-                            .at(e.span, "different types")
-                            .help("compare numbers with numbers, conditions with conditions"),
-                        );
-                    }
-                } else {
-                    want(self, l, Num, lhs, &format!("`{}`", op.symbol()));
-                    want(self, r, Num, rhs, &format!("`{}`", op.symbol()));
-                }
-                Some(Bool)
-            }
-            ExprKind::Approx { lhs, rhs, tol } => {
-                let (l, r, t) = (
-                    self.type_expr(lhs, plans),
-                    self.type_expr(rhs, plans),
-                    self.type_expr(tol, plans),
-                );
-                want(self, l, Num, lhs, "`~`");
-                want(self, r, Num, rhs, "`~`");
-                want(self, t, Num, tol, "`+-`");
-                Some(Bool)
-            }
-            ExprKind::And(a, b) | ExprKind::Or(a, b) => {
-                let (l, r) = (self.type_expr(a, plans), self.type_expr(b, plans));
-                let op = if matches!(e.kind, ExprKind::And(..)) {
-                    "`and`"
-                } else {
-                    "`or`"
-                };
-                want(self, l, Bool, a, op);
-                want(self, r, Bool, b, op);
-                Some(Bool)
-            }
-        }
-    }
 }
 
 /// The parameters a list may give (a plan's, a `drive` block's), and how
@@ -1719,6 +1582,20 @@ impl ParamSet {
     fn keys(&self) -> String {
         let keys: Vec<&str> = self.specs.iter().map(|p| p.key).collect();
         schema::backticked(&keys)
+    }
+}
+
+/// The parameters of a list: the values, the keys given (even with a bad
+/// value) with the tokens each took, and whether all was well.
+struct ParamList {
+    values: BTreeMap<&'static str, Param>,
+    given: Vec<(&'static str, std::ops::Range<usize>)>,
+    ok: bool,
+}
+
+impl ParamList {
+    fn gave(&self, key: &str) -> bool {
+        self.given.iter().any(|(k, _)| *k == key)
     }
 }
 
@@ -1754,5 +1631,6 @@ fn stmt_span(s: &ast::Stmt) -> Span {
         ast::Stmt::Robot(r) => r.span,
         ast::Stmt::Plan(p) => p.span,
         ast::Stmt::Expect(e) => e.span,
+        ast::Stmt::Bench(b) => b.span,
     }
 }

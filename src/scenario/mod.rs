@@ -32,8 +32,82 @@ pub struct Scenario {
     pub obstacle_spans: Vec<Span>,
     pub robots: Vec<Robot>,
     pub plans: Vec<Plan>,
+    pub benches: Vec<Bench>,
     pub checks: Vec<Check>,
     pub sources: SourceMap,
+}
+
+/// A `bench` statement (SPEC 2.7): plans × configurations × runs.
+#[derive(Clone, Debug)]
+pub struct Bench {
+    pub name: String,
+    pub span: Span,
+    /// The plans it runs, in the order of its `plans` list (default: every
+    /// plan of the file, in declaration order).
+    pub plans: Vec<BenchPlan>,
+    /// The varied keys, in the order written; configurations are their
+    /// combinations, the last key varying fastest.
+    pub vary: Vec<Vary>,
+    /// Runs per configuration of a randomized planner (`runs`, default 1).
+    pub runs: u64,
+    /// Limits added to every run's own (the smaller one holds).
+    pub limits: Limits,
+}
+
+/// One plan of a bench, with every configuration's plan.
+#[derive(Clone, Debug)]
+pub struct BenchPlan {
+    /// Index into `Scenario::plans`.
+    pub plan: usize,
+    /// The plan with each configuration's values, indexed like
+    /// [`Bench::config_values`].
+    pub configs: Vec<Plan>,
+    /// Runs per configuration: the bench's `runs` for a randomized planner,
+    /// else 1.
+    pub runs: u64,
+}
+
+/// `vary KEY [values]`.
+#[derive(Clone, Debug)]
+pub struct Vary {
+    pub key: String,
+    pub span: Span,
+    pub values: Vec<VaryValue>,
+}
+
+/// One value of a `vary` list: as written (for tables and files), and as
+/// parsed (for selections).
+#[derive(Clone, Debug)]
+pub struct VaryValue {
+    pub text: String,
+    pub value: crate::syntax::ast::Value,
+}
+
+impl Bench {
+    /// The number of configurations (1 without `vary`).
+    pub fn configurations(&self) -> usize {
+        self.vary.iter().map(|v| v.values.len()).product()
+    }
+
+    /// The index of each varied key's value in configuration `config`.
+    pub fn config_values(&self, config: usize) -> Vec<usize> {
+        let mut rest = config;
+        let mut out = vec![0; self.vary.len()];
+        for (k, v) in self.vary.iter().enumerate().rev() {
+            let n = v.values.len().max(1);
+            out[k] = rest % n;
+            rest /= n;
+        }
+        out
+    }
+
+    /// The total runs of the bench.
+    pub fn total_runs(&self) -> u64 {
+        self.plans
+            .iter()
+            .map(|p| p.runs * p.configs.len() as u64)
+            .sum()
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -148,6 +222,25 @@ pub struct Limits {
     pub iterations: Option<u64>,
 }
 
+impl Limits {
+    /// Both sets of limits: the smaller of each kind holds.
+    pub fn and(self, other: Limits) -> Limits {
+        fn min<T: PartialOrd>(a: Option<T>, b: Option<T>) -> Option<T> {
+            match (a, b) {
+                (Some(a), Some(b)) => Some(if b < a { b } else { a }),
+                (a, b) => a.or(b),
+            }
+        }
+        Limits {
+            expansions: min(self.expansions, other.expansions),
+            steps: min(self.steps, other.steps),
+            time: min(self.time, other.time),
+            cells: min(self.cells, other.cells),
+            iterations: min(self.iterations, other.iterations),
+        }
+    }
+}
+
 /// The default cap on lattice sizes (SPEC 3.1).
 pub const DEFAULT_CELL_CAP: u64 = 200_000_000;
 
@@ -171,6 +264,9 @@ pub enum ParamValue {
 /// One `expect` statement.
 #[derive(Clone, Debug)]
 pub struct Check {
+    /// It reads a bench's series: `scen bench` and `scen test` evaluate it,
+    /// `scen run` does not.
+    pub bench: bool,
     pub expr: Expr,
     /// The expression's source text.
     pub text: String,

@@ -29,6 +29,17 @@ pub enum Stmt {
     Robot(RobotDecl),
     Plan(PlanDecl),
     Expect(Expr),
+    Bench(BenchDecl),
+}
+
+/// `bench NAME { tokens }` (SPEC 2.7): like a plan's body, a flat token
+/// list grouped by the analyzer (`plans [...]`, `vary KEY [...]`, `runs N`,
+/// `limit KIND AMOUNT`).
+#[derive(Clone, Debug)]
+pub struct BenchDecl {
+    pub name: Ident,
+    pub body: Vec<ParamToken>,
+    pub span: Span,
 }
 
 #[derive(Clone, Debug)]
@@ -164,6 +175,20 @@ pub struct Value {
     pub span: Span,
 }
 
+impl Value {
+    /// Whether two values are the same, whatever their spans (a
+    /// selection's value against a `vary` list's).
+    pub fn same(&self, other: &Value) -> bool {
+        match (&self.kind, &other.kind) {
+            (ValueKind::Tuple(x), ValueKind::Tuple(y))
+            | (ValueKind::List(x), ValueKind::List(y)) => {
+                x.len() == y.len() && x.iter().zip(y).all(|(a, b)| a.same(b))
+            }
+            (x, y) => x == y,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum ValueKind {
     /// A plain number.
@@ -217,6 +242,21 @@ pub enum ExprKind {
         plan: Ident,
         metric: Ident,
     },
+    /// A bench's series: `BENCH.PLAN.METRIC`, or with a selection
+    /// `BENCH.PLAN[KEY = VALUE, ...].METRIC`.
+    Series {
+        bench: Ident,
+        plan: Ident,
+        select: Vec<Selection>,
+        metric: Ident,
+    },
+    /// An aggregate: `median(SERIES)`, `quantile(SERIES, Q)`.
+    Call {
+        function: Ident,
+        args: Vec<Expr>,
+    },
+    /// `SERIES where CONDITION`: the runs where the boolean series holds.
+    Where(Box<Expr>, Box<Expr>),
     Neg(Box<Expr>),
     Not(Box<Expr>),
     Arith {
@@ -237,6 +277,14 @@ pub enum ExprKind {
     },
     And(Box<Expr>, Box<Expr>),
     Or(Box<Expr>, Box<Expr>),
+}
+
+/// `KEY = VALUE` in a series' selection.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Selection {
+    pub key: Ident,
+    pub value: Value,
+    pub span: Span,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -8,8 +8,8 @@
 use pest::iterators::Pair;
 
 use super::ast::{
-    GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamToken, PlanDecl, RobotDecl,
-    RobotShape, Stmt, Value, ValueKind, WorldBlock, WorldItem,
+    BenchDecl, GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamToken, PlanDecl,
+    RobotDecl, RobotShape, Stmt, Value, ValueKind, WorldBlock, WorldItem,
 };
 use super::parser::Rule;
 use super::scanner::is_ident_byte;
@@ -87,7 +87,7 @@ impl<'t, 'd> Builder<'t, 'd> {
         Span::new(self.file, self.base + start, self.base + content_end(pair))
     }
 
-    fn ident(&self, pair: &P<'_>) -> Ident {
+    pub(super) fn ident(&self, pair: &P<'_>) -> Ident {
         Spanned::new(pair.as_str().to_string(), self.span(pair))
     }
 
@@ -106,6 +106,13 @@ impl<'t, 'd> Builder<'t, 'd> {
             Rule::world => Stmt::World(self.world(pair)),
             Rule::robot => Stmt::Robot(self.robot(pair)),
             Rule::plan => Stmt::Plan(self.plan(pair)),
+            Rule::bench => {
+                let mut inner = children(pair).skip(1);
+                let name = self.ident(&inner.next().expect("grammar guarantees a bench name"));
+                let body =
+                    self.param_tokens(inner.next().expect("grammar guarantees a bench body"));
+                Stmt::Bench(BenchDecl { name, body, span })
+            }
             Rule::expect => {
                 let expr = children(pair)
                     .nth(1)
@@ -316,7 +323,7 @@ impl<'t, 'd> Builder<'t, 'd> {
 
     /// A value: a `number`, `string`, `tuple` or `list` pair, or a `word` in a
     /// container.
-    fn value(&mut self, pair: P<'_>) -> Value {
+    pub(super) fn value(&mut self, pair: P<'_>) -> Value {
         let span = self.span(&pair);
         let kind = match pair.as_rule() {
             Rule::number => self.quantity(pair),

@@ -2,29 +2,32 @@
 //! operators, given its tree here by precedence climbing, with the binding
 //! powers below.
 
-use super::ast::{ArithOp, CompareOp, Expr, ExprKind, ValueKind};
+use super::ast::{ArithOp, CompareOp, Expr, ExprKind, Selection, ValueKind};
 use super::builder::{Builder, P, children};
 use super::parser::Rule;
-use crate::diagnostics::{Diag, Span, Spanned};
+use crate::diagnostics::{Diag, Span};
 
 /// The tallest `expect` expression tree accepted. Long operator chains build
 /// left-deep trees, and every later pass walks them recursively.
 const MAX_EXPR_HEIGHT: usize = 256;
 
-/// Binding powers of `expect` operators, loosest first. `not` binds looser
-/// than a comparison (`not a < b` is `not (a < b)`), unary `-` tightest.
-const OR_POWER: u8 = 1;
-const AND_POWER: u8 = 2;
-const NOT_POWER: u8 = 3;
-const COMPARE_POWER: u8 = 4;
-const ADD_POWER: u8 = 5;
-const MUL_POWER: u8 = 6;
-const NEG_POWER: u8 = 7;
+/// Binding powers of `expect` operators, loosest first. `where` filters a
+/// whole series (`b.p.length where b.p.found`); `not` binds looser than a
+/// comparison (`not a < b` is `not (a < b)`), unary `-` tightest.
+const WHERE_POWER: u8 = 1;
+const OR_POWER: u8 = 2;
+const AND_POWER: u8 = 3;
+const NOT_POWER: u8 = 4;
+const COMPARE_POWER: u8 = 5;
+const ADD_POWER: u8 = 6;
+const MUL_POWER: u8 = 7;
+const NEG_POWER: u8 = 8;
 
 /// The binding power of an infix `operator` token. `+-` gets a comparison's
 /// power so that a stray one stops the operand before it and is reported.
 fn infix_power(operator: &str) -> u8 {
     match operator {
+        "where" => WHERE_POWER,
         "or" => OR_POWER,
         "and" => AND_POWER,
         "+" | "-" => ADD_POWER,
@@ -142,6 +145,7 @@ impl Builder<'_, '_> {
             let (lhs_expr, rhs_expr) = (Box::new(lhs.expr), Box::new(rhs.expr));
             let mut height = lhs.height.max(rhs.height);
             let kind = match text {
+                "where" => ExprKind::Where(lhs_expr, rhs_expr),
                 "or" => ExprKind::Or(lhs_expr, rhs_expr),
                 "and" => ExprKind::And(lhs_expr, rhs_expr),
                 "~" => {
@@ -253,22 +257,72 @@ impl Builder<'_, '_> {
             Rule::kw_true => ExprKind::Bool(true),
             Rule::kw_false => ExprKind::Bool(false),
             Rule::metric => {
-                let (plan, metric) = inner
-                    .as_str()
-                    .split_once('.')
-                    .expect("grammar guarantees `PLAN.METRIC`");
-                let dot = span.start + plan.len();
-                ExprKind::Metric {
-                    plan: Spanned::new(plan.to_string(), Span::new(self.file, span.start, dot)),
-                    metric: Spanned::new(
-                        metric.to_string(),
-                        Span::new(self.file, dot + 1, span.end),
-                    ),
+                let mut names = Vec::new();
+                let mut select = None;
+                for part in inner.into_inner() {
+                    match part.as_rule() {
+                        Rule::name_part => names.push(self.ident(&part)),
+                        Rule::selector => select = Some(self.selector(part)),
+                        rule => unreachable!("grammar guarantees a metric part, got {rule:?}"),
+                    }
                 }
+                let mut names = names.into_iter();
+                let mut next = || names.next().expect("grammar guarantees two or three names");
+                let (first, second) = (next(), next());
+                match names.next() {
+                    None => ExprKind::Metric {
+                        plan: first,
+                        metric: second,
+                    },
+                    Some(metric) => ExprKind::Series {
+                        bench: first,
+                        plan: second,
+                        select: select.unwrap_or_default(),
+                        metric,
+                    },
+                }
+            }
+            Rule::call => {
+                let mut parts = children(inner);
+                let function = self.ident(&parts.next().expect("grammar guarantees a function"));
+                let mut args = Vec::new();
+                let mut height = 1;
+                for arg in parts {
+                    let built = self.expression(arg, depth + 1)?;
+                    height = height.max(built.height + 1);
+                    args.push(built.expr);
+                }
+                let height = self.check_height(height, span)?;
+                return Some(Built::new(
+                    Expr {
+                        kind: ExprKind::Call { function, args },
+                        span,
+                    },
+                    height,
+                ));
             }
             rule => unreachable!("grammar guarantees a primary, got {rule:?}"),
         };
         Some(Built::new(Expr { kind, span }, 1))
+    }
+
+    /// `[KEY = VALUE, ...]` of a series.
+    fn selector(&mut self, pair: P<'_>) -> Vec<Selection> {
+        children(pair)
+            .map(|selection| {
+                let span = self.span(&selection);
+                let mut parts = children(selection);
+                let key = self.ident(&parts.next().expect("grammar guarantees a key"));
+                let value = parts
+                    .find(|p| p.as_rule() != Rule::equals)
+                    .expect("grammar guarantees a value");
+                Selection {
+                    key,
+                    value: self.value(value),
+                    span,
+                }
+            })
+            .collect()
     }
 
     fn check_height(&mut self, height: usize, span: Span) -> Option<usize> {
@@ -295,6 +349,35 @@ mod tests {
     use super::*;
     use crate::syntax::ast::Stmt;
     use crate::syntax::testing::{errors, expr, parse_ok, sexp, snippet};
+
+    #[test]
+    fn series_aggregates_and_where() {
+        assert_eq!(sexp(&expr("b.p.time_ms")), "b.p[].time_ms");
+        assert_eq!(
+            sexp(&expr(
+                "median(b.p[weight = 5, sample = corner].expanded) < 0.5 * x.cost"
+            )),
+            "(< (median b.p[weight=5,sample=corner].expanded) (* 0.5 x.cost))"
+        );
+        assert_eq!(
+            sexp(&expr("quantile(b.p.time_ms, 0.9) < 10")),
+            "(< (quantile b.p[].time_ms 0.9) 10)"
+        );
+        // `where` binds loosest: the whole condition filters the series.
+        assert_eq!(
+            sexp(&expr(
+                "mean(b.p.length where b.p.found and b.p.collision_free)"
+            )),
+            "(mean (where b.p[].length (and b.p[].found b.p[].collision_free)))"
+        );
+        assert_eq!(
+            sexp(&expr("b.p[start = (1, 2)].cost == 3")),
+            "(== b.p[start=(1, 2)].cost 3)"
+        );
+        // Spaces inside a selection are fine; a plan metric stays one.
+        assert_eq!(sexp(&expr("b.p[ weight=2 ].cost")), "b.p[weight=2].cost");
+        assert_eq!(sexp(&expr("p.cost")), "p.cost");
+    }
 
     #[test]
     fn precedence_and_associativity() {

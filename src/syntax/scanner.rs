@@ -12,8 +12,9 @@ use crate::diagnostics::{Diag, FileId, Span};
 /// The deepest bracket nesting accepted (`(`, `[` and `{` together).
 const MAX_NESTING: usize = 64;
 
-pub(super) const STATEMENT_KEYWORDS: [&str; 6] =
-    ["scenario", "include", "world", "robot", "plan", "expect"];
+pub(super) const STATEMENT_KEYWORDS: [&str; 7] = [
+    "scenario", "include", "world", "robot", "plan", "expect", "bench",
+];
 
 const WORLD_ITEM_KEYWORDS: [&str; 6] = ["bounds", "rect", "polygon", "segment", "disk", "grid"];
 
@@ -100,6 +101,7 @@ fn chunk_rule(keyword: &str) -> Rule {
         "world" => Rule::world_chunk,
         "robot" => Rule::robot_chunk,
         "plan" => Rule::plan_chunk,
+        "bench" => Rule::bench_chunk,
         _ => Rule::expect_chunk,
     }
 }
@@ -177,7 +179,7 @@ pub(super) fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                 depth = 0;
                 names_to_skip = match this {
                     "plan" => 3,
-                    "robot" => 1,
+                    "robot" | "bench" => 1,
                     _ => 0,
                 };
                 current = Some(Chunk::new(token_start, i, Some(chunk_rule(this))));

@@ -10,7 +10,7 @@ use super::scanner::{Chunk, STATEMENT_KEYWORDS, is_blank, is_ident_byte, scan_st
 use crate::diagnostics::{Diag, FileId, Span, edit_distance};
 
 const EXPECTED_STATEMENT: &str =
-    "expected a statement: `world`, `robot`, `plan`, `expect`, `include` or `scenario`";
+    "expected a statement: `world`, `robot`, `plan`, `expect`, `bench`, `include` or `scenario`";
 
 /// The offset of the next token at or after `from`, skipping blanks and comments.
 fn skip_trivia(text: &str, mut from: usize) -> usize {
@@ -137,6 +137,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | Rule::robot_chunk
         | Rule::plan_chunk
         | Rule::expect_chunk
+        | Rule::bench_chunk
         | Rule::statement_chunks
         | Rule::IDENT_START
         | Rule::IDENT_CHAR
@@ -162,6 +163,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_robot | Rule::robot => "`robot`",
         Rule::kw_plan | Rule::plan => "`plan`",
         Rule::kw_expect | Rule::expect => "`expect`",
+        Rule::kw_bench | Rule::bench => "`bench`",
         Rule::kw_bounds | Rule::bounds => "`bounds`",
         Rule::kw_rect | Rule::rect_obstacle | Rule::rect_shape => "`rect`",
         Rule::kw_polygon | Rule::polygon_obstacle | Rule::polygon_shape => "`polygon`",
@@ -176,7 +178,11 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::tuple => "a point `(x, y)`",
         Rule::list => "a list `[...]`",
         Rule::expr | Rule::operand | Rule::primary => "an expression",
-        Rule::metric => "a metric `PLAN.METRIC`",
+        Rule::metric | Rule::name_part => "a metric `PLAN.METRIC`",
+        Rule::selector => "a selection `[KEY = VALUE, ...]`",
+        Rule::selection => "`KEY = VALUE`",
+        Rule::equals => "`=`",
+        Rule::call | Rule::function => "an aggregate such as `median(...)`",
         Rule::operator => "an operator",
     })
 }

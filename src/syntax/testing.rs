@@ -50,6 +50,30 @@ pub(super) fn sexp(e: &Expr) -> String {
         }
         ExprKind::And(a, b) => format!("(and {} {})", sexp(a), sexp(b)),
         ExprKind::Or(a, b) => format!("(or {} {})", sexp(a), sexp(b)),
+        ExprKind::Where(a, b) => format!("(where {} {})", sexp(a), sexp(b)),
+        ExprKind::Series {
+            bench,
+            plan,
+            select,
+            metric,
+        } => {
+            let sel: Vec<String> = select
+                .iter()
+                .map(|s| format!("{}={}", s.key.value, crate::checks::value_text(&s.value)))
+                .collect();
+            format!(
+                "{}.{}[{}].{}",
+                bench.value,
+                plan.value,
+                sel.join(","),
+                metric.value
+            )
+        }
+        ExprKind::Call { function, args } => format!(
+            "({} {})",
+            function.value,
+            args.iter().map(sexp).collect::<Vec<_>>().join(" ")
+        ),
     }
 }
 

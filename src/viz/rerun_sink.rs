@@ -606,6 +606,7 @@ mod tests {
             shape,
         };
         let scenario = Scenario {
+            benches: Vec::new(),
             file: PathBuf::from("scenarios/demo.scen"),
             title: Some("Demo: the rod".into()),
             world: World {
@@ -656,6 +657,7 @@ mod tests {
             ],
             plans: vec![plan("offline", 0), plan("dot", 1)],
             checks: vec![Check {
+                bench: false,
                 expr: Expr {
                     kind: ExprKind::Bool(true),
                     span: Span::default(),
@@ -693,15 +695,18 @@ mod tests {
             drive: None,
         };
         RunReport {
+            bench_runs: Vec::new(),
             scenario,
             plans: vec![run(1, Some(path.clone())), run(0, Some(path))],
             checks: vec![
                 CheckOutcome {
+                    series: Default::default(),
                     check: 0,
                     passed: true,
                     values: [("offline.cost".to_string(), MetricValue::Num(79.1))].into(),
                 },
                 CheckOutcome {
+                    series: Default::default(),
                     check: 0,
                     passed: false,
                     values: [("offline.found".to_string(), MetricValue::Bool(false))].into(),

@@ -65,6 +65,7 @@ pub static PLANNER: Planner = Planner {
     ],
     limits: &["expansions", "time"],
     needs_goal: true,
+    randomized: false,
     check,
 };
 

@@ -1,0 +1,353 @@
+//! Running benches (SPEC 2.7, §4 `scen bench`): every run of every
+//! configuration of every plan of a bench, in parallel, with results that
+//! depend neither on the number of threads nor on how the runs were split
+//! over machines (`--shard K/N`).
+//!
+//! Runs are numbered in one order for the whole file — bench, then plan,
+//! then configuration, then run — and run `i` of a configuration uses seed
+//! = the plan's `seed` + `i`. Shard K of N takes the runs whose number is
+//! K − 1 modulo N, so N shards do every run exactly once, and each shard's
+//! share of a bench is spread over its configurations.
+
+use std::collections::BTreeMap;
+
+use rayon::prelude::*;
+
+use crate::checks::{self, Values};
+use crate::planners::{MetricValue, Metrics};
+use crate::run::{self, RunReport};
+use crate::scenario::{Bench, Scenario};
+use crate::syntax::ast::Selection;
+
+/// One run of a bench: which, and its metrics.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BenchRun {
+    /// Index into `Scenario::benches`.
+    pub bench: usize,
+    /// Index into the bench's `plans`.
+    pub plan: usize,
+    /// The configuration ([`Bench::config_values`]).
+    pub config: usize,
+    /// The run's index in its configuration.
+    pub run: u64,
+    pub seed: u64,
+    pub metrics: Metrics,
+}
+
+/// Where a run sits: its number in the file's order, and its coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunId {
+    pub index: u64,
+    pub bench: usize,
+    pub plan: usize,
+    pub config: usize,
+    pub run: u64,
+}
+
+/// `--shard K/N`: the K-th of N parts (1 ≤ K ≤ N).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    pub k: u64,
+    pub n: u64,
+}
+
+impl Shard {
+    /// Parses `K/N`.
+    pub fn parse(text: &str) -> Result<Shard, String> {
+        let bad =
+            || format!("`{text}` is not a shard: write `K/N` with 1 ≤ K ≤ N, e.g. `--shard 3/8`");
+        let (k, n) = text.split_once('/').ok_or_else(bad)?;
+        let (k, n): (u64, u64) = (
+            k.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if k == 0 || n == 0 || k > n {
+            return Err(bad());
+        }
+        Ok(Shard { k, n })
+    }
+
+    /// Whether item `index` (0-based) belongs to this shard.
+    pub fn takes(&self, index: u64) -> bool {
+        index % self.n == self.k - 1
+    }
+}
+
+/// Every run of the file's benches, in order, for the benches named in
+/// `only` (all when empty).
+pub fn run_ids(scenario: &Scenario, only: &[String]) -> Vec<RunId> {
+    let mut ids = Vec::new();
+    let mut index = 0;
+    for (b, bench) in scenario.benches.iter().enumerate() {
+        for (p, plan) in bench.plans.iter().enumerate() {
+            for config in 0..plan.configs.len() {
+                for run in 0..plan.runs {
+                    if only.is_empty() || only.contains(&bench.name) {
+                        ids.push(RunId {
+                            index,
+                            bench: b,
+                            plan: p,
+                            config,
+                            run,
+                        });
+                    }
+                    index += 1;
+                }
+            }
+        }
+    }
+    ids
+}
+
+/// Runs one run.
+pub fn execute(scenario: &Scenario, id: &RunId) -> BenchRun {
+    let bench = &scenario.benches[id.bench];
+    let bench_plan = &bench.plans[id.plan];
+    let plan = &bench_plan.configs[id.config];
+    let seed = plan.params.seed.wrapping_add(id.run);
+    let mut task = plan.task(scenario);
+    task.seed = seed;
+    task.limits = plan.params.limits.and(bench.limits);
+    let ran = run::run_task(scenario, bench_plan.plan, plan, &task);
+    BenchRun {
+        bench: id.bench,
+        plan: id.plan,
+        config: id.config,
+        run: id.run,
+        seed,
+        metrics: ran.metrics,
+    }
+}
+
+/// Runs `ids` in parallel; `tick` is called after each run (a progress
+/// bar). The results are in the order of `ids`.
+pub fn run_all(scenario: &Scenario, ids: &[RunId], tick: &(dyn Fn() + Sync)) -> Vec<BenchRun> {
+    ids.par_iter()
+        .map(|id| {
+            let r = execute(scenario, id);
+            tick();
+            r
+        })
+        .collect()
+}
+
+/// The report of a bench run: the file's plain plans run too (their checks
+/// and the bench checks that read their metrics need them), then every
+/// check whose plans and benches ran.
+pub fn report(scenario: Scenario, runs: Vec<BenchRun>) -> RunReport {
+    let mut report = run::run_scenario(scenario, &[]);
+    report.bench_runs = runs;
+    evaluate(&mut report);
+    report
+}
+
+/// (Re)evaluates every check of a report whose plans and benches ran.
+pub fn evaluate(report: &mut RunReport) {
+    let ran: Vec<bool> = (0..report.scenario.benches.len())
+        .map(|b| report.bench_runs.iter().any(|r| r.bench == b))
+        .collect();
+    let values = BenchValues {
+        scenario: &report.scenario,
+        plans: run::metrics_by_plan(&report.scenario, &report.plans),
+        runs: &report.bench_runs,
+    };
+    let checks = run::evaluate_checks(&report.scenario, &values, |c| {
+        let mut benches = Vec::new();
+        benches_used(&c.expr, &mut benches);
+        benches.iter().all(|name| {
+            report
+                .scenario
+                .benches
+                .iter()
+                .position(|b| &b.name == name)
+                .is_some_and(|b| ran[b])
+        })
+    });
+    report.checks = checks;
+}
+
+/// What bench checks read: the plain plans' metrics and the bench runs.
+struct BenchValues<'a> {
+    scenario: &'a Scenario,
+    plans: BTreeMap<&'a str, &'a Metrics>,
+    runs: &'a [BenchRun],
+}
+
+impl Values for BenchValues<'_> {
+    fn metrics(&self, plan: &str) -> Option<&Metrics> {
+        self.plans.get(plan).copied()
+    }
+
+    fn series(
+        &self,
+        bench: &str,
+        plan: &str,
+        select: &[Selection],
+        metric: &str,
+    ) -> Option<Vec<MetricValue>> {
+        let b = self.scenario.benches.iter().position(|x| x.name == bench)?;
+        let bench = &self.scenario.benches[b];
+        let p = bench
+            .plans
+            .iter()
+            .position(|x| self.scenario.plans[x.plan].name == plan)?;
+        let wanted = selection(bench, select)?;
+        Some(
+            self.runs
+                .iter()
+                .filter(|r| r.bench == b && r.plan == p)
+                .filter(|r| {
+                    let values = bench.config_values(r.config);
+                    wanted.iter().all(|&(k, v)| values[k] == v)
+                })
+                .map(|r| {
+                    r.metrics
+                        .get(metric)
+                        .copied()
+                        .unwrap_or(MetricValue::Num(f64::NAN))
+                })
+                .collect(),
+        )
+    }
+}
+
+/// A selection as (index of the varied key, index of its value).
+fn selection(bench: &Bench, select: &[Selection]) -> Option<Vec<(usize, usize)>> {
+    select
+        .iter()
+        .map(|s| {
+            let k = bench.vary.iter().position(|v| v.key == s.key.value)?;
+            let v = bench.vary[k]
+                .values
+                .iter()
+                .position(|x| x.value.same(&s.value))?;
+            Some((k, v))
+        })
+        .collect()
+}
+
+/// The benches an expression reads.
+fn benches_used(expr: &crate::syntax::ast::Expr, out: &mut Vec<String>) {
+    use crate::syntax::ast::ExprKind;
+    match &expr.kind {
+        ExprKind::Series { bench, .. } => {
+            if !out.contains(&bench.value) {
+                out.push(bench.value.clone());
+            }
+        }
+        ExprKind::Neg(x) | ExprKind::Not(x) => benches_used(x, out),
+        ExprKind::Arith { lhs, rhs, .. }
+        | ExprKind::Compare { lhs, rhs, .. }
+        | ExprKind::Where(lhs, rhs)
+        | ExprKind::And(lhs, rhs)
+        | ExprKind::Or(lhs, rhs) => {
+            benches_used(lhs, out);
+            benches_used(rhs, out);
+        }
+        ExprKind::Approx { lhs, rhs, tol } => {
+            benches_used(lhs, out);
+            benches_used(rhs, out);
+            benches_used(tol, out);
+        }
+        ExprKind::Call { args, .. } => args.iter().for_each(|a| benches_used(a, out)),
+        ExprKind::Number(_)
+        | ExprKind::Percent(_)
+        | ExprKind::Bool(_)
+        | ExprKind::Metric { .. } => {}
+    }
+}
+
+/// The metrics the table shows by default (SPEC 4).
+pub const TABLE_METRICS: &[&str] = &[
+    "time_ms",
+    "length",
+    "cost",
+    "expanded",
+    "clearance",
+    "smoothness",
+];
+
+/// The statistics of one row of a table: a plan in one configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    pub plan: usize,
+    pub config: usize,
+    pub runs: usize,
+    /// The fraction of runs that found a path.
+    pub found: f64,
+    /// Per metric: (median, mean, std).
+    pub stats: Vec<(f64, f64, f64)>,
+}
+
+/// The rows of one bench's table, plan by plan, configuration by
+/// configuration, over the runs present.
+pub fn rows(scenario: &Scenario, bench: usize, runs: &[BenchRun], metrics: &[&str]) -> Vec<Row> {
+    let b = &scenario.benches[bench];
+    let mut rows = Vec::new();
+    for (p, plan) in b.plans.iter().enumerate() {
+        for config in 0..plan.configs.len() {
+            let these: Vec<&BenchRun> = runs
+                .iter()
+                .filter(|r| r.bench == bench && r.plan == p && r.config == config)
+                .collect();
+            if these.is_empty() {
+                continue;
+            }
+            let series = |m: &str| -> Vec<MetricValue> {
+                these
+                    .iter()
+                    .map(|r| {
+                        r.metrics
+                            .get(m)
+                            .copied()
+                            .unwrap_or(MetricValue::Num(f64::NAN))
+                    })
+                    .collect()
+            };
+            let found = checks::aggregate("rate", &series("found"), None).as_f64();
+            let stats = metrics
+                .iter()
+                .map(|m| {
+                    let s = series(m);
+                    (
+                        checks::aggregate("median", &s, None).as_f64(),
+                        checks::aggregate("mean", &s, None).as_f64(),
+                        checks::aggregate("std", &s, None).as_f64(),
+                    )
+                })
+                .collect();
+            rows.push(Row {
+                plan: p,
+                config,
+                runs: these.len(),
+                found,
+                stats,
+            });
+        }
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_split_the_runs_exactly_once() {
+        for n in 1..=7u64 {
+            let mut count = vec![0; 50];
+            for k in 1..=n {
+                let s = Shard::parse(&format!("{k}/{n}")).expect("a shard");
+                for (i, c) in count.iter_mut().enumerate() {
+                    if s.takes(i as u64) {
+                        *c += 1;
+                    }
+                }
+            }
+            assert!(count.iter().all(|&c| c == 1), "{n}: {count:?}");
+        }
+        for bad in ["0/3", "4/3", "x/2", "3", "1/0", ""] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
+    }
+}

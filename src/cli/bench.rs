@@ -1,0 +1,385 @@
+//! `scen bench FILE...` and `scen bench merge PART.jsonl...` (SPEC §4).
+
+use std::collections::BTreeSet;
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+use super::{BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, print_failure, render_diags};
+use crate::bench::{self, BenchRun, RunId, Shard, TABLE_METRICS};
+use crate::diagnostics::Diag;
+use crate::report;
+use crate::run::RunReport;
+use crate::scenario::Scenario;
+
+pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
+    if args.files.first().is_some_and(|f| f == Path::new("merge")) {
+        return cmd_merge(args, &args.files[1..]);
+    }
+    let single = args.csv.is_some() || args.svg.is_some() || args.out.is_some();
+    if args.files.len() > 1 && single {
+        eprintln!(
+            "error: `--csv`, `--svg` and `--out` take one scenario file; run the files one at a time"
+        );
+        return EXIT_BAD_INPUT;
+    }
+    let shard = match args.shard.as_deref().map(Shard::parse) {
+        Some(Err(e)) => {
+            eprintln!("error: {e}");
+            return EXIT_BAD_INPUT;
+        }
+        Some(Ok(s)) => Some(s),
+        None => None,
+    };
+    let mut code = EXIT_OK;
+    for file in &args.files {
+        let scenario = match crate::load(file) {
+            Ok(s) => s,
+            Err(f) => {
+                print_failure(&f);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+        };
+        if let Err(e) = known_benches(&scenario, &args.benches) {
+            eprintln!("error: `{}`: {e}", file.display());
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
+        if scenario.benches.is_empty() {
+            eprintln!(
+                "error: `{}` has no `bench`; write e.g. `bench b {{ vary cell [1, 0.5] runs 10 }}`, or use `scen run`",
+                file.display()
+            );
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
+        let mut ids = bench::run_ids(&scenario, &args.benches);
+        if let Some(s) = shard {
+            ids.retain(|id| s.takes(id.index));
+        }
+        let runs = run_with_progress(&scenario, &ids, args);
+        if let (Some(s), Some(out)) = (shard, &args.out) {
+            code = code.max(write_part(&scenario, s, &args.benches, &runs, out));
+            continue;
+        }
+        let report = bench::report(scenario, runs);
+        code = code.max(outputs(&report, args));
+    }
+    code
+}
+
+/// The named benches exist.
+fn known_benches(scenario: &Scenario, names: &[String]) -> Result<(), String> {
+    match names
+        .iter()
+        .find(|n| !scenario.benches.iter().any(|b| &b.name == *n))
+    {
+        Some(unknown) => {
+            let all: Vec<&str> = scenario.benches.iter().map(|b| b.name.as_str()).collect();
+            Err(format!(
+                "no bench `{unknown}` (benches: {})",
+                if all.is_empty() {
+                    "none".to_string()
+                } else {
+                    all.join(", ")
+                }
+            ))
+        }
+        None => Ok(()),
+    }
+}
+
+/// Runs `ids`, with a progress bar and an estimate of the time left on a
+/// terminal.
+fn run_with_progress(scenario: &Scenario, ids: &[RunId], args: &BenchArgs) -> Vec<BenchRun> {
+    let bar = (!args.quiet && !args.json && std::io::stderr().is_terminal()).then(|| {
+        let bar = indicatif::ProgressBar::new(ids.len() as u64);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "{spinner} {msg} [{bar:30}] {pos}/{len} runs, {elapsed} elapsed, about {eta} left",
+        ) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_message(scenario.file.display().to_string());
+        bar
+    });
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let runs = bench::run_all(scenario, ids, &tick);
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    runs
+}
+
+/// The report's outputs: the tables (or JSON), CSV, SVG and OMPL logs; the
+/// exit code.
+fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
+    let mut code = EXIT_OK;
+    let metrics: Vec<&str> = if args.metrics.is_empty() {
+        TABLE_METRICS.to_vec()
+    } else {
+        args.metrics.iter().map(String::as_str).collect()
+    };
+    if args.json {
+        let doc = report::bench::to_json(report);
+        println!("{}", serde_json::to_string(&doc).unwrap_or_default());
+    } else {
+        let mut out = std::io::stdout().lock();
+        if args.quiet {
+            for c in report.checks.iter().filter(|c| !c.passed) {
+                let _ = writeln!(out, "{}", report::text::check_line(report, c));
+            }
+            let _ = writeln!(
+                out,
+                "{} passed, {} failed",
+                report.passed(),
+                report.failed()
+            );
+        } else {
+            let _ = write!(out, "{}", report::bench::render(report, &metrics));
+        }
+        let failed: Vec<Diag> = report
+            .checks
+            .iter()
+            .filter(|c| !c.passed)
+            .map(|c| report::text::failed_check_diag(report, c))
+            .collect();
+        if !failed.is_empty() {
+            let _ = out.flush();
+            eprint!("{}", render_diags(&failed, &report.scenario.sources));
+        }
+    }
+    let mut write = |path: &Path, text: String| {
+        if let Err(e) = std::fs::write(path, text) {
+            eprintln!("error: cannot write `{}`: {e}", path.display());
+            code = EXIT_BAD_INPUT;
+        }
+    };
+    if let Some(csv) = &args.csv {
+        write(csv, report::bench::to_csv(report));
+    }
+    if report.failed() > 0 {
+        code = code.max(EXIT_CHECK_FAILED);
+    }
+    code
+}
+
+/// `--shard K/N --out PART.jsonl`: a header line, then one line per run.
+fn write_part(
+    scenario: &Scenario,
+    shard: Shard,
+    only: &[String],
+    runs: &[BenchRun],
+    out: &Path,
+) -> i32 {
+    let hash = scenario.sources.content_hash();
+    let mut text = serde_json::to_string(&report::bench::part_header(scenario, &hash, shard, only))
+        .unwrap_or_default();
+    text.push('\n');
+    for r in runs {
+        text.push_str(
+            &serde_json::to_string(&report::bench::part_run(scenario, r)).unwrap_or_default(),
+        );
+        text.push('\n');
+    }
+    match std::fs::write(out, text) {
+        Ok(()) => {
+            eprintln!(
+                "{}: shard {}/{}: {} runs written to `{}`; combine the parts with `scen bench merge`",
+                scenario.file.display(),
+                shard.k,
+                shard.n,
+                runs.len(),
+                out.display()
+            );
+            EXIT_OK
+        }
+        Err(e) => {
+            eprintln!("error: cannot write `{}`: {e}", out.display());
+            EXIT_BAD_INPUT
+        }
+    }
+}
+
+/// One part, read.
+struct Part {
+    path: PathBuf,
+    file: String,
+    hash: String,
+    benches: Vec<String>,
+    k: u64,
+    n: u64,
+    runs: Vec<Value>,
+}
+
+fn read_part(path: &Path) -> Result<Part, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+    let not_a_part = || {
+        format!(
+            "`{}` is not a part written by `scen bench --shard K/N --out PART.jsonl`",
+            path.display()
+        )
+    };
+    let header: Value = lines
+        .next()
+        .and_then(|l| serde_json::from_str(l).ok())
+        .ok_or_else(not_a_part)?;
+    if header.get("scen_part").and_then(Value::as_u64) != Some(1) {
+        return Err(not_a_part());
+    }
+    let field = |k: &str| header.get(k).cloned().ok_or_else(not_a_part);
+    let runs = lines
+        .map(|l| serde_json::from_str::<Value>(l).map_err(|_| not_a_part()))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Part {
+        path: path.to_path_buf(),
+        file: field("file")?.as_str().ok_or_else(not_a_part)?.to_string(),
+        hash: field("hash")?.as_str().ok_or_else(not_a_part)?.to_string(),
+        benches: field("benches")?
+            .as_array()
+            .ok_or_else(not_a_part)?
+            .iter()
+            .filter_map(|b| b.as_str().map(str::to_string))
+            .collect(),
+        k: field("k")?.as_u64().ok_or_else(not_a_part)?,
+        n: field("n")?.as_u64().ok_or_else(not_a_part)?,
+        runs,
+    })
+}
+
+/// `scen bench merge PART.jsonl...`: the report of the whole bench, as the
+/// unsharded `scen bench` prints it. Refuses parts that are missing,
+/// given twice, or made from another scenario or split.
+fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
+    match merge(paths) {
+        Ok(report) => outputs(&report, args),
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_BAD_INPUT
+        }
+    }
+}
+
+fn merge(paths: &[PathBuf]) -> Result<RunReport, String> {
+    if paths.is_empty() {
+        return Err("`scen bench merge` needs the parts: `scen bench merge part-*.jsonl`".into());
+    }
+    let parts = paths
+        .iter()
+        .map(|p| read_part(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let first = &parts[0];
+    for p in &parts[1..] {
+        if (&p.file, &p.hash, p.n, &p.benches)
+            != (&first.file, &first.hash, first.n, &first.benches)
+        {
+            return Err(format!(
+                "`{}` does not belong with `{}`: it was made from {} (hash {}), shards of {}, benches {:?}; the other from {} (hash {}), shards of {}, benches {:?}",
+                p.path.display(),
+                first.path.display(),
+                p.file,
+                p.hash,
+                p.n,
+                p.benches,
+                first.file,
+                first.hash,
+                first.n,
+                first.benches
+            ));
+        }
+    }
+    let mut seen = BTreeSet::new();
+    for p in &parts {
+        if !seen.insert(p.k) {
+            return Err(format!(
+                "part {}/{} is given twice (`{}`)",
+                p.k,
+                p.n,
+                p.path.display()
+            ));
+        }
+    }
+    let missing: Vec<String> = (1..=first.n)
+        .filter(|k| !seen.contains(k))
+        .map(|k| format!("{k}/{}", first.n))
+        .collect();
+    if !missing.is_empty() {
+        return Err(format!(
+            "parts missing: {} (of {} parts)",
+            missing.join(", "),
+            first.n
+        ));
+    }
+    let scenario = crate::load(Path::new(&first.file)).map_err(|f| {
+        format!(
+            "cannot load `{}`, the scenario the parts were made from:\n{}",
+            first.file,
+            render_diags(&f.diags, &f.sources)
+        )
+    })?;
+    let hash = scenario.sources.content_hash();
+    if hash != first.hash {
+        return Err(format!(
+            "`{}` has changed since the parts were made (hash {hash}, the parts say {})",
+            first.file, first.hash
+        ));
+    }
+    let ids = bench::run_ids(&scenario, &first.benches);
+    let mut runs: Vec<Option<BenchRun>> = vec![None; ids.len()];
+    for p in &parts {
+        for v in &p.runs {
+            let (id_at, run) = decode_run(&scenario, &ids, v).ok_or_else(|| {
+                format!(
+                    "`{}` holds a run this scenario does not have: {v}",
+                    p.path.display()
+                )
+            })?;
+            if runs[id_at].is_some() {
+                return Err(format!("`{}` repeats a run: {v}", p.path.display()));
+            }
+            runs[id_at] = Some(run);
+        }
+    }
+    let absent = runs.iter().filter(|r| r.is_none()).count();
+    if absent > 0 {
+        return Err(format!("the parts lack {absent} of the {} runs", ids.len()));
+    }
+    Ok(bench::report(
+        scenario,
+        runs.into_iter().flatten().collect(),
+    ))
+}
+
+/// A part's run, placed among `ids`.
+fn decode_run(scenario: &Scenario, ids: &[RunId], v: &Value) -> Option<(usize, BenchRun)> {
+    let bench_name = v.get("bench")?.as_str()?;
+    let plan_name = v.get("plan")?.as_str()?;
+    let config = usize::try_from(v.get("config_index")?.as_u64()?).ok()?;
+    let run = v.get("run")?.as_u64()?;
+    let b = scenario.benches.iter().position(|x| x.name == bench_name)?;
+    let p = scenario.benches[b]
+        .plans
+        .iter()
+        .position(|x| scenario.plans[x.plan].name == plan_name)?;
+    let at = ids
+        .iter()
+        .position(|id| (id.bench, id.plan, id.config, id.run) == (b, p, config, run))?;
+    Some((
+        at,
+        BenchRun {
+            bench: b,
+            plan: p,
+            config,
+            run,
+            seed: v.get("seed")?.as_u64()?,
+            metrics: report::bench::read_metrics(v.get("metrics")?)?,
+        },
+    ))
+}

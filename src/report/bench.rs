@@ -1,0 +1,429 @@
+//! The outputs of `scen bench` (SPEC §4, §5): the table per bench, the
+//! JSON document, the CSV of every run, and the parts that `--shard K/N
+//! --out PART.jsonl` writes and `scen bench merge` reads back.
+
+use std::fmt::Write as _;
+
+use serde_json::{Map, Value};
+
+use crate::bench::{self, BenchRun};
+use crate::checks::{format_num, value_text};
+use crate::planners::{MetricValue, Metrics};
+use crate::run::RunReport;
+use crate::scenario::{Bench, Scenario};
+use crate::syntax::ast::{self, ValueKind};
+
+use super::json::{check_json, float_json, metrics_json};
+
+/// The table of every bench, then the checks and the summary line.
+/// `metrics` are the columns (default [`TABLE_METRICS`]).
+pub fn render(report: &RunReport, metrics: &[&str]) -> String {
+    let sc = &report.scenario;
+    let mut s = String::new();
+    match &sc.title {
+        Some(t) => {
+            let _ = writeln!(s, "{} — {}", sc.file.display(), t);
+        }
+        None => {
+            let _ = writeln!(s, "{}", sc.file.display());
+        }
+    }
+    for (b, bench) in sc.benches.iter().enumerate() {
+        if !report.bench_runs.iter().any(|r| r.bench == b) {
+            continue;
+        }
+        s.push('\n');
+        s.push_str(&table(sc, b, &report.bench_runs, metrics));
+        let once: Vec<&str> = bench
+            .plans
+            .iter()
+            .filter(|p| p.runs == 1 && bench.runs > 1)
+            .map(|p| sc.plans[p.plan].name.as_str())
+            .collect();
+        if !once.is_empty() {
+            let _ = writeln!(
+                s,
+                "  note: {} draw{} no random numbers: one run per configuration, not {}",
+                once.join(", "),
+                if once.len() == 1 { "s" } else { "" },
+                bench.runs
+            );
+        }
+        if bench.limits.time.is_some()
+            || bench.plans.iter().any(|p| {
+                sc.plans[p.plan].params.limits.time.is_some() && sc.plans[p.plan].planner.randomized
+            })
+        {
+            let _ = writeln!(
+                s,
+                "  note: a `limit time` makes results depend on the machine's speed"
+            );
+        }
+    }
+    if !report.checks.is_empty() {
+        let _ = writeln!(s, "\nchecks");
+        for c in &report.checks {
+            let _ = writeln!(s, "  {}", super::text::check_line(report, c));
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\n{} passed, {} failed",
+        report.passed(),
+        report.failed()
+    );
+    s
+}
+
+/// One bench's table: a row per plan and configuration, columns for the
+/// varied keys, the runs, the success rate, and per metric the median and
+/// mean ± std (the value itself for a single run).
+pub fn table(sc: &Scenario, b: usize, runs: &[BenchRun], metrics: &[&str]) -> String {
+    let bench = &sc.benches[b];
+    let rows = bench::rows(sc, b, runs, metrics);
+    let mut header: Vec<String> = vec!["plan".into()];
+    header.extend(bench.vary.iter().map(|v| v.key.clone()));
+    header.push("runs".into());
+    header.push("found".into());
+    header.extend(metrics.iter().map(|m| (*m).to_string()));
+    let mut cells: Vec<Vec<String>> = Vec::new();
+    for row in &rows {
+        let picks = bench.config_values(row.config);
+        let mut line = vec![sc.plans[bench.plans[row.plan].plan].name.clone()];
+        line.extend(
+            bench
+                .vary
+                .iter()
+                .zip(&picks)
+                .map(|(v, &i)| v.values[i].text.clone()),
+        );
+        line.push(row.runs.to_string());
+        line.push(format!(
+            "{}%",
+            format_num((row.found * 1000.0).round() / 10.0)
+        ));
+        for &(median, mean, std) in &row.stats {
+            line.push(if row.runs == 1 {
+                short(median)
+            } else {
+                format!("{} ({} ± {})", short(median), short(mean), short(std))
+            });
+        }
+        cells.push(line);
+    }
+    let widths: Vec<usize> = (0..header.len())
+        .map(|c| {
+            cells
+                .iter()
+                .map(|l| l[c].chars().count())
+                .chain(std::iter::once(header[c].chars().count()))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |parts: &[String]| -> String {
+        parts
+            .iter()
+            .zip(&widths)
+            .map(|(p, w)| format!("{p:<w$}"))
+            .collect::<Vec<_>>()
+            .join("  ")
+            .trim_end()
+            .to_string()
+    };
+    let mut s = format!(
+        "bench {} ({} run{})\n",
+        bench.name,
+        runs.iter().filter(|r| r.bench == b).count(),
+        if runs.iter().filter(|r| r.bench == b).count() == 1 {
+            ""
+        } else {
+            "s"
+        }
+    );
+    let _ = writeln!(s, "  {}", line(&header));
+    for l in &cells {
+        let _ = writeln!(s, "  {}", line(l));
+    }
+    s
+}
+
+/// A number in a table: at most 4 significant digits after the point.
+fn short(x: f64) -> String {
+    if !x.is_finite() {
+        return format_num(x);
+    }
+    let magnitude = x.abs();
+    let decimals = if magnitude >= 1000.0 || x.fract() == 0.0 {
+        0
+    } else if magnitude >= 10.0 {
+        2
+    } else {
+        4
+    };
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// A `vary` value in JSON: numbers (angles in radians, percentages as
+/// fractions, durations in seconds), words and strings as strings, points
+/// and lists as arrays.
+pub fn value_json(v: &ast::Value) -> Value {
+    match &v.kind {
+        ValueKind::Number(x)
+        | ValueKind::Angle(x)
+        | ValueKind::Percent(x)
+        | ValueKind::Duration(x) => float_json(*x),
+        ValueKind::Str(s) | ValueKind::Word(s) => Value::String(s.clone()),
+        ValueKind::Tuple(xs) | ValueKind::List(xs) => {
+            Value::Array(xs.iter().map(value_json).collect())
+        }
+    }
+}
+
+/// The configuration of a run: each varied key's value.
+fn config_json(bench: &Bench, config: usize) -> Value {
+    let picks = bench.config_values(config);
+    Value::Object(
+        bench
+            .vary
+            .iter()
+            .zip(picks)
+            .map(|(v, i)| (v.key.clone(), value_json(&v.values[i].value)))
+            .collect(),
+    )
+}
+
+/// One run as SPEC 5 lists it: plan, config, run, seed, metrics.
+fn run_json(sc: &Scenario, r: &BenchRun) -> Value {
+    let bench = &sc.benches[r.bench];
+    let mut o = Map::new();
+    o.insert(
+        "plan".into(),
+        sc.plans[bench.plans[r.plan].plan].name.clone().into(),
+    );
+    o.insert("config".into(), config_json(bench, r.config));
+    o.insert("run".into(), r.run.into());
+    o.insert("seed".into(), r.seed.into());
+    o.insert("metrics".into(), metrics_json(&r.metrics));
+    Value::Object(o)
+}
+
+/// The document of `scen bench --json` (SPEC 5).
+pub fn to_json(report: &RunReport) -> Value {
+    let sc = &report.scenario;
+    let benches: Vec<Value> = sc
+        .benches
+        .iter()
+        .enumerate()
+        .filter(|(b, _)| report.bench_runs.iter().any(|r| r.bench == *b))
+        .map(|(b, bench)| {
+            let mut o = Map::new();
+            o.insert("name".into(), bench.name.clone().into());
+            let vary: Map<String, Value> = bench
+                .vary
+                .iter()
+                .map(|v| {
+                    (
+                        v.key.clone(),
+                        Value::Array(v.values.iter().map(|x| value_json(&x.value)).collect()),
+                    )
+                })
+                .collect();
+            o.insert("vary".into(), Value::Object(vary));
+            o.insert("runs".into(), bench.runs.into());
+            let results: Vec<Value> = report
+                .bench_runs
+                .iter()
+                .filter(|r| r.bench == b)
+                .map(|r| run_json(sc, r))
+                .collect();
+            o.insert("results".into(), Value::Array(results));
+            Value::Object(o)
+        })
+        .collect();
+    let checks: Vec<Value> = report
+        .checks
+        .iter()
+        .filter_map(|c| check_json(sc, c))
+        .collect();
+    let mut doc = Map::new();
+    doc.insert("file".into(), sc.file.display().to_string().into());
+    doc.insert("scenario".into(), sc.title.clone().into());
+    doc.insert("benches".into(), Value::Array(benches));
+    doc.insert("checks".into(), Value::Array(checks));
+    doc.insert("passed".into(), report.passed().into());
+    doc.insert("failed".into(), report.failed().into());
+    Value::Object(doc)
+}
+
+/// Every run as a CSV row: bench, plan, the varied keys (of every bench of
+/// the file, empty where a bench does not vary one), run, seed, then every
+/// metric that any run has, in name order.
+pub fn to_csv(report: &RunReport) -> String {
+    let sc = &report.scenario;
+    let mut keys: Vec<&str> = Vec::new();
+    for b in &sc.benches {
+        for v in &b.vary {
+            if !keys.contains(&v.key.as_str()) {
+                keys.push(&v.key);
+            }
+        }
+    }
+    let mut metrics: Vec<&str> = Vec::new();
+    for r in &report.bench_runs {
+        for m in r.metrics.keys() {
+            if !metrics.contains(&m.as_str()) {
+                metrics.push(m);
+            }
+        }
+    }
+    metrics.sort_unstable();
+    let mut s = String::new();
+    let mut header: Vec<String> = vec!["bench".into(), "plan".into()];
+    header.extend(keys.iter().map(|k| (*k).to_string()));
+    header.extend(["run".to_string(), "seed".to_string()]);
+    header.extend(metrics.iter().map(|m| (*m).to_string()));
+    let _ = writeln!(
+        s,
+        "{}",
+        header
+            .iter()
+            .map(|h| csv_field(h))
+            .collect::<Vec<_>>()
+            .join(",")
+    );
+    for r in &report.bench_runs {
+        let bench = &sc.benches[r.bench];
+        let picks = bench.config_values(r.config);
+        let mut row: Vec<String> = vec![
+            bench.name.clone(),
+            sc.plans[bench.plans[r.plan].plan].name.clone(),
+        ];
+        for k in &keys {
+            row.push(
+                bench
+                    .vary
+                    .iter()
+                    .position(|v| v.key == *k)
+                    .map(|i| value_text(&bench.vary[i].values[picks[i]].value))
+                    .unwrap_or_default(),
+            );
+        }
+        row.push(r.run.to_string());
+        row.push(r.seed.to_string());
+        for m in &metrics {
+            row.push(match r.metrics.get(*m) {
+                Some(MetricValue::Bool(b)) => b.to_string(),
+                Some(MetricValue::Num(x)) => csv_number(*x),
+                None => String::new(),
+            });
+        }
+        let _ = writeln!(
+            s,
+            "{}",
+            row.iter()
+                .map(|f| csv_field(f))
+                .collect::<Vec<_>>()
+                .join(",")
+        );
+    }
+    s
+}
+
+/// A number in the CSV: round-trip exact, `inf`/`-inf`/`nan` spelled out.
+fn csv_number(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        format!("{x}")
+    }
+}
+
+/// A CSV field, quoted when it must be (RFC 4180).
+fn csv_field(f: &str) -> String {
+    if f.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", f.replace('"', "\"\""))
+    } else {
+        f.to_string()
+    }
+}
+
+// ------------------------------------------------------------- shard parts
+
+/// The header line of a part written by `--shard K/N --out PART.jsonl`:
+/// what `merge` needs to check that the parts belong together.
+pub fn part_header(sc: &Scenario, hash: &str, shard: bench::Shard, only: &[String]) -> Value {
+    let mut o = Map::new();
+    o.insert("scen_part".into(), 1.into());
+    o.insert("file".into(), sc.file.display().to_string().into());
+    o.insert("hash".into(), hash.into());
+    o.insert(
+        "benches".into(),
+        Value::Array(
+            sc.benches
+                .iter()
+                .filter(|b| only.is_empty() || only.contains(&b.name))
+                .map(|b| b.name.clone().into())
+                .collect(),
+        ),
+    );
+    o.insert("k".into(), shard.k.into());
+    o.insert("n".into(), shard.n.into());
+    Value::Object(o)
+}
+
+/// One run of a part: its coordinates and its metrics, every number exact
+/// (non-finite ones as strings, which JSON numbers cannot be).
+pub fn part_run(sc: &Scenario, r: &BenchRun) -> Value {
+    let mut o = Map::new();
+    o.insert("bench".into(), sc.benches[r.bench].name.clone().into());
+    if let Value::Object(run) = run_json(sc, r) {
+        o.extend(run);
+    }
+    o.insert("config_index".into(), r.config.into());
+    o.insert("metrics".into(), exact_metrics(&r.metrics));
+    Value::Object(o)
+}
+
+fn exact_metrics(m: &Metrics) -> Value {
+    Value::Object(
+        m.iter()
+            .map(|(k, v)| {
+                let v = match *v {
+                    MetricValue::Bool(b) => Value::Bool(b),
+                    MetricValue::Num(x) if x.is_finite() => float_json(x),
+                    MetricValue::Num(x) => Value::String(csv_number(x)),
+                };
+                (k.clone(), v)
+            })
+            .collect(),
+    )
+}
+
+/// The metrics of a part's run, as [`exact_metrics`] wrote them.
+pub fn read_metrics(v: &Value) -> Option<Metrics> {
+    v.as_object()?
+        .iter()
+        .map(|(k, v)| {
+            let value = match v {
+                Value::Bool(b) => MetricValue::Bool(*b),
+                Value::Number(n) => MetricValue::Num(n.as_f64()?),
+                Value::String(s) => MetricValue::Num(match s.as_str() {
+                    "inf" => f64::INFINITY,
+                    "-inf" => f64::NEG_INFINITY,
+                    "nan" => f64::NAN,
+                    _ => return None,
+                }),
+                _ => return None,
+            };
+            Some((k.clone(), value))
+        })
+        .collect()
+}
