@@ -30,7 +30,7 @@ fn run_prints_the_report_and_exits_0() {
             "small.scen — Small
 
 plan go (astar, robot p): found, collision-free
-  cost 25  length 25  turn 0  nodes 26  expanded 47  generated 63  cells 100  free_cells 92  layers 1
+  cost 25  length 25  turn 0  nodes 26  expanded 47  generated 63  cells 100  clearance 0.5  free_cells 92  layers 1  smoothness 9.869604
 
 checks
   PASS  line 13  go.found   (go.found = true)
