@@ -154,14 +154,41 @@ fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
             eprint!("{}", render_diags(&failed, &report.scenario.sources));
         }
     }
-    let mut write = |path: &Path, text: String| {
-        if let Err(e) = std::fs::write(path, text) {
+    let mut failed_writes = false;
+    let write = |path: &Path, text: String| -> bool {
+        let written = std::fs::write(path, text);
+        if let Err(e) = &written {
             eprintln!("error: cannot write `{}`: {e}", path.display());
-            code = EXIT_BAD_INPUT;
         }
+        written.is_err()
     };
     if let Some(csv) = &args.csv {
-        write(csv, report::bench::to_csv(report));
+        failed_writes |= write(csv, report::bench::to_csv(report));
+    }
+    if let Some(svg) = &args.svg {
+        match report::plot::to_svg(report, &metrics) {
+            Ok(text) => failed_writes |= write(svg, text),
+            Err(e) => {
+                eprintln!("error: cannot draw `{}`: {e}", svg.display());
+                failed_writes = true;
+            }
+        }
+    }
+    if let Some(dir) = &args.ompl_log {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            eprintln!("error: cannot create `{}`: {e}", dir.display());
+            failed_writes = true;
+        } else {
+            for b in 0..report.scenario.benches.len() {
+                if report.bench_runs.iter().any(|r| r.bench == b) {
+                    let (name, text) = report::ompl::bench_log(report, b);
+                    failed_writes |= write(&dir.join(name), text);
+                }
+            }
+        }
+    }
+    if failed_writes {
+        code = EXIT_BAD_INPUT;
     }
     if report.failed() > 0 {
         code = code.max(EXIT_CHECK_FAILED);

@@ -3,5 +3,7 @@
 pub mod bench;
 pub mod json;
 pub mod junit;
+pub mod ompl;
+pub mod plot;
 pub mod svg;
 pub mod text;

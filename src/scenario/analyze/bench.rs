@@ -416,7 +416,7 @@ impl Analyzer {
                 },
                 "vary" => {
                     let name = match tokens.get(i) {
-                        Some(ParamToken::Word(w)) if !BENCH_KEYS.contains(&w.value.as_str()) => {
+                        Some(ParamToken::Word(w)) => {
                             i += 1;
                             w.clone()
                         }

@@ -1,0 +1,361 @@
+//! `scen bench` as a user runs it (SPEC §4, §5): the table, JSON, CSV, SVG,
+//! OMPL logs read by OMPL's own script, shards merged back to exactly what
+//! one machine prints, the refusals of `merge`, and `scen test --shard
+//! --junit` read by a real XML parser.
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use common::{Test, TempDir, repo, run_with_timeout, scen_bin};
+use serde_json::Value;
+
+/// A randomized bench (the potential field's random walk over seeds) and a
+/// deterministic one (A* with two weights), in one file.
+const SCENARIO: &str = r#"scenario "Bench test"
+world {
+  bounds (0, 0) (20, 20)
+  segment bottom (10, 2) (10, 8)
+  segment upper  (5, 8)  (10, 8)
+  segment lower  (5, 2)  (10, 2)
+}
+robot p point
+plan walk potential p { start (7, 5) goal (15, 5) limit steps 20000 }
+plan lattice astar p { start (7, 5) goal (15, 5) }
+bench seeds {
+  plans [walk]
+  vary jump [4, 10]
+  runs 11
+}
+bench weights {
+  plans [lattice]
+  vary weight [1, 3]
+  runs 5
+}
+expect rate(seeds.walk.found) == 100%
+expect median(seeds.walk[jump = 4].length) < 40
+expect weights.lattice[weight = 1].length <= weights.lattice[weight = 3].length
+expect lattice.found
+"#;
+
+fn scen(dir: &Path, args: &[&str]) -> std::process::Output {
+    run_with_timeout(
+        Command::new(scen_bin())
+            .args(args)
+            .current_dir(dir)
+            .env("NO_COLOR", "1"),
+        std::time::Duration::from_secs(120),
+    )
+}
+
+/// The JSON document without what may differ between runs: timings.
+fn without_timings(mut doc: Value) -> Value {
+    fn strip(v: &mut Value) {
+        match v {
+            Value::Object(map) => {
+                map.remove("time_ms");
+                map.values_mut().for_each(strip);
+            }
+            Value::Array(items) => items.iter_mut().for_each(strip),
+            _ => {}
+        }
+    }
+    strip(&mut doc);
+    // Check values and series stats name aggregates of `time_ms` only when
+    // a check uses it; none here.
+    doc
+}
+
+fn json(out: &std::process::Output) -> Value {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON document")
+}
+
+#[test]
+fn the_table_lists_configurations_with_statistics() {
+    let t = Test::new().file("b.scen", SCENARIO).args(&[
+        "bench",
+        "--metrics",
+        "length,expanded",
+        "b.scen",
+    ]);
+    let out = t.run();
+    let text = String::from_utf8_lossy(&out.stdout);
+    // A row per plan and configuration, the varied key's values, the runs
+    // (11 seeds; A* draws no random numbers: once), the success rate.
+    assert!(text.contains("bench seeds (22 runs)"), "{text}");
+    assert!(text.contains("bench weights (2 runs)"), "{text}");
+    let rows: Vec<&str> = text.lines().filter(|l| l.trim_start().starts_with("walk ")).collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    assert!(rows[0].split_whitespace().take(4).eq(["walk", "4", "11", "100%"]), "{text}");
+    // Randomized rows: median (mean ± std).
+    assert!(rows[0].contains(" ± "), "{text}");
+    assert!(text.contains("lattice draws no random numbers: one run per configuration, not 5"));
+    assert!(text.contains("4 passed, 0 failed"), "{text}");
+}
+
+#[test]
+fn json_lists_every_run_in_order_and_is_deterministic() {
+    let dir = TempDir::new("bench-json");
+    std::fs::write(dir.path().join("b.scen"), SCENARIO).expect("write");
+    let a = json(&scen(dir.path(), &["bench", "--json", "b.scen"]));
+    let b = json(&scen(dir.path(), &["bench", "--json", "b.scen"]));
+    assert_eq!(without_timings(a.clone()), without_timings(b));
+    let seeds = &a["benches"][0];
+    assert_eq!(seeds["name"], "seeds");
+    assert_eq!(seeds["vary"]["jump"], serde_json::json!([4.0, 10.0]));
+    assert_eq!(seeds["runs"], 11);
+    let results = seeds["results"].as_array().expect("results");
+    assert_eq!(results.len(), 22);
+    // Order: configuration, then run; seed = the plan's seed (0) + run.
+    for (i, r) in results.iter().enumerate() {
+        assert_eq!(r["plan"], "walk");
+        assert_eq!(r["run"], (i % 11) as u64);
+        assert_eq!(r["seed"], (i % 11) as u64);
+        assert_eq!(r["config"]["jump"], if i < 11 { 4.0 } else { 10.0 });
+        assert_eq!(r["metrics"]["found"], true);
+    }
+    // The seeds make the walks differ.
+    let lengths: Vec<f64> = results[..11]
+        .iter()
+        .map(|r| r["metrics"]["length"].as_f64().expect("a length"))
+        .collect();
+    assert!(lengths.iter().any(|&l| l != lengths[0]), "{lengths:?}");
+    assert_eq!(a["passed"], 4);
+    assert_eq!(a["checks"].as_array().map(Vec::len), Some(4));
+    assert_eq!(a["checks"][1]["series"]["seeds.walk[jump = 4].length"]["runs"], 11);
+}
+
+#[test]
+fn shards_merge_to_what_one_machine_prints() {
+    let dir = TempDir::new("bench-shards");
+    std::fs::write(dir.path().join("b.scen"), SCENARIO).expect("write");
+    let whole = without_timings(json(&scen(dir.path(), &["bench", "--json", "b.scen"])));
+    let table = |out: &std::process::Output| -> String {
+        // The table without its timing column is the same too.
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let whole_table = table(&scen(dir.path(), &["bench", "--metrics", "length,expanded", "b.scen"]));
+    for n in [1, 3, 7] {
+        let mut parts = Vec::new();
+        for k in 1..=n {
+            let part = format!("part-{n}-{k}.jsonl");
+            let out = scen(
+                dir.path(),
+                &["bench", "b.scen", "--shard", &format!("{k}/{n}"), "--out", &part],
+            );
+            assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+            parts.push(part);
+        }
+        // Any order of the parts.
+        parts.reverse();
+        let mut args = vec!["bench", "merge", "--json"];
+        args.extend(parts.iter().map(String::as_str));
+        let merged = without_timings(json(&scen(dir.path(), &args)));
+        assert_eq!(merged, whole, "{n} shards");
+        let mut args = vec!["bench", "merge", "--metrics", "length,expanded"];
+        args.extend(parts.iter().map(String::as_str));
+        assert_eq!(table(&scen(dir.path(), &args)), whole_table, "{n} shards");
+    }
+}
+
+#[test]
+fn merge_refuses_missing_repeated_and_foreign_parts() {
+    let dir = TempDir::new("bench-merge");
+    let d = dir.path();
+    std::fs::write(d.join("b.scen"), SCENARIO).expect("write");
+    for k in 1..=3 {
+        let out = scen(
+            d,
+            &["bench", "b.scen", "--shard", &format!("{k}/3"), "--out", &format!("p{k}.jsonl")],
+        );
+        assert!(out.status.success());
+    }
+    let refused = |args: &[&str], says: &str| {
+        let out = scen(d, args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    };
+    refused(&["bench", "merge", "p1.jsonl", "p3.jsonl"], "parts missing: 2/3");
+    refused(
+        &["bench", "merge", "p1.jsonl", "p2.jsonl", "p2.jsonl", "p3.jsonl"],
+        "part 2/3 is given twice",
+    );
+    // A part of another split of the same file.
+    let out = scen(d, &["bench", "b.scen", "--shard", "1/2", "--out", "q1.jsonl"]);
+    assert!(out.status.success());
+    refused(&["bench", "merge", "p1.jsonl", "p2.jsonl", "q1.jsonl"], "does not belong");
+    // The scenario changed since the parts were made.
+    std::fs::write(d.join("b.scen"), SCENARIO.replace("runs 11", "runs 12")).expect("write");
+    refused(&["bench", "merge", "p1.jsonl", "p2.jsonl", "p3.jsonl"], "has changed");
+    std::fs::write(d.join("x.jsonl"), "{\"not\": \"a part\"}\n").expect("write");
+    refused(&["bench", "merge", "x.jsonl"], "is not a part");
+    refused(&["bench", "merge"], "needs the parts");
+}
+
+#[test]
+fn csv_and_svg_outputs() {
+    let t = Test::new()
+        .file("b.scen", SCENARIO)
+        .args(&["bench", "-q", "--csv", "runs.csv", "--svg", "plots.svg", "b.scen"]);
+    t.run();
+    let csv = std::fs::read_to_string(t.dir().join("runs.csv")).expect("a CSV");
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 1 + 22 + 2, "{csv}");
+    let header: Vec<&str> = lines[0].split(',').collect();
+    assert_eq!(&header[..6], ["bench", "plan", "jump", "weight", "run", "seed"]);
+    assert!(header.contains(&"length") && header.contains(&"found"));
+    assert!(lines[1].starts_with("seeds,walk,4,,0,0,"), "{}", lines[1]);
+    assert!(lines[23].starts_with("weights,lattice,,1,0,0,"), "{}", lines[23]);
+    let svg = std::fs::read_to_string(t.dir().join("plots.svg")).expect("an SVG");
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert!(svg.contains("seeds — length") && svg.contains("median length by jump"));
+}
+
+#[test]
+fn bench_needs_a_bench_and_known_names() {
+    Test::new()
+        .file("b.scen", "world { bounds (0, 0) (5, 5) }\nrobot p point\nplan a astar p { start (1, 1) goal (4, 4) }\n")
+        .args(&["bench", "b.scen"])
+        .status(2)
+        .stderr_contains("has no `bench`")
+        .run();
+    Test::new()
+        .file("b.scen", SCENARIO)
+        .args(&["bench", "--bench", "nope", "b.scen"])
+        .status(2)
+        .stderr_contains("no bench `nope` (benches: seeds, weights)")
+        .run();
+    Test::new()
+        .file("b.scen", SCENARIO)
+        .args(&["bench", "--shard", "4/3", "--out", "p.jsonl", "b.scen"])
+        .status(2)
+        .stderr_contains("is not a shard")
+        .run();
+}
+
+#[test]
+fn run_leaves_bench_checks_to_bench() {
+    Test::new()
+        .file("b.scen", SCENARIO)
+        .args(&["run", "b.scen"])
+        .stdout_contains("3 check(s) read the benches; `scen bench b.scen` runs them")
+        .stdout_contains("1 passed, 0 failed")
+        .run();
+}
+
+/// The `ompl_benchmark_statistics` script (pip package `ompl`, installed by
+/// scripts/test.sh in target/rerun-venv); CI must have it.
+fn ompl_statistics() -> Option<std::path::PathBuf> {
+    let script = std::env::var_os("SCEN_OMPL_STATS")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| repo().join("target/rerun-venv/bin/ompl_benchmark_statistics"));
+    if script.exists() {
+        return Some(script);
+    }
+    assert_ne!(
+        std::env::var("CI").as_deref(),
+        Ok("true"),
+        "CI must have OMPL's ompl_benchmark_statistics (pip install ompl)"
+    );
+    eprintln!("skipped: {} is missing (pip install ompl)", script.display());
+    None
+}
+
+#[test]
+fn ompl_logs_become_a_planner_arena_database() {
+    let Some(script) = ompl_statistics() else {
+        return;
+    };
+    let t = Test::new()
+        .file("b.scen", SCENARIO)
+        .args(&["bench", "-q", "--ompl-log", "logs", "b.scen"]);
+    t.run();
+    let logs: Vec<_> = std::fs::read_dir(t.dir().join("logs"))
+        .expect("the log folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    assert_eq!(logs.len(), 2, "one log per bench: {logs:?}");
+    let db = t.dir().join("bench.db");
+    let out = run_with_timeout(
+        Command::new(&script).args(&logs).arg("-d").arg(&db),
+        std::time::Duration::from_secs(120),
+    );
+    assert!(
+        out.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Query the database with Python's sqlite3: the planners, the runs,
+    // their times, lengths and success.
+    let query = "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); \
+        print(c.execute('select count(*) from experiments').fetchone()[0]); \
+        print(c.execute('select count(*) from plannerConfigs').fetchone()[0]); \
+        print(c.execute('select count(*), sum(solved), min(time) > 0, min(solution_length) > 0 from runs').fetchone()); \
+        print(c.execute(\"select count(*) from runs r join plannerConfigs p on r.plannerid = p.id where p.name = 'scen_walk jump=4'\").fetchone()[0])";
+    let out = Command::new("python3")
+        .args(["-c", query])
+        .arg(&db)
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines, ["2", "4", "(24, 24, 1, 1)", "11"], "{text}\n{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn test_shards_cover_every_file_once_and_junit_parses() {
+    let scenarios = repo().join("scenarios/features");
+    let mut seen: Vec<String> = Vec::new();
+    let dir = TempDir::new("junit");
+    for k in 1..=3 {
+        let xml = dir.path().join(format!("j{k}.xml"));
+        let out = run_with_timeout(
+            Command::new(scen_bin())
+                .arg("test")
+                .arg(&scenarios)
+                .args(["--shard", &format!("{k}/3"), "--junit"])
+                .arg(&xml),
+            std::time::Duration::from_secs(300),
+        );
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        seen.extend(
+            stdout
+                .lines()
+                .filter(|l| l.starts_with("ok "))
+                .filter_map(|l| l.split_whitespace().nth(1).map(str::to_string)),
+        );
+        // A real XML parser reads it: one test case per check.
+        let parse = "import sys, xml.etree.ElementTree as ET; r=ET.parse(sys.argv[1]).getroot(); \
+            cases=r.findall('.//testcase'); \
+            print(r.tag, r.get('tests'), len(cases), r.get('failures'), all(c.get('file') and c.get('line') for c in cases))";
+        let out = Command::new("python3").args(["-c", parse]).arg(&xml).output().expect("python3");
+        let text = String::from_utf8_lossy(&out.stdout);
+        let f: Vec<&str> = text.split_whitespace().collect();
+        assert_eq!(f.len(), 5, "{text}{}", String::from_utf8_lossy(&out.stderr));
+        assert_eq!((f[0], f[1] == f[2], f[3], f[4]), ("testsuites", true, "0", "True"), "{text}");
+        let checks: usize = stdout
+            .lines()
+            .filter_map(|l| l.rsplit_once('(').and_then(|(_, c)| c.split_whitespace().next()?.parse().ok()))
+            .sum();
+        assert_eq!(f[1].parse::<usize>().ok(), Some(checks), "{stdout}");
+    }
+    let mut all: Vec<String> = std::fs::read_dir(&scenarios)
+        .expect("scenarios/features")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "scen"))
+        .filter(|p| !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('_')))
+        .map(|p| p.display().to_string())
+        .collect();
+    all.sort();
+    seen.sort();
+    assert_eq!(seen, all, "every file in exactly one shard");
+}
