@@ -3,8 +3,10 @@
 //! limit kind and metric that the planner registry
 //! (src/planners/registry.rs) and the common schemas (src/scenario/schema.rs) accept
 //! is coloured by the VS Code grammar and by the Vim syntax, in the right
-//! class, and every planner kind has a snippet listing its parameters. The
-//! lists come from the schemas, so a new parameter cannot be forgotten.
+//! class, as are the keys of a `bench` and the aggregates of `expect`
+//! (src/scenario/analyze/), and every planner kind and `bench` have a
+//! snippet listing their parameters. The lists come from the schemas, so a
+//! new parameter cannot be forgotten.
 //!
 //! This test only reads files; editors/test.sh (run by scripts/test.sh)
 //! runs the grammars themselves.
@@ -16,6 +18,7 @@ use scen::planners::registry::PLANNERS;
 use scen::scenario::schema::{
     COMMON_METRICS, COMMON_PARAMS, DRIVE_MODELS, LIMIT_KINDS, ParamSpec, ValueSpec,
 };
+use scen::scenario::{AGGREGATES, BENCH_KEYS};
 use serde_json::Value;
 
 /// The keys of `drive unicycle { ... }` (SPEC 3.6), from the drive schema.
@@ -133,6 +136,22 @@ fn vim() -> BTreeMap<String, BTreeSet<String>> {
     groups
 }
 
+/// The words of several rules (or groups) together, under the key `name`.
+fn merge(table: &mut BTreeMap<String, BTreeSet<String>>, name: &str, rules: &[&str]) {
+    let mut words = BTreeSet::new();
+    for rule in rules {
+        let known = table
+            .get(*rule)
+            .unwrap_or_else(|| panic!("no `{rule}` in the editor's file"));
+        words.extend(known.iter().cloned());
+    }
+    table.insert(name.to_string(), words);
+}
+
+fn aggregates() -> impl Iterator<Item = &'static str> {
+    AGGREGATES.iter().map(|(name, _)| *name)
+}
+
 /// Checks that every word is in `rule` of `words`; returns what is missing.
 fn missing<'a>(
     what: &str,
@@ -205,7 +224,7 @@ fn the_lists_are_not_empty() {
     // A broken extraction must not make the other tests pass vacuously.
     let keywords = pest_keywords();
     for kw in [
-        "scenario", "world", "robot", "plan", "expect", "grid", "and",
+        "scenario", "world", "robot", "plan", "expect", "bench", "grid", "and", "where",
     ] {
         assert!(
             keywords.contains(kw),
@@ -218,11 +237,21 @@ fn the_lists_are_not_empty() {
     assert!(textmate()["param-keys"].contains("start"));
     assert!(vim()["scenParamKey"].contains("start"));
     assert!(!vim()["scenParamKey"].contains("contained"));
+    assert!(aggregates().count() >= 9 && BENCH_KEYS.contains(&"vary"));
+    assert!(textmate()["aggregates"].contains("quantile"));
+    assert!(vim()["scenFunction"].contains("quantile"));
+    assert!(vim()["scenBenchKey"].contains("plans"));
 }
 
 #[test]
 fn textmate_grammar_knows_the_language() {
-    let tm = textmate();
+    let mut tm = textmate();
+    // `plans` starts its list of plan names; `limit` is a plan's key too.
+    merge(
+        &mut tm,
+        "bench keys",
+        &["bench-keys", "bench-plans", "param-keys"],
+    );
     let file = "scen.tmLanguage.json";
     let kinds = PLANNERS.iter().map(|p| p.kind);
     let keywords = pest_keywords();
@@ -238,6 +267,14 @@ fn textmate_grammar_knows_the_language() {
         file,
     ));
     problems.extend(missing("metric", metrics(), &tm, "metrics", file));
+    problems.extend(missing("aggregate", aggregates(), &tm, "aggregates", file));
+    problems.extend(missing(
+        "bench key",
+        BENCH_KEYS.iter().copied(),
+        &tm,
+        "bench keys",
+        file,
+    ));
     problems.extend(missing(
         "keyword",
         keywords.iter().map(String::as_str),
@@ -250,7 +287,8 @@ fn textmate_grammar_knows_the_language() {
 
 #[test]
 fn vim_syntax_knows_the_language() {
-    let vim = vim();
+    let mut vim = vim();
+    merge(&mut vim, "bench keys", &["scenBenchKey", "scenParamKey"]);
     let file = "editors/vim/syntax/scen.vim";
     let kinds = PLANNERS.iter().map(|p| p.kind);
     let keywords = pest_keywords();
@@ -266,6 +304,20 @@ fn vim_syntax_knows_the_language() {
         file,
     ));
     problems.extend(missing("metric", metrics(), &vim, "scenMetric", file));
+    problems.extend(missing(
+        "aggregate",
+        aggregates(),
+        &vim,
+        "scenFunction",
+        file,
+    ));
+    problems.extend(missing(
+        "bench key",
+        BENCH_KEYS.iter().copied(),
+        &vim,
+        "bench keys",
+        file,
+    ));
     problems.extend(missing(
         "keyword",
         keywords.iter().map(String::as_str),
@@ -300,7 +352,7 @@ fn snippets_cover_each_planner_and_its_parameters() {
         .collect();
     let mut problems = Vec::new();
     for prefix in [
-        "world", "robot", "expect", "scenario", "include", "grid", "limit", "drive",
+        "world", "robot", "expect", "scenario", "include", "grid", "limit", "drive", "bench",
     ] {
         if !by_prefix.contains_key(prefix) {
             problems.push(format!("no snippet `{prefix}`"));
@@ -326,6 +378,12 @@ fn snippets_cover_each_planner_and_its_parameters() {
     for key in drive_keys() {
         if !drive.contains(key) {
             problems.push(format!("snippet `drive` does not mention `{key}`"));
+        }
+    }
+    let bench = snippet_words(by_prefix["bench"]);
+    for key in BENCH_KEYS {
+        if !bench.contains(*key) {
+            problems.push(format!("snippet `bench` does not mention `{key}`"));
         }
     }
     assert!(problems.is_empty(), "\n{}", problems.join("\n"));

@@ -18,6 +18,7 @@ function textmateClass(scopes) {
     [/^constant\.language\.boolean\./, 'boolean'],
     [/^(constant\.numeric\.|keyword\.other\.unit\.)/, 'number'],
     [/^support\.variable\.metric\./, 'metric'],
+    [/^support\.function\./, 'function'],
     [/^keyword\.operator\./, 'operator'],
   ];
   for (let k = scopes.length - 1; k >= 0; k--) {
@@ -32,21 +33,23 @@ function textmateClass(scopes) {
 function vimClass(group, linked) {
   if (linked === 'Error') return 'error';
   const map = {
-    scenComment: 'comment', scenTodo: 'comment',
+    scenComment: 'comment', scenTodo: 'comment', scenBenchComment: 'comment',
     scenString: 'string', scenEscape: 'string',
     scenStatement: 'statement',
     scenShape: 'shape',
-    scenName: 'name', scenPlanName: 'name', scenObstacleName: 'name',
+    scenName: 'name', scenPlanName: 'name', scenObstacleName: 'name', scenBenchName: 'name',
     scenPlanner: 'planner',
     scenRobotRef: 'ref',
     scenParamKey: 'key', scenLimitKind: 'key', scenWorldKeyword: 'key',
+    scenBenchKey: 'key', scenSelectKey: 'key',
     scenWord: 'word',
     scenBoolean: 'boolean',
     scenNumber: 'number', scenAngle: 'number', scenPercent: 'number',
     scenDuration: 'number', scenUnit: 'number',
     scenExprNumber: 'number', scenExprAngle: 'number', scenExprPercent: 'number',
     scenMetric: 'metric',
-    scenOperator: 'operator', scenLogical: 'operator',
+    scenOperator: 'operator', scenLogical: 'operator', scenEquals: 'operator',
+    scenFunction: 'function',
   };
   return map[group] || 'plain';
 }

@@ -23,6 +23,9 @@ use super::{Limits, Param, ParamValue, Params, Plan, PlanArgs, Robot, Scenario};
 mod bench;
 mod expect;
 
+pub use bench::BENCH_KEYS;
+pub use expect::AGGREGATES;
+
 /// Analyses the statements of a scenario (includes already spliced in).
 pub(crate) fn analyze(
     path: &Path,

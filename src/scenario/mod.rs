@@ -18,6 +18,7 @@ use crate::planners::registry::{Planner, Settings, Task};
 use crate::syntax::ast::Expr;
 
 pub(crate) use analyze::analyze;
+pub use analyze::{AGGREGATES, BENCH_KEYS};
 pub use args::PlanArgs;
 pub use loader::load;
 

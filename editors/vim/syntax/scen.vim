@@ -4,8 +4,8 @@
 "
 " The same colouring classes as the VS Code grammar
 " (editors/vscode/syntaxes/scen.tmLanguage.json). tests/editors.rs checks
-" that every keyword, planner kind, parameter key, word value and metric
-" that `scen` accepts is listed here.
+" that every keyword, planner kind, parameter key, word value, metric,
+" aggregate and bench key that `scen` accepts is listed here.
 
 if exists('b:current_syntax')
   finish
@@ -58,6 +58,7 @@ syn cluster scenExprNumbers contains=scenExprBadNumber,scenExprNumber,scenExprAn
 syn match   scenStatement /\<\%(scenario\|include\|world\)\>\%(\s*\.\)\@!/
 syn match   scenStatement /\<robot\>\%(\s*\.\)\@!/ nextgroup=scenName skipwhite
 syn match   scenStatement /\<plan\>\%(\s*\.\)\@!/ nextgroup=scenPlanName skipwhite
+syn match   scenStatement /\<bench\>\%(\s*\.\)\@!/ nextgroup=scenBenchWord,scenBenchName,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 
 " robot NAME SHAPE
 syn match   scenName contained /\h\w*/ nextgroup=scenShape skipwhite
@@ -66,6 +67,12 @@ syn match   scenPlanName contained /\h\w*/ nextgroup=scenPlanner,scenBadPlanner 
 syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
 syn keyword scenPlanner contained astar online roadmap potential coverage nextgroup=scenRobotRef skipwhite
 syn match   scenRobotRef contained /\h\w*/
+" bench NAME { ... }: the block (after comments, other words, on later lines
+" too) is a bench's, up to the next statement. The name, on the line of
+" `bench`, is defined last: it wins over a word.
+syn match   scenBenchWord contained /\%(\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!\)\@!\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
+syn match   scenBenchName contained /\%(\<bench\s\+\)\@<=\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
+syn match   scenBenchComment contained /#.*$/ contains=scenTodo,@Spell nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 
 " Obstacles and robot shapes; an obstacle's name follows its kind
 " (`grid cell 1` has none: `cell` is then the grid's option).
@@ -73,8 +80,21 @@ syn keyword scenShape rect polygon segment disk grid point nextgroup=scenObstacl
 syn match   scenObstacleName contained /\%(\%(cell\|origin\)\s*[-.0-9(\["]\)\@!\h\w*/
 
 " ------------------------------------------------- world and plan blocks
+" A statement keyword at the start of a line ends an unclosed block.
 syn region  scenBlock matchgroup=scenBrace start=/{/ end=/}/ fold
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord
+" A bench's block: a plan's parameters (the varied keys, `limit`), and
+" `plans [NAME, ...]`, `vary KEY [VALUE, ...]`, `runs N`.
+syn region  scenBenchBlock contained matchgroup=scenBrace start=/{/ end=/}/ fold
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamKey,scenLimitKind,scenWord,scenBenchKey
+syn keyword scenBenchKey contained vary runs
+syn keyword scenBenchKey contained plans nextgroup=scenPlanList skipwhite skipnl skipempty
+" The names in `plans [...]` are plans, not words.
+syn region  scenPlanList contained matchgroup=scenPunct start=/\[/ end=/\]/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenPlanList,scenComment,scenString,scenUnterminated,@scenNumbers
 syn keyword scenWorldKeyword contained bounds origin
 " Parameter keys: the common ones, every planner's, and `drive { ... }`'s.
 syn keyword scenParamKey contained start goal limit seed drive
@@ -92,16 +112,24 @@ syn keyword scenWord contained backtrack shortcut replan dstar_lite none random_
 syn keyword scenWord contained unicycle
 
 " --------------------------------------------------------------- expect
-" An expression runs until the next statement.
+" An expression runs until the next statement (not a metric: `p.plan`).
 syn region  scenExpect matchgroup=scenStatement start=/\<expect\>\%(\s*\.\)\@!/
-      \ end=/\ze\<\%(scenario\|include\|world\|robot\|plan\|expect\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenBareWord,scenParen,scenAccessor,scenComment,scenPlanRef,scenOtherMetric,scenMetric,scenOperator,scenLogical,scenBoolean,@scenExprNumbers
-" A bare word is not an operand: write `PLAN.METRIC`.
+      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenBareWord,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
+" A bare word is not an operand: write `PLAN.METRIC`, or an aggregate
+" `mean(BENCH.PLAN.METRIC)`.
 syn match   scenBareWord contained /\<\h\w*/
-syn match   scenParen contained /[()]/
-syn match   scenAccessor contained /\.\ze\h/
-syn match   scenPlanRef contained /\<\h\w*\ze\.\h/
-syn match   scenOtherMetric contained /\.\@1<=\h\w*/
+syn match   scenFunction contained /\<\%(mean\|median\|min\|max\|std\|sum\|count\|quantile\|rate\)\ze(/
+syn match   scenParen contained /[(),]/
+" PLAN.METRIC, BENCH.PLAN.METRIC and BENCH.PLAN[KEY = VALUE, ...].METRIC,
+" one part after the other: after the first `.`, a name followed by `.` or
+" `[` is a plan (scenMidRef, scenSelection: defined after the metrics, so
+" they win), anything else the metric; after the second `.` or `].`, the
+" metric.
+syn match   scenPlanRef contained /\<\h\w*\ze\.\h/ nextgroup=scenAccessor
+syn match   scenAccessor contained /\./ nextgroup=scenMetric,scenOtherMetric,scenMidRef,scenSelection
+syn match   scenLastAccessor contained /\.\ze\h/ nextgroup=scenMetric,scenOtherMetric
+syn match   scenOtherMetric contained /\h\w*/
 syn match   scenMetric contained /\.\@1<=\%(found\|gave_up\|cost\|length\|turn\|nodes\|expanded\|time_ms\|collision_free\|reaches_goal\|clearance\|smoothness\)\>/
 syn match   scenMetric contained /\.\@1<=\%(cells\|free_cells\|layers\|generated\)\>/
 syn match   scenMetric contained /\.\@1<=\%(traveled\|steps\|replans\|sensed\)\>/
@@ -109,9 +137,26 @@ syn match   scenMetric contained /\.\@1<=\%(graph_nodes\|graph_edges\)\>/
 syn match   scenMetric contained /\.\@1<=\%(minima\|escapes\)\>/
 syn match   scenMetric contained /\.\@1<=\%(coverage\|cells_total\|cells_visited\|revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
 syn match   scenMetric contained /\.\@1<=\%(drive_time\|drive_max_deviation\|drive_collision_free\)\>/
+syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
+" BENCH.PLAN[...]: the plan's name starts the selection, so that its `[` is
+" inside and a key is matched with what precedes it (`[` or `,`) before a
+" keyword of the same name could claim it (`[max = 1]`: an unknown key,
+" coloured as a key).
+syn region  scenSelection contained matchgroup=scenSelectedPlan start=/\h\w*\[\@=/ matchgroup=scenPunct end=/\]/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList,scenSelectOpen,scenSelectPair,scenSelectKey,scenEquals
+      \ nextgroup=scenLastAccessor
+syn region  scenValueList contained matchgroup=scenPunct start=/\[/ end=/\]/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList
+syn match   scenSelectOpen contained /\w\@1<=\[/
+syn match   scenSelectPair contained /\%(\w\@1<=\[\|,\)\_s*\h\w*\ze\s*=/ contains=scenPunct,scenSelectKey
+syn match   scenSelectKey contained /\<\h\w*\ze\s*=/
+syn match   scenEquals contained /=/
 syn match   scenOperator contained /<=\|>=\|==\|!=\|<\|>\|\~\|+-\|±\|[-+*\/]/
-syn keyword scenLogical contained and or not
-syn keyword scenBoolean contained true false
+" Word operators and booleans followed by `.` are plan names (`not.found`).
+syn match   scenLogical contained /\<\%(and\|or\|not\|where\)\>\.\@!/
+syn match   scenBoolean contained /\<\%(true\|false\)\>\.\@!/
 syn sync minlines=200
 
 " ---------------------------------------------------------------- links
@@ -139,14 +184,20 @@ hi def link scenShape         Type
 hi def link scenWorldKeyword  Keyword
 hi def link scenName          Function
 hi def link scenPlanName      Function
+hi def link scenBenchName     Function
+hi def link scenBenchComment  Comment
 hi def link scenObstacleName  Function
 hi def link scenPlanner       Structure
 hi def link scenBadPlanner    Error
 hi def link scenParamKey      Identifier
+hi def link scenBenchKey      Identifier
+hi def link scenSelectKey     Identifier
 hi def link scenLimitKind     Identifier
 hi def link scenWord          Constant
 hi def link scenMetric        PreProc
 hi def link scenOperator      Operator
+hi def link scenEquals        Operator
+hi def link scenFunction      Function
 hi def link scenLogical       Operator
 hi def link scenBoolean       Boolean
 hi def link scenBrace         Delimiter

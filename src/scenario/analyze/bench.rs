@@ -24,8 +24,8 @@ pub(crate) const MAX_BENCH_CONFIGS: usize = 100_000;
 /// The most runs per configuration.
 const MAX_RUNS: f64 = 1e7;
 
-/// The keys of a bench's body.
-const BENCH_KEYS: &[&str] = &["plans", "vary", "runs", "limit"];
+/// The keys of a bench's body (also listed by the editors, `tests/editors.rs`).
+pub const BENCH_KEYS: &[&str] = &["plans", "vary", "runs", "limit"];
 
 impl Analyzer {
     pub(super) fn benches(
