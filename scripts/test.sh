@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the whole test suite on a fresh machine: installs the Rerun viewer
-# (rerun-sdk==0.36.3, whose `rerun` binary the .rrd tests use) into a
+# (rerun-sdk==0.36.3, whose `rerun` binary the .rrd tests use) and OMPL's
+# Python package (ompl==2.0.1, for its benchmark statistics script) into a
 # virtual environment under target/, then runs `cargo test --release`, then
 # the editor support's tests (editors/test.sh: Node.js; npm installs the
 # pinned test tools into editors/node_modules).
@@ -8,14 +9,18 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 venv="target/rerun-venv"
-if [ ! -x "$venv/bin/rerun" ]; then
+if [ ! -x "$venv/bin/rerun" ] || [ ! -x "$venv/bin/ompl_benchmark_statistics" ]; then
   mkdir -p target
   python3 -m venv "$venv"
-  "$venv/bin/pip" install --quiet --disable-pip-version-check "rerun-sdk==0.36.3"
+  # The Rerun viewer (for the .rrd tests) and OMPL's Python package, whose
+  # ompl_benchmark_statistics turns `scen bench --ompl-log` into the
+  # database Planner Arena reads (tests/bench.rs).
+  "$venv/bin/pip" install --quiet --disable-pip-version-check "rerun-sdk==0.36.3" "ompl==2.0.1"
 fi
 "$venv/bin/rerun" analytics disable >/dev/null 2>&1 || true
 export PATH="$PWD/$venv/bin:$PATH"
 export SCEN_RERUN="$PWD/$venv/bin/rerun"
+export SCEN_OMPL_STATS="$PWD/$venv/bin/ompl_benchmark_statistics"
 
 # Property tests draw from a fixed seed here, so that a CI run is
 # reproducible; unset PROPTEST_RNG_SEED (or set another) to explore new cases.

@@ -8,7 +8,7 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use common::{Test, TempDir, repo, run_with_timeout, scen_bin};
+use common::{TempDir, Test, repo, run_with_timeout, scen_bin};
 use serde_json::Value;
 
 /// A randomized bench (the potential field's random walk over seeds) and a
@@ -90,9 +90,18 @@ fn the_table_lists_configurations_with_statistics() {
     // (11 seeds; A* draws no random numbers: once), the success rate.
     assert!(text.contains("bench seeds (22 runs)"), "{text}");
     assert!(text.contains("bench weights (2 runs)"), "{text}");
-    let rows: Vec<&str> = text.lines().filter(|l| l.trim_start().starts_with("walk ")).collect();
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("walk "))
+        .collect();
     assert_eq!(rows.len(), 2, "{text}");
-    assert!(rows[0].split_whitespace().take(4).eq(["walk", "4", "11", "100%"]), "{text}");
+    assert!(
+        rows[0]
+            .split_whitespace()
+            .take(4)
+            .eq(["walk", "4", "11", "100%"]),
+        "{text}"
+    );
     // Randomized rows: median (mean ± std).
     assert!(rows[0].contains(" ± "), "{text}");
     assert!(text.contains("lattice draws no random numbers: one run per configuration, not 5"));
@@ -128,7 +137,10 @@ fn json_lists_every_run_in_order_and_is_deterministic() {
     assert!(lengths.iter().any(|&l| l != lengths[0]), "{lengths:?}");
     assert_eq!(a["passed"], 4);
     assert_eq!(a["checks"].as_array().map(Vec::len), Some(4));
-    assert_eq!(a["checks"][1]["series"]["seeds.walk[jump = 4].length"]["runs"], 11);
+    assert_eq!(
+        a["checks"][1]["series"]["seeds.walk[jump = 4].length"]["runs"],
+        11
+    );
 }
 
 #[test]
@@ -140,16 +152,30 @@ fn shards_merge_to_what_one_machine_prints() {
         // The table without its timing column is the same too.
         String::from_utf8_lossy(&out.stdout).into_owned()
     };
-    let whole_table = table(&scen(dir.path(), &["bench", "--metrics", "length,expanded", "b.scen"]));
+    let whole_table = table(&scen(
+        dir.path(),
+        &["bench", "--metrics", "length,expanded", "b.scen"],
+    ));
     for n in [1, 3, 7] {
         let mut parts = Vec::new();
         for k in 1..=n {
             let part = format!("part-{n}-{k}.jsonl");
             let out = scen(
                 dir.path(),
-                &["bench", "b.scen", "--shard", &format!("{k}/{n}"), "--out", &part],
+                &[
+                    "bench",
+                    "b.scen",
+                    "--shard",
+                    &format!("{k}/{n}"),
+                    "--out",
+                    &part,
+                ],
             );
-            assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
             parts.push(part);
         }
         // Any order of the parts.
@@ -172,7 +198,14 @@ fn merge_refuses_missing_repeated_and_foreign_parts() {
     for k in 1..=3 {
         let out = scen(
             d,
-            &["bench", "b.scen", "--shard", &format!("{k}/3"), "--out", &format!("p{k}.jsonl")],
+            &[
+                "bench",
+                "b.scen",
+                "--shard",
+                &format!("{k}/3"),
+                "--out",
+                &format!("p{k}.jsonl"),
+            ],
         );
         assert!(out.status.success());
     }
@@ -182,18 +215,32 @@ fn merge_refuses_missing_repeated_and_foreign_parts() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
     };
-    refused(&["bench", "merge", "p1.jsonl", "p3.jsonl"], "parts missing: 2/3");
     refused(
-        &["bench", "merge", "p1.jsonl", "p2.jsonl", "p2.jsonl", "p3.jsonl"],
+        &["bench", "merge", "p1.jsonl", "p3.jsonl"],
+        "parts missing: 2/3",
+    );
+    refused(
+        &[
+            "bench", "merge", "p1.jsonl", "p2.jsonl", "p2.jsonl", "p3.jsonl",
+        ],
         "part 2/3 is given twice",
     );
     // A part of another split of the same file.
-    let out = scen(d, &["bench", "b.scen", "--shard", "1/2", "--out", "q1.jsonl"]);
+    let out = scen(
+        d,
+        &["bench", "b.scen", "--shard", "1/2", "--out", "q1.jsonl"],
+    );
     assert!(out.status.success());
-    refused(&["bench", "merge", "p1.jsonl", "p2.jsonl", "q1.jsonl"], "does not belong");
+    refused(
+        &["bench", "merge", "p1.jsonl", "p2.jsonl", "q1.jsonl"],
+        "does not belong",
+    );
     // The scenario changed since the parts were made.
     std::fs::write(d.join("b.scen"), SCENARIO.replace("runs 11", "runs 12")).expect("write");
-    refused(&["bench", "merge", "p1.jsonl", "p2.jsonl", "p3.jsonl"], "has changed");
+    refused(
+        &["bench", "merge", "p1.jsonl", "p2.jsonl", "p3.jsonl"],
+        "has changed",
+    );
     std::fs::write(d.join("x.jsonl"), "{\"not\": \"a part\"}\n").expect("write");
     refused(&["bench", "merge", "x.jsonl"], "is not a part");
     refused(&["bench", "merge"], "needs the parts");
@@ -201,18 +248,31 @@ fn merge_refuses_missing_repeated_and_foreign_parts() {
 
 #[test]
 fn csv_and_svg_outputs() {
-    let t = Test::new()
-        .file("b.scen", SCENARIO)
-        .args(&["bench", "-q", "--csv", "runs.csv", "--svg", "plots.svg", "b.scen"]);
+    let t = Test::new().file("b.scen", SCENARIO).args(&[
+        "bench",
+        "-q",
+        "--csv",
+        "runs.csv",
+        "--svg",
+        "plots.svg",
+        "b.scen",
+    ]);
     t.run();
     let csv = std::fs::read_to_string(t.dir().join("runs.csv")).expect("a CSV");
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 1 + 22 + 2, "{csv}");
     let header: Vec<&str> = lines[0].split(',').collect();
-    assert_eq!(&header[..6], ["bench", "plan", "jump", "weight", "run", "seed"]);
+    assert_eq!(
+        &header[..6],
+        ["bench", "plan", "jump", "weight", "run", "seed"]
+    );
     assert!(header.contains(&"length") && header.contains(&"found"));
     assert!(lines[1].starts_with("seeds,walk,4,,0,0,"), "{}", lines[1]);
-    assert!(lines[23].starts_with("weights,lattice,,1,0,0,"), "{}", lines[23]);
+    assert!(
+        lines[23].starts_with("weights,lattice,,1,0,0,"),
+        "{}",
+        lines[23]
+    );
     let svg = std::fs::read_to_string(t.dir().join("plots.svg")).expect("an SVG");
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
     assert!(svg.contains("seeds — length") && svg.contains("median length by jump"));
@@ -264,7 +324,10 @@ fn ompl_statistics() -> Option<std::path::PathBuf> {
         Ok("true"),
         "CI must have OMPL's ompl_benchmark_statistics (pip install ompl)"
     );
-    eprintln!("skipped: {} is missing (pip install ompl)", script.display());
+    eprintln!(
+        "skipped: {} is missing (pip install ompl)",
+        script.display()
+    );
     None
 }
 
@@ -273,9 +336,10 @@ fn ompl_logs_become_a_planner_arena_database() {
     let Some(script) = ompl_statistics() else {
         return;
     };
-    let t = Test::new()
-        .file("b.scen", SCENARIO)
-        .args(&["bench", "-q", "--ompl-log", "logs", "b.scen"]);
+    let t =
+        Test::new()
+            .file("b.scen", SCENARIO)
+            .args(&["bench", "-q", "--ompl-log", "logs", "b.scen"]);
     t.run();
     let logs: Vec<_> = std::fs::read_dir(t.dir().join("logs"))
         .expect("the log folder")
@@ -307,7 +371,12 @@ fn ompl_logs_become_a_planner_arena_database() {
         .expect("python3 runs");
     let text = String::from_utf8_lossy(&out.stdout);
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines, ["2", "4", "(24, 24, 1, 1)", "11"], "{text}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        lines,
+        ["2", "4", "(24, 24, 1, 1)", "11"],
+        "{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -325,7 +394,11 @@ fn test_shards_cover_every_file_once_and_junit_parses() {
                 .arg(&xml),
             std::time::Duration::from_secs(300),
         );
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stdout)
+        );
         let stdout = String::from_utf8_lossy(&out.stdout);
         seen.extend(
             stdout
@@ -337,14 +410,25 @@ fn test_shards_cover_every_file_once_and_junit_parses() {
         let parse = "import sys, xml.etree.ElementTree as ET; r=ET.parse(sys.argv[1]).getroot(); \
             cases=r.findall('.//testcase'); \
             print(r.tag, r.get('tests'), len(cases), r.get('failures'), all(c.get('file') and c.get('line') for c in cases))";
-        let out = Command::new("python3").args(["-c", parse]).arg(&xml).output().expect("python3");
+        let out = Command::new("python3")
+            .args(["-c", parse])
+            .arg(&xml)
+            .output()
+            .expect("python3");
         let text = String::from_utf8_lossy(&out.stdout);
         let f: Vec<&str> = text.split_whitespace().collect();
         assert_eq!(f.len(), 5, "{text}{}", String::from_utf8_lossy(&out.stderr));
-        assert_eq!((f[0], f[1] == f[2], f[3], f[4]), ("testsuites", true, "0", "True"), "{text}");
+        assert_eq!(
+            (f[0], f[1] == f[2], f[3], f[4]),
+            ("testsuites", true, "0", "True"),
+            "{text}"
+        );
         let checks: usize = stdout
             .lines()
-            .filter_map(|l| l.rsplit_once('(').and_then(|(_, c)| c.split_whitespace().next()?.parse().ok()))
+            .filter_map(|l| {
+                l.rsplit_once('(')
+                    .and_then(|(_, c)| c.split_whitespace().next()?.parse::<usize>().ok())
+            })
             .sum();
         assert_eq!(f[1].parse::<usize>().ok(), Some(checks), "{stdout}");
     }
@@ -352,7 +436,10 @@ fn test_shards_cover_every_file_once_and_junit_parses() {
         .expect("scenarios/features")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "scen"))
-        .filter(|p| !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('_')))
+        .filter(|p| {
+            !p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with('_'))
+        })
         .map(|p| p.display().to_string())
         .collect();
     all.sort();

@@ -37,10 +37,10 @@ pub fn bench_log(report: &RunReport, b: usize) -> (String, String) {
     let sc = &report.scenario;
     let bench = &sc.benches[b];
     let runs: Vec<&BenchRun> = report.bench_runs.iter().filter(|r| r.bench == b).collect();
-    let stem = sc
-        .file
-        .file_stem()
-        .map_or_else(|| "scenario".to_string(), |s| s.to_string_lossy().into_owned());
+    let stem = sc.file.file_stem().map_or_else(
+        || "scenario".to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    );
     let name = format!("{stem}.{}.log", bench.name);
     // The run properties: OMPL's, then every other metric any run has.
     let mut properties: Vec<(&str, String, &str, f64)> = Vec::new();
@@ -60,7 +60,12 @@ pub fn bench_log(report: &RunReport, b: usize) -> (String, String) {
     }
     others.sort_unstable();
     for (m, boolean) in others {
-        properties.push((m, m.replace('_', " "), if boolean { "BOOLEAN" } else { "REAL" }, 1.0));
+        properties.push((
+            m,
+            m.replace('_', " "),
+            if boolean { "BOOLEAN" } else { "REAL" },
+            1.0,
+        ));
     }
     let total: f64 = runs
         .iter()
@@ -112,7 +117,10 @@ pub fn bench_log(report: &RunReport, b: usize) -> (String, String) {
         for (_, name, ty, _) in &properties {
             let _ = writeln!(s, "{name} {ty}");
         }
-        let these: Vec<&&BenchRun> = runs.iter().filter(|r| r.plan == p && r.config == config).collect();
+        let these: Vec<&&BenchRun> = runs
+            .iter()
+            .filter(|r| r.plan == p && r.config == config)
+            .collect();
         let _ = writeln!(s, "{} runs", these.len());
         for r in these {
             for (metric, _, _, scale) in &properties {
@@ -139,7 +147,10 @@ fn common_properties(sc: &Scenario, plan: &crate::scenario::Plan) -> Vec<String>
     let mut out = vec![
         format!("planner = {}", plan.kind()),
         format!("robot = {}", sc.robots[plan.robot].name),
-        format!("start = {}", one_line(sc.sources.snippet(plan.params.start_span))),
+        format!(
+            "start = {}",
+            one_line(sc.sources.snippet(plan.params.start_span))
+        ),
     ];
     if let Some(g) = plan.params.goal_span {
         out.push(format!("goal = {}", one_line(sc.sources.snippet(g))));

@@ -74,7 +74,13 @@ fn numeric_key(sc: &Scenario, b: usize) -> Option<usize> {
 
 /// The finite values of `metric` over the runs of one plan and
 /// configuration.
-fn values(runs: &[BenchRun], b: usize, plan: usize, config: Option<usize>, metric: &str) -> Vec<f64> {
+fn values(
+    runs: &[BenchRun],
+    b: usize,
+    plan: usize,
+    config: Option<usize>,
+    metric: &str,
+) -> Vec<f64> {
     runs.iter()
         .filter(|r| r.bench == b && r.plan == plan && config.is_none_or(|c| r.config == c))
         .filter_map(|r| r.metrics.get(metric).map(|v| v.as_f64()))
@@ -84,7 +90,9 @@ fn values(runs: &[BenchRun], b: usize, plan: usize, config: Option<usize>, metri
 
 /// The range of an axis around `xs`, a little wider than the data.
 fn axis(xs: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+    let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    });
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
@@ -93,7 +101,13 @@ fn axis(xs: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 /// Box plots of `metric`, one per plan and configuration.
-fn boxes(area: &Area<'_>, sc: &Scenario, b: usize, runs: &[BenchRun], metric: &str) -> Result<(), Failure> {
+fn boxes(
+    area: &Area<'_>,
+    sc: &Scenario,
+    b: usize,
+    runs: &[BenchRun],
+    metric: &str,
+) -> Result<(), Failure> {
     let bench = &sc.benches[b];
     let mut labels: Vec<String> = Vec::new();
     let mut data: Vec<(Vec<f64>, usize)> = Vec::new();
@@ -222,7 +236,11 @@ fn lines(
             .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))?
             .label(sc.plans[plan].name.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], colour));
-        chart.draw_series(points.into_iter().map(|p| Circle::new(p, 3, colour.filled())))?;
+        chart.draw_series(
+            points
+                .into_iter()
+                .map(|p| Circle::new(p, 3, colour.filled())),
+        )?;
     }
     chart
         .configure_series_labels()
