@@ -606,9 +606,9 @@ impl<'a> Run<'a> {
             out.gave_up = true;
             out.notes.push(match grown.ended {
                 Ended::Time => "the time limit was reached without a path".into(),
-                Ended::States => format!(
-                    "the graph reached its cap of {MAX_STATES} states without a path"
-                ),
+                Ended::States => {
+                    format!("the graph reached its cap of {MAX_STATES} states without a path")
+                }
                 Ended::Iterations | Ended::Solved => format!(
                     "the iteration limit ({}) was reached without a path",
                     grown.iterations
@@ -650,10 +650,7 @@ impl<'a> Run<'a> {
             }
         }
         if self.space.rotating {
-            let strips = drawn
-                .iter()
-                .flat_map(|e| cspace_edge(e.a, e.b))
-                .collect();
+            let strips = drawn.iter().flat_map(|e| cspace_edge(e.a, e.b)).collect();
             out.push(Layer::new(
                 "cspace/tree",
                 Drawing::Polylines3D(strips),

@@ -34,19 +34,25 @@ pub struct KdTree {
     /// The period of the last axis (`dims == 3`), 0 when it does not wrap.
     period: f64,
     nodes: Vec<Node>,
+    /// The box of all points.
+    lo: [f64; 3],
+    hi: [f64; 3],
     /// The walk's pending subtrees and their lower bounds.
     stack: Vec<(u32, f64)>,
+    /// The walk's k best candidates so far, the worst on top.
+    heap: std::collections::BinaryHeap<Candidate>,
 }
 
-/// A point and its subtree, in one place for the walk's memory accesses.
+/// A point, its children and their subtrees' boxes, in one place: a walk
+/// decides on both children from the parent's memory alone.
 #[derive(Clone, Copy, Debug)]
 struct Node {
     key: [f64; 3],
-    /// The box of the subtree's points: (min, max) per axis (the third is
-    /// (0, 0) for 2-dimensional keys).
-    lo: [f64; 3],
-    hi: [f64; 3],
     children: [u32; 2],
+    /// Per child, the box of its subtree's points: min and max per axis
+    /// (the third axis (0, 0) for 2-dimensional keys).
+    lo: [[f64; 3]; 2],
+    hi: [[f64; 3]; 2],
 }
 
 impl KdTree {
@@ -62,7 +68,10 @@ impl KdTree {
                 0.0
             },
             nodes: Vec::new(),
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
             stack: Vec::new(),
+            heap: std::collections::BinaryHeap::new(),
         }
     }
 
@@ -89,27 +98,27 @@ impl KdTree {
         let index = self.nodes.len() as u32;
         self.nodes.push(Node {
             key,
-            lo: key,
-            hi: key,
             children: [NONE; 2],
+            lo: [key; 2],
+            hi: [key; 2],
         });
+        grow_box(&mut self.lo, &mut self.hi, &key);
         if index == 0 {
             return 0;
         }
         let (mut node, mut depth) = (0usize, 0usize);
         loop {
-            let n = &mut self.nodes[node];
-            for axis in 0..3 {
-                n.lo[axis] = n.lo[axis].min(key[axis]);
-                n.hi[axis] = n.hi[axis].max(key[axis]);
-            }
             let axis = depth % self.dims;
+            let n = &mut self.nodes[node];
             let side = usize::from(key[axis] >= n.key[axis]);
             let next = n.children[side];
             if next == NONE {
                 n.children[side] = index;
+                n.lo[side] = key;
+                n.hi[side] = key;
                 return index as usize;
             }
+            grow_box(&mut n.lo[side], &mut n.hi[side], &key);
             node = next as usize;
             depth += 1;
         }
@@ -150,8 +159,10 @@ impl KdTree {
             q[2] = 0.0;
         }
         let mut stack = std::mem::take(&mut self.stack);
+        let mut heap = std::mem::take(&mut self.heap);
         stack.clear();
-        stack.push((0, self.gap2(&q, &self.nodes[0])));
+        heap.clear();
+        stack.push((0, self.gap2(&q, &self.lo, &self.hi)));
         let mut worst = f64::INFINITY;
         while let Some((node, bound)) = stack.pop() {
             if bound > worst {
@@ -160,20 +171,26 @@ impl KdTree {
             let n = &self.nodes[node as usize];
             let d2 = self.distance2(&q, &n.key);
             if d2 <= worst {
-                offer(out, k, d2, node);
-                if out.len() == k {
-                    worst = out[k - 1].0;
+                let candidate = Candidate(d2, node);
+                if heap.len() < k {
+                    heap.push(candidate);
+                } else if heap.peek().is_some_and(|w| candidate < *w) {
+                    heap.pop();
+                    heap.push(candidate);
+                }
+                if heap.len() == k {
+                    worst = heap.peek().map_or(f64::INFINITY, |w| w.0);
                 }
             }
             let [a, b] = n.children;
-            let gap = |c: u32| {
-                if c == NONE {
+            let gap = |side: usize| {
+                if n.children[side] == NONE {
                     f64::INFINITY
                 } else {
-                    self.gap2(&q, &self.nodes[c as usize])
+                    self.gap2(&q, &n.lo[side], &n.hi[side])
                 }
             };
-            let (ga, gb) = (gap(a), gap(b));
+            let (ga, gb) = (gap(0), gap(1));
             // The nearer subtree last onto the stack: walked first.
             let ((near, gn), (far, gf)) = if ga <= gb {
                 ((a, ga), (b, gb))
@@ -187,21 +204,32 @@ impl KdTree {
                 stack.push((near, gn));
             }
         }
+        out.extend(heap.drain().map(|c| (c.0, c.1)));
+        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.heap = heap;
         self.stack = stack;
     }
 
-    /// The squared distance from `q` to the box of `node`'s subtree (along
-    /// the periodic axis, round the circle to its arc): a lower bound of
-    /// the distance to each of its points.
-    fn gap2(&self, q: &[f64; 3], node: &Node) -> f64 {
-        let gx = (node.lo[0] - q[0]).max(q[0] - node.hi[0]).max(0.0);
-        let gy = (node.lo[1] - q[1]).max(q[1] - node.hi[1]).max(0.0);
+    /// The squared distance from `q` to the box [lo, hi] (along the
+    /// periodic axis, round the circle to its arc): a lower bound of the
+    /// distance to each point in it.
+    fn gap2(&self, q: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
+        let gx = (lo[0] - q[0]).max(q[0] - hi[0]).max(0.0);
+        let gy = (lo[1] - q[1]).max(q[1] - hi[1]).max(0.0);
         let gt = if self.period > 0.0 {
-            arc_gap(q[2], (node.lo[2], node.hi[2]), self.period)
+            arc_gap(q[2], (lo[2], hi[2]), self.period)
         } else {
-            (node.lo[2] - q[2]).max(q[2] - node.hi[2]).max(0.0)
+            (lo[2] - q[2]).max(q[2] - hi[2]).max(0.0)
         };
         gx * gx + gy * gy + gt * gt
+    }
+}
+
+/// Grows the box [lo, hi] to hold `key`.
+fn grow_box(lo: &mut [f64; 3], hi: &mut [f64; 3], key: &[f64; 3]) {
+    for axis in 0..3 {
+        lo[axis] = lo[axis].min(key[axis]);
+        hi[axis] = hi[axis].max(key[axis]);
     }
 }
 
@@ -215,27 +243,23 @@ fn arc_gap(q: f64, (lo, hi): (f64, f64), period: f64) -> f64 {
     round((q - lo).abs()).min(round((q - hi).abs()))
 }
 
-/// Puts (d2, i) into the sorted list `out` of at most `k` candidates.
-fn offer(out: &mut Vec<(f64, u32)>, k: usize, d2: f64, i: u32) {
-    if k == 1 {
-        match out.first_mut() {
-            Some(best) if best.0 < d2 || (best.0 == d2 && best.1 < i) => {}
-            Some(best) => *best = (d2, i),
-            None => out.push((d2, i)),
-        }
-        return;
+/// A candidate neighbour: squared distance, then index (the order of the
+/// results, ties to the lower index).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Candidate(f64, u32);
+
+impl Eq for Candidate {}
+
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
     }
-    let worse = |a: &(f64, u32)| a.0 > d2 || (a.0 == d2 && a.1 > i);
-    if out.len() == k {
-        match out.last() {
-            Some(last) if worse(last) => {
-                out.pop();
-            }
-            _ => return,
-        }
+}
+
+impl Ord for Candidate {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
     }
-    let at = out.iter().position(worse).unwrap_or(out.len());
-    out.insert(at, (d2, i));
 }
 
 #[cfg(test)]

@@ -170,7 +170,15 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
     let mut next_query = 0;
     // The start and the goal try each other first (as any new state would).
     if run.space.distance(run.start, run.goal) <= range {
-        connect(run, &mut roadmap, &mut components, 1, &[(0.0, 0)], 0, &mut drawn);
+        connect(
+            run,
+            &mut roadmap,
+            &mut components,
+            1,
+            &[(0.0, 0)],
+            0,
+            &mut drawn,
+        );
     }
     let ended = loop {
         if path.is_none() && iteration >= next_query && components.equiv(0, 1) {

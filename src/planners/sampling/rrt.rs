@@ -265,4 +265,3 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         entity: "tree",
     }
 }
-

@@ -93,7 +93,9 @@ fn shortcuts(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
         if new >= old - 1e-9 * old.max(1.0) {
             continue;
         }
-        if !(run.motion_free(a, b) && run.motion_free(path[i], a) && run.motion_free(b, path[j + 1]))
+        if !(run.motion_free(a, b)
+            && run.motion_free(path[i], a)
+            && run.motion_free(b, path[j + 1]))
         {
             continue;
         }
@@ -117,7 +119,14 @@ fn shortcuts(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
 fn locate(lengths: &[f64], mut s: f64) -> (usize, f64) {
     for (i, &l) in lengths.iter().enumerate() {
         if s < l || i + 1 == lengths.len() {
-            return (i, if l > 0.0 { (s / l).clamp(0.0, 1.0) } else { 0.0 });
+            return (
+                i,
+                if l > 0.0 {
+                    (s / l).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                },
+            );
         }
         s -= l;
     }

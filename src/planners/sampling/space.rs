@@ -52,7 +52,7 @@ impl Space {
             let dt = self.turn_cost * angle_diff(a.theta, b.theta);
             (dx * dx + dy * dy + dt * dt).sqrt()
         } else {
-            dx.hypot(dy)
+            (dx * dx + dy * dy).sqrt()
         }
     }
 
@@ -208,7 +208,11 @@ impl Informed {
         let c = space.turn_cost;
         let s = [start.x, start.y, c * wrap(start.theta)];
         // The goal's image nearest to the start, then the others outwards.
-        let g0 = [goal.x, goal.y, s[2] + c * angle_diff(start.theta, goal.theta)];
+        let g0 = [
+            goal.x,
+            goal.y,
+            s[2] + c * angle_diff(start.theta, goal.theta),
+        ];
         let period = space.period();
         let mut ellipsoids = Vec::new();
         let turns = if dims == 3 && period > 0.0 {
@@ -313,9 +317,17 @@ impl Ellipsoid {
         }
         let a = cost / 2.0;
         let b = ((cost * cost - dmin * dmin).max(0.0)).sqrt() / 2.0;
-        let centre = [(s[0] + g[0]) / 2.0, (s[1] + g[1]) / 2.0, (s[2] + g[2]) / 2.0];
+        let centre = [
+            (s[0] + g[0]) / 2.0,
+            (s[1] + g[1]) / 2.0,
+            (s[2] + g[2]) / 2.0,
+        ];
         // An orthonormal frame whose first axis runs from s to g.
-        let mut e1 = [g[0] - s[0], g[1] - s[1], if dims == 3 { g[2] - s[2] } else { 0.0 }];
+        let mut e1 = [
+            g[0] - s[0],
+            g[1] - s[1],
+            if dims == 3 { g[2] - s[2] } else { 0.0 },
+        ];
         if dmin > 0.0 {
             e1.iter_mut().for_each(|x| *x /= dmin);
         } else {
