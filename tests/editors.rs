@@ -125,6 +125,10 @@ fn vim() -> BTreeMap<String, BTreeSet<String>> {
                 }
             }
             "match" | "region" => {
+                // `contained` and `nextgroup=...` are options, not words of
+                // the pattern.
+                let option = |w: &&str| *w == "contained" || w.starts_with("nextgroup=");
+                let rest: Vec<&str> = rest.into_iter().filter(|w| !option(w)).collect();
                 let rest = rest.join(" ");
                 regex_words(&rest, words);
                 regex_words(&rest, &mut all);

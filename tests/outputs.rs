@@ -38,12 +38,13 @@ fn scenario_files() -> Vec<PathBuf> {
     v
 }
 
-/// Removes every `"time_ms": N` so that two runs can be compared.
+/// Removes every timing (`"time_ms": N`, and the other `*_ms` metrics such
+/// as `simplify_ms`) so that two runs can be compared.
 fn without_time(json: &str) -> serde_json::Value {
     fn strip(v: &mut serde_json::Value) {
         match v {
             serde_json::Value::Object(m) => {
-                m.remove("time_ms");
+                m.retain(|k, _| !k.ends_with("_ms"));
                 m.values_mut().for_each(strip);
             }
             serde_json::Value::Array(a) => a.iter_mut().for_each(strip),

@@ -34,16 +34,14 @@ use std::time::{Duration, Instant};
 
 use super::astar::{Astar, CostMetric, Heuristic};
 use super::lattice::LatticeSpec;
-use super::layers::{Colour, Drawing, Layer, Style};
 use super::registry::Task;
 use super::search::{Edge, Graph, SearchBuffers, best_first};
 use super::{MetricValue, PlanOutcome};
 use crate::geometry::angle_diff;
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
 use crate::geometry::motion::{MotionChecker, segment_depth};
-use crate::geometry::union::union_boundary;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
-use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World};
+use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS};
 use crate::scenario::Limits;
 
 /// The most C-obstacle outlines drawn over all layers; beyond it (e.g.
@@ -284,7 +282,7 @@ fn run(
             .collect();
         out.layers.extend(super::layers::grown(grown));
     } else if layers.iter().map(|l| l.c_obstacles.len()).sum::<usize>() <= MAX_TRACED_C_OBSTACLES {
-        out.layers.extend(cspace_layers(world, &layers));
+        out.layers.extend(super::layers::cspace(world, &layers));
     }
     profile.trace = lap.elapsed();
     let lap = Instant::now();
@@ -523,66 +521,11 @@ impl Graph for RotGraph<'_, '_> {
     }
 }
 
-/// The configuration space for the viewer (SPEC §6): per θ layer K the
-/// boundary of the union of its C-obstacles at height θ_K
-/// (`cspace/layer_K`; stacked, the layered C-space), and per world obstacle
-/// its C-obstacles over all layers (`cspace/obstacles/NAME`, the "twisted
-/// worm").
-fn cspace_layers(world: &World, layers: &[CLayer]) -> Vec<Layer> {
-    use rayon::prelude::*;
-    let grey = Style::new(Colour::Grey, 0.0, 10.0);
-    let at = |p: &Point, z: f64| [p.x, p.y, z];
-    let boundaries: Vec<Vec<Vec<[f64; 3]>>> = layers
-        .par_iter()
-        .map(|l| {
-            let outlines: Vec<Vec<Point>> =
-                l.c_obstacles.iter().map(|c| c.vertices.clone()).collect();
-            union_boundary(&outlines)
-                .iter()
-                .map(|(a, b)| vec![at(a, l.theta), at(b, l.theta)])
-                .collect()
-        })
-        .collect();
-    let mut out: Vec<Layer> = boundaries
-        .into_iter()
-        .enumerate()
-        .map(|(k, strips)| {
-            Layer::new(
-                format!("cspace/layer_{k}"),
-                Drawing::Polylines3D(strips),
-                grey,
-            )
-        })
-        .collect();
-    let mut worms: Vec<Vec<Vec<[f64; 3]>>> = vec![Vec::new(); world.obstacles.len()];
-    for l in layers {
-        for (&obstacle, c) in l.sources.iter().zip(&l.c_obstacles) {
-            let mut strip: Vec<[f64; 3]> = c.vertices.iter().map(|p| at(p, l.theta)).collect();
-            if let Some(&first) = strip.first() {
-                strip.push(first);
-            }
-            if let Some(w) = worms.get_mut(obstacle) {
-                w.push(strip);
-            }
-        }
-    }
-    for (o, strips) in world.obstacles.iter().zip(worms) {
-        if !strips.is_empty() {
-            out.push(Layer::new(
-                format!("cspace/obstacles/{}", o.name),
-                Drawing::Polylines3D(strips),
-                grey,
-            ));
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::validator::validate_path;
-    use crate::geometry::{Obstacle, Shape};
+    use crate::geometry::{Obstacle, Shape, World};
     use crate::scenario::Scenario;
     use proptest::prelude::*;
 

@@ -7,7 +7,9 @@
 //! on a timeline. The Rerun sink logs every layer and the SVG draws those
 //! with an [`Svg`] style; neither knows which planner made them.
 
-use crate::geometry::{Aabb, Point, Vector};
+use crate::geometry::cspace::CLayer;
+use crate::geometry::union::union_boundary;
+use crate::geometry::{Aabb, Point, Vector, World};
 
 /// A timeline of the Rerun stream (SPEC §6).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -250,4 +252,59 @@ pub fn graph(entity: &str, edges: Vec<(Point, Point)>) -> Option<Layer> {
             Style::new(Colour::Faint, 0.5, 16.0).svg(Svg::line(0.35)),
         )
     })
+}
+
+/// The configuration space for the viewer (SPEC §6): per θ layer K the
+/// boundary of the union of its C-obstacles at height θ_K
+/// (`cspace/layer_K`; stacked, the layered C-space), and per world obstacle
+/// its C-obstacles over all layers (`cspace/obstacles/NAME`, the "twisted
+/// worm").
+pub fn cspace(world: &World, layers: &[CLayer]) -> Vec<Layer> {
+    use rayon::prelude::*;
+    let grey = Style::new(Colour::Grey, 0.0, 10.0);
+    let at = |p: &Point, z: f64| [p.x, p.y, z];
+    let boundaries: Vec<Vec<Vec<[f64; 3]>>> = layers
+        .par_iter()
+        .map(|l| {
+            let outlines: Vec<Vec<Point>> =
+                l.c_obstacles.iter().map(|c| c.vertices.clone()).collect();
+            union_boundary(&outlines)
+                .iter()
+                .map(|(a, b)| vec![at(a, l.theta), at(b, l.theta)])
+                .collect()
+        })
+        .collect();
+    let mut out: Vec<Layer> = boundaries
+        .into_iter()
+        .enumerate()
+        .map(|(k, strips)| {
+            Layer::new(
+                format!("cspace/layer_{k}"),
+                Drawing::Polylines3D(strips),
+                grey,
+            )
+        })
+        .collect();
+    let mut worms: Vec<Vec<Vec<[f64; 3]>>> = vec![Vec::new(); world.obstacles.len()];
+    for l in layers {
+        for (&obstacle, c) in l.sources.iter().zip(&l.c_obstacles) {
+            let mut strip: Vec<[f64; 3]> = c.vertices.iter().map(|p| at(p, l.theta)).collect();
+            if let Some(&first) = strip.first() {
+                strip.push(first);
+            }
+            if let Some(w) = worms.get_mut(obstacle) {
+                w.push(strip);
+            }
+        }
+    }
+    for (o, strips) in world.obstacles.iter().zip(worms) {
+        if !strips.is_empty() {
+            out.push(Layer::new(
+                format!("cspace/obstacles/{}", o.name),
+                Drawing::Polylines3D(strips),
+                grey,
+            ));
+        }
+    }
+    out
 }

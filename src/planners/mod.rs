@@ -73,4 +73,5 @@ pub mod online;
 pub mod potential;
 pub mod registry;
 pub mod roadmap;
+pub mod sampling;
 pub mod search;

@@ -32,6 +32,7 @@ use crate::scenario::schema::{
 use crate::scenario::{Limits, PlanArgs};
 
 use super::PlanOutcome;
+use super::sampling::{prm, rrt, rrt_connect};
 use super::{astar, coverage, online, potential, roadmap};
 
 /// Every planner kind, in the order the docs list them.
@@ -41,6 +42,11 @@ pub static PLANNERS: &[&Planner] = &[
     &roadmap::PLANNER,
     &potential::PLANNER,
     &coverage::PLANNER,
+    &rrt::RRT,
+    &rrt_connect::PLANNER,
+    &rrt::RRT_STAR,
+    &prm::PRM,
+    &prm::PRM_STAR,
 ];
 
 /// The planner of a kind.

@@ -2,7 +2,8 @@
 //!
 //! The document is built in a fixed order (top-level keys as in SPEC 5,
 //! plans in declaration order) and holds nothing that varies between runs
-//! except the `time_ms` metric, so the same input gives the same bytes.
+//! except the timings (`time_ms`, and `simplify_ms` of the sampling
+//! planners), so the same input gives the same bytes.
 //! Object keys keep that order when serde_json's `preserve_order` feature
 //! is on; without it serde_json sorts them.
 

@@ -269,6 +269,16 @@ fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, ru
         );
     }
 
+    // A rotating robot's body at a few poses along its path, lightly: how
+    // it turned on the way.
+    if let (Some(path), Some(robot)) = (path, scenario.robots.get(plan.robot))
+        && robot.shape.rotates()
+    {
+        for c in poses_along(path, BODIES_ALONG) {
+            draw_body_as(svg, view, &robot.shape, c, &colour, 0.04, 0.5);
+        }
+    }
+
     // The path's own ends when there is one (they carry the θ it used).
     let start = path
         .and_then(|p| p.first().copied())
@@ -402,10 +412,62 @@ fn draw_motions(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
     }
 }
 
+/// Bodies drawn along a rotating robot's path, between start and goal.
+const BODIES_ALONG: usize = 5;
+
+/// `n` configurations evenly spread along `path` by (x, y) length plus
+/// rotation (so turning in place counts), start and goal excluded; θ along
+/// the shorter arc, as the validator interpolates.
+fn poses_along(path: &[Config], n: usize) -> Vec<Config> {
+    let step = |a: &Config, b: &Config| {
+        (b.x - a.x).hypot(b.y - a.y) + crate::geometry::angle_diff(a.theta, b.theta).abs()
+    };
+    let total: f64 = path.windows(2).map(|w| step(&w[0], &w[1])).sum();
+    if path.len() < 2 || total <= 0.0 {
+        return Vec::new();
+    }
+    let mut out = Vec::with_capacity(n);
+    let (mut i, mut before) = (0, 0.0);
+    for k in 1..=n {
+        let at = total * k as f64 / (n + 1) as f64;
+        while i + 2 < path.len() && before + step(&path[i], &path[i + 1]) < at {
+            before += step(&path[i], &path[i + 1]);
+            i += 1;
+        }
+        let (a, b) = (path[i], path[i + 1]);
+        let len = step(&a, &b);
+        let t = if len > 0.0 {
+            ((at - before) / len).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        out.push(Config::new(
+            a.x + t * (b.x - a.x),
+            a.y + t * (b.y - a.y),
+            a.theta + t * crate::geometry::angle_diff(a.theta, b.theta),
+        ));
+    }
+    out
+}
+
 /// The robot's body at `c`; a point robot has none (its marker shows it).
 fn draw_body(svg: &mut String, view: &View, shape: &RobotShape, c: Config, colour: &str) {
-    let style =
-        format!("fill=\"{colour}\" fill-opacity=\"0.15\" stroke=\"{colour}\" stroke-width=\"1.5\"");
+    draw_body_as(svg, view, shape, c, colour, 0.15, 1.0);
+}
+
+/// [`draw_body`] with this fill and stroke opacity.
+fn draw_body_as(
+    svg: &mut String,
+    view: &View,
+    shape: &RobotShape,
+    c: Config,
+    colour: &str,
+    fill: f32,
+    stroke: f32,
+) {
+    let style = format!(
+        "fill=\"{colour}\" fill-opacity=\"{fill}\" stroke=\"{colour}\" stroke-opacity=\"{stroke}\" stroke-width=\"1.5\""
+    );
     match shape {
         RobotShape::Point => {}
         RobotShape::Disk(r) => {

@@ -943,6 +943,7 @@ impl Analyzer {
             name: format!("`{}`", planner.kind),
             specs: planner.all_params().collect(),
             nested: schema::DRIVE_PARAMS,
+            plan: true,
         };
         let mut limits = Limits::default();
         let mut limit_spans: HashMap<&'static str, Span> = HashMap::new();
@@ -1056,6 +1057,7 @@ impl Analyzer {
             name: "`drive unicycle`".into(),
             specs: schema::DRIVE_PARAMS.iter().collect(),
             nested: &[],
+            plan: false,
         };
         let ParamList {
             values,
@@ -1113,6 +1115,7 @@ impl Analyzer {
                 )
                 .at(key.span, "unknown key");
                 let nested = set.nested.iter().find(|p| p.key == key.value);
+                let elsewhere = set.planners_accepting(&key.value);
                 d = match (
                     nested,
                     did_you_mean(&key.value, set.specs.iter().map(|p| p.key)),
@@ -1121,6 +1124,13 @@ impl Analyzer {
                         "put it in the drive block: `drive unicycle {{ {} {} }}`",
                         p.key,
                         p.default.text()
+                    )),
+                    (None, _) if !elsewhere.is_empty() => d.help(format!(
+                        "`{}` is a parameter of {} only; {} accepts: {}",
+                        key.value,
+                        schema::backticked(&elsewhere),
+                        set.name,
+                        set.keys()
                     )),
                     (None, Some(k)) => {
                         d.help(format!("did you mean `{k}`? accepted: {}", set.keys()))
@@ -1575,9 +1585,24 @@ struct ParamSet {
     /// The keys of the `drive` block nested in this list, for a help line
     /// when one is written outside it.
     nested: &'static [schema::ParamSpec],
+    /// A plan's list: an unknown key that other planners take names them.
+    plan: bool,
 }
 
 impl ParamSet {
+    /// The planners that take `key` as one of their own parameters (for a
+    /// plan's list; none for other lists).
+    fn planners_accepting(&self, key: &str) -> Vec<&'static str> {
+        if !self.plan {
+            return Vec::new();
+        }
+        PLANNERS
+            .iter()
+            .filter(|p| p.params.iter().any(|s| s.key == key))
+            .map(|p| p.kind)
+            .collect()
+    }
+
     fn get(&self, key: &str) -> Option<&'static schema::ParamSpec> {
         self.specs.iter().copied().find(|p| p.key == key)
     }

@@ -65,7 +65,7 @@ syn match   scenName contained /\h\w*/ nextgroup=scenShape skipwhite
 " plan NAME KIND ROBOT
 syn match   scenPlanName contained /\h\w*/ nextgroup=scenPlanner,scenBadPlanner skipwhite
 syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
-syn keyword scenPlanner contained astar online roadmap potential coverage nextgroup=scenRobotRef skipwhite
+syn keyword scenPlanner contained astar online roadmap potential coverage rrt rrt_connect rrt_star prm prm_star nextgroup=scenRobotRef skipwhite
 syn match   scenRobotRef contained /\h\w*/
 " bench NAME { ... }: the block (after comments, other words, on later lines
 " too) is a bench's, up to the next statement. The name, on the line of
@@ -97,18 +97,24 @@ syn region  scenPlanList contained matchgroup=scenPunct start=/\[/ end=/\]/
       \ contains=scenStray,scenPunct,scenOtherWord,scenPlanList,scenComment,scenString,scenUnterminated,@scenNumbers
 syn keyword scenWorldKeyword contained bounds origin
 " Parameter keys: the common ones, every planner's, and `drive { ... }`'s.
-syn keyword scenParamKey contained start goal limit seed drive
+syn keyword scenParamKey contained start goal seed drive
+" `limit` is a key, and a word after `stop` (`stop limit`): both matches, so
+" that the later one wins after `stop` (a keyword would win everywhere).
+syn match   scenParamKey contained /\<limit\>/
 syn keyword scenParamKey contained cell sample connect layers cost turn_cost weight heuristic rotate
 syn keyword scenParamKey contained strategy sense
 syn keyword scenParamKey contained arc_segments
 syn keyword scenParamKey contained attract repulse influence step tolerance escape jump
 syn keyword scenParamKey contained on tool weights
+syn keyword scenParamKey contained range goal_bias sampler neighbors rewire informed stop simplify
 syn keyword scenParamKey contained dt max_speed max_turn_rate gain turn_gain reach align
 " `limit expansions N | steps N | time DURATION | cells N | iterations N`
 syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
 syn keyword scenWord contained center corner auto euclid l1 metric zero yes no
 syn keyword scenWord contained backtrack shortcut replan dstar_lite none random_walk max sum
+syn keyword scenWord contained uniform gaussian bridge first smooth
+syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 syn keyword scenWord contained unicycle
 
 " --------------------------------------------------------------- expect
@@ -136,6 +142,7 @@ syn match   scenMetric contained /\.\@1<=\%(traveled\|steps\|replans\|sensed\)\>
 syn match   scenMetric contained /\.\@1<=\%(graph_nodes\|graph_edges\)\>/
 syn match   scenMetric contained /\.\@1<=\%(minima\|escapes\)\>/
 syn match   scenMetric contained /\.\@1<=\%(coverage\|cells_total\|cells_visited\|revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
+syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\|raw_length\|raw_nodes\|simplify_ms\)\>/
 syn match   scenMetric contained /\.\@1<=\%(drive_time\|drive_max_deviation\|drive_collision_free\)\>/
 syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " BENCH.PLAN[...]: the plan's name starts the selection, so that its `[` is

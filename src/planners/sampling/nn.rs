@@ -1,0 +1,335 @@
+//! The nearest-neighbour index of the sampling-based planners: a k-d tree
+//! over the keys `(x, y)` or `(x, y, c·θ)` whose last axis may be periodic
+//! (θ ∈ [0, 2π) scaled by the turn cost c, period 2π·c), so that distances
+//! follow θ's wrap-around.
+//!
+//! # Structure
+//! One point per tree node, inserted as it comes (no rebalancing: the
+//! samples of a planner come in random order, so the expected depth is
+//! O(log n)); node `i` is point `i`; the split axis cycles with the depth;
+//! a point goes right when its coordinate on the node's axis is ≥ the
+//! node's. Queries use an explicit stack, so a degenerate insertion order
+//! (a chain of collinear extensions) costs time, never the call stack.
+//!
+//! # Queries and the wrap-around
+//! The distance between keys is Euclidean with the periodic axis'
+//! difference taken the shorter way round ([`KdTree::distance2`]). Each
+//! node keeps the bounding box of its subtree's points (grown on insertion);
+//! the query's distance to a box, along the periodic axis round the circle
+//! to the box's arc, is a lower bound of its distance to every point in the
+//! subtree. A query walks the tree depth first, the subtree with the nearer
+//! box first, and skips subtrees whose box lies farther than the current
+//! k-th candidate, so the result is exact; the tight boxes (rather than the
+//! cells of the splits) also prune at once for samples far from the tree,
+//! which are most of an RRT's. Ties between equal distances go to the
+//! lower index: results do not depend on the walk order.
+
+/// "No child".
+const NONE: u32 = u32::MAX;
+
+/// A k-d tree over 2- or 3-dimensional keys (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct KdTree {
+    dims: usize,
+    /// The period of the last axis (`dims == 3`), 0 when it does not wrap.
+    period: f64,
+    nodes: Vec<Node>,
+    /// The box of all points.
+    lo: [f64; 3],
+    hi: [f64; 3],
+    /// The walk's pending subtrees and their lower bounds.
+    stack: Vec<(u32, f64)>,
+    /// The walk's k best candidates so far, the worst on top.
+    heap: std::collections::BinaryHeap<Candidate>,
+}
+
+/// A point, its children and their subtrees' boxes, in one place: a walk
+/// decides on both children from the parent's memory alone.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    key: [f64; 3],
+    children: [u32; 2],
+    /// Per child, the box of its subtree's points: min and max per axis
+    /// (the third axis (0, 0) for 2-dimensional keys).
+    lo: [[f64; 3]; 2],
+    hi: [[f64; 3]; 2],
+}
+
+impl KdTree {
+    /// An empty index of `dims` (2 or 3) axes; with 3, the last one wraps
+    /// with period `period` when it is positive.
+    pub fn new(dims: usize, period: f64) -> Self {
+        assert!(dims == 2 || dims == 3, "a k-d tree of 2 or 3 axes");
+        KdTree {
+            dims,
+            period: if dims == 3 && period > 0.0 {
+                period
+            } else {
+                0.0
+            },
+            nodes: Vec::new(),
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+            stack: Vec::new(),
+            heap: std::collections::BinaryHeap::new(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// The key of point `i`.
+    pub fn point(&self, i: usize) -> [f64; 3] {
+        self.nodes[i].key
+    }
+
+    /// Adds `key` (its periodic coordinate in [0, period); its third one
+    /// ignored for 2 axes); returns its index, the number of points before
+    /// it.
+    pub fn insert(&mut self, mut key: [f64; 3]) -> usize {
+        if self.dims == 2 {
+            key[2] = 0.0;
+        }
+        let index = self.nodes.len() as u32;
+        self.nodes.push(Node {
+            key,
+            children: [NONE; 2],
+            lo: [key; 2],
+            hi: [key; 2],
+        });
+        grow_box(&mut self.lo, &mut self.hi, &key);
+        if index == 0 {
+            return 0;
+        }
+        let (mut node, mut depth) = (0usize, 0usize);
+        loop {
+            let axis = depth % self.dims;
+            let n = &mut self.nodes[node];
+            let side = usize::from(key[axis] >= n.key[axis]);
+            let next = n.children[side];
+            if next == NONE {
+                n.children[side] = index;
+                n.lo[side] = key;
+                n.hi[side] = key;
+                return index as usize;
+            }
+            grow_box(&mut n.lo[side], &mut n.hi[side], &key);
+            node = next as usize;
+            depth += 1;
+        }
+    }
+
+    /// The squared distance between two keys, the periodic axis the shorter
+    /// way round.
+    pub fn distance2(&self, a: &[f64; 3], b: &[f64; 3]) -> f64 {
+        let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
+        let mut dt = (a[2] - b[2]).abs();
+        if self.period > 0.0 && dt > self.period - dt {
+            dt = self.period - dt;
+        }
+        if self.dims == 2 {
+            dt = 0.0;
+        }
+        dx * dx + dy * dy + dt * dt
+    }
+
+    /// The nearest point to `q` and its squared distance (`None` when
+    /// empty); ties to the lower index.
+    pub fn nearest(&mut self, q: &[f64; 3]) -> Option<(usize, f64)> {
+        let mut best = Vec::with_capacity(1);
+        self.k_nearest(q, 1, &mut best);
+        best.first().map(|&(d2, i)| (i as usize, d2))
+    }
+
+    /// The `k` nearest points to `q` into `out` as (squared distance,
+    /// index), nearest first, ties to the lower index (fewer when the index
+    /// holds fewer).
+    pub fn k_nearest(&mut self, q: &[f64; 3], k: usize, out: &mut Vec<(f64, u32)>) {
+        out.clear();
+        if k == 0 || self.nodes.is_empty() {
+            return;
+        }
+        let mut q = *q;
+        if self.dims == 2 {
+            q[2] = 0.0;
+        }
+        let mut stack = std::mem::take(&mut self.stack);
+        let mut heap = std::mem::take(&mut self.heap);
+        stack.clear();
+        heap.clear();
+        stack.push((0, self.gap2(&q, &self.lo, &self.hi)));
+        let mut worst = f64::INFINITY;
+        while let Some((node, bound)) = stack.pop() {
+            if bound > worst {
+                continue;
+            }
+            let n = &self.nodes[node as usize];
+            let d2 = self.distance2(&q, &n.key);
+            if d2 <= worst {
+                let candidate = Candidate(d2, node);
+                if heap.len() < k {
+                    heap.push(candidate);
+                } else if heap.peek().is_some_and(|w| candidate < *w) {
+                    heap.pop();
+                    heap.push(candidate);
+                }
+                if heap.len() == k {
+                    worst = heap.peek().map_or(f64::INFINITY, |w| w.0);
+                }
+            }
+            let [a, b] = n.children;
+            let gap = |side: usize| {
+                if n.children[side] == NONE {
+                    f64::INFINITY
+                } else {
+                    self.gap2(&q, &n.lo[side], &n.hi[side])
+                }
+            };
+            let (ga, gb) = (gap(0), gap(1));
+            // The nearer subtree last onto the stack: walked first.
+            let ((near, gn), (far, gf)) = if ga <= gb {
+                ((a, ga), (b, gb))
+            } else {
+                ((b, gb), (a, ga))
+            };
+            if far != NONE && gf <= worst {
+                stack.push((far, gf));
+            }
+            if near != NONE && gn <= worst {
+                stack.push((near, gn));
+            }
+        }
+        out.extend(heap.drain().map(|c| (c.0, c.1)));
+        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.heap = heap;
+        self.stack = stack;
+    }
+
+    /// The squared distance from `q` to the box [lo, hi] (along the
+    /// periodic axis, round the circle to its arc): a lower bound of the
+    /// distance to each point in it.
+    fn gap2(&self, q: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
+        let gx = (lo[0] - q[0]).max(q[0] - hi[0]).max(0.0);
+        let gy = (lo[1] - q[1]).max(q[1] - hi[1]).max(0.0);
+        let gt = if self.period > 0.0 {
+            arc_gap(q[2], (lo[2], hi[2]), self.period)
+        } else {
+            (lo[2] - q[2]).max(q[2] - hi[2]).max(0.0)
+        };
+        gx * gx + gy * gy + gt * gt
+    }
+}
+
+/// Grows the box [lo, hi] to hold `key`.
+fn grow_box(lo: &mut [f64; 3], hi: &mut [f64; 3], key: &[f64; 3]) {
+    for axis in 0..3 {
+        lo[axis] = lo[axis].min(key[axis]);
+        hi[axis] = hi[axis].max(key[axis]);
+    }
+}
+
+/// The distance from `q` to the arc [lo, hi] of a circle of circumference
+/// `period` (0 inside it).
+fn arc_gap(q: f64, (lo, hi): (f64, f64), period: f64) -> f64 {
+    if (lo..=hi).contains(&q) {
+        return 0.0;
+    }
+    let round = |d: f64| d.min(period - d);
+    round((q - lo).abs()).min(round((q - hi).abs()))
+}
+
+/// A candidate neighbour: squared distance, then index (the order of the
+/// results, ties to the lower index).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Candidate(f64, u32);
+
+impl Eq for Candidate {}
+
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Candidate {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+    use proptest::prelude::*;
+
+    /// The k nearest by a scan of every point, ties to the lower index.
+    fn brute(tree: &KdTree, q: &[f64; 3], k: usize) -> Vec<(f64, u32)> {
+        let mut all: Vec<(f64, u32)> = (0..tree.len())
+            .map(|i| (tree.distance2(q, &tree.point(i)), i as u32))
+            .collect();
+        all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        all.truncate(k);
+        all
+    }
+
+    proptest! {
+        #[test]
+        fn k_nearest_agrees_with_a_scan(
+            seed in 0u64..1_000_000,
+            n in 1usize..400,
+            k in 1usize..20,
+            dims in 2usize..=3,
+            period in prop_oneof![Just(0.0), 0.5f64..20.0],
+            // Coarse coordinates give many equal distances (ties).
+            coarse in any::<bool>(),
+        ) {
+            let mut rng = SplitMix64::new(seed);
+            let mut tree = KdTree::new(dims, period);
+            let wrap = if dims == 3 && period > 0.0 { period } else { 10.0 };
+            let draw = |rng: &mut SplitMix64, hi: f64| {
+                let x = rng.range(0.0, hi);
+                if coarse { (x * 2.0).floor() / 2.0 } else { x }
+            };
+            for _ in 0..n {
+                let key = [draw(&mut rng, 10.0), draw(&mut rng, 10.0), draw(&mut rng, wrap) % wrap];
+                tree.insert(key);
+            }
+            let mut out = Vec::new();
+            for _ in 0..20 {
+                let q = [draw(&mut rng, 10.0), draw(&mut rng, 10.0), draw(&mut rng, wrap) % wrap];
+                tree.k_nearest(&q, k, &mut out);
+                let expected = brute(&tree, &q, k);
+                prop_assert_eq!(&out, &expected);
+                let nearest = tree.nearest(&q);
+                prop_assert_eq!(nearest, Some((expected[0].1 as usize, expected[0].0)));
+            }
+        }
+    }
+
+    #[test]
+    fn the_nearest_across_the_wrap_is_found() {
+        let tau = std::f64::consts::TAU;
+        let mut tree = KdTree::new(3, tau);
+        tree.insert([0.0, 0.0, 3.0]);
+        tree.insert([0.0, 0.0, tau - 0.1]);
+        // From θ = 0.05 the point at 2π − 0.1 is 0.15 away, not 6.13.
+        let (i, d2) = tree.nearest(&[0.0, 0.0, 0.05]).expect("a point");
+        assert_eq!(i, 1);
+        assert!((d2 - 0.15f64.powi(2)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_chain_of_collinear_points_is_searched_without_recursion() {
+        let mut tree = KdTree::new(2, 0.0);
+        for i in 0..5_000 {
+            tree.insert([f64::from(i), f64::from(i), 0.0]);
+        }
+        assert_eq!(tree.nearest(&[1e9, 1e9, 0.0]).map(|n| n.0), Some(4_999));
+    }
+}

@@ -1,0 +1,189 @@
+//! The sampling planners' own invariants (the registry's contract test
+//! covers metrics, validity of paths, determinism of the JSON and limits).
+
+use petgraph::graph::{NodeIndex, UnGraph};
+
+use super::prm::Roadmap;
+use super::space::Space;
+use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+use crate::geometry::{Aabb, Config, Point};
+use crate::planners::PlanOutcome;
+use crate::rng::SplitMix64;
+use crate::scenario::{Scenario, load_text};
+
+/// A room with a wall and a gap 3 wide; the rod must turn to pass it.
+fn world() -> &'static str {
+    "world {
+  bounds (0, 0) (20, 20)
+  rect L (0, 9.5) (8.5, 10.5)
+  rect R (11.5, 9.5) (20, 10.5)
+  disk D (15, 4) 1.5
+}
+robot rod polygon [(0,0), (6,0), (6,1), (0,1)]
+robot dot point
+"
+}
+
+fn scenario(kind: &str, robot: &str, extra: &str) -> Scenario {
+    seeded(kind, robot, extra, 5)
+}
+
+fn seeded(kind: &str, robot: &str, extra: &str, seed: u64) -> Scenario {
+    load_text(&format!(
+        "{}plan p {kind} {robot} {{\n  start (3, 3, 0deg)\n  goal (3, 16, 0deg)\n  seed {seed}\n  {extra}\n}}\n",
+        world()
+    ))
+}
+
+fn run(s: &Scenario) -> PlanOutcome {
+    let plan = &s.plans[0];
+    plan.settings.plan(&plan.task(s))
+}
+
+#[test]
+fn same_seed_same_tree_and_path() {
+    for kind in ["rrt", "rrt_connect", "rrt_star", "prm", "prm_star"] {
+        let s = scenario(kind, "rod", "limit iterations 3000 simplify shortcut");
+        let (a, b) = (run(&s), run(&s));
+        assert!(a.path.is_some(), "{kind} found no path");
+        assert_eq!(a.path, b.path, "{kind}");
+        assert_eq!(a.layers, b.layers, "{kind}");
+        let metrics = |o: &PlanOutcome| {
+            let mut m = o.extra.clone();
+            m.remove("simplify_ms");
+            m
+        };
+        assert_eq!(metrics(&a), metrics(&b), "{kind}");
+        // Another seed, another tree.
+        let other = seeded(kind, "rod", "limit iterations 3000 simplify shortcut", 6);
+        assert_ne!(run(&other).layers, a.layers, "{kind}");
+    }
+}
+
+/// Every edge of the tree or roadmap drawn is a motion the validator
+/// accepts, in the direction it was checked (from the older state).
+#[test]
+fn every_tree_and_roadmap_edge_passes_the_validator() {
+    for kind in ["rrt", "rrt_star", "prm", "prm_star"] {
+        for robot in ["rod", "dot"] {
+            let s3 = scenario(kind, robot, "limit iterations 1500 stop limit");
+            let shape = &s3.robots[s3.plans[0].robot].shape;
+            let plan = &s3.plans[0];
+            let task = plan.task(&s3);
+            let settings = plan
+                .settings
+                .as_any()
+                .downcast_ref::<super::Sampling>()
+                .expect("sampling settings");
+            let mut run = super::Run::new(settings, &task);
+            let grown = match settings.algorithm {
+                super::Algorithm::Prm | super::Algorithm::PrmStar => super::prm::grow(&mut run),
+                _ => super::rrt::grow(&mut run),
+            };
+            assert!(!grown.drawn.is_empty(), "{kind} / {robot}: no edges");
+            for e in &grown.drawn {
+                assert!(
+                    validate_path(&s3.world, shape, &[e.a, e.b], DEFAULT_TOLERANCE).is_ok(),
+                    "{kind} / {robot}: the edge {:?} → {:?} fails the validator",
+                    e.a,
+                    e.b
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn rrt_star_cost_never_rises_with_more_iterations() {
+    let mut last = f64::INFINITY;
+    for n in [300, 600, 1200, 2400, 4800] {
+        let s = scenario("rrt_star", "dot", &format!("limit iterations {n}"));
+        let out = run(&s);
+        let cost = out.cost.expect("a path");
+        assert!(cost <= last + 1e-9, "{n} iterations: {cost} > {last}");
+        last = cost;
+    }
+}
+
+#[test]
+fn simplified_paths_are_valid_and_no_longer() {
+    for how in ["shortcut", "smooth"] {
+        let s = scenario("rrt_connect", "rod", &format!("simplify {how}"));
+        let out = run(&s);
+        let path = out.path.expect("a path");
+        let shape = &s.robots[s.plans[0].robot].shape;
+        assert!(validate_path(&s.world, shape, &path, DEFAULT_TOLERANCE).is_ok());
+        let raw = out.extra["raw_length"].as_f64();
+        assert!(crate::run::path_length(&path) <= raw + 1e-9, "{how}");
+        assert_eq!(path[0], s.plans[0].params.start);
+        assert_eq!(path.last().copied(), s.plans[0].params.goal);
+    }
+}
+
+#[test]
+fn a_limit_time_run_is_noted() {
+    let s = scenario("prm", "dot", "limit time 10s");
+    let out = run(&s);
+    assert!(
+        out.notes.iter().any(|n| n.contains("machine")),
+        "{:?}",
+        out.notes
+    );
+}
+
+/// PRM's query (A* through the search core) against petgraph's Dijkstra on
+/// random roadmaps.
+#[test]
+fn the_roadmap_query_agrees_with_dijkstra() {
+    let space = Space {
+        bounds: Aabb {
+            min: Point::new(0.0, 0.0),
+            max: Point::new(10.0, 10.0),
+        },
+        rotating: true,
+        theta: 0.0,
+        turn_cost: 1.5,
+    };
+    for seed in 0..50 {
+        let mut rng = SplitMix64::new(seed);
+        let mut graph: UnGraph<Config, (f64, u8)> = UnGraph::default();
+        let n = 2 + (rng.next_u64() % 60) as usize;
+        for _ in 0..n {
+            graph.add_node(space.uniform(&mut rng));
+        }
+        for _ in 0..3 * n {
+            let (a, b) = (
+                (rng.next_u64() % n as u64) as usize,
+                (rng.next_u64() % n as u64) as usize,
+            );
+            if a != b {
+                let w = space.distance(graph[NodeIndex::new(a)], graph[NodeIndex::new(b)]);
+                graph.add_edge(NodeIndex::new(a), NodeIndex::new(b), (w, 1));
+            }
+        }
+        let expected = petgraph::algo::dijkstra(&graph, NodeIndex::new(0), None, |e| e.weight().0);
+        let roadmap = Roadmap { graph };
+        let found = roadmap.shortest_path(&space);
+        match (found, expected.get(&NodeIndex::new(1))) {
+            (Some((nodes, cost)), Some(&best)) => {
+                assert!(
+                    (cost - best).abs() <= 1e-9 * best.max(1.0),
+                    "{seed}: {cost} vs {best}"
+                );
+                assert_eq!((nodes[0], nodes[nodes.len() - 1]), (0, 1));
+                let along: f64 = nodes
+                    .windows(2)
+                    .map(|w| {
+                        space.distance(
+                            roadmap.graph[NodeIndex::new(w[0])],
+                            roadmap.graph[NodeIndex::new(w[1])],
+                        )
+                    })
+                    .sum();
+                assert!((along - cost).abs() <= 1e-9 * cost.max(1.0));
+            }
+            (None, None) => {}
+            (found, best) => panic!("{seed}: found {found:?}, Dijkstra {best:?}"),
+        }
+    }
+}
