@@ -34,7 +34,9 @@ use criterion::{BatchSize, Criterion, SamplingMode, Throughput, criterion_group,
 use pathfinding::num_traits::Zero;
 use scen::geometry::collide::ObstacleIndex;
 use scen::geometry::{Shape, World};
-use scen::planners::astar::{CostMetric, GridLattice, SearchBuffers, SearchConfig, search};
+use scen::planners::astar::{
+    CostMetric, GridLattice, Heuristic, SearchBuffers, SearchConfig, search,
+};
 use scen::planners::lattice::{LatticeSpec, Sample};
 use scen::scenario::Limits;
 
@@ -185,7 +187,7 @@ impl Scen {
                 connect: 8,
                 cost: CostMetric::Euclid,
                 weight: 1.0,
-                heuristic: true,
+                heuristic: Heuristic::Metric,
                 limits: Limits::default(),
             },
         }

@@ -24,7 +24,8 @@ pub struct PlanRun {
     pub outcome: PlanOutcome,
     /// All metrics: the planner's own and the common ones of SPEC 3.
     pub metrics: Metrics,
-    /// Why the path failed the validator, if it did.
+    /// Why the path (or the executed motion of a run that stopped short)
+    /// failed the validator, if it did.
     pub validation: Option<ValidationError>,
     /// The simulated robot driving the path, for plans with `drive`.
     pub drive: Option<DriveOutcome>,
@@ -158,11 +159,16 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     let outcome = plan.settings.plan(task);
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
     let referee = Validator::new(&scenario.world);
-    let validation = outcome
-        .path
-        .as_ref()
-        .and_then(|p| referee.validate_path(robot, p, DEFAULT_TOLERANCE).err());
-    let mut metrics = common_metrics(&outcome, robot, plan, time_ms, validation.is_none());
+    // The path, or the motion executed by a run that stopped short (SPEC 3:
+    // `collision_free` validates it too).
+    let motion = match &outcome.path {
+        Some(path) => Some(path.as_slice()),
+        None if !outcome.trajectory.is_empty() => Some(outcome.trajectory.as_slice()),
+        None => None,
+    };
+    let validation = motion.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err());
+    let valid = motion.is_some() && validation.is_none();
+    let mut metrics = common_metrics(&outcome, robot, plan, time_ms, valid);
     let path = outcome.path.as_deref();
     metrics.insert(
         "clearance".into(),
@@ -213,6 +219,8 @@ fn drive_plan(
 }
 
 /// The metrics of SPEC 3 that every planner has, plus the planner's own.
+/// `valid`: the path, or the motion executed by a run that stopped short,
+/// passed the validator.
 fn common_metrics(
     out: &PlanOutcome,
     robot: &RobotShape,
@@ -253,7 +261,7 @@ fn common_metrics(
     m.insert("nodes".into(), Num(path.len() as f64));
     m.insert("expanded".into(), Num(out.expanded as f64));
     m.insert("time_ms".into(), Num((time_ms * 1000.0).round() / 1000.0));
-    m.insert("collision_free".into(), Bool(found && valid));
+    m.insert("collision_free".into(), Bool(valid));
     let reaches = match (path.last(), plan.params.goal) {
         (Some(last), Some(goal)) => {
             let d = (last.x - goal.x).hypot(last.y - goal.y);

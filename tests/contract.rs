@@ -262,6 +262,22 @@ fn every_planner_honours_its_limits() {
                             "{label}: `{metric}` = {n} after `limit {counted} 3`"
                         ));
                     }
+                    // Stopped short: `collision_free` says whether the
+                    // motion executed so far, if any, passed the validator
+                    // (SPEC 3).
+                    let executed = &run.outcome.trajectory;
+                    let robot = &report.scenario.robots[0].shape;
+                    let world = &report.scenario.world;
+                    let valid = !executed.is_empty()
+                        && validate_path(world, robot, executed, DEFAULT_TOLERANCE).is_ok();
+                    if run.metrics.get("collision_free") != Some(&MetricValue::Bool(valid)) {
+                        problems.push(format!(
+                            "{label}: collision_free {:?}, the executed motion of {} poses {}",
+                            run.metrics.get("collision_free"),
+                            executed.len(),
+                            if valid { "passes" } else { "does not pass" }
+                        ));
+                    }
                 }
             }
         }

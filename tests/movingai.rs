@@ -20,7 +20,9 @@ use std::time::{Duration, Instant};
 use scen::geometry::collide::ObstacleIndex;
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use scen::geometry::{Config, Grid, RobotShape, Shape, World};
-use scen::planners::astar::{CostMetric, GridLattice, SearchBuffers, SearchConfig, search};
+use scen::planners::astar::{
+    CostMetric, GridLattice, Heuristic, SearchBuffers, SearchConfig, search,
+};
 use scen::planners::lattice::{LatticeSpec, Sample};
 use scen::scenario::Limits;
 
@@ -185,7 +187,7 @@ fn check_agreement(dir: &Path, map_file: &str, scen_file: &str, every: usize) ->
     for (k, &weight) in grid.cells.iter().enumerate() {
         let (x, y) = (k % grid.width, k / grid.width);
         assert_eq!(
-            lattice.free[lattice_node(&spec, grid.height, (x, y))],
+            lattice.free.get(lattice_node(&spec, grid.height, (x, y))),
             weight != 0,
             "cell ({x}, {y})"
         );
@@ -195,7 +197,7 @@ fn check_agreement(dir: &Path, map_file: &str, scen_file: &str, every: usize) ->
         connect: 8,
         cost: CostMetric::Euclid,
         weight: 1.0,
-        heuristic: true,
+        heuristic: Heuristic::Lattice,
         limits: Limits::default(),
     };
     let mut buffers = SearchBuffers::default();

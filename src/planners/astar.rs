@@ -17,9 +17,11 @@ use crate::scenario::schema::{
     DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, Word, YesNo, at_least, num,
 };
 use crate::scenario::{Limits, PlanArgs};
-use crate::word_enum;
 
-use super::lattice::{LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
+use super::lattice::{
+    BitSet, LATTICE_PARAMS, LatticeDistance, LatticeSpec, check_connect, check_lattice,
+};
+pub use super::lattice::{CostMetric, Heuristic};
 use super::registry::{Planner, Settings, Task};
 use super::search::{Edge, Graph, Tree, best_first};
 pub use super::search::{SearchBuffers, SearchResult};
@@ -56,8 +58,8 @@ pub static PLANNER: Planner = Planner {
         ParamSpec::word(
             "heuristic",
             Heuristic::WORDS,
-            "metric",
-            "`metric` (admissible) or `zero` (Dijkstra)",
+            "lattice",
+            "`lattice` (the exact obstacle-free lattice cost), `metric` (the cost metric) or `zero` (Dijkstra)",
         ),
         ParamSpec::new(
             "rotate",
@@ -83,34 +85,6 @@ pub static PLANNER: Planner = Planner {
     randomized: false,
     check,
 };
-
-word_enum! {
-    /// Edge cost metric (SPEC 3.1 `cost`).
-    pub enum CostMetric {
-        Euclid = "euclid",
-        L1 = "l1",
-    }
-}
-
-word_enum! {
-    /// SPEC 3.1 `heuristic`.
-    pub enum Heuristic {
-        /// The cost metric to the goal (admissible and consistent).
-        Metric = "metric",
-        /// h = 0: Dijkstra.
-        Zero = "zero",
-    }
-}
-
-impl CostMetric {
-    pub fn between(self, a: Point, b: Point) -> f64 {
-        let (dx, dy) = ((b.x - a.x).abs(), (b.y - a.y).abs());
-        match self {
-            CostMetric::Euclid => (dx * dx + dy * dy).sqrt(),
-            CostMetric::L1 => dx + dy,
-        }
-    }
-}
 
 /// The settings of an `astar` plan.
 #[derive(Clone, Debug)]
@@ -177,8 +151,7 @@ pub struct SearchConfig {
     pub cost: CostMetric,
     /// Heuristic inflation w ≥ 1 (f = g + w·h).
     pub weight: f64,
-    /// `false`: h = 0 (Dijkstra).
-    pub heuristic: bool,
+    pub heuristic: Heuristic,
     pub limits: Limits,
 }
 
@@ -195,7 +168,7 @@ impl SearchConfig {
             connect,
             cost,
             weight,
-            heuristic: heuristic == Heuristic::Metric,
+            heuristic,
             limits,
         }
     }
@@ -223,33 +196,34 @@ pub fn opposite(d: usize) -> usize {
 }
 
 /// The (x, y) lattice of one plan: which points are free, and a cache of
-/// which edges passed the collision check.
+/// which edges passed the collision check. Per point one bit and one byte
+/// (SPEC 3.1's memory rule): an edge is the same motion both ways, so it
+/// is cached once, at the end it leaves in one of the four forward
+/// directions E, N, NE, NW.
 pub struct GridLattice {
     pub spec: LatticeSpec,
     /// Robot radius (0 for a point robot).
     pub radius: f64,
-    pub free: Vec<bool>,
-    /// Per node, bit d: the edge in direction d was checked / is free.
-    edge_checked: Vec<u8>,
-    edge_ok: Vec<u8>,
+    pub free: BitSet,
+    /// Per point, bit s: its forward edge s was checked; bit 4 + s: it is
+    /// free ([`GridLattice::edge_slot`]).
+    edges: Vec<u8>,
 }
 
+/// Every forward edge checked and free.
+const ALL_EDGES_OPEN: u8 = u8::MAX;
+
 impl GridLattice {
-    /// Classifies every lattice point. The caller has checked the size cap.
+    /// Classifies every lattice point (on all cores). The caller has
+    /// checked the size cap.
     pub fn build(spec: LatticeSpec, index: &ObstacleIndex, radius: f64) -> Self {
         let n = spec.layer_len();
-        let mut free = Vec::with_capacity(n);
-        for j in 0..spec.ny {
-            for i in 0..spec.nx {
-                free.push(index.disk_free(spec.point(i, j), radius));
-            }
-        }
+        let free = BitSet::from_fn(n, |k| index.disk_free(spec.point_of(k), radius));
         GridLattice {
             spec,
             radius,
             free,
-            edge_checked: vec![0; n],
-            edge_ok: vec![0; n],
+            edges: vec![0; n],
         }
     }
 
@@ -263,14 +237,18 @@ impl GridLattice {
         GridLattice {
             spec,
             radius,
-            free: vec![true; n],
-            edge_checked: vec![u8::MAX; n],
-            edge_ok: vec![u8::MAX; n],
+            free: BitSet::new(n, true),
+            edges: vec![ALL_EDGES_OPEN; n],
         }
     }
 
     pub fn free_count(&self) -> usize {
-        self.free.iter().filter(|f| **f).count()
+        self.free.count_ones()
+    }
+
+    /// Bytes held per lattice point (for benchmarks).
+    pub fn bytes(&self) -> usize {
+        self.free.bytes() + self.edges.len()
     }
 
     /// The neighbour of `node` in direction `d` of [`DIRS`], if it lies
@@ -293,11 +271,22 @@ impl GridLattice {
     /// [`GridLattice::edge_usable`] from what is already known, without
     /// querying the obstacles: an edge not checked yet counts as blocked.
     pub fn edge_known_usable(&self, node: usize, d: usize, to: usize) -> bool {
-        self.ends_and_corners_free(node, d, to) && self.edge_ok[node] & (1u8 << d) != 0
+        let (at, slot) = Self::edge_slot(node, d, to);
+        self.ends_and_corners_free(node, d, to) && self.edges[at] & (0x10 << slot) != 0
+    }
+
+    /// Where edge (node, d) to `to` is cached: the point it leaves in a
+    /// forward direction (E, N, NE, NW: directions 0, 1, 4, 5 of [`DIRS`])
+    /// and that direction's slot 0–3.
+    #[inline]
+    fn edge_slot(node: usize, d: usize, to: usize) -> (usize, u8) {
+        const SLOT: [u8; 8] = [0, 1, 0, 1, 2, 3, 2, 3];
+        let at = if matches!(d, 0 | 1 | 4 | 5) { node } else { to };
+        (at, SLOT[d])
     }
 
     fn ends_and_corners_free(&self, node: usize, d: usize, to: usize) -> bool {
-        if !self.free[node] || !self.free[to] {
+        if !self.free.get(node) || !self.free.get(to) {
             return false;
         }
         if d >= 4 {
@@ -305,7 +294,7 @@ impl GridLattice {
             let (dx, dy) = DIRS[d];
             let a = (node as i64 + dx) as usize;
             let b = (node as i64 + dy * nx) as usize;
-            return self.free[a] && self.free[b];
+            return self.free.get(a) && self.free.get(b);
         }
         true
     }
@@ -313,35 +302,29 @@ impl GridLattice {
     /// Records whether the motion along edge (node, d) to `to` is free, for
     /// both directions (e.g. once a robot has sensed both ends).
     pub fn set_edge(&mut self, node: usize, d: usize, to: usize, ok: bool) {
-        let (bit, back) = (1u8 << d, 1u8 << opposite(d));
-        self.edge_checked[node] |= bit;
-        self.edge_checked[to] |= back;
+        let (at, slot) = Self::edge_slot(node, d, to);
+        let e = &mut self.edges[at];
+        *e |= 1 << slot;
         if ok {
-            self.edge_ok[node] |= bit;
-            self.edge_ok[to] |= back;
+            *e |= 0x10 << slot;
         } else {
-            self.edge_ok[node] &= !bit;
-            self.edge_ok[to] &= !back;
+            *e &= !(0x10 << slot);
         }
     }
 
     /// Whether the motion along edge (node, d) is collision-free; `to` is
     /// the neighbour. Checked once per edge and cached for both directions.
     pub fn edge_free(&mut self, index: &ObstacleIndex, node: usize, d: usize, to: usize) -> bool {
-        let bit = 1u8 << d;
-        if self.edge_checked[node] & bit == 0 {
-            let (i, j) = self.spec.coords(node);
-            let (ti, tj) = self.spec.coords(to);
-            let ok = index.sweep_free(self.spec.point(i, j), self.spec.point(ti, tj), self.radius);
-            let back = 1u8 << opposite(d);
-            self.edge_checked[node] |= bit;
-            self.edge_checked[to] |= back;
-            if ok {
-                self.edge_ok[node] |= bit;
-                self.edge_ok[to] |= back;
-            }
+        let (at, slot) = Self::edge_slot(node, d, to);
+        if self.edges[at] & (1 << slot) == 0 {
+            let ok = index.sweep_free(
+                self.spec.point_of(node),
+                self.spec.point_of(to),
+                self.radius,
+            );
+            self.set_edge(node, d, to, ok);
         }
-        self.edge_ok[node] & bit != 0
+        self.edges[at] & (0x10 << slot) != 0
     }
 }
 
@@ -376,22 +359,29 @@ pub fn search_with(
     buf: &mut SearchBuffers,
     before_expand: impl FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool,
 ) -> SearchResult {
-    if !lat.free[start] || !lat.free[goal] {
+    if !lat.free.get(start) || !lat.free.get(goal) {
         return SearchResult::default();
     }
     let spec = lat.spec;
     let nx = spec.nx as i64;
-    let step_cost: [f64; 8] = DIRS.map(|(dx, dy)| {
-        cfg.cost.between(
-            Point::origin(),
-            Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell),
-        )
-    });
+    let true_cost = step_costs(cfg.cost, spec.cell);
+    let distance = LatticeDistance::new(cfg.connect, cfg.cost, spec.cell, 0.0);
+    // With the lattice heuristic the search runs on its rounded costs
+    // (exact ties, see `LatticeDistance`).
+    let step_cost = match cfg.heuristic {
+        Heuristic::Lattice => {
+            DIRS.map(|(dx, dy)| distance.step(usize::from(dx != 0) | usize::from(dy != 0) << 1))
+        }
+        Heuristic::Metric | Heuristic::Zero => true_cost,
+    };
+    let (gi, gj) = spec.coords(goal);
     let mut graph = XyGraph {
         lat,
         index,
         goal,
         goal_pt: spec.point_of(goal),
+        goal_ij: (gi as i64, gj as i64),
+        distance,
         cfg,
         dirs: if cfg.connect == 4 { 4 } else { 8 },
         step_cost,
@@ -401,7 +391,27 @@ pub fn search_with(
         from: (0, 0),
         hook: before_expand,
     };
-    best_first(&mut graph, &[start], &cfg.limits, record, buf)
+    let mut r = best_first(&mut graph, &[start], &cfg.limits, record, buf);
+    if let Some(nodes) = &r.nodes {
+        // The cost in the true metric, summed in path order (for the
+        // other heuristics the same sum as g, bit for bit).
+        r.cost = nodes.windows(2).fold(0.0, |sum, w| {
+            let ((i, j), (k, l)) = (spec.coords(w[0]), spec.coords(w[1]));
+            sum + true_cost[if i != k && j != l { 4 } else { 0 }]
+        });
+    }
+    r
+}
+
+/// The cost of one move in each direction of [`DIRS`] on a lattice of
+/// spacing `cell`.
+pub fn step_costs(cost: CostMetric, cell: f64) -> [f64; 8] {
+    DIRS.map(|(dx, dy)| {
+        cost.between(
+            Point::origin(),
+            Point::new(dx as f64 * cell, dy as f64 * cell),
+        )
+    })
 }
 
 /// The (x, y) lattice as a graph for the search core: free neighbours, no
@@ -411,6 +421,8 @@ struct XyGraph<'a, F> {
     index: &'a ObstacleIndex,
     goal: usize,
     goal_pt: Point,
+    goal_ij: (i64, i64),
+    distance: LatticeDistance,
     cfg: &'a SearchConfig,
     dirs: usize,
     step_cost: [f64; 8],
@@ -422,19 +434,25 @@ struct XyGraph<'a, F> {
 }
 
 impl<F> XyGraph<'_, F> {
-    /// h at lattice coordinates (i, j): the cost metric to the goal,
-    /// inflated.
+    /// h at lattice coordinates (i, j), inflated by the weight.
     #[inline]
     fn h(&self, i: i64, j: i64) -> f64 {
-        if !self.cfg.heuristic {
-            return 0.0;
-        }
-        let spec = &self.lat.spec;
-        let p = Point::new(
-            spec.x0 + i as f64 * spec.cell,
-            spec.y0 + j as f64 * spec.cell,
-        );
-        self.cfg.weight * self.cfg.cost.between(p, self.goal_pt)
+        let h = match self.cfg.heuristic {
+            Heuristic::Lattice => self.distance.xy(
+                (i - self.goal_ij.0).unsigned_abs(),
+                (j - self.goal_ij.1).unsigned_abs(),
+            ),
+            Heuristic::Metric => {
+                let spec = &self.lat.spec;
+                let p = Point::new(
+                    spec.x0 + i as f64 * spec.cell,
+                    spec.y0 + j as f64 * spec.cell,
+                );
+                self.cfg.cost.between(p, self.goal_pt)
+            }
+            Heuristic::Zero => return 0.0,
+        };
+        self.cfg.weight * h
     }
 }
 
@@ -455,13 +473,14 @@ impl<F: FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool> Graph for XyGraph<'_,
                 continue;
             }
             let to = (node as i64 + self.delta[d]) as usize;
-            if !free[to] {
+            if !free.get(to) {
                 continue;
             }
             // No corner cutting: both orthogonal neighbours must be free
             // (they are inside the lattice since the diagonal one is).
             if d >= 4
-                && !(free[(node as i64 + dx) as usize] && free[(node as i64 + dy * nx) as usize])
+                && !(free.get((node as i64 + dx) as usize)
+                    && free.get((node as i64 + dy * nx) as usize))
             {
                 continue;
             }
@@ -570,9 +589,9 @@ pub fn snap_ends(
     let (s_node, g_node) = (spec.index(s.0, s.1), spec.index(g.0, g.1));
     let (s_pt, g_pt) = (spec.point(s.0, s.1), spec.point(g.0, g.1));
     let mut blocked_end = None;
-    if !lat.free[s_node] || !index.sweep_free(start.xy(), s_pt, lat.radius) {
+    if !lat.free.get(s_node) || !index.sweep_free(start.xy(), s_pt, lat.radius) {
         blocked_end = Some("start");
-    } else if !lat.free[g_node] || !index.sweep_free(g_pt, goal.xy(), lat.radius) {
+    } else if !lat.free.get(g_node) || !index.sweep_free(g_pt, goal.xy(), lat.radius) {
         blocked_end = Some("goal");
     }
     match blocked_end {

@@ -17,7 +17,9 @@
 //!
 //! # Sound edges
 //! An edge is used only if the robot's motion along it passes the validator
-//! (SPEC 3.0), decided once per edge and direction, lazily:
+//! (SPEC 3.0), decided lazily when the search first relaxes it (each
+//! configuration is expanded once, so each edge and direction is decided
+//! at most once and nothing needs caching):
 //! * a translation within a layer: the segment between the two (x, y)
 //!   points must not penetrate any C-obstacle of the layer deeper than
 //!   `TOUCH_EPS / 2` ([`segment_depth`], separating axes over the
@@ -33,7 +35,7 @@ use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
 use super::astar::{Astar, CostMetric, Heuristic};
-use super::lattice::LatticeSpec;
+use super::lattice::{BitSet, LatticeDistance, LatticeSpec};
 use super::registry::Task;
 use super::search::{Edge, Graph, SearchBuffers, best_first};
 use super::{MetricValue, PlanOutcome};
@@ -54,7 +56,11 @@ struct Move {
     dx: i64,
     dy: i64,
     dk: i64,
+    /// In the cost metric.
     cost: f64,
+    /// What the search counts: `cost`, or with the lattice heuristic
+    /// `cost` rounded to its quantum ([`LatticeDistance`]).
+    search_cost: f64,
 }
 
 /// The moves of a `connect` value on a lattice of `layers` layers. A move
@@ -92,14 +98,6 @@ fn moves(connect: u8, layers: usize, rotating: bool) -> Vec<(i64, i64, i64)> {
     out
 }
 
-/// The cost metric in (x, y, θ): `dt` is `c·|dθ|` already.
-fn metric(cost: CostMetric, dx: f64, dy: f64, dt: f64) -> f64 {
-    match cost {
-        CostMetric::Euclid => (dx * dx + dy * dy + dt * dt).sqrt(),
-        CostMetric::L1 => dx.abs() + dy.abs() + dt.abs(),
-    }
-}
-
 fn boxes_meet(a: &Aabb, b: &Aabb, margin: f64) -> bool {
     a.min.x <= b.max.x + margin
         && b.min.x <= a.max.x + margin
@@ -125,8 +123,8 @@ pub struct Profile {
     pub edges_checked: u64,
 }
 
-/// The (x, y, θ) lattice of one plan, its free configurations and the
-/// edge cache.
+/// The (x, y, θ) lattice of one plan and its free configurations (a bit
+/// each).
 struct Lattice<'w> {
     spec: LatticeSpec,
     thetas: Vec<f64>,
@@ -135,11 +133,8 @@ struct Lattice<'w> {
     layer_boxes: Vec<Vec<Aabb>>,
     /// Decides the rotation edges.
     motion: MotionChecker,
-    free: Vec<bool>,
+    free: BitSet,
     moves: Vec<Move>,
-    /// Per node, bit m: the edge along move m was checked / passed.
-    edge_checked: Vec<u32>,
-    edge_ok: Vec<u32>,
     shape: RobotShape,
     validator: Validator<'w>,
     /// Measure edge validation into `profile` (see [`plan_profiled`]).
@@ -179,26 +174,29 @@ impl Lattice<'_> {
 
     /// Whether the edge along move `m` from `node` to `to` is usable.
     fn edge_free(&mut self, node: usize, m: usize, to: usize) -> bool {
-        let bit = 1u32 << m;
-        if self.edge_checked[node] & bit == 0 {
-            let began = self.profiling.then(Instant::now);
-            let (a, b) = (self.config(node), self.config(to));
-            let ok = if self.moves[m].dk == 0 {
-                let (_, _, k) = self.coords(node);
-                self.translation_free(k, a.xy(), b.xy())
-            } else {
-                self.motion.motion_free(a, b)
-            };
-            self.edge_checked[node] |= bit;
-            if ok {
-                self.edge_ok[node] |= bit;
-            }
-            if let Some(t) = began {
-                self.profile.edge_validation += t.elapsed();
-                self.profile.edges_checked += 1;
-            }
+        let began = self.profiling.then(Instant::now);
+        let (a, b) = (self.config(node), self.config(to));
+        let ok = if self.moves[m].dk == 0 {
+            let (_, _, k) = self.coords(node);
+            self.translation_free(k, a.xy(), b.xy())
+        } else {
+            self.motion.motion_free(a, b)
+        };
+        if let Some(t) = began {
+            self.profile.edge_validation += t.elapsed();
+            self.profile.edges_checked += 1;
         }
-        self.edge_ok[node] & bit != 0
+        ok
+    }
+
+    /// The move from `a` to its neighbour `b`.
+    fn move_between(&self, a: usize, b: usize) -> Option<&Move> {
+        let ((i, j, k), (ni, nj, nk)) = (self.coords(a), self.coords(b));
+        let n = self.layers.len() as i64;
+        let (dx, dy) = (ni as i64 - i as i64, nj as i64 - j as i64);
+        self.moves
+            .iter()
+            .find(|m| m.dx == dx && m.dy == dy && (k as i64 + m.dk).rem_euclid(n) == nk as i64)
     }
 }
 
@@ -239,24 +237,31 @@ fn run(
     let cost = settings.cost;
     let turn_cost = settings.turn_cost;
     let weight = settings.weight;
-    let use_h = settings.heuristic == Heuristic::Metric;
     let connect = settings.connect;
     let step = if rotating { TAU / n_layers as f64 } else { 0.0 };
     // The rotation of |dk| = 1: the shorter arc (π for two layers).
     let dtheta = step.min(TAU - step);
     let cell = spec.cell;
+    let distance = LatticeDistance::new(connect, cost, cell, turn_cost * dtheta);
     let moves: Vec<Move> = moves(connect, n_layers, rotating)
         .into_iter()
-        .map(|(dx, dy, dk)| Move {
-            dx,
-            dy,
-            dk,
-            cost: metric(
-                cost,
+        .map(|(dx, dy, dk)| {
+            let true_cost = cost.of(
                 dx as f64 * cell,
                 dy as f64 * cell,
                 turn_cost * dk.abs() as f64 * dtheta,
-            ),
+            );
+            let axes = usize::from(dx != 0) | usize::from(dy != 0) << 1 | usize::from(dk != 0) << 2;
+            Move {
+                dx,
+                dy,
+                dk,
+                cost: true_cost,
+                search_cost: match settings.heuristic {
+                    Heuristic::Lattice => distance.step(axes),
+                    Heuristic::Metric | Heuristic::Zero => true_cost,
+                },
+            }
         })
         .collect();
 
@@ -288,20 +293,11 @@ fn run(
     let lap = Instant::now();
     let n = spec.layer_len();
     let total = n * layers.len();
-    let mut free = vec![false; total];
-    {
-        use rayon::prelude::*;
-        free.par_chunks_mut(n.max(1))
-            .zip(layers.par_iter())
-            .for_each(|(chunk, layer)| {
-                for (idx, f) in chunk.iter_mut().enumerate() {
-                    let (i, j) = spec.coords(idx);
-                    *f = !layer.contains_interior(spec.point(i, j));
-                }
-            });
-    }
+    let free = BitSet::from_fn(total, |node| {
+        !layers[node / n].contains_interior(spec.point_of(node % n))
+    });
     profile.classify = lap.elapsed();
-    let free_count = free.iter().filter(|f| **f).count();
+    let free_count = free.count_ones();
     out.extra
         .insert("free_cells".into(), MetricValue::Num(free_count as f64));
     out.extra.insert("generated".into(), MetricValue::Num(0.0));
@@ -323,8 +319,6 @@ fn run(
         motion,
         free,
         moves,
-        edge_checked: vec![0; total],
-        edge_ok: vec![0; total],
         shape,
         validator: Validator::new(world),
         profiling,
@@ -352,9 +346,9 @@ fn run(
             .is_ok()
     };
     let mut blocked_end = None;
-    if !lat.free[s_node] || !connects(&lat, start, s_cfg) {
+    if !lat.free.get(s_node) || !connects(&lat, start, s_cfg) {
         blocked_end = Some("start");
-    } else if !lat.free[g_node] || !connects(&lat, g_cfg, goal) {
+    } else if !lat.free.get(g_node) || !connects(&lat, g_cfg, goal) {
         blocked_end = Some("goal");
     }
     if let Some(end) = blocked_end {
@@ -365,8 +359,7 @@ fn run(
     }
     // The cost of the motion between two configurations, in the metric.
     let cost_between = |a: Config, b: Config| {
-        metric(
-            cost,
+        cost.of(
             b.x - a.x,
             b.y - a.y,
             turn_cost * angle_diff(a.theta, b.theta).abs(),
@@ -377,8 +370,10 @@ fn run(
     let (_, _, gk) = lat.coords(g_node);
     let gpt = lat.config(g_node).xy();
     let heuristic = RotHeuristic {
-        on: use_h,
+        kind: settings.heuristic,
+        distance: LatticeDistance::new(connect, cost, cell, turn_cost * dtheta),
         goal: gpt,
+        goal_ij: (lat.coords(g_node).0, lat.coords(g_node).1),
         goal_layer: gk,
         layers: n_layers,
         step: if rotating { step } else { 0.0 },
@@ -418,7 +413,12 @@ fn run(
             path.extend(nodes.iter().map(|&n| lat.config(n)));
             path.push(goal);
             path.dedup();
-            out.cost = Some(cost_between(start, s_cfg) + r.cost + cost_between(g_cfg, goal));
+            // The lattice part in the true metric, summed in path order
+            // (for the metric and zero heuristics the same sum as g).
+            let lattice_cost = nodes.windows(2).fold(0.0, |sum, w| {
+                sum + lat.move_between(w[0], w[1]).map_or(f64::NAN, |m| m.cost)
+            });
+            out.cost = Some(cost_between(start, s_cfg) + lattice_cost + cost_between(g_cfg, goal));
             out.path = Some(path);
         }
         None if r.gave_up => out.notes.push("a limit was reached before the goal".into()),
@@ -433,12 +433,14 @@ fn run(
     (out, profile)
 }
 
-/// The heuristic on the (x, y, θ) lattice: the cost metric from a lattice
-/// configuration to the goal's, θ by the shorter way round, inflated by
-/// `weight` (0 with `heuristic zero`).
+/// The heuristic on the (x, y, θ) lattice, from a lattice configuration to
+/// the goal's, θ the shorter way round, inflated by `weight`: the exact
+/// obstacle-free lattice cost ([`LatticeDistance`]), the cost metric, or 0.
 struct RotHeuristic {
-    on: bool,
+    kind: Heuristic,
+    distance: LatticeDistance,
     goal: Point,
+    goal_ij: (usize, usize),
     goal_layer: usize,
     layers: usize,
     /// The rotation between neighbouring layers (0 without θ layers).
@@ -449,14 +451,22 @@ struct RotHeuristic {
 }
 
 impl RotHeuristic {
-    fn at(&self, p: Point, k: usize) -> f64 {
-        if !self.on {
-            return 0.0;
-        }
+    fn at(&self, (i, j): (usize, usize), p: Point, k: usize) -> f64 {
         let dk = k.abs_diff(self.goal_layer);
         let dk = dk.min(self.layers - dk);
-        let dt = self.turn_cost * (dk as f64 * self.step).min(TAU - dk as f64 * self.step);
-        self.weight * metric(self.cost, p.x - self.goal.x, p.y - self.goal.y, dt)
+        let h = match self.kind {
+            Heuristic::Lattice => self.distance.xyt([
+                i.abs_diff(self.goal_ij.0) as u64,
+                j.abs_diff(self.goal_ij.1) as u64,
+                dk as u64,
+            ]),
+            Heuristic::Metric => {
+                let dt = self.turn_cost * (dk as f64 * self.step).min(TAU - dk as f64 * self.step);
+                self.cost.of(p.x - self.goal.x, p.y - self.goal.y, dt)
+            }
+            Heuristic::Zero => return 0.0,
+        };
+        self.weight * h
     }
 }
 
@@ -486,22 +496,22 @@ impl Graph for RotGraph<'_, '_> {
             }
             let nk = (k + mv.dk).rem_euclid(nl);
             let to = at(ni, nj, nk);
-            if !lat.free[to] {
+            if !lat.free.get(to) {
                 continue;
             }
             // No corner cutting, in the start and in the end layer.
             if mv.dx != 0
                 && mv.dy != 0
-                && !(lat.free[at(ni, j, k)]
-                    && lat.free[at(i, nj, k)]
-                    && lat.free[at(ni, j, nk)]
-                    && lat.free[at(i, nj, nk)])
+                && !(lat.free.get(at(ni, j, k))
+                    && lat.free.get(at(i, nj, k))
+                    && lat.free.get(at(ni, j, nk))
+                    && lat.free.get(at(i, nj, nk)))
             {
                 continue;
             }
             out.push(Edge {
                 to,
-                cost: mv.cost,
+                cost: mv.search_cost,
                 label: m as u32,
             });
         }
@@ -513,7 +523,7 @@ impl Graph for RotGraph<'_, '_> {
 
     fn heuristic(&self, node: usize) -> f64 {
         let (i, j, k) = self.lat.coords(node);
-        self.h.at(self.lat.spec.point(i, j), k)
+        self.h.at((i, j), self.lat.spec.point(i, j), k)
     }
 
     fn is_goal(&self, node: usize) -> bool {
@@ -771,10 +781,8 @@ plan q astar rod { start (10, 1, 0deg) goal (5, 2.1, 0deg) layers 8 }
             layers,
             layer_boxes,
             motion: MotionChecker::new(world, &shape),
-            free: Vec::new(),
+            free: BitSet::default(),
             moves: Vec::new(),
-            edge_checked: Vec::new(),
-            edge_ok: Vec::new(),
             shape,
             validator: Validator::new(world),
             profiling: false,

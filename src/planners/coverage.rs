@@ -281,6 +281,9 @@ pub enum StartProblem {
     /// Another obstacle of the world (its index) overlaps its D-cell or
     /// another D-cell of its mega-cell.
     Overlapped(usize),
+    /// A D-cell of its mega-cell has its centre outside the world's bounds
+    /// (where the tour could not take the robot).
+    BeyondBounds,
 }
 
 impl StartProblem {
@@ -296,15 +299,22 @@ impl StartProblem {
                 "lies in a mega-cell of grid `{grid}` that obstacle `{}` overlaps, which STC cannot cover",
                 world.obstacles.get(o).map_or("?", |o| o.name.as_str())
             ),
+            StartProblem::BeyondBounds => format!(
+                "lies in a mega-cell of grid `{grid}` that reaches past the world's bounds: a D-cell whose centre lies outside `bounds` counts as blocked"
+            ),
         }
     }
 }
 
-/// The obstacles of the world other than the grid being covered, with
-/// their bounding boxes: each blocks the D-cells it overlaps
-/// ([`box_overlaps`]: more than touching, or a wall meeting the D-cell).
+/// What blocks D-cells besides the grid's own cells: the other obstacles
+/// of the world, with their bounding boxes (each blocks the D-cells it
+/// overlaps, [`box_overlaps`]: more than touching, or a wall meeting the
+/// D-cell), and the world's bounds (a D-cell whose centre lies outside
+/// them is blocked: the tour visits D-cell centres, and the robot's
+/// reference point must stay in `bounds`, SPEC 3.0).
 pub struct Others<'w> {
     items: Vec<(usize, &'w Shape, Aabb)>,
+    bounds: Option<Aabb>,
 }
 
 impl<'w> Others<'w> {
@@ -317,12 +327,23 @@ impl<'w> Others<'w> {
             .filter(|(_, o)| !matches!(&o.shape, Shape::Grid(g) if std::ptr::eq(g, on)))
             .map(|(i, o)| (i, &o.shape, o.shape.bounding_box()))
             .collect();
-        Others { items }
+        Others {
+            items,
+            bounds: Some(world.bounds),
+        }
     }
 
-    /// No obstacle besides the grid.
+    /// No obstacle besides the grid, and no bounds.
     pub fn none() -> Self {
-        Others { items: Vec::new() }
+        Others {
+            items: Vec::new(),
+            bounds: None,
+        }
+    }
+
+    /// Whether a D-cell centred at `c` lies outside the bounds.
+    fn beyond_bounds(&self, c: Point) -> bool {
+        self.bounds.is_some_and(|b| !b.contains(c))
     }
 
     /// The walls among them: (obstacle, a, b).
@@ -417,7 +438,16 @@ pub fn start_cell(
         return Err(StartProblem::MegaCellBlocked);
     }
     for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-        if let Some(o) = others.blocker(&square(grid.origin, d, a + di, b + dj)) {
+        let cell = square(grid.origin, d, a + di, b + dj);
+        // As `Cells::dcell_center` computes it (the tour's points).
+        let centre = Point::new(
+            grid.origin.x + ((a + di) as f64 + 0.5) * d,
+            grid.origin.y + ((b + dj) as f64 + 0.5) * d,
+        );
+        if others.beyond_bounds(centre) {
+            return Err(StartProblem::BeyondBounds);
+        }
+        if let Some(o) = others.blocker(&cell) {
             return Err(StartProblem::Overlapped(o));
         }
     }
@@ -481,6 +511,15 @@ impl Cells {
             mega: Vec::new(),
             fenced: vec![0; (cols / 2) * (rows / 2)],
         };
+        if others.bounds.is_some() {
+            for j in 0..rows {
+                for i in 0..cols {
+                    if others.beyond_bounds(cells.dcell_center(i, j)) {
+                        cells.dcells[j * cols + i] = 0;
+                    }
+                }
+            }
+        }
         // Each other obstacle is tested against the D-cells under its box.
         for &(_, shape, bb) in &others.items {
             let is = index_range(bb.min.x, bb.max.x, cells.origin.x, cells.d, cols);

@@ -29,6 +29,7 @@
 use std::any::Any;
 use std::time::Instant;
 
+use crate::diagnostics::Diag;
 use crate::geometry::collide::ObstacleIndex;
 use crate::geometry::{Aabb, Config, Point, RobotShape};
 use crate::scenario::schema::{MetricSpec, ParamSpec, RobotKind, Word, at_least, num};
@@ -36,8 +37,8 @@ use crate::scenario::{Limits, PlanArgs};
 use crate::word_enum;
 
 use super::astar::{
-    CostMetric, DIRS, GridLattice, Heuristic, SearchBuffers, SearchConfig, grown_obstacles,
-    lattice_path, search, search_with, snap_ends,
+    CostMetric, GridLattice, Heuristic, SearchBuffers, SearchConfig, grown_obstacles, lattice_path,
+    search, search_with, snap_ends, step_costs,
 };
 use super::lattice::{LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
 use super::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
@@ -68,6 +69,12 @@ pub static PLANNER: Planner = Planner {
             at_least(1.0, true),
             num(1.0, "1"),
             "sensing range in cells (Chebyshev)",
+        ),
+        ParamSpec::word(
+            "heuristic",
+            Heuristic::WORDS,
+            "lattice",
+            "the searches' heuristic: `lattice` (the exact obstacle-free lattice cost), `metric` (the Euclidean distance; not for `dstar_lite`) or `zero`",
         ),
     ],
     metrics: &[
@@ -104,16 +111,36 @@ pub struct Online {
     pub strategy: Strategy,
     /// Sensing range in cells (Chebyshev), at least 1.
     pub sense: usize,
+    /// The heuristic of the A* strategies; D* Lite takes `lattice` (its
+    /// exact keys) or `zero`.
+    pub heuristic: Heuristic,
 }
 
 fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
     let connect = check_connect(args, false);
     let lattice = check_lattice(args, 1.0)?;
+    let strategy = args.word("strategy");
+    let heuristic = args.word("heuristic");
+    if strategy == Strategy::DStarLite && heuristic == Heuristic::Metric {
+        let span = args.span("heuristic");
+        args.error(
+            Diag::error(
+                "scen::analyze::out_of_range",
+                "`dstar_lite` does not take `heuristic metric`",
+            )
+            .at(span, "not with `strategy dstar_lite`")
+            .help(
+                "D* Lite compares exact lattice lengths (a + b·√2): use `heuristic lattice` (the default) or `zero`",
+            ),
+        );
+        return None;
+    }
     Some(Box::new(Online {
         lattice,
         connect: connect?,
-        strategy: args.word("strategy"),
+        strategy,
         sense: args.num("sense").clamp(1.0, 1e9) as usize,
+        heuristic,
     }))
 }
 
@@ -284,7 +311,7 @@ pub(crate) fn navigate_logged(
         }
     };
     let heuristic = if options.heuristic {
-        Heuristic::Metric
+        settings.heuristic
     } else {
         Heuristic::Zero
     };
@@ -383,7 +410,7 @@ enum End {
     GaveUp,
 }
 
-/// The moves of the lattice: how many directions of [`DIRS`] and their
+/// The moves of the lattice: how many directions of [`DIRS`](super::astar::DIRS) and their
 /// costs.
 #[derive(Clone, Copy)]
 struct Moves {
@@ -444,12 +471,7 @@ impl<'a> Rover<'a> {
     ) -> Self {
         let spec = truth.spec;
         let dirs = if cfg.connect == 4 { 4 } else { 8 };
-        let cost = DIRS.map(|(dx, dy)| {
-            cfg.cost.between(
-                Point::origin(),
-                Point::new(dx as f64 * spec.cell, dy as f64 * spec.cell),
-            )
-        });
+        let cost = step_costs(cfg.cost, spec.cell);
         let log = traced.then(|| Log {
             online: OnlineTrace {
                 cell: spec.cell,
@@ -541,8 +563,8 @@ impl<'a> Rover<'a> {
         for &n in nodes {
             self.sensed[n] = true;
             self.sensed_count += 1;
-            let free = self.truth.free[n];
-            belief.free[n] = free;
+            let free = self.truth.free.get(n);
+            belief.free.set(n, free);
             blocked |= !free;
             if let Some(log) = &mut self.log {
                 if log.sensed_points < MAX_TRACED_POINTS {
@@ -556,14 +578,14 @@ impl<'a> Rover<'a> {
             }
         }
         for &n in nodes {
-            if !self.truth.free[n] {
+            if !self.truth.free.get(n) {
                 continue;
             }
             for d in 0..self.moves.dirs {
                 let Some(m) = self.truth.neighbour(n, d) else {
                     continue;
                 };
-                if self.sensed[m] && self.truth.free[m] {
+                if self.sensed[m] && self.truth.free.get(m) {
                     let ok = self.truth.edge_free(self.index, n, d, m);
                     belief.set_edge(n, d, m, ok);
                     blocked |= !ok;
@@ -911,7 +933,7 @@ mod tests {
                 cost: CostMetric::Euclid,
                 turn_cost: 0.0,
                 weight: 1.0,
-                heuristic: Heuristic::Metric,
+                heuristic: Heuristic::Lattice,
             };
             settings.plan(&task(&world, &robot, start, goal, Limits::default()))
         }
@@ -1052,6 +1074,7 @@ mod tests {
             connect,
             strategy,
             sense,
+            heuristic: Heuristic::Lattice,
         };
         let (out, trace) = navigate_logged(
             &task(world, robot, start, goal, limits),

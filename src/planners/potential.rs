@@ -96,6 +96,10 @@ pub static PLANNER: Planner = Planner {
         ),
         MetricSpec::num("minima", "local minima detected"),
         MetricSpec::num("escapes", "random-walk jumps taken"),
+        MetricSpec::num(
+            "traveled",
+            "length of the motion executed: the path, or the walk so far when it stopped short",
+        ),
     ],
     limits: &["steps", "expansions", "time"],
     needs_goal: true,
@@ -520,10 +524,18 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         .insert("minima".into(), MetricValue::Num(minima as f64));
     out.extra
         .insert("escapes".into(), MetricValue::Num(escapes as f64));
-    if !found {
-        out.trajectory = path.clone();
+    // As the runner measures `length` (the same sum when found).
+    let traveled: f64 = path
+        .windows(2)
+        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
+        .sum();
+    out.extra
+        .insert("traveled".into(), MetricValue::Num(traveled));
+    if found {
+        out.path = Some(path);
+    } else {
+        out.trajectory = path;
     }
-    out.path = found.then_some(path);
     let b = w.bounds;
     out.layers = field_layers(&trace, 0.03 * b.width().max(b.height()));
     out

@@ -62,6 +62,15 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     obj.insert("robot".into(), robot.map(|r| r.name.clone()).into());
     obj.insert("metrics".into(), metrics_json(&run.metrics));
     obj.insert("path".into(), path);
+    // A run that stopped short of the goal: the motion it executed (SPEC 3).
+    let trajectory = &run.outcome.trajectory;
+    if run.outcome.path.is_none() && !trajectory.is_empty() {
+        let poses = trajectory
+            .iter()
+            .map(|&c| config_json(c, rotates))
+            .collect();
+        obj.insert("trajectory".into(), Value::Array(poses));
+    }
     // A plan with `drive`: its driven trajectory, `[t, x, y, θ]` per pose
     // (seconds, radians), thinned like the viewer's; null without a path.
     if plan.params.get("drive").is_some() {
@@ -318,6 +327,27 @@ mod tests {
         assert_eq!(
             doc["plans"]["alpha"]["path"],
             serde_json::json!([[1.0, 2.0]])
+        );
+    }
+
+    #[test]
+    fn a_run_that_stopped_short_lists_its_trajectory() {
+        let mut report = report();
+        let walked = vec![Config::new(0.0, 0.0, 0.0), Config::new(0.5, 0.25, 0.0)];
+        report.plans[0].outcome.trajectory = walked;
+        let doc = to_json(&report);
+        let alpha = &doc["plans"]["alpha"];
+        assert_eq!(alpha["path"], Value::Null);
+        assert_eq!(
+            alpha["trajectory"],
+            serde_json::json!([[0.0, 0.0], [0.5, 0.25]])
+        );
+        // Plans with a path, or without any motion, have no such key.
+        assert!(doc["plans"]["zeta"].get("trajectory").is_none());
+        assert!(
+            to_json(&self::report())["plans"]["alpha"]
+                .get("trajectory")
+                .is_none()
         );
     }
 

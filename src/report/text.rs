@@ -43,10 +43,22 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
                 "NOT collision-free"
             };
             format!("found, {valid}")
-        } else if m.get("gave_up") == Some(&MetricValue::Bool(true)) {
-            "not found (gave up: a limit was reached)".to_string()
         } else {
-            "not found".to_string()
+            let why = if m.get("gave_up") == Some(&MetricValue::Bool(true)) {
+                " (gave up: a limit was reached)"
+            } else {
+                ""
+            };
+            // A run that stopped short still moved the robot (SPEC 3).
+            let motion = match (
+                run.outcome.trajectory.is_empty(),
+                m.get("collision_free") == Some(&MetricValue::Bool(true)),
+            ) {
+                (true, _) => "",
+                (false, true) => "; the motion executed is collision-free",
+                (false, false) => "; the motion executed is NOT collision-free",
+            };
+            format!("not found{why}{motion}")
         };
         let _ = writeln!(
             s,

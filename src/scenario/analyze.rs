@@ -17,7 +17,7 @@ use crate::planners::registry::{self, PLANNERS, Planner};
 
 use super::loader::{LoadFailure, MAX_MAP_BYTES, SourcedStmt, read_text};
 use super::movingai::{grid_char, parse_movingai};
-use super::schema::{self, MetricType, RobotKind, ValueSpec, did_you_mean};
+use super::schema::{self, MAX_MAGNITUDE, MetricType, RobotKind, ValueSpec, did_you_mean};
 use super::{Limits, Param, ParamValue, Params, Plan, PlanArgs, Robot, Scenario};
 
 mod bench;
@@ -157,8 +157,21 @@ impl Analyzer {
 
     // ----------------------------------------------------------------- values
 
+    /// A coordinate, length, radius or cell size: a number within ±1e9
+    /// (SPEC 2.1).
     fn expect_number(&mut self, v: &Value, what: &str) -> Option<f64> {
         match &v.kind {
+            ValueKind::Number(x) if x.abs() > MAX_MAGNITUDE => {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::number_too_large",
+                        format!("{what} is {}, beyond ±1e9", short_number(*x)),
+                    )
+                    .at(v.span, "more than 1e9 in magnitude")
+                    .help(MAGNITUDE_HELP),
+                );
+                None
+            }
             ValueKind::Number(x) => Some(*x),
             ValueKind::Angle(_) => {
                 self.error(
@@ -575,6 +588,7 @@ impl Analyzer {
             Some(v) => self.expect_point(v, "the grid's `origin`")?,
             None => Point::origin(),
         };
+        let cell_span = g.cell.as_ref().map_or(span, |v| v.span);
         let (width, height, cells) = match (&g.file, &g.rows) {
             (Some(f), None) => self.movingai_map(f)?,
             (None, Some(rows)) => self.inline_rows(rows, span)?,
@@ -603,13 +617,30 @@ impl Analyzer {
                 return None;
             }
         };
-        Some(Grid {
+        let grid = Grid {
             cell,
             origin,
             width,
             height,
             cells,
-        })
+        };
+        let end = grid.extent().max;
+        if end.x.abs() > MAX_MAGNITUDE || end.y.abs() > MAX_MAGNITUDE {
+            self.error(
+                Diag::error(
+                    "scen::analyze::grid_too_large",
+                    format!(
+                        "the grid reaches ({}, {}), beyond ±1e9",
+                        short_number(end.x),
+                        short_number(end.y)
+                    ),
+                )
+                .at(cell_span, format!("{width} × {height} cells of side {cell}"))
+                .help("a grid must lie within ±1e9 (SPEC 2.1): use a smaller `cell`, or move its `origin` towards (0, 0)"),
+            );
+            return None;
+        }
+        Some(grid)
     }
 
     fn inline_rows(
@@ -1571,6 +1602,18 @@ impl Analyzer {
                 )),
             );
         }
+    }
+}
+
+/// The help line of a number beyond ±1e9.
+const MAGNITUDE_HELP: &str = "coordinates, lengths, radii and cell sizes must lie within ±1e9, where f64 geometry keeps the precision the validator needs (1e-9): use larger units, or move the scene towards (0, 0)";
+
+/// `x` as a user would write it: `2147483648`, `1e308`.
+fn short_number(x: f64) -> String {
+    if x.abs() >= 1e15 {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
     }
 }
 

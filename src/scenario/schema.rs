@@ -35,6 +35,11 @@ impl RobotKind {
     }
 }
 
+/// The largest magnitude of a coordinate, length, radius, cell size or
+/// tolerance (SPEC 2.1): beyond it f64 geometry loses the precision the
+/// validator needs (its contact tolerance is 1e-9).
+pub const MAX_MAGNITUDE: f64 = 1e9;
+
 /// The type and range of a parameter's value.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ValueSpec {
@@ -82,7 +87,9 @@ impl ValueSpec {
             } => {
                 let what = if *integer { "an integer" } else { "a number" };
                 let lo = if *min_open { ">" } else { ">=" };
-                if max.is_finite() {
+                if *max == MAX_MAGNITUDE {
+                    format!("{what} {lo} {min} and <= 1e9")
+                } else if max.is_finite() {
                     format!("{what} {lo} {min} and <= {max}")
                 } else {
                     format!("{what} {lo} {min}")
@@ -238,22 +245,23 @@ impl ParamSpec {
     }
 }
 
-/// A number > 0.
+/// A number > 0, at most [`MAX_MAGNITUDE`] (lengths, gains, counts: no
+/// parameter needs more, and SPEC 2.1 refuses larger lengths).
 pub const fn positive(integer: bool) -> ValueSpec {
     ValueSpec::Number {
         min: 0.0,
         min_open: true,
-        max: f64::INFINITY,
+        max: MAX_MAGNITUDE,
         integer,
     }
 }
 
-/// A number ≥ `min`.
+/// A number ≥ `min`, at most [`MAX_MAGNITUDE`].
 pub const fn at_least(min: f64, integer: bool) -> ValueSpec {
     ValueSpec::Number {
         min,
         min_open: false,
-        max: f64::INFINITY,
+        max: MAX_MAGNITUDE,
         integer,
     }
 }

@@ -111,7 +111,7 @@ syn keyword scenParamKey contained dt max_speed max_turn_rate gain turn_gain rea
 " `limit expansions N | steps N | time DURATION | cells N | iterations N`
 syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
-syn keyword scenWord contained center corner auto euclid l1 metric zero yes no
+syn keyword scenWord contained center corner auto euclid l1 lattice metric zero yes no
 syn keyword scenWord contained backtrack shortcut replan dstar_lite none random_walk max sum
 syn keyword scenWord contained uniform gaussian bridge first smooth
 syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/

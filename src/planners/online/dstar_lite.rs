@@ -6,7 +6,7 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-use super::{End, GridLattice, LatticeSpec, Moves, Rover};
+use super::{End, GridLattice, Heuristic, LatticeSpec, Moves, Rover};
 
 /// A length a + b·√2 in cells, exact: the cost of any walk on the lattice
 /// (axis moves cost 1, diagonal moves √2) and of the heuristics below.
@@ -321,7 +321,13 @@ impl DStarLite {
 pub(super) fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: usize) -> End {
     let spec = rover.spec;
     let moves = rover.moves;
-    let mut ds = DStarLite::new(spec, moves.dirs == 8, rover.cfg.heuristic, goal, rover.pos);
+    let mut ds = DStarLite::new(
+        spec,
+        moves.dirs == 8,
+        rover.cfg.heuristic != Heuristic::Zero,
+        goal,
+        rover.pos,
+    );
     let mut last = rover.pos;
     rover.replans = 1;
     if let Err(end) = ds.compute(belief, rover) {
