@@ -7,10 +7,13 @@ use crate::diagnostics::{Span, Spanned};
 
 pub type Ident = Spanned<String>;
 
-/// A parsed file: its statements in source order.
+/// A parsed file: its statements and its comments, each in source order.
 #[derive(Clone, Debug, Default)]
 pub struct File {
     pub statements: Vec<Stmt>,
+    /// Every comment, from its `#` to the end of its line; whitespace and
+    /// comments mean nothing to the language, but the formatter keeps them.
+    pub comments: Vec<Span>,
 }
 
 #[derive(Clone, Debug)]
