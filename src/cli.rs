@@ -1,4 +1,4 @@
-//! The command line: `run`, `check`, `test`, `import`.
+//! The command line: `run`, `check`, `test`, `fmt`, `lsp`, `import`.
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -36,6 +36,10 @@ pub enum Command {
     Check(CheckArgs),
     /// Run every *.scen under the given paths as a regression suite.
     Test(TestArgs),
+    /// Rewrite files in the canonical layout, keeping every comment.
+    Fmt(FmtArgs),
+    /// A Language Server on stdin/stdout (for editors).
+    Lsp,
     /// Convert another format into a scenario.
     Import {
         /// The format (`roadmap`: a SEEDS §D input.txt).
@@ -95,6 +99,15 @@ pub struct TestArgs {
     pub paths: Vec<PathBuf>,
 }
 
+#[derive(Args, Debug)]
+pub struct FmtArgs {
+    /// Files or folders (every `*.scen` under them); none: stdin to stdout.
+    pub files: Vec<PathBuf>,
+    /// Change nothing; list the files that would change and exit 1.
+    #[arg(long)]
+    pub check: bool,
+}
+
 /// Runs the CLI; returns the exit code.
 pub fn main() -> i32 {
     let cli = match Cli::try_parse() {
@@ -121,6 +134,8 @@ pub fn main() -> i32 {
         Command::Run(args) => cmd_run(&args),
         Command::Check(args) => cmd_check(&args),
         Command::Test(args) => cmd_test(&args),
+        Command::Fmt(args) => crate::format::command::run(&args.files, args.check),
+        Command::Lsp => crate::lsp::run(),
         Command::Import { format, file } => cmd_import(&format, &file),
     }
 }

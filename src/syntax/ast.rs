@@ -81,6 +81,12 @@ impl ObstacleKind {
             ObstacleKind::Grid => "grid",
         }
     }
+
+    /// The name of an unnamed obstacle: its kind and its 1-based index
+    /// among the scenario's obstacles (`rect_3`).
+    pub fn unnamed(self, index: usize) -> String {
+        format!("{}_{index}", self.keyword())
+    }
 }
 
 #[derive(Clone, Debug)]

@@ -12,10 +12,36 @@ use crate::diagnostics::{Diag, FileId, Span};
 /// The deepest bracket nesting accepted (`(`, `[` and `{` together).
 const MAX_NESTING: usize = 64;
 
-pub(super) const STATEMENT_KEYWORDS: [&str; 6] =
+/// The keywords that start a statement, as the grammar names them.
+pub(crate) const STATEMENT_KEYWORDS: [&str; 6] =
     ["scenario", "include", "world", "robot", "plan", "expect"];
 
-const WORLD_ITEM_KEYWORDS: [&str; 6] = ["bounds", "rect", "polygon", "segment", "disk", "grid"];
+/// The keywords that start an item of a `world` block.
+pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 6] =
+    ["bounds", "rect", "polygon", "segment", "disk", "grid"];
+
+/// A robot's shapes (`robot NAME SHAPE`), a grid's options, and the words
+/// of `expect` expressions: with the two lists above, every keyword of
+/// grammar/scen.pest (a test checks it), for the language server.
+pub(crate) const ROBOT_SHAPE_KEYWORDS: [&str; 4] = ["point", "disk", "rect", "polygon"];
+pub(crate) const GRID_OPTION_KEYWORDS: [&str; 2] = ["cell", "origin"];
+pub(crate) const EXPRESSION_WORDS: [&str; 5] = ["and", "or", "not", "true", "false"];
+
+/// The statement chunk of `text` that `offset` lies in or after: its start
+/// and keyword (`None` before the first statement).
+pub(crate) fn statement_at(text: &str, offset: usize) -> Option<(usize, &'static str)> {
+    let scan = split_statements(text, 0);
+    let chunk = scan
+        .chunks
+        .iter()
+        .rev()
+        .find(|c| c.start <= offset && c.rule.is_some())?;
+    let keyword = STATEMENT_KEYWORDS
+        .iter()
+        .copied()
+        .find(|k| text[chunk.start..].starts_with(k))?;
+    Some((chunk.start, keyword))
+}
 
 /// A top-level piece of the file: one statement, or leading text that is not one.
 #[derive(Debug)]
@@ -498,6 +524,39 @@ mod tests {
         let (file, _) = parse(broken, 0);
         assert_eq!(file.comments.len(), 1);
         assert_eq!(snippet(broken, file.comments[0]), "# open");
+    }
+
+    #[test]
+    fn the_keyword_lists_are_the_grammars() {
+        let grammar = include_str!("../../grammar/scen.pest");
+        let mut named: Vec<&str> = grammar
+            .lines()
+            .filter_map(|l| l.strip_prefix("kw_")?.split_whitespace().next())
+            .filter(|k| !["true", "false"].contains(k))
+            .collect();
+        named.sort();
+        let mut ours: Vec<&str> = [
+            &STATEMENT_KEYWORDS[..],
+            &WORLD_ITEM_KEYWORDS,
+            &ROBOT_SHAPE_KEYWORDS,
+            &GRID_OPTION_KEYWORDS,
+        ]
+        .concat();
+        ours.sort();
+        ours.dedup();
+        assert_eq!(ours, named);
+        for w in EXPRESSION_WORDS {
+            assert!(grammar.contains(&format!("\"{w}\"")), "{w}");
+        }
+    }
+
+    #[test]
+    fn the_statement_at_an_offset() {
+        let text = "robot r point\nplan p astar r {\n  start (0, 0)\n";
+        assert_eq!(statement_at(text, 0), Some((0, "robot")));
+        assert_eq!(statement_at(text, 20), Some((14, "plan")));
+        assert_eq!(statement_at(text, text.len()), Some((14, "plan")));
+        assert_eq!(statement_at("  # nothing\n", 3), None);
     }
 
     #[test]
