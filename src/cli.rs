@@ -321,9 +321,10 @@ fn cmd_check(args: &CheckArgs) -> i32 {
     code
 }
 
-/// Collects `*.scen` files under `path`, sorted; files whose name starts
-/// with `_` are include-only fragments and are skipped.
-fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
+/// Collects `*.scen` files under `path`, sorted (hidden folders skipped);
+/// files whose name starts with `_` are include-only fragments, skipped
+/// unless `fragments`.
+pub(crate) fn collect_scen(path: &Path, fragments: bool, out: &mut Vec<PathBuf>) {
     if path.is_dir() {
         let Ok(entries) = std::fs::read_dir(path) else {
             return;
@@ -337,12 +338,13 @@ fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
             if e.is_dir() {
                 // `.git` and other hidden folders hold no scenarios.
                 if !hidden {
-                    collect_scen(&e, out);
+                    collect_scen(&e, fragments, out);
                 }
             } else if e.extension().is_some_and(|x| x == "scen")
-                && !e
-                    .file_name()
-                    .is_some_and(|n| n.to_string_lossy().starts_with('_'))
+                && (fragments
+                    || !e
+                        .file_name()
+                        .is_some_and(|n| n.to_string_lossy().starts_with('_')))
             {
                 out.push(e);
             }
@@ -381,7 +383,7 @@ fn cmd_test(args: &TestArgs) -> i32 {
             eprintln!("error: `{}` does not exist", r.display());
             return EXIT_BAD_INPUT;
         }
-        collect_scen(r, &mut files);
+        collect_scen(r, false, &mut files);
     }
     if files.is_empty() {
         eprintln!(

@@ -141,14 +141,14 @@ impl Client {
     }
 
     fn at(&mut self, method: &str, uri: &str, line: u32, character: u32) -> Value {
-        self.request(
-            method,
-            json!({
-                "textDocument": { "uri": uri },
-                "position": { "line": line, "character": character },
-                "context": { "includeDeclaration": true },
-            }),
-        )
+        let mut params = json!({
+            "textDocument": { "uri": uri },
+            "position": { "line": line, "character": character },
+        });
+        if method == "textDocument/references" {
+            params["context"] = json!({ "includeDeclaration": true });
+        }
+        self.request(method, params)
     }
 
     fn labels(&mut self, uri: &str, line: u32, character: u32) -> Vec<String> {
@@ -181,7 +181,7 @@ const MAIN: &str = "\
 include \"_robots.scen\"
 world {
   bounds (0, 0) (10, 10)
-  grid G cell 1 origin (0, 0) { \"....\" }
+  grid G cell 1 origin (0, 0) { \"....\" \"....\" }
 }
 plan p astar dot {
   start (1, 1)
@@ -330,7 +330,7 @@ fn the_server_answers_every_request_exactly() {
         .collect();
     assert_eq!(names, [("world", 3), ("p", 12), ("c", 12)]);
     assert_eq!(symbols[0]["children"][0]["name"], "G");
-    assert_eq!(symbols[0]["children"][0]["range"], range(3, 2, 3, 38));
+    assert_eq!(symbols[0]["children"][0]["range"], range(3, 2, 3, 47));
     assert_eq!(symbols[1]["selectionRange"], range(5, 5, 5, 6));
 
     // Formatting: the same as `scen fmt`.
@@ -427,7 +427,7 @@ fn half_typed_and_broken_text_never_stops_the_server() {
         ("include \"_a.scen\"\n", Some("scen::load::include_cycle")),
         (
             "\u{0}\u{1}\u{7f}\u{fffd}PK\u{3}\u{4}\n\u{feff}(((((",
-            Some("scen::syntax::not_a_statement"),
+            Some("scen::syntax::expected"),
         ),
         ("expect p.", Some("scen::syntax::expected")),
         (
@@ -476,7 +476,7 @@ fn half_typed_and_broken_text_never_stops_the_server() {
     );
     c.diagnostics(&main);
     assert_eq!(c.labels(&main, 3, 8), ["expansions", "time", "cells"]);
-    assert_eq!(c.labels(&main, 1, 15), ["r"]);
+    assert_eq!(c.labels(&main, 1, 13), ["r"]);
     // Recovered as soon as the text is fixed.
     c.change(&main, 21, json!([{ "text": MAIN }]));
     assert_eq!(c.diagnostics(&main), json!([]));

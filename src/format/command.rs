@@ -6,7 +6,7 @@ use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
 use super::{FormatError, format_text};
-use crate::cli::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, render_diags};
+use crate::cli::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, collect_scen, render_diags};
 use crate::diagnostics::SourceMap;
 
 /// Runs `scen fmt`; returns the exit code: 0 when every file is (now) in
@@ -22,7 +22,7 @@ pub fn run(paths: &[PathBuf], check: bool) -> i32 {
             eprintln!("error: `{}` does not exist", path.display());
             return EXIT_BAD_INPUT;
         }
-        collect(path, &mut files);
+        collect_scen(path, true, &mut files);
     }
     let mut code = EXIT_OK;
     for file in &files {
@@ -95,32 +95,6 @@ fn formatted(file: &Path, text: &str) -> Option<String> {
                 file.display()
             );
             None
-        }
-    }
-}
-
-/// `path` itself, or every `*.scen` file under it (hidden folders skipped),
-/// sorted.
-fn collect(path: &Path, out: &mut Vec<PathBuf>) {
-    if !path.is_dir() {
-        out.push(path.to_path_buf());
-        return;
-    }
-    let Ok(entries) = std::fs::read_dir(path) else {
-        return;
-    };
-    let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    entries.sort();
-    for entry in entries {
-        let hidden = entry
-            .file_name()
-            .is_some_and(|n| n.to_string_lossy().starts_with('.'));
-        if entry.is_dir() {
-            if !hidden {
-                collect(&entry, out);
-            }
-        } else if entry.extension().is_some_and(|x| x == "scen") {
-            out.push(entry);
         }
     }
 }

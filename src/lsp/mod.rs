@@ -107,6 +107,7 @@ fn serve(connection: &Connection) -> Result<(), Box<dyn std::error::Error>> {
         encoding,
         generation: 0,
         published: 0,
+        closed: Vec::new(),
     };
     while let Ok(message) = connection.receiver.recv() {
         let mut next = Some(message);
@@ -148,6 +149,8 @@ struct Server {
     generation: u64,
     /// The generation whose diagnostics were published.
     published: u64,
+    /// Documents closed since then, whose diagnostics are to be cleared.
+    closed: Vec<Url>,
 }
 
 /// The file a document's URI names (a made-up one for `untitled:` URIs).
@@ -210,6 +213,7 @@ impl Server {
                     n.extract::<lsp_types::DidCloseTextDocumentParams>(DidCloseTextDocument::METHOD)
                 {
                     self.docs.remove(&p.text_document.uri);
+                    self.closed.push(p.text_document.uri);
                     self.generation += 1;
                 }
             }
@@ -434,7 +438,14 @@ impl Server {
         }
         self.published = self.generation;
         let uris: Vec<Url> = self.docs.keys().cloned().collect();
-        let mut out = Vec::new();
+        let mut out: Vec<Notification> = std::mem::take(&mut self.closed)
+            .into_iter()
+            .filter(|uri| !self.docs.contains_key(uri))
+            .map(|uri| {
+                let params = PublishDiagnosticsParams::new(uri, Vec::new(), None);
+                Notification::new(PublishDiagnostics::METHOD.into(), params)
+            })
+            .collect();
         for uri in uris {
             let encoding = self.encoding;
             let diagnostics = catch_unwind(AssertUnwindSafe(|| {
