@@ -32,6 +32,10 @@ cargo test --release "$@"
 # target/release/scen for the problem matcher's test).
 SCEN="$PWD/target/release/scen" bash editors/test.sh
 
+# The committed scenarios are in the canonical layout (`scen fmt`; prints
+# the files that would change).
+"$PWD/target/release/scen" fmt --check scenarios/
+
 # The scenario suite as a user runs it (also run inside the tests above);
 # it ends with the line `N passed, M failed`. The binary cargo test built:
 # `cargo run` would build the dependencies again without the features the

@@ -1,4 +1,4 @@
-//! The command line: `run`, `check`, `test`, `import`.
+//! The command line: `run`, `check`, `test`, `fmt`, `lsp`, `import`.
 
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -41,6 +41,10 @@ pub enum Command {
     /// Run the benches of scenarios: tables, statistics, checks
     /// (`scen bench merge PART.jsonl...` combines the parts of `--shard`).
     Bench(BenchArgs),
+    /// Rewrite files in the canonical layout, keeping every comment.
+    Fmt(FmtArgs),
+    /// A Language Server on stdin/stdout (for editors).
+    Lsp,
     /// Convert another format into a scenario.
     Import {
         /// The format (`roadmap`: a SEEDS §D input.txt).
@@ -143,6 +147,15 @@ pub struct BenchArgs {
     pub quiet: bool,
 }
 
+#[derive(Args, Debug)]
+pub struct FmtArgs {
+    /// Files or folders (every `*.scen` under them); none: stdin to stdout.
+    pub files: Vec<PathBuf>,
+    /// Change nothing; list the files that would change and exit 1.
+    #[arg(long)]
+    pub check: bool,
+}
+
 /// Runs the CLI; returns the exit code.
 pub fn main() -> i32 {
     let cli = match Cli::try_parse() {
@@ -170,6 +183,8 @@ pub fn main() -> i32 {
         Command::Check(args) => cmd_check(&args),
         Command::Test(args) => cmd_test(&args),
         Command::Bench(args) => bench::cmd_bench(&args),
+        Command::Fmt(args) => crate::format::command::run(&args.files, args.check),
+        Command::Lsp => crate::lsp::run(),
         Command::Import { format, file } => cmd_import(&format, &file),
     }
 }
@@ -355,9 +370,10 @@ fn cmd_check(args: &CheckArgs) -> i32 {
     code
 }
 
-/// Collects `*.scen` files under `path`, sorted; files whose name starts
-/// with `_` are include-only fragments and are skipped.
-fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
+/// Collects `*.scen` files under `path`, sorted (hidden folders skipped);
+/// files whose name starts with `_` are include-only fragments, skipped
+/// unless `fragments`.
+pub(crate) fn collect_scen(path: &Path, fragments: bool, out: &mut Vec<PathBuf>) {
     if path.is_dir() {
         let Ok(entries) = std::fs::read_dir(path) else {
             return;
@@ -371,12 +387,13 @@ fn collect_scen(path: &Path, out: &mut Vec<PathBuf>) {
             if e.is_dir() {
                 // `.git` and other hidden folders hold no scenarios.
                 if !hidden {
-                    collect_scen(&e, out);
+                    collect_scen(&e, fragments, out);
                 }
             } else if e.extension().is_some_and(|x| x == "scen")
-                && !e
-                    .file_name()
-                    .is_some_and(|n| n.to_string_lossy().starts_with('_'))
+                && (fragments
+                    || !e
+                        .file_name()
+                        .is_some_and(|n| n.to_string_lossy().starts_with('_')))
             {
                 out.push(e);
             }
@@ -423,7 +440,7 @@ fn cmd_test(args: &TestArgs) -> i32 {
             eprintln!("error: `{}` does not exist", r.display());
             return EXIT_BAD_INPUT;
         }
-        collect_scen(r, &mut files);
+        collect_scen(r, false, &mut files);
     }
     if files.is_empty() {
         eprintln!(

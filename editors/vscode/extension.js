@@ -1,17 +1,31 @@
-// The `scen: check` task: runs `scen check --format json` on a .scen file;
-// the `$scen` problem matcher (package.json) turns its diagnostics, one JSON
-// object per line, into problems. Everything else of the extension
-// (colouring, brackets, comments, snippets) is declarative.
+// The scen extension: the language server `scen lsp` (diagnostics as you
+// type, completion, hover, definition, references, outline, formatting)
+// through vscode-languageclient; when `scen` is not found (or
+// `scen.server.enable` is off), the `scen: check` task, whose `$scen`
+// problem matcher (package.json) shows `scen check --format json`'s
+// diagnostics. The task is there in both cases. Colouring, brackets,
+// comments and snippets are declarative.
 'use strict';
 
+const childProcess = require('child_process');
 const vscode = require('vscode');
 
 const TYPE = 'scen';
 
+/** The `scen` program of the settings. */
+function program() {
+  return vscode.workspace.getConfiguration('scen').get('path') || 'scen';
+}
+
+/** Whether `scen` runs and knows `lsp` (an older `scen` does not). */
+function hasServer(command) {
+  const probe = childProcess.spawnSync(command, ['lsp', '--help'], { timeout: 10000 });
+  return probe.status === 0;
+}
+
 /** The task for a definition `{ type: "scen", file }`. */
 function checkTask(definition, scope) {
-  const program = vscode.workspace.getConfiguration('scen').get('path') || 'scen';
-  const execution = new vscode.ShellExecution(program, [
+  const execution = new vscode.ShellExecution(program(), [
     'check',
     '--format',
     'json',
@@ -22,6 +36,8 @@ function checkTask(definition, scope) {
   task.presentationOptions = { reveal: vscode.TaskRevealKind.Silent, clear: true };
   return task;
 }
+
+let client;
 
 function activate(context) {
   context.subscriptions.push(
@@ -34,8 +50,35 @@ function activate(context) {
         task.definition.file ? checkTask(task.definition, task.scope) : undefined,
     }),
   );
+  const command = program();
+  if (vscode.workspace.getConfiguration('scen').get('server.enable') === false) {
+    return;
+  }
+  if (!hasServer(command)) {
+    vscode.window.showInformationMessage(
+      `scen: \`${command} lsp\` did not start; errors are shown by the task "scen: check". ` +
+        'Put `scen` on PATH or set `scen.path`.',
+    );
+    return;
+  }
+  const { LanguageClient } = require('vscode-languageclient/node');
+  client = new LanguageClient(
+    'scen',
+    'scen language server',
+    { command, args: ['lsp'] },
+    {
+      documentSelector: [
+        { scheme: 'file', language: 'scen' },
+        { scheme: 'untitled', language: 'scen' },
+      ],
+    },
+  );
+  context.subscriptions.push(client);
+  return client.start();
 }
 
-function deactivate() {}
+function deactivate() {
+  return client ? client.stop() : undefined;
+}
 
-module.exports = { activate, deactivate, checkTask };
+module.exports = { activate, deactivate, checkTask, hasServer };

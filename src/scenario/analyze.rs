@@ -458,7 +458,7 @@ impl Analyzer {
                                 }
                                 n.value.clone()
                             }
-                            None => format!("{}_{}", o.kind.value.keyword(), index),
+                            None => o.kind.value.unnamed(index),
                         };
                         if let Some(shape) = self.obstacle_shape(o) {
                             obstacles.push(Obstacle { name, shape });

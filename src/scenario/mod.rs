@@ -4,6 +4,7 @@
 
 mod analyze;
 mod args;
+pub mod grouping;
 pub mod loader;
 pub mod movingai;
 pub mod schema;
@@ -20,7 +21,7 @@ use crate::syntax::ast::Expr;
 pub(crate) use analyze::analyze;
 pub use analyze::{AGGREGATES, BENCH_KEYS};
 pub use args::PlanArgs;
-pub use loader::load;
+pub use loader::{load, load_with};
 
 /// A fully analysed scenario, ready to run.
 #[derive(Clone, Debug)]

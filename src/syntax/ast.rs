@@ -7,10 +7,13 @@ use crate::diagnostics::{Span, Spanned};
 
 pub type Ident = Spanned<String>;
 
-/// A parsed file: its statements in source order.
+/// A parsed file: its statements and its comments, each in source order.
 #[derive(Clone, Debug, Default)]
 pub struct File {
     pub statements: Vec<Stmt>,
+    /// Every comment, from its `#` to the end of its line; whitespace and
+    /// comments mean nothing to the language, but the formatter keeps them.
+    pub comments: Vec<Span>,
 }
 
 #[derive(Clone, Debug)]
@@ -88,6 +91,12 @@ impl ObstacleKind {
             ObstacleKind::Disk => "disk",
             ObstacleKind::Grid => "grid",
         }
+    }
+
+    /// The name of an unnamed obstacle: its kind and its 1-based index
+    /// among the scenario's obstacles (`rect_3`).
+    pub fn unnamed(self, index: usize) -> String {
+        format!("{}_{index}", self.keyword())
     }
 }
 

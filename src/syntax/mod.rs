@@ -14,4 +14,9 @@ mod syntax_error;
 #[cfg(test)]
 mod testing;
 
+pub(crate) use builder::UNIT_WORDS;
 pub use parser::parse;
+pub(crate) use scanner::{
+    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token,
+    TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
+};

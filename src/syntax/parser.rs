@@ -25,7 +25,7 @@ use rayon::prelude::*;
 
 use super::ast::{self, Stmt};
 use super::builder::{Builder, P};
-use super::scanner::{Chunk, split_statements};
+use super::scanner::{Chunk, Scan, split_statements};
 use super::syntax_error::{not_a_statement, syntax_error};
 use crate::diagnostics::{Diag, FileId, Span, sort_diags};
 
@@ -34,14 +34,14 @@ use crate::diagnostics::{Diag, FileId, Span, sort_diags};
 struct ScenParser;
 
 /// Parses one file. Returns the statements that parsed and every error found,
-/// sorted by position.
+/// sorted by position, and the file's comments.
 ///
 /// When the diagnostics contain errors the file is incomplete: statements
 /// that failed to parse are missing, and a statement with a bad literal (an
 /// out-of-range number, an unknown unit or escape) is kept with a placeholder
 /// in its place. An empty file parses to no statements and no error.
 pub fn parse(text: &str, file: FileId) -> (ast::File, Vec<Diag>) {
-    let chunks = split_statements(text, file);
+    let Scan { chunks, comments } = split_statements(text, file);
     let units = work_units(&chunks);
     let parse_unit = |unit: &Range<usize>| {
         let mut parser = FileParser::new(text, file);
@@ -65,6 +65,7 @@ pub fn parse(text: &str, file: FileId) -> (ast::File, Vec<Diag>) {
     (
         ast::File {
             statements: parsed.statements,
+            comments,
         },
         parsed.diags,
     )
@@ -342,7 +343,7 @@ mod tests {
     /// The AST and diagnostics of `text`, parsing every chunk whole.
     fn parse_without_cutting(text: &str) -> (ast::File, Vec<Diag>) {
         let mut parser = FileParser::new(text, 0);
-        for chunk in split_statements(text, 0) {
+        for chunk in split_statements(text, 0).chunks {
             let chunk = chunk.uncut();
             parser.unit(std::slice::from_ref(&chunk));
         }
@@ -350,13 +351,14 @@ mod tests {
         (
             ast::File {
                 statements: parser.statements,
+                comments: Vec::new(),
             },
             parser.diags,
         )
     }
 
     fn assert_same_as_uncut(text: &str) -> (ast::File, Vec<Diag>) {
-        let chunks = split_statements(text, 0);
+        let chunks = split_statements(text, 0).chunks;
         assert!(
             chunks.iter().any(|c| !c.splits().is_empty()),
             "the test needs a cut"

@@ -12,11 +12,37 @@ use crate::diagnostics::{Diag, FileId, Span};
 /// The deepest bracket nesting accepted (`(`, `[` and `{` together).
 const MAX_NESTING: usize = 64;
 
-pub(super) const STATEMENT_KEYWORDS: [&str; 7] = [
+/// The keywords that start a statement, as the grammar names them.
+pub(crate) const STATEMENT_KEYWORDS: [&str; 7] = [
     "scenario", "include", "world", "robot", "plan", "expect", "bench",
 ];
 
-const WORLD_ITEM_KEYWORDS: [&str; 6] = ["bounds", "rect", "polygon", "segment", "disk", "grid"];
+/// The keywords that start an item of a `world` block.
+pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 6] =
+    ["bounds", "rect", "polygon", "segment", "disk", "grid"];
+
+/// A robot's shapes (`robot NAME SHAPE`), a grid's options, and the words
+/// of `expect` expressions: with the two lists above, every keyword of
+/// grammar/scen.pest (a test checks it), for the language server.
+pub(crate) const ROBOT_SHAPE_KEYWORDS: [&str; 4] = ["point", "disk", "rect", "polygon"];
+pub(crate) const GRID_OPTION_KEYWORDS: [&str; 2] = ["cell", "origin"];
+pub(crate) const EXPRESSION_WORDS: [&str; 5] = ["and", "or", "not", "true", "false"];
+
+/// The statement chunk of `text` that `offset` lies in or after: its start
+/// and keyword (`None` before the first statement).
+pub(crate) fn statement_at(text: &str, offset: usize) -> Option<(usize, &'static str)> {
+    let scan = split_statements(text, 0);
+    let chunk = scan
+        .chunks
+        .iter()
+        .rev()
+        .find(|c| c.start <= offset && c.rule.is_some())?;
+    let keyword = STATEMENT_KEYWORDS
+        .iter()
+        .copied()
+        .find(|k| text[chunk.start..].starts_with(k))?;
+    Some((chunk.start, keyword))
+}
 
 /// A top-level piece of the file: one statement, or leading text that is not one.
 #[derive(Debug)]
@@ -106,6 +132,15 @@ fn chunk_rule(keyword: &str) -> Rule {
     }
 }
 
+/// What [`split_statements`] finds: the statement chunks, and every comment.
+#[derive(Debug)]
+pub(super) struct Scan {
+    pub(super) chunks: Vec<Chunk>,
+    /// Each comment from its `#` to the end of its line (a `\r` before the
+    /// newline included), in source order.
+    pub(super) comments: Vec<Span>,
+}
+
 /// Splits `text` into statement chunks; see the module docs.
 ///
 /// A statement keyword starts a chunk when it stands at a word boundary,
@@ -114,9 +149,10 @@ fn chunk_rule(keyword: &str) -> Rule {
 /// names, so `plan world astar rod` stays one statement. Inside an unclosed
 /// block, a statement keyword in the first column also starts a chunk, so a
 /// missing `}` is reported at the block rather than swallowing the file.
-pub(super) fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
+pub(super) fn split_statements(text: &str, file: FileId) -> Scan {
     let bytes = text.as_bytes();
     let mut chunks: Vec<Chunk> = Vec::new();
+    let mut comments: Vec<Span> = Vec::new();
     let mut current: Option<Chunk> = None;
     let mut depth = 0usize;
     let mut open: Vec<usize> = Vec::new();
@@ -125,74 +161,54 @@ pub(super) fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
     // The previous token when it was a word (for the world's split points).
     let mut prev_word: Option<&str> = None;
     let mut last_split = 0;
-    let mut i = 0;
     let finish = |mut chunk: Chunk, open: &mut Vec<usize>, chunks: &mut Vec<Chunk>| {
         if !open.is_empty() {
             chunk.details_mut().unclosed = std::mem::take(open);
         }
         chunks.push(chunk);
     };
-    while i < bytes.len() {
-        let b = bytes[i];
-        match b {
-            b'\n' => {
-                names_to_skip = 0;
-                i += 1;
-                continue;
-            }
-            b' ' | b'\t' | b'\r' | 0x0B | 0x0C => {
-                i += 1;
-                continue;
-            }
-            b'#' => {
-                i = bytes[i..]
-                    .iter()
-                    .position(|&b| b == b'\n')
-                    .map_or(bytes.len(), |k| i + k);
-                continue;
-            }
-            // A byte order mark is ignored at the start of the file only.
-            _ if i == 0 && text.starts_with('\u{FEFF}') => {
-                i += 3;
-                continue;
-            }
-            _ => {}
-        }
-        let token_start = i;
-        let mut word = None;
-        if is_ident_byte(b) {
-            while i < bytes.len() && is_ident_byte(bytes[i]) {
-                i += 1;
-            }
-            let this = &text[token_start..i];
-            word = Some(this);
-            let at_line_start = token_start == 0 || bytes[token_start - 1] == b'\n';
-            let starts_statement = !b.is_ascii_digit()
-                && STATEMENT_KEYWORDS.contains(&this)
-                && prev_byte != b'.'
-                && next_nonblank_byte(bytes, i) != Some(b'.')
-                && ((depth == 0 && names_to_skip == 0) || (depth > 0 && at_line_start));
-            if starts_statement {
-                if let Some(done) = current.take() {
-                    finish(done, &mut open, &mut chunks);
-                }
-                depth = 0;
-                names_to_skip = match this {
-                    "plan" => 3,
-                    "robot" | "bench" => 1,
-                    _ => 0,
-                };
-                current = Some(Chunk::new(token_start, i, Some(chunk_rule(this))));
-                prev_byte = bytes[i - 1];
-                prev_word = Some(this);
-                last_split = token_start;
-                continue;
-            }
-            if depth == 0 {
-                names_to_skip = names_to_skip.saturating_sub(1);
-            }
-        } else {
+    for token in Lexer::new(text) {
+        if token.after_newline {
             names_to_skip = 0;
+        }
+        let (token_start, i) = (token.start, token.end);
+        let b = bytes[token_start];
+        let mut word = None;
+        match token.kind {
+            TokenKind::Comment => {
+                comments.push(Span::new(file, token_start, i));
+                continue;
+            }
+            TokenKind::Word => {
+                let this = &text[token_start..i];
+                word = Some(this);
+                let at_line_start = token_start == 0 || bytes[token_start - 1] == b'\n';
+                let starts_statement = !b.is_ascii_digit()
+                    && STATEMENT_KEYWORDS.contains(&this)
+                    && prev_byte != b'.'
+                    && next_nonblank_byte(bytes, i) != Some(b'.')
+                    && ((depth == 0 && names_to_skip == 0) || (depth > 0 && at_line_start));
+                if starts_statement {
+                    if let Some(done) = current.take() {
+                        finish(done, &mut open, &mut chunks);
+                    }
+                    depth = 0;
+                    names_to_skip = match this {
+                        "plan" => 3,
+                        "robot" | "bench" => 1,
+                        _ => 0,
+                    };
+                    current = Some(Chunk::new(token_start, i, Some(chunk_rule(this))));
+                    prev_byte = bytes[i - 1];
+                    prev_word = Some(this);
+                    last_split = token_start;
+                    continue;
+                }
+                if depth == 0 {
+                    names_to_skip = names_to_skip.saturating_sub(1);
+                }
+            }
+            _ => names_to_skip = 0,
         }
         let chunk = current.get_or_insert_with(|| Chunk::new(token_start, token_start, None));
         if depth == 1
@@ -202,33 +218,26 @@ pub(super) fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
             chunk.details_mut().splits.push(token_start);
             last_split = token_start;
         }
-        match b {
-            _ if word.is_some() => {}
-            b'"' => {
-                let (end, closed) = scan_string(bytes, i);
-                i = end;
-                if !closed {
-                    let end = if end > token_start + 1 && bytes[end - 1] == b'\r' {
-                        end - 1
-                    } else {
-                        end
-                    };
-                    chunk.details_mut().lexical_errors.push(
-                        Diag::error("scen::syntax::unterminated_string", "unterminated string")
-                            .at(
-                                Span::new(file, token_start, end),
-                                "this string is never closed",
-                            )
-                            .help(
-                                "add the closing `\"` on the same line: a string cannot span lines",
-                            ),
-                    );
-                }
+        match token.kind {
+            TokenKind::Str { closed: false } => {
+                let end = if i > token_start + 1 && bytes[i - 1] == b'\r' {
+                    i - 1
+                } else {
+                    i
+                };
+                chunk.details_mut().lexical_errors.push(
+                    Diag::error("scen::syntax::unterminated_string", "unterminated string")
+                        .at(
+                            Span::new(file, token_start, end),
+                            "this string is never closed",
+                        )
+                        .help("add the closing `\"` on the same line: a string cannot span lines"),
+                );
             }
-            b'(' | b'[' | b'{' => {
+            TokenKind::Open => {
                 depth += 1;
                 if open.len() <= MAX_NESTING {
-                    open.push(i);
+                    open.push(token_start);
                 }
                 // Reported once per chunk, at the first bracket too deep.
                 if depth == MAX_NESTING + 1
@@ -243,20 +252,18 @@ pub(super) fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
                             format!("brackets are nested more than {MAX_NESTING} deep"),
                         )
                         .at(
-                            Span::new(file, i, i + 1),
+                            Span::new(file, token_start, i),
                             format!("this `{}` is too deep", b as char),
                         )
                         .help("flatten the value: `scen` accepts at most 64 nested brackets"),
                     );
                 }
-                i += 1;
             }
-            b')' | b']' | b'}' => {
+            TokenKind::Close => {
                 depth = depth.saturating_sub(1);
                 open.truncate(depth);
-                i += 1;
             }
-            _ => i += text[i..].chars().next().map_or(1, char::len_utf8),
+            _ => {}
         }
         chunk.end = i;
         prev_byte = bytes[i - 1];
@@ -265,7 +272,123 @@ pub(super) fn split_statements(text: &str, file: FileId) -> Vec<Chunk> {
     if let Some(done) = current {
         finish(done, &mut open, &mut chunks);
     }
-    chunks
+    Scan { chunks, comments }
+}
+
+/// What a [`Token`] is. The scanner needs no finer classes: a number is a
+/// `Word` when it starts with a digit and runs of digits and letters
+/// (`1e`, `-`, `3` are three tokens of `1e-3`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TokenKind {
+    /// A run of `[A-Za-z0-9_]`.
+    Word,
+    /// A string literal; `closed` is false when its line ends first.
+    Str { closed: bool },
+    /// `(`, `[` or `{`.
+    Open,
+    /// `)`, `]` or `}`.
+    Close,
+    /// `#` to the end of the line.
+    Comment,
+    /// Any other character.
+    Other,
+}
+
+/// A token of the scanner's [`Lexer`]: a byte range of the text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Token {
+    pub(crate) kind: TokenKind,
+    pub(crate) start: usize,
+    pub(crate) end: usize,
+    /// A newline lies between the previous token (or the start) and this one.
+    pub(crate) after_newline: bool,
+}
+
+/// The tokens of a text, blanks skipped, comments included: the lexical
+/// rules of the grammar (strings with escapes ending at their line, `#`
+/// comments, a byte order mark ignored at the start), shared by the
+/// statement splitter and the language server's cursor context.
+pub(crate) struct Lexer<'t> {
+    text: &'t str,
+    at: usize,
+}
+
+impl<'t> Lexer<'t> {
+    pub(crate) fn new(text: &'t str) -> Self {
+        Lexer { text, at: 0 }
+    }
+
+    /// The tokens of `text[from..]`; `from` must start a token or a blank.
+    pub(crate) fn starting_at(text: &'t str, from: usize) -> Self {
+        Lexer { text, at: from }
+    }
+}
+
+impl Iterator for Lexer<'_> {
+    type Item = Token;
+
+    fn next(&mut self) -> Option<Token> {
+        let bytes = self.text.as_bytes();
+        let mut after_newline = self.at == 0;
+        let mut i = self.at;
+        while i < bytes.len() {
+            match bytes[i] {
+                b'\n' => after_newline = true,
+                b' ' | b'\t' | b'\r' | 0x0B | 0x0C => {}
+                // A byte order mark is ignored at the start of the file only.
+                _ if i == 0 && self.text.starts_with('\u{FEFF}') => {
+                    i += 3;
+                    continue;
+                }
+                _ => break,
+            }
+            i += 1;
+        }
+        if i >= bytes.len() {
+            self.at = i;
+            return None;
+        }
+        let start = i;
+        let kind = match bytes[i] {
+            b'#' => {
+                i = bytes[i..]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                    .map_or(bytes.len(), |k| i + k);
+                TokenKind::Comment
+            }
+            b if is_ident_byte(b) => {
+                while i < bytes.len() && is_ident_byte(bytes[i]) {
+                    i += 1;
+                }
+                TokenKind::Word
+            }
+            b'"' => {
+                let (end, closed) = scan_string(bytes, i);
+                i = end;
+                TokenKind::Str { closed }
+            }
+            b'(' | b'[' | b'{' => {
+                i += 1;
+                TokenKind::Open
+            }
+            b')' | b']' | b'}' => {
+                i += 1;
+                TokenKind::Close
+            }
+            _ => {
+                i += self.text[i..].chars().next().map_or(1, char::len_utf8);
+                TokenKind::Other
+            }
+        };
+        self.at = i;
+        Some(Token {
+            kind,
+            start,
+            end: i,
+            after_newline,
+        })
+    }
 }
 
 /// Whether a large statement may be cut before the token at `at` (in its
@@ -373,6 +496,93 @@ mod tests {
             panic!()
         };
         assert_eq!(title.value, "a # b");
+    }
+
+    #[test]
+    fn comments_are_kept_with_their_spans() {
+        let text = "# head\r\nworld { # in a block\n  rect (0, 0) (1, 1)#glued\n}\n\
+                    scenario \"a # b\" # after a string\nexpect a.f # \"x\n# last";
+        let (_, diags) = parse(text, 0);
+        assert!(diags.is_empty(), "{diags:?}");
+        let comments: Vec<&str> = parse(text, 0)
+            .0
+            .comments
+            .iter()
+            .map(|&c| snippet(text, c))
+            .collect();
+        assert_eq!(
+            comments,
+            [
+                "# head\r",
+                "# in a block",
+                "#glued",
+                "# after a string",
+                "# \"x",
+                "# last"
+            ]
+        );
+        // In a broken statement too, and not inside an unterminated string.
+        let broken = "plan p astar r { # open\nscenario \"no end # not a comment\n";
+        let (file, _) = parse(broken, 0);
+        assert_eq!(file.comments.len(), 1);
+        assert_eq!(snippet(broken, file.comments[0]), "# open");
+    }
+
+    #[test]
+    fn the_keyword_lists_are_the_grammars() {
+        let grammar = include_str!("../../grammar/scen.pest");
+        let mut named: Vec<&str> = grammar
+            .lines()
+            .filter_map(|l| l.strip_prefix("kw_")?.split_whitespace().next())
+            .filter(|k| !["true", "false"].contains(k))
+            .collect();
+        named.sort();
+        let mut ours: Vec<&str> = [
+            &STATEMENT_KEYWORDS[..],
+            &WORLD_ITEM_KEYWORDS,
+            &ROBOT_SHAPE_KEYWORDS,
+            &GRID_OPTION_KEYWORDS,
+        ]
+        .concat();
+        ours.sort();
+        ours.dedup();
+        assert_eq!(ours, named);
+        for w in EXPRESSION_WORDS {
+            assert!(grammar.contains(&format!("\"{w}\"")), "{w}");
+        }
+    }
+
+    #[test]
+    fn the_statement_at_an_offset() {
+        let text = "robot r point\nplan p astar r {\n  start (0, 0)\n";
+        assert_eq!(statement_at(text, 0), Some((0, "robot")));
+        assert_eq!(statement_at(text, 20), Some((14, "plan")));
+        assert_eq!(statement_at(text, text.len()), Some((14, "plan")));
+        assert_eq!(statement_at("  # nothing\n", 3), None);
+    }
+
+    #[test]
+    fn the_lexer_marks_tokens_after_a_newline() {
+        let text = "\u{FEFF}plan p(1)\n  x.y # c\n\"s";
+        let tokens: Vec<(TokenKind, &str, bool)> = Lexer::new(text)
+            .map(|t| (t.kind, &text[t.start..t.end], t.after_newline))
+            .collect();
+        use TokenKind::*;
+        assert_eq!(
+            tokens,
+            [
+                (Word, "plan", true),
+                (Word, "p", false),
+                (Open, "(", false),
+                (Word, "1", false),
+                (Close, ")", false),
+                (Word, "x", true),
+                (Other, ".", false),
+                (Word, "y", false),
+                (Comment, "# c", false),
+                (Str { closed: false }, "\"s", true),
+            ]
+        );
     }
 
     #[test]

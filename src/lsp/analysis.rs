@@ -1,0 +1,235 @@
+//! What the server knows of one open document: the loader's parse of it and
+//! of its includes (open documents' text first), the diagnostics of `scen
+//! check`, and the names declared and used, with their spans in every file.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use crate::diagnostics::{Diag, FileId, SourceMap, Span};
+use crate::scenario::grouping::{ParamKeys, group_params};
+use crate::scenario::loader::{Overlay, Parsed, SourcedStmt, parse_scenario};
+use crate::scenario::schema::ValueSpec;
+use crate::syntax::ast::{Expr, ExprKind, ParamToken, Stmt, ValueKind, WorldItem};
+
+/// What a name names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum NameKind {
+    Obstacle,
+    Robot,
+    Plan,
+    Bench,
+}
+
+impl NameKind {
+    pub(crate) fn word(self) -> &'static str {
+        match self {
+            NameKind::Obstacle => "obstacle",
+            NameKind::Robot => "robot",
+            NameKind::Plan => "plan",
+            NameKind::Bench => "bench",
+        }
+    }
+}
+
+/// One declaration and its uses.
+#[derive(Clone, Debug)]
+pub(crate) struct Symbol {
+    pub kind: NameKind,
+    pub name: String,
+    /// The name in its declaration.
+    pub decl: Span,
+    /// The whole declaring statement or item.
+    pub full: Span,
+    pub uses: Vec<Span>,
+}
+
+/// A document analysed as the main file of a scenario (it is [`FileId`] 0).
+pub(crate) struct Analysis {
+    pub sources: SourceMap,
+    pub statements: Vec<SourcedStmt>,
+    pub includes: Vec<(Span, FileId)>,
+    /// The diagnostics `scen check` prints for this file, sorted.
+    pub diags: Vec<Diag>,
+    pub symbols: Vec<Symbol>,
+}
+
+impl Analysis {
+    /// Loads `path` as `scen check` does, with the open documents' text.
+    pub(crate) fn new(path: &Path, overlay: Overlay<'_>) -> Analysis {
+        let Parsed {
+            sources,
+            statements,
+            includes,
+            mut diags,
+        } = parse_scenario(path, overlay);
+        if !diags.iter().any(Diag::is_error) {
+            let analysed = crate::scenario::analyze(path, statements.clone(), sources.clone());
+            if let Err(failure) = analysed {
+                diags = failure.diags;
+            }
+        }
+        crate::diagnostics::sort_diags(&mut diags);
+        let symbols = symbols(&statements);
+        Analysis {
+            sources,
+            statements,
+            includes,
+            diags,
+            symbols,
+        }
+    }
+
+    /// The statements of file 0 (this document).
+    pub(crate) fn own_statements(&self) -> impl Iterator<Item = &Stmt> {
+        self.statements
+            .iter()
+            .filter(|s| s.in_main_file)
+            .map(|s| &s.stmt)
+    }
+
+    pub(crate) fn text(&self, file: FileId) -> Option<Arc<str>> {
+        self.sources.get(file).map(|f| f.text.clone())
+    }
+
+    /// The declaration of a name of `kind`.
+    pub(crate) fn symbol(&self, kind: NameKind, name: &str) -> Option<&Symbol> {
+        self.symbols
+            .iter()
+            .find(|s| s.kind == kind && s.name == name)
+    }
+
+    /// The symbol whose declaration or a use covers `offset` in `file`.
+    pub(crate) fn symbol_at(&self, file: FileId, offset: usize) -> Option<&Symbol> {
+        let covers = |s: &Span| s.file == file && s.start <= offset && offset <= s.end;
+        self.symbols
+            .iter()
+            .find(|s| covers(&s.decl) || s.uses.iter().any(covers))
+    }
+
+    /// The planner kind of plan `name`, and whether it drives.
+    pub(crate) fn plan_kind(&self, name: &str) -> Option<(&str, bool)> {
+        self.statements.iter().find_map(|s| match &s.stmt {
+            Stmt::Plan(p) if p.name.value == name => {
+                let drives = p
+                    .body
+                    .iter()
+                    .any(|t| matches!(t, ParamToken::Word(w) if w.value == "drive"));
+                Some((p.kind.value.as_str(), drives))
+            }
+            _ => None,
+        })
+    }
+
+    /// The names of the declarations of `kind`.
+    pub(crate) fn names(&self, kind: NameKind) -> impl Iterator<Item = &Symbol> {
+        self.symbols.iter().filter(move |s| s.kind == kind)
+    }
+}
+
+/// Declarations (first one of each name) and uses, over all files.
+fn symbols(statements: &[SourcedStmt]) -> Vec<Symbol> {
+    let mut symbols: Vec<Symbol> = Vec::new();
+    let mut declare = |kind, name: &str, decl: Span, full: Span| {
+        if !symbols.iter().any(|s| s.kind == kind && s.name == name) {
+            symbols.push(Symbol {
+                kind,
+                name: name.to_string(),
+                decl,
+                full,
+                uses: Vec::new(),
+            });
+        }
+    };
+    for s in statements {
+        match &s.stmt {
+            Stmt::World(w) => {
+                for item in &w.items {
+                    if let WorldItem::Obstacle(o) = item
+                        && let Some(n) = &o.name
+                    {
+                        declare(NameKind::Obstacle, &n.value, n.span, o.span);
+                    }
+                }
+            }
+            Stmt::Robot(r) => declare(NameKind::Robot, &r.name.value, r.name.span, r.span),
+            Stmt::Plan(p) => declare(NameKind::Plan, &p.name.value, p.name.span, p.span),
+            Stmt::Bench(b) => declare(NameKind::Bench, &b.name.value, b.name.span, b.span),
+            _ => {}
+        }
+    }
+    let mut uses: Vec<(NameKind, &str, Span)> = Vec::new();
+    for s in statements {
+        match &s.stmt {
+            Stmt::Plan(p) => {
+                uses.push((NameKind::Robot, &p.robot.value, p.robot.span));
+                let keys = ParamKeys::Plan(&p.kind.value);
+                for group in group_params(&p.body, keys) {
+                    let is_name = group
+                        .spec
+                        .is_some_and(|spec| spec.value == ValueSpec::ObstacleName);
+                    if let (true, Some(ParamToken::Word(w))) =
+                        (is_name, p.body.get(group.tokens.start + 1))
+                    {
+                        uses.push((NameKind::Obstacle, &w.value, w.span));
+                    }
+                }
+            }
+            Stmt::Expect(e) => expr_uses(e, &mut uses),
+            // `plans [a, b]` names plans.
+            Stmt::Bench(b) => {
+                for pair in b.body.windows(2) {
+                    if let [ParamToken::Word(key), ParamToken::Value(list)] = pair
+                        && key.value == "plans"
+                        && let ValueKind::List(items) = &list.kind
+                    {
+                        for item in items {
+                            if let ValueKind::Word(name) = &item.kind {
+                                uses.push((NameKind::Plan, name, item.span));
+                            }
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for (kind, name, span) in uses {
+        if let Some(sym) = symbols
+            .iter_mut()
+            .find(|s| s.kind == kind && s.name == name)
+        {
+            sym.uses.push(span);
+        }
+    }
+    symbols
+}
+
+fn expr_uses<'e>(e: &'e Expr, out: &mut Vec<(NameKind, &'e str, Span)>) {
+    match &e.kind {
+        ExprKind::Metric { plan, .. } => out.push((NameKind::Plan, &plan.value, plan.span)),
+        ExprKind::Series { bench, plan, .. } => {
+            out.push((NameKind::Bench, &bench.value, bench.span));
+            out.push((NameKind::Plan, &plan.value, plan.span));
+        }
+        ExprKind::Call { args, .. } => {
+            for arg in args {
+                expr_uses(arg, out);
+            }
+        }
+        ExprKind::Neg(a) | ExprKind::Not(a) => expr_uses(a, out),
+        ExprKind::Arith { lhs, rhs, .. }
+        | ExprKind::Compare { lhs, rhs, .. }
+        | ExprKind::And(lhs, rhs)
+        | ExprKind::Or(lhs, rhs)
+        | ExprKind::Where(lhs, rhs) => {
+            expr_uses(lhs, out);
+            expr_uses(rhs, out);
+        }
+        ExprKind::Approx { lhs, rhs, tol } => {
+            expr_uses(lhs, out);
+            expr_uses(rhs, out);
+            expr_uses(tol, out);
+        }
+        ExprKind::Number(_) | ExprKind::Percent(_) | ExprKind::Bool(_) => {}
+    }
+}

@@ -1,0 +1,236 @@
+//! Completion: what may be written at the cursor, read from the statement
+//! the cursor is in (the scanner's chunks and tokens, so that half-typed
+//! text works) and offered from the registry and the scenario's names.
+
+use lsp_types::{CompletionItem, CompletionItemKind, Documentation, MarkupContent, MarkupKind};
+
+use super::analysis::{Analysis, NameKind};
+use crate::planners::registry::{self, PLANNERS};
+use crate::scenario::grouping::ParamKeys;
+use crate::scenario::schema::{
+    DRIVE_METRICS, DRIVE_PARAMS, MetricSpec, MetricType, ParamSpec, ValueSpec,
+};
+use crate::syntax::{
+    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token,
+    TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
+};
+
+/// The completions at byte `offset` of `text` (the document `analysis` was
+/// made from, or an older version of it).
+pub(crate) fn completions(text: &str, offset: usize, analysis: &Analysis) -> Vec<CompletionItem> {
+    let offset = offset.min(text.len());
+    let bytes = text.as_bytes();
+    let mut word_start = offset;
+    while word_start > 0
+        && (bytes[word_start - 1].is_ascii_alphanumeric() || bytes[word_start - 1] == b'_')
+    {
+        word_start -= 1;
+    }
+    let line_start = text[..word_start].rfind('\n').map_or(0, |k| k + 1);
+    let first_on_line = text[line_start..word_start].trim().is_empty();
+    let statement = statement_at(text, word_start);
+    let (chunk_start, keyword) = match statement {
+        Some(s) if !(first_on_line && word_start == line_start) => s,
+        _ => return keywords(&STATEMENT_KEYWORDS),
+    };
+    let tokens: Vec<Token> = Lexer::starting_at(text, chunk_start)
+        .take_while(|t| t.end <= word_start)
+        .filter(|t| t.kind != TokenKind::Comment)
+        .collect();
+    let word = |t: &Token| &text[t.start..t.end];
+    let mut open: Vec<&str> = Vec::new();
+    for t in &tokens {
+        match t.kind {
+            TokenKind::Open => open.push(word(t)),
+            TokenKind::Close => {
+                open.pop();
+            }
+            _ => {}
+        }
+    }
+    // Words of the statement's head, before any bracket (`plan`, NAME, KIND, ...).
+    let head: Vec<&str> = tokens
+        .iter()
+        .take_while(|t| t.kind != TokenKind::Open)
+        .filter(|t| t.kind == TokenKind::Word)
+        .map(word)
+        .collect();
+    match keyword {
+        "plan" if open.is_empty() => match head.len() {
+            2 => PLANNERS
+                .iter()
+                .map(|p| item(p.kind, CompletionItemKind::CLASS, p.summary, None))
+                .collect(),
+            3 => names(analysis, NameKind::Robot),
+            _ => Vec::new(),
+        },
+        "plan" => {
+            let keys = match open.as_slice() {
+                ["{"] => ParamKeys::Plan(head.get(2).copied().unwrap_or("")),
+                ["{", "{"] => ParamKeys::Drive,
+                _ => return Vec::new(),
+            };
+            let previous = tokens
+                .last()
+                .filter(|t| t.kind == TokenKind::Word)
+                .and_then(|t| keys.spec(word(t)));
+            match previous {
+                Some(spec) if spec.value.takes_word() => word_values(spec, keys, analysis),
+                _ => param_keys(keys),
+            }
+        }
+        "robot" if open.is_empty() && head.len() == 2 => keywords(&ROBOT_SHAPE_KEYWORDS),
+        "world" if open == ["{"] => {
+            let line_head = text[line_start..].split_whitespace().next();
+            if first_on_line {
+                keywords(&WORLD_ITEM_KEYWORDS)
+            } else if line_head == Some("grid") {
+                keywords(&GRID_OPTION_KEYWORDS)
+            } else {
+                Vec::new()
+            }
+        }
+        "expect" => {
+            let n = tokens.len();
+            let dotted = n >= 2
+                && tokens[n - 1].kind == TokenKind::Other
+                && word(&tokens[n - 1]) == "."
+                && tokens[n - 1].end == word_start
+                && tokens[n - 2].kind == TokenKind::Word
+                && tokens[n - 2].end == tokens[n - 1].start;
+            if dotted {
+                metrics(analysis, word(&tokens[n - 2]))
+            } else {
+                let mut items = names(analysis, NameKind::Plan);
+                items.extend(keywords(&EXPRESSION_WORDS));
+                items
+            }
+        }
+        _ => Vec::new(),
+    }
+}
+
+fn item(
+    label: &str,
+    kind: CompletionItemKind,
+    detail: &str,
+    doc: Option<String>,
+) -> CompletionItem {
+    CompletionItem {
+        label: label.to_string(),
+        kind: Some(kind),
+        detail: Some(detail.to_string()).filter(|d| !d.is_empty()),
+        documentation: doc.map(|value| {
+            Documentation::MarkupContent(MarkupContent {
+                kind: MarkupKind::Markdown,
+                value,
+            })
+        }),
+        ..CompletionItem::default()
+    }
+}
+
+fn keywords(words: &[&str]) -> Vec<CompletionItem> {
+    words
+        .iter()
+        .map(|w| item(w, CompletionItemKind::KEYWORD, "", None))
+        .collect()
+}
+
+fn names(analysis: &Analysis, kind: NameKind) -> Vec<CompletionItem> {
+    analysis
+        .names(kind)
+        .map(|s| {
+            let detail = match kind {
+                NameKind::Plan => analysis
+                    .plan_kind(&s.name)
+                    .map_or("plan".to_string(), |(k, _)| format!("plan ({k})")),
+                _ => kind.word().to_string(),
+            };
+            item(&s.name, CompletionItemKind::VARIABLE, &detail, None)
+        })
+        .collect()
+}
+
+/// A parameter's documentation: its help, the values it takes, its default.
+pub(crate) fn param_doc(spec: &ParamSpec) -> String {
+    let default = match spec.default.text() {
+        "" => "none".to_string(),
+        text => format!("`{text}`"),
+    };
+    format!(
+        "{}\n\nTakes {}. Default: {default}.",
+        spec.help,
+        spec.value.describe()
+    )
+}
+
+/// A metric's documentation.
+pub(crate) fn metric_doc(metric: &MetricSpec) -> String {
+    let ty = match metric.ty {
+        MetricType::Bool => "true/false",
+        MetricType::Num => "a number",
+    };
+    format!("{} ({ty})", metric.help)
+}
+
+fn param_keys(keys: ParamKeys<'_>) -> Vec<CompletionItem> {
+    let specs: Vec<&'static ParamSpec> = match keys {
+        ParamKeys::Drive => DRIVE_PARAMS.iter().collect(),
+        ParamKeys::Plan(kind) => match registry::planner(kind) {
+            Some(planner) => planner.all_params().collect(),
+            None => return Vec::new(),
+        },
+    };
+    specs
+        .into_iter()
+        .map(|s| {
+            item(
+                s.key,
+                CompletionItemKind::FIELD,
+                &s.value.describe(),
+                Some(param_doc(s)),
+            )
+        })
+        .collect()
+}
+
+fn word_values(spec: &ParamSpec, keys: ParamKeys<'_>, analysis: &Analysis) -> Vec<CompletionItem> {
+    if spec.value == ValueSpec::ObstacleName {
+        return names(analysis, NameKind::Obstacle);
+    }
+    let limits = match (spec.value, keys) {
+        (ValueSpec::Limit, ParamKeys::Plan(kind)) => registry::planner(kind).map(|p| p.limits),
+        _ => None,
+    };
+    spec.value
+        .words()
+        .iter()
+        .filter(|w| limits.is_none_or(|l| l.contains(w)))
+        .map(|w| {
+            let detail = format!("a value of `{}`", spec.key);
+            item(w, CompletionItemKind::ENUM_MEMBER, &detail, None)
+        })
+        .collect()
+}
+
+fn metrics(analysis: &Analysis, plan: &str) -> Vec<CompletionItem> {
+    let Some((kind, drives)) = analysis.plan_kind(plan) else {
+        return Vec::new();
+    };
+    let Some(planner) = registry::planner(kind) else {
+        return Vec::new();
+    };
+    let drive = DRIVE_METRICS.iter().filter(|_| drives);
+    planner
+        .all_metrics()
+        .chain(drive)
+        .map(|m| {
+            let ty = match m.ty {
+                MetricType::Bool => "true/false",
+                MetricType::Num => "number",
+            };
+            item(m.name, CompletionItemKind::FIELD, ty, Some(metric_doc(m)))
+        })
+        .collect()
+}

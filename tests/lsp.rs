@@ -1,0 +1,574 @@
+//! `scen lsp` tested by speaking the protocol to the real binary over
+//! stdio, with exact expected answers on small files.
+
+mod common;
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::Path;
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc::{Receiver, channel};
+use std::time::Duration;
+
+use common::{TempDir, scen_bin};
+use serde_json::{Value, json};
+
+/// A client: the server's stdin, and its messages as they arrive.
+struct Client {
+    child: Child,
+    stdin: ChildStdin,
+    messages: Receiver<Value>,
+    next_id: i64,
+    /// Notifications read while waiting for a response.
+    notifications: Vec<Value>,
+}
+
+impl Client {
+    fn start() -> Client {
+        let mut child = Command::new(scen_bin())
+            .arg("lsp")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start scen lsp");
+        let stdin = child.stdin.take().unwrap();
+        let stdout = child.stdout.take().unwrap();
+        let (tx, messages) = channel();
+        std::thread::spawn(move || {
+            let mut reader = BufReader::new(stdout);
+            loop {
+                let mut length = 0;
+                loop {
+                    let mut line = String::new();
+                    if reader.read_line(&mut line).unwrap_or(0) == 0 {
+                        return;
+                    }
+                    let line = line.trim_end();
+                    if line.is_empty() {
+                        break;
+                    }
+                    if let Some(n) = line.strip_prefix("Content-Length: ") {
+                        length = n.parse().unwrap();
+                    }
+                }
+                let mut body = vec![0; length];
+                if reader.read_exact(&mut body).is_err() {
+                    return;
+                }
+                if tx.send(serde_json::from_slice(&body).unwrap()).is_err() {
+                    return;
+                }
+            }
+        });
+        let mut client = Client {
+            child,
+            stdin,
+            messages,
+            next_id: 0,
+            notifications: Vec::new(),
+        };
+        let init = client.request(
+            "initialize",
+            json!({ "processId": null, "rootUri": null, "capabilities": {} }),
+        );
+        assert_eq!(init["capabilities"]["positionEncoding"], "utf-16");
+        assert_eq!(init["capabilities"]["textDocumentSync"], 2);
+        assert_eq!(init["serverInfo"]["name"], "scen");
+        client.notify("initialized", json!({}));
+        client
+    }
+
+    fn send(&mut self, message: Value) {
+        let body = message.to_string();
+        write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).unwrap();
+        self.stdin.flush().unwrap();
+    }
+
+    fn notify(&mut self, method: &str, params: Value) {
+        self.send(json!({ "jsonrpc": "2.0", "method": method, "params": params }));
+    }
+
+    fn receive(&mut self) -> Value {
+        self.messages
+            .recv_timeout(Duration::from_secs(30))
+            .expect("the server answers within 30 s")
+    }
+
+    /// Sends a request and returns its result (panics on an error).
+    fn request(&mut self, method: &str, params: Value) -> Value {
+        self.next_id += 1;
+        let id = self.next_id;
+        self.send(json!({ "jsonrpc": "2.0", "id": id, "method": method, "params": params }));
+        loop {
+            let message = self.receive();
+            if message["id"] == id {
+                assert!(message.get("error").is_none(), "{method}: {message}");
+                return message["result"].clone();
+            }
+            self.notifications.push(message);
+        }
+    }
+
+    /// The next diagnostics published for `uri`.
+    fn diagnostics(&mut self, uri: &str) -> Value {
+        if let Some(k) = self.notifications.iter().position(|n| {
+            n["method"] == "textDocument/publishDiagnostics" && n["params"]["uri"] == uri
+        }) {
+            return self.notifications.remove(k)["params"]["diagnostics"].clone();
+        }
+        loop {
+            let message = self.receive();
+            if message["method"] == "textDocument/publishDiagnostics"
+                && message["params"]["uri"] == uri
+            {
+                return message["params"]["diagnostics"].clone();
+            }
+        }
+    }
+
+    fn open(&mut self, uri: &str, text: &str) {
+        self.notify(
+            "textDocument/didOpen",
+            json!({ "textDocument": { "uri": uri, "languageId": "scen", "version": 1, "text": text } }),
+        );
+    }
+
+    fn change(&mut self, uri: &str, version: i32, changes: Value) {
+        self.notify(
+            "textDocument/didChange",
+            json!({ "textDocument": { "uri": uri, "version": version }, "contentChanges": changes }),
+        );
+    }
+
+    fn at(&mut self, method: &str, uri: &str, line: u32, character: u32) -> Value {
+        let mut params = json!({
+            "textDocument": { "uri": uri },
+            "position": { "line": line, "character": character },
+        });
+        if method == "textDocument/references" {
+            params["context"] = json!({ "includeDeclaration": true });
+        }
+        self.request(method, params)
+    }
+
+    fn labels(&mut self, uri: &str, line: u32, character: u32) -> Vec<String> {
+        let items = self.at("textDocument/completion", uri, line, character);
+        items
+            .as_array()
+            .unwrap_or(&Vec::new())
+            .iter()
+            .map(|i| i["label"].as_str().unwrap().to_string())
+            .collect()
+    }
+
+    fn shutdown(mut self) {
+        assert_eq!(self.request("shutdown", Value::Null), Value::Null);
+        self.notify("exit", Value::Null);
+        let status = self.child.wait().unwrap();
+        assert!(status.success(), "{status:?}");
+    }
+}
+
+fn uri(path: &Path) -> String {
+    format!("file://{}", path.canonicalize().unwrap().display())
+}
+
+fn range(l0: u32, c0: u32, l1: u32, c1: u32) -> Value {
+    json!({ "start": { "line": l0, "character": c0 }, "end": { "line": l1, "character": c1 } })
+}
+
+const MAIN: &str = "\
+include \"_robots.scen\"
+world {
+  bounds (0, 0) (10, 10)
+  grid G cell 1 origin (0, 0) { \"....\" \"....\" }
+}
+plan p astar dot {
+  start (1, 1)
+  goal (8, 8)
+  sample center
+}
+plan c coverage dot { start (0.5, 0.5) on G }
+expect p.found and p.cost < 20
+";
+
+fn setup() -> (TempDir, String, String) {
+    let dir = TempDir::new("lsp");
+    std::fs::write(dir.path().join("main.scen"), MAIN).unwrap();
+    std::fs::write(dir.path().join("_robots.scen"), "robot dot disk 0.25\n").unwrap();
+    let main = uri(&dir.path().join("main.scen"));
+    let robots = uri(&dir.path().join("_robots.scen"));
+    (dir, main, robots)
+}
+
+#[test]
+fn the_server_answers_every_request_exactly() {
+    let (_dir, main, robots) = setup();
+    let mut c = Client::start();
+    c.open(&main, MAIN);
+    assert_eq!(c.diagnostics(&main), json!([]));
+
+    // Completion: statement keywords at the start of a line, planner kinds,
+    // robot names, a planner's keys with their docs, a key's words, the
+    // plan names and a plan's metrics.
+    assert_eq!(
+        c.labels(&main, 12, 0),
+        ["scenario", "include", "world", "robot", "plan", "expect"]
+    );
+    assert_eq!(
+        c.labels(&main, 5, 7),
+        ["astar", "online", "roadmap", "potential", "coverage"]
+    );
+    assert_eq!(c.labels(&main, 5, 13), ["dot"]);
+    let keys = c.at("textDocument/completion", &main, 8, 2);
+    let cell = keys
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|i| i["label"] == "cell")
+        .unwrap();
+    assert_eq!(cell["detail"], "a number > 0");
+    assert_eq!(cell["kind"], 5);
+    assert!(
+        cell["documentation"]["value"]
+            .as_str()
+            .unwrap()
+            .contains("Default: `1`."),
+        "{cell}"
+    );
+    assert_eq!(c.labels(&main, 8, 9), ["center", "corner"]);
+    assert_eq!(c.labels(&main, 10, 42), ["G"]);
+    assert_eq!(
+        c.labels(&main, 11, 7),
+        ["p", "c", "and", "or", "not", "true", "false"]
+    );
+    let metrics = c.labels(&main, 11, 9);
+    assert_eq!(&metrics[..3], ["found", "gave_up", "cost"]);
+    assert!(metrics.contains(&"free_cells".to_string()), "{metrics:?}");
+
+    // Hover: a key, a metric, a robot declared in the include, a planner.
+    let hover = c.at("textDocument/hover", &main, 8, 3);
+    assert_eq!(hover["range"], range(8, 2, 8, 8));
+    assert!(
+        hover["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .starts_with("`sample` (astar)\n\n"),
+        "{hover}"
+    );
+    let hover = c.at("textDocument/hover", &main, 11, 25);
+    assert_eq!(hover["range"], range(11, 21, 11, 25));
+    assert!(
+        hover["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .starts_with("`p.cost` (metric of `astar`)"),
+        "{hover}"
+    );
+    let hover = c.at("textDocument/hover", &main, 5, 14);
+    let value = hover["contents"]["value"].as_str().unwrap();
+    assert!(
+        value.starts_with("```scen\nrobot dot disk 0.25\n```\n\nDeclared in `"),
+        "{value}"
+    );
+    assert!(value.ends_with("_robots.scen:1:7`."), "{value}");
+    let hover = c.at("textDocument/hover", &main, 5, 9);
+    assert!(
+        hover["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .starts_with("`astar` — "),
+        "{hover}"
+    );
+    assert_eq!(c.at("textDocument/hover", &main, 2, 0), Value::Null);
+
+    // Definition and references, through the include.
+    assert_eq!(
+        c.at("textDocument/definition", &main, 5, 14),
+        json!({ "uri": robots, "range": range(0, 6, 0, 9) })
+    );
+    assert_eq!(
+        c.at("textDocument/definition", &main, 11, 8),
+        json!({ "uri": main, "range": range(5, 5, 5, 6) })
+    );
+    assert_eq!(
+        c.at("textDocument/definition", &main, 0, 12),
+        json!({ "uri": robots, "range": range(0, 0, 0, 0) })
+    );
+    assert_eq!(
+        c.at("textDocument/references", &main, 5, 5),
+        json!([
+            { "uri": main, "range": range(5, 5, 5, 6) },
+            { "uri": main, "range": range(11, 7, 11, 8) },
+            { "uri": main, "range": range(11, 19, 11, 20) },
+        ])
+    );
+    assert_eq!(
+        c.at("textDocument/references", &main, 10, 42),
+        json!([
+            { "uri": main, "range": range(3, 7, 3, 8) },
+            { "uri": main, "range": range(10, 42, 10, 43) },
+        ])
+    );
+    let refs = c.at("textDocument/references", &main, 5, 14);
+    assert_eq!(refs.as_array().unwrap().len(), 3, "{refs}");
+    assert_eq!(
+        refs[0],
+        json!({ "uri": robots, "range": range(0, 6, 0, 9) })
+    );
+
+    // The outline.
+    let symbols = c.request(
+        "textDocument/documentSymbol",
+        json!({ "textDocument": { "uri": main } }),
+    );
+    let names: Vec<(&str, i64)> = symbols
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| (s["name"].as_str().unwrap(), s["kind"].as_i64().unwrap()))
+        .collect();
+    assert_eq!(names, [("world", 3), ("p", 12), ("c", 12)]);
+    assert_eq!(symbols[0]["children"][0]["name"], "G");
+    assert_eq!(symbols[0]["children"][0]["range"], range(3, 2, 3, 47));
+    assert_eq!(symbols[1]["selectionRange"], range(5, 5, 5, 6));
+
+    // Formatting: the same as `scen fmt`.
+    let edits = c.request(
+        "textDocument/formatting",
+        json!({ "textDocument": { "uri": main }, "options": { "tabSize": 2, "insertSpaces": true } }),
+    );
+    let formatted = scen::format::format_text(MAIN).unwrap();
+    assert_eq!(
+        edits,
+        json!([{ "range": range(0, 0, 12, 0), "newText": formatted }])
+    );
+
+    c.shutdown();
+}
+
+#[test]
+fn diagnostics_follow_the_text_as_it_is_typed() {
+    let (_dir, main, robots) = setup();
+    let mut c = Client::start();
+    c.open(&main, MAIN);
+    assert_eq!(c.diagnostics(&main), json!([]));
+    // `sample center` → `sample centre`: an analysis error, with its code,
+    // span and help, as `scen check` gives it.
+    c.change(
+        &main,
+        2,
+        json!([{ "range": range(8, 13, 8, 15), "text": "re" }]),
+    );
+    let d = c.diagnostics(&main);
+    assert_eq!(d.as_array().unwrap().len(), 1, "{d}");
+    assert_eq!(d[0]["code"], "scen::analyze::out_of_range");
+    assert_eq!(d[0]["range"], range(8, 9, 8, 15));
+    assert_eq!(d[0]["severity"], 1);
+    assert_eq!(d[0]["source"], "scen");
+    let message = d[0]["message"].as_str().unwrap();
+    assert!(message.contains("\nhelp: "), "{message}");
+    // An error in the included document, open and edited, is shown at the include.
+    c.open(&robots, "robot dot disk -1\n");
+    let d = c.diagnostics(&main);
+    let codes: Vec<&str> = d
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["code"].as_str().unwrap())
+        .collect();
+    assert!(codes.contains(&"scen::analyze::out_of_range"), "{d}");
+    let at_include = d
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|d| d["range"] == range(0, 8, 0, 22))
+        .expect("at the include");
+    assert!(
+        at_include["message"].as_str().unwrap().starts_with("in `"),
+        "{at_include}"
+    );
+    assert_eq!(
+        at_include["relatedInformation"][0]["location"]["uri"],
+        robots
+    );
+    // Fixed: no diagnostics.
+    c.change(&robots, 2, json!([{ "text": "robot dot disk 0.25\n" }]));
+    c.change(
+        &main,
+        3,
+        json!([{ "range": range(8, 13, 8, 15), "text": "er" }]),
+    );
+    let mut last = c.diagnostics(&main);
+    while last != json!([]) {
+        last = c.diagnostics(&main);
+    }
+    c.shutdown();
+}
+
+#[test]
+fn half_typed_and_broken_text_never_stops_the_server() {
+    let (dir, main, _) = setup();
+    std::fs::write(dir.path().join("_a.scen"), "include \"_b.scen\"\n").unwrap();
+    std::fs::write(dir.path().join("_b.scen"), "include \"_a.scen\"\n").unwrap();
+    let mut c = Client::start();
+    c.open(&main, MAIN);
+    c.diagnostics(&main);
+    let broken = [
+        ("", None),
+        (
+            "world {\n  bounds (0, 0) (1, 1)\nplan p",
+            Some("scen::syntax::expected"),
+        ),
+        (
+            "world { bounds (0, 0) (1, 1) }\nplan p { start (0, 0) }",
+            Some("scen::syntax::expected"),
+        ),
+        ("include \"_a.scen\"\n", Some("scen::load::include_cycle")),
+        (
+            "\u{0}\u{1}\u{7f}\u{fffd}PK\u{3}\u{4}\n\u{feff}(((((",
+            Some("scen::syntax::expected"),
+        ),
+        ("expect p.", Some("scen::syntax::expected")),
+        (
+            "plan p astar dot {\n  start (1, 1) goal (2, 2) drive unicycle {",
+            Some("scen::syntax::expected"),
+        ),
+    ];
+    for (version, (text, code)) in broken.iter().enumerate() {
+        c.change(&main, version as i32 + 2, json!([{ "text": text }]));
+        let d = c.diagnostics(&main);
+        if let Some(code) = code {
+            let codes: Vec<&str> = d
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|d| d["code"].as_str().unwrap())
+                .collect();
+            assert!(codes.contains(code), "{text:?}: {d}");
+        }
+        // Every request is still answered, at every line.
+        let lines = text.lines().count() as u32 + 1;
+        for line in 0..lines {
+            for method in [
+                "textDocument/completion",
+                "textDocument/hover",
+                "textDocument/definition",
+                "textDocument/references",
+            ] {
+                c.at(method, &main, line, 3);
+            }
+        }
+        c.request(
+            "textDocument/documentSymbol",
+            json!({ "textDocument": { "uri": main } }),
+        );
+        c.request(
+            "textDocument/formatting",
+            json!({ "textDocument": { "uri": main }, "options": { "tabSize": 2, "insertSpaces": true } }),
+        );
+    }
+    // Completion in half-typed statements.
+    c.change(
+        &main,
+        20,
+        json!([{ "text": "robot r point\nplan q astar r {\n  start (1, 1)\n  limit \n" }]),
+    );
+    c.diagnostics(&main);
+    assert_eq!(c.labels(&main, 3, 8), ["expansions", "time", "cells"]);
+    assert_eq!(c.labels(&main, 1, 13), ["r"]);
+    // Recovered as soon as the text is fixed.
+    c.change(&main, 21, json!([{ "text": MAIN }]));
+    assert_eq!(c.diagnostics(&main), json!([]));
+    assert_eq!(c.labels(&main, 8, 9), ["center", "corner"]);
+    c.shutdown();
+}
+
+/// A 2,000-line scenario: a world of 400 obstacles, 150 plans of 10 lines,
+/// 200 checks.
+fn two_thousand_lines() -> String {
+    let mut text = String::from("scenario \"big\"\nworld {\n  bounds (0, 0) (400, 400)\n");
+    for k in 0..400 {
+        let (x, y) = (k % 20 * 20, k / 20 * 20);
+        text.push_str(&format!("  rect R{k} ({x}.5, {y}.5) ({x}.9, {y}.9)\n"));
+    }
+    text.push_str("}\nrobot dot disk 0.1\n");
+    for k in 0..150 {
+        text.push_str(&format!(
+            "plan p{k} astar dot {{\n  start (0.1, 0.1)\n  goal (1.1, 1.1)\n  cell 1\n  \
+             connect 8\n  heuristic metric\n  weight 1\n  limit expansions 1000\n  \
+             limit time 1s\n}}\n"
+        ));
+    }
+    for k in 0..200 {
+        text.push_str(&format!(
+            "expect p{}.found and p{}.cost < 10\n",
+            k % 150,
+            k % 150
+        ));
+    }
+    text
+}
+
+/// Not a test of speed (nothing is asserted about time): prints the
+/// server's latencies on a 2,000-line file for BENCHMARKS.md. Run with
+/// `cargo test --release --test lsp -- --ignored --nocapture latencies`.
+#[test]
+#[ignore]
+fn latencies_on_a_two_thousand_line_file() {
+    use std::time::Instant;
+    let dir = TempDir::new("lsp-timing");
+    let path = dir.path().join("big.scen");
+    let text = two_thousand_lines();
+    assert!(text.lines().count() >= 2000, "{}", text.lines().count());
+    std::fs::write(&path, &text).unwrap();
+    let main = uri(&path);
+    let mut c = Client::start();
+    let started = Instant::now();
+    c.open(&main, &text);
+    assert_eq!(c.diagnostics(&main), json!([]));
+    eprintln!("open → diagnostics: {:?}", started.elapsed());
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("plan p100"))
+        .unwrap() as u32
+        + 6;
+    let (mut diagnostics, mut completion, mut hover) = (Vec::new(), Vec::new(), Vec::new());
+    for round in 0..30 {
+        // Type one character into `weight 1` (1 → 2 → 1 ...), then ask.
+        let digit = if round % 2 == 0 { "2" } else { "1" };
+        let t = Instant::now();
+        c.change(
+            &main,
+            round + 2,
+            json!([{ "range": range(line, 9, line, 10), "text": digit }]),
+        );
+        let d = c.diagnostics(&main);
+        diagnostics.push(t.elapsed());
+        assert_eq!(d, json!([]));
+        let t = Instant::now();
+        c.change(
+            &main,
+            round + 100,
+            json!([{ "range": range(line, 9, line, 10), "text": digit }]),
+        );
+        let items = c.labels(&main, line, 2);
+        completion.push(t.elapsed());
+        assert!(items.contains(&"weight".to_string()));
+        let t = Instant::now();
+        c.at("textDocument/hover", &main, line, 3);
+        hover.push(t.elapsed());
+    }
+    let median = |v: &mut Vec<std::time::Duration>| {
+        v.sort();
+        v[v.len() / 2]
+    };
+    eprintln!(
+        "{} lines, median of 30 edits: edit → diagnostics {:?}, edit → completion {:?}, hover {:?}",
+        text.lines().count(),
+        median(&mut diagnostics),
+        median(&mut completion),
+        median(&mut hover)
+    );
+    c.shutdown();
+}
