@@ -105,9 +105,7 @@ pub fn group_params(tokens: &[ParamToken], keys: ParamKeys<'_>) -> Vec<ParamGrou
 /// as the key it varies, whatever that word is. Leading tokens that are not
 /// a key form a group of their own.
 pub fn group_bench(tokens: &[ParamToken]) -> Vec<Range<usize>> {
-    let is_key = |t: &ParamToken| {
-        matches!(t, ParamToken::Word(w) if super::analyze::BENCH_KEYS.contains(&w.value.as_str()))
-    };
+    let is_key = |t: &ParamToken| matches!(t, ParamToken::Word(w) if super::analyze::BENCH_KEYS.contains(&w.value.as_str()));
     let mut groups = Vec::new();
     let mut i = 0;
     while i < tokens.len() {
@@ -150,7 +148,8 @@ mod tests {
 
     #[test]
     fn a_bench_groups_into_its_keys() {
-        let text = "bench b { x plans [p, q] vary limit [1, 2] vary weight [1, 2] runs 5 limit time 1s }";
+        let text =
+            "bench b { x plans [p, q] vary limit [1, 2] vary weight [1, 2] runs 5 limit time 1s }";
         let (file, diags) = crate::syntax::parse(text, 0);
         assert!(diags.is_empty(), "{diags:?}");
         let Some(Stmt::Bench(bench)) = file.statements.first() else {
