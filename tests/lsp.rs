@@ -201,6 +201,85 @@ fn setup() -> (TempDir, String, String) {
     (dir, main, robots)
 }
 
+const BENCHES: &str = "\
+robot dot disk 0.25
+plan p potential dot {
+  start (1, 1)
+  goal (8, 8)
+}
+plan q astar dot {
+  start (1, 1)
+  goal (8, 8)
+}
+bench b {
+  plans [p]
+  vary jump [4, 8]
+  runs 3
+}
+expect median(b.p[jump = 4].length) < 20
+";
+
+#[test]
+fn benches_are_completed_navigated_and_outlined() {
+    let dir = TempDir::new("lsp-bench");
+    std::fs::write(dir.path().join("b.scen"), BENCHES).unwrap();
+    let file = uri(&dir.path().join("b.scen"));
+    let mut c = Client::start();
+    c.open(&file, BENCHES);
+    assert_eq!(c.diagnostics(&file), json!([]));
+    // A bench's keys, the plans of `plans [`, the keys `vary` takes.
+    assert_eq!(c.labels(&file, 10, 2), ["plans", "vary", "runs", "limit"]);
+    assert_eq!(c.labels(&file, 10, 9), ["p", "q"]);
+    let vary = c.labels(&file, 11, 7);
+    assert!(
+        vary.contains(&"jump".to_string()) && vary.contains(&"weight".to_string()),
+        "{vary:?}"
+    );
+    // In `expect`: plans, benches and the aggregates; `b.` → plans;
+    // `b.p[jump = 4].` → the plan's metrics.
+    let words = c.labels(&file, 14, 7);
+    assert_eq!(&words[..4], ["p", "q", "b", "mean"]);
+    assert!(words.contains(&"rate".to_string()), "{words:?}");
+    assert_eq!(c.labels(&file, 14, 16), ["p", "q"]);
+    let metrics = c.labels(&file, 14, 29);
+    assert!(metrics.contains(&"minima".to_string()), "{metrics:?}");
+    // Hover on the series' metric; definition of its bench and plan.
+    let hover = c.at("textDocument/hover", &file, 14, 31);
+    assert_eq!(hover["range"], range(14, 28, 14, 34), "{hover}");
+    let def = c.at("textDocument/definition", &file, 14, 14);
+    assert_eq!(def["range"], range(9, 6, 9, 7), "{def}");
+    let def = c.at("textDocument/definition", &file, 14, 16);
+    assert_eq!(def["range"], range(1, 5, 1, 6), "{def}");
+    // The plan's references: its declaration, `plans [p]` and the series.
+    let refs = c.at("textDocument/references", &file, 1, 5);
+    let lines: Vec<u64> = refs
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["range"]["start"]["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [1, 10, 14], "{refs}");
+    // The outline lists the bench.
+    let symbols = c.request(
+        "textDocument/documentSymbol",
+        json!({ "textDocument": { "uri": file } }),
+    );
+    let names: Vec<&str> = symbols
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["dot", "p", "q", "b"]);
+    // Formatting leaves the canonical text as it is.
+    let edits = c.request(
+        "textDocument/formatting",
+        json!({ "textDocument": { "uri": file }, "options": { "tabSize": 2, "insertSpaces": true } }),
+    );
+    assert!(edits.is_null() || edits == json!([]), "{edits}");
+    c.shutdown();
+}
+
 #[test]
 fn the_server_answers_every_request_exactly() {
     let (_dir, main, robots) = setup();
@@ -213,11 +292,24 @@ fn the_server_answers_every_request_exactly() {
     // plan names and a plan's metrics.
     assert_eq!(
         c.labels(&main, 12, 0),
-        ["scenario", "include", "world", "robot", "plan", "expect"]
+        [
+            "scenario", "include", "world", "robot", "plan", "expect", "bench"
+        ]
     );
     assert_eq!(
         c.labels(&main, 5, 7),
-        ["astar", "online", "roadmap", "potential", "coverage"]
+        [
+            "astar",
+            "online",
+            "roadmap",
+            "potential",
+            "coverage",
+            "rrt",
+            "rrt_connect",
+            "rrt_star",
+            "prm",
+            "prm_star"
+        ]
     );
     assert_eq!(c.labels(&main, 5, 13), ["dot"]);
     let keys = c.at("textDocument/completion", &main, 8, 2);

@@ -10,6 +10,7 @@ use crate::scenario::grouping::ParamKeys;
 use crate::scenario::schema::{
     DRIVE_METRICS, DRIVE_PARAMS, MetricSpec, MetricType, ParamSpec, ValueSpec,
 };
+use crate::scenario::{AGGREGATES, BENCH_KEYS};
 use crate::syntax::{
     EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token,
     TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
@@ -79,6 +80,32 @@ pub(crate) fn completions(text: &str, offset: usize, analysis: &Analysis) -> Vec
                 _ => param_keys(keys),
             }
         }
+        "bench" => match open.as_slice() {
+            ["{"] => match tokens
+                .last()
+                .filter(|t| t.kind == TokenKind::Word)
+                .map(word)
+            {
+                Some("vary") => vary_keys(analysis),
+                Some("limit") => match ParamKeys::Plan("").spec("limit") {
+                    Some(spec) => word_values(spec, ParamKeys::Plan(""), analysis),
+                    None => Vec::new(),
+                },
+                _ => keywords(BENCH_KEYS),
+            },
+            // `plans [a, b]`: the plans.
+            ["{", "["] => {
+                let list = tokens.iter().rposition(|t| t.kind == TokenKind::Open);
+                match list
+                    .and_then(|k| k.checked_sub(1))
+                    .map(|k| word(&tokens[k]))
+                {
+                    Some("plans") => names(analysis, NameKind::Plan),
+                    _ => Vec::new(),
+                }
+            }
+            _ => Vec::new(),
+        },
         "robot" if open.is_empty() && head.len() == 2 => keywords(&ROBOT_SHAPE_KEYWORDS),
         "world" if open == ["{"] => {
             let line_head = text[line_start..].split_whitespace().next();
@@ -91,17 +118,65 @@ pub(crate) fn completions(text: &str, offset: usize, analysis: &Analysis) -> Vec
             }
         }
         "expect" => {
-            let n = tokens.len();
-            let dotted = n >= 2
+            // A selection `b.p[k = v].` is skipped back to its plan `p`.
+            let mut n = tokens.len();
+            let dot_at_cursor = n >= 2
                 && tokens[n - 1].kind == TokenKind::Other
                 && word(&tokens[n - 1]) == "."
-                && tokens[n - 1].end == word_start
+                && tokens[n - 1].end == word_start;
+            if dot_at_cursor && word(&tokens[n - 2]) == "]" {
+                let mut depth = 0;
+                let mut k = n - 2;
+                loop {
+                    match word(&tokens[k]) {
+                        "]" => depth += 1,
+                        "[" => depth -= 1,
+                        _ => {}
+                    }
+                    if depth == 0 || k == 0 {
+                        break;
+                    }
+                    k -= 1;
+                }
+                // Pretend the cursor follows `p.` directly.
+                if depth == 0 && k >= 1 {
+                    n = k + 1;
+                }
+            }
+            let dotted = dot_at_cursor
+                && n >= 2
                 && tokens[n - 2].kind == TokenKind::Word
                 && tokens[n - 2].end == tokens[n - 1].start;
             if dotted {
-                metrics(analysis, word(&tokens[n - 2]))
+                let before = word(&tokens[n - 2]);
+                // `BENCH.` → its plans; `PLAN.` and `BENCH.PLAN.` → metrics.
+                let bench_dot = analysis.symbol(NameKind::Bench, before).is_some()
+                    && !(n >= 3
+                        && word(&tokens[n - 3]) == "."
+                        && tokens[n - 3].end == tokens[n - 2].start);
+                if bench_dot {
+                    names(analysis, NameKind::Plan)
+                } else {
+                    metrics(analysis, before)
+                }
             } else {
                 let mut items = names(analysis, NameKind::Plan);
+                let benches = names(analysis, NameKind::Bench);
+                // Aggregates read benches' series: offered where there are benches.
+                let aggregates = if benches.is_empty() {
+                    &[][..]
+                } else {
+                    AGGREGATES
+                };
+                items.extend(benches);
+                items.extend(aggregates.iter().map(|(a, _)| {
+                    item(
+                        a,
+                        CompletionItemKind::FUNCTION,
+                        "an aggregate of a bench series",
+                        None,
+                    )
+                }));
                 items.extend(keywords(&EXPRESSION_WORDS));
                 items
             }
@@ -212,6 +287,32 @@ fn word_values(spec: &ParamSpec, keys: ParamKeys<'_>, analysis: &Analysis) -> Ve
             item(w, CompletionItemKind::ENUM_MEMBER, &detail, None)
         })
         .collect()
+}
+
+/// After `vary` in a bench: the parameters of the file's plans' planners.
+fn vary_keys(analysis: &Analysis) -> Vec<CompletionItem> {
+    let mut seen: Vec<&str> = Vec::new();
+    let mut items = Vec::new();
+    for plan in analysis.names(NameKind::Plan) {
+        let Some(planner) = analysis
+            .plan_kind(&plan.name)
+            .and_then(|(kind, _)| registry::planner(kind))
+        else {
+            continue;
+        };
+        for spec in planner.all_params() {
+            if !seen.contains(&spec.key) {
+                seen.push(spec.key);
+                items.push(item(
+                    spec.key,
+                    CompletionItemKind::FIELD,
+                    &spec.value.describe(),
+                    Some(param_doc(spec)),
+                ));
+            }
+        }
+    }
+    items
 }
 
 fn metrics(analysis: &Analysis, plan: &str) -> Vec<CompletionItem> {
