@@ -212,13 +212,13 @@ fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
         Duration::from_secs(120),
     );
     let text = String::from_utf8_lossy(&print.stdout);
-    // 70 layers for `center70`: one entity per layer, and the path in 3D.
+    // 70 layers for `rod` (as written; `scen run` runs no bench): one entity per layer, and the path in 3D.
     for entity in [
-        "/plans/center70/cspace/layer_0 ",
-        "/plans/center70/cspace/layer_69 ",
-        "/plans/center70/cspace/path ",
-        "/plans/center70/cspace/obstacles/B2 ",
-        "/plans/center70/robot ",
+        "/plans/rod/cspace/layer_0 ",
+        "/plans/rod/cspace/layer_69 ",
+        "/plans/rod/cspace/path ",
+        "/plans/rod/cspace/obstacles/B2 ",
+        "/plans/rod/robot ",
     ] {
         assert!(
             text.contains(entity),
@@ -226,7 +226,7 @@ fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
         );
     }
     assert!(
-        !text.contains("/plans/center70/cspace/layer_70 "),
+        !text.contains("/plans/rod/cspace/layer_70 "),
         "one entity per layer, no more"
     );
 }
