@@ -56,7 +56,8 @@ fn run_json(file: &Path) -> Option<Value> {
     fn strip(v: &mut Value) {
         match v {
             Value::Object(map) => {
-                map.remove("time_ms");
+                // Timings: `time_ms` and the other `*_ms` metrics.
+                map.retain(|k, _| !k.ends_with("_ms"));
                 map.remove("line");
                 map.remove("file");
                 if let Some(Value::String(expr)) = map.get_mut("expr") {

@@ -217,6 +217,9 @@ bench b {
   runs 3
 }
 expect median(b.p[jump = 4].length) < 20
+world {
+  bounds (0, 0) (10, 10)
+}
 ";
 
 #[test]
@@ -270,7 +273,7 @@ fn benches_are_completed_navigated_and_outlined() {
         .iter()
         .map(|s| s["name"].as_str().unwrap())
         .collect();
-    assert_eq!(names, ["dot", "p", "q", "b"]);
+    assert_eq!(names, ["dot", "p", "q", "b", "world"]);
     // Formatting leaves the canonical text as it is.
     let edits = c.request(
         "textDocument/formatting",
@@ -319,7 +322,7 @@ fn the_server_answers_every_request_exactly() {
         .iter()
         .find(|i| i["label"] == "cell")
         .unwrap();
-    assert_eq!(cell["detail"], "a number > 0");
+    assert_eq!(cell["detail"], "a number > 0 and <= 1e9");
     assert_eq!(cell["kind"], 5);
     assert!(
         cell["documentation"]["value"]
