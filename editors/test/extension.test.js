@@ -59,20 +59,37 @@ function fakeLanguageClient() {
   return { started, module: { LanguageClient } };
 }
 
+/**
+ * The extension with `vscode` and `vscode-languageclient/node` replaced by
+ * the stand-ins, both while it loads and while each of its functions runs
+ * (it requires the language client lazily, in `activate`, so that it works
+ * without one when `scen` is not found).
+ */
 function loadExtension(vscode, languageClient = fakeLanguageClient()) {
-  const load = Module._load;
-  Module._load = function (request, ...rest) {
-    if (request === 'vscode') return vscode;
-    if (request === 'vscode-languageclient/node') return languageClient.module;
-    return load.call(this, request, ...rest);
+  const withStandIns = (f) => {
+    const load = Module._load;
+    Module._load = function (request, ...rest) {
+      if (request === 'vscode') return vscode;
+      if (request === 'vscode-languageclient/node') return languageClient.module;
+      return load.call(this, request, ...rest);
+    };
+    try {
+      return f();
+    } finally {
+      Module._load = load;
+    }
   };
-  try {
+  const extension = withStandIns(() => {
     const file = require.resolve('../vscode/extension.js');
     delete require.cache[file];
     return require(file);
-  } finally {
-    Module._load = load;
+  });
+  const wrapped = {};
+  for (const [name, value] of Object.entries(extension)) {
+    wrapped[name] =
+      typeof value === 'function' ? (...args) => withStandIns(() => value(...args)) : value;
   }
+  return wrapped;
 }
 
 const path = require('path');
