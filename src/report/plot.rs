@@ -3,14 +3,17 @@
 //! numeric key — a line per plan of the metric's median against that key.
 //! Drawn with `plotters` (its SVG backend).
 //!
-//! Values that are not finite (the +∞ length of a run without a path) have
-//! no place on an axis: they are left out of the boxes, and each box's label
-//! says how many runs it shows.
+//! A box spans the quartiles (linear interpolation, as `quantile` in
+//! `expect`), a line marks the median, the whiskers reach the most extreme
+//! runs within 1.5 IQR of the box (Tukey's), and the runs beyond them are
+//! dots. Values that are not finite (the +∞ length of a run without a path)
+//! have no place on an axis: they are left out, and a box that leaves runs
+//! out says how many it shows (`(18/20)`).
 
 use plotters::prelude::*;
 
 use crate::bench::{BenchRun, TABLE_METRICS};
-use crate::checks::format_num;
+use crate::checks::{format_num, quantile};
 use crate::run::RunReport;
 use crate::scenario::Scenario;
 use crate::syntax::ast::ValueKind;
@@ -155,15 +158,82 @@ fn boxes(
             continue;
         }
         let [r, g, bl] = plan_colour(*plan);
-        let quartiles = Quartiles::new(xs);
-        chart.draw_series(std::iter::once(
-            Boxplot::new_vertical(SegmentValue::CenterOf(label), &quartiles)
-                .width(18)
-                .whisker_width(0.6)
-                .style(RGBColor(r, g, bl)),
-        ))?;
+        let style = ShapeStyle::from(RGBColor(r, g, bl)).stroke_width(1);
+        let t = Tukey::of(xs);
+        let at = |y: f64| (SegmentValue::CenterOf(label), y as f32);
+        // Pixel heights of the box from its top, for elements drawn in
+        // pixels around a data point.
+        let px = |y: f64| chart.backend_coord(&at(y)).1;
+        let (top, q1, median) = (px(t.q3), px(t.q1), px(t.median));
+        chart.draw_series([
+            EmptyElement::at(at(t.q3)) + Rectangle::new([(-9, 0), (9, q1 - top)], style)
+        ])?;
+        chart.draw_series([EmptyElement::at(at(t.q3))
+            + PathElement::new(
+                [(-9, median - top), (9, median - top)],
+                style.stroke_width(2),
+            )])?;
+        for (from, to) in [(t.q3, t.high), (t.q1, t.low)] {
+            chart.draw_series([PathElement::new([at(from), at(to)], style)])?;
+            chart.draw_series([
+                EmptyElement::at(at(to)) + PathElement::new([(-5, 0), (5, 0)], style)
+            ])?;
+        }
+        chart.draw_series(
+            t.outliers
+                .iter()
+                .map(|&y| EmptyElement::at(at(y)) + Circle::new((0, 0), 2, style)),
+        )?;
     }
     Ok(())
+}
+
+/// What a box plot shows of some values.
+struct Tukey {
+    q1: f64,
+    median: f64,
+    q3: f64,
+    /// The whiskers' ends: the extreme values within 1.5 IQR of the box.
+    low: f64,
+    high: f64,
+    /// The values beyond the whiskers.
+    outliers: Vec<f64>,
+}
+
+impl Tukey {
+    /// Of finite values, at least one.
+    fn of(xs: &[f64]) -> Tukey {
+        let mut sorted = xs.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let (q1, median, q3) = (
+            quantile(&sorted, 0.25),
+            quantile(&sorted, 0.5),
+            quantile(&sorted, 0.75),
+        );
+        let reach = 1.5 * (q3 - q1);
+        let inside = |x: &&f64| **x >= q1 - reach && **x <= q3 + reach;
+        let low = sorted.iter().find(inside).copied().unwrap_or(q1).min(q1);
+        let high = sorted
+            .iter()
+            .rev()
+            .find(inside)
+            .copied()
+            .unwrap_or(q3)
+            .max(q3);
+        let outliers = sorted
+            .iter()
+            .copied()
+            .filter(|x| *x < low || *x > high)
+            .collect();
+        Tukey {
+            q1,
+            median,
+            q3,
+            low,
+            high,
+            outliers,
+        }
+    }
 }
 
 /// The median of `metric` against the numeric varied key `key`, a line per
@@ -248,4 +318,23 @@ fn lines(
         .border_style(BLACK.mix(0.3))
         .draw()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Tukey;
+
+    #[test]
+    fn whiskers_end_at_values_within_one_and_a_half_iqr() {
+        // Quartiles 2 and 4 (IQR 2): the whiskers reach 1 and 7, the
+        // extreme values within [−1, 7]; 20 is beyond.
+        let t = Tukey::of(&[3.0, 1.0, 2.0, 4.0, 20.0, 3.0, 7.0, 2.0, 4.0]);
+        assert_eq!((t.q1, t.median, t.q3), (2.0, 3.0, 4.0));
+        assert_eq!((t.low, t.high), (1.0, 7.0));
+        assert_eq!(t.outliers, [20.0]);
+        // One value: a box of no height, no whiskers, no outliers.
+        let t = Tukey::of(&[5.0]);
+        assert_eq!((t.q1, t.q3, t.low, t.high), (5.0, 5.0, 5.0, 5.0));
+        assert!(t.outliers.is_empty());
+    }
 }
