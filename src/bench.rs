@@ -228,33 +228,13 @@ fn selection(bench: &Bench, select: &[Selection]) -> Option<Vec<(usize, usize)>>
 
 /// The benches an expression reads.
 fn benches_used(expr: &crate::syntax::ast::Expr, out: &mut Vec<String>) {
-    use crate::syntax::ast::ExprKind;
-    match &expr.kind {
-        ExprKind::Series { bench, .. } => {
-            if !out.contains(&bench.value) {
-                out.push(bench.value.clone());
-            }
+    expr.walk(&mut |e| {
+        if let crate::syntax::ast::ExprKind::Series { bench, .. } = &e.kind
+            && !out.contains(&bench.value)
+        {
+            out.push(bench.value.clone());
         }
-        ExprKind::Neg(x) | ExprKind::Not(x) => benches_used(x, out),
-        ExprKind::Arith { lhs, rhs, .. }
-        | ExprKind::Compare { lhs, rhs, .. }
-        | ExprKind::Where(lhs, rhs)
-        | ExprKind::And(lhs, rhs)
-        | ExprKind::Or(lhs, rhs) => {
-            benches_used(lhs, out);
-            benches_used(rhs, out);
-        }
-        ExprKind::Approx { lhs, rhs, tol } => {
-            benches_used(lhs, out);
-            benches_used(rhs, out);
-            benches_used(tol, out);
-        }
-        ExprKind::Call { args, .. } => args.iter().for_each(|a| benches_used(a, out)),
-        ExprKind::Number(_)
-        | ExprKind::Percent(_)
-        | ExprKind::Bool(_)
-        | ExprKind::Metric { .. } => {}
-    }
+    });
 }
 
 /// The metrics the table shows by default (SPEC 4).

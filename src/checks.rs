@@ -276,32 +276,13 @@ pub fn value_text(v: &Value) -> String {
 
 /// The plans an expression refers to by `PLAN.METRIC`.
 pub fn plans_used(expr: &Expr, out: &mut Vec<String>) {
-    match &expr.kind {
-        ExprKind::Metric { plan, .. } => {
-            if !out.contains(&plan.value) {
-                out.push(plan.value.clone());
-            }
+    expr.walk(&mut |e| {
+        if let ExprKind::Metric { plan, .. } = &e.kind
+            && !out.contains(&plan.value)
+        {
+            out.push(plan.value.clone());
         }
-        ExprKind::Neg(x) | ExprKind::Not(x) => plans_used(x, out),
-        ExprKind::Arith { lhs, rhs, .. }
-        | ExprKind::Compare { lhs, rhs, .. }
-        | ExprKind::Where(lhs, rhs)
-        | ExprKind::And(lhs, rhs)
-        | ExprKind::Or(lhs, rhs) => {
-            plans_used(lhs, out);
-            plans_used(rhs, out);
-        }
-        ExprKind::Approx { lhs, rhs, tol } => {
-            plans_used(lhs, out);
-            plans_used(rhs, out);
-            plans_used(tol, out);
-        }
-        ExprKind::Call { args, .. } => args.iter().for_each(|a| plans_used(a, out)),
-        ExprKind::Number(_)
-        | ExprKind::Percent(_)
-        | ExprKind::Bool(_)
-        | ExprKind::Series { .. } => {}
-    }
+    });
 }
 
 /// Formats a metric value for reports: booleans as `true`/`false`, whole

@@ -205,31 +205,12 @@ fn symbols(statements: &[SourcedStmt]) -> Vec<Symbol> {
 }
 
 fn expr_uses<'e>(e: &'e Expr, out: &mut Vec<(NameKind, &'e str, Span)>) {
-    match &e.kind {
+    e.walk(&mut |e| match &e.kind {
         ExprKind::Metric { plan, .. } => out.push((NameKind::Plan, &plan.value, plan.span)),
         ExprKind::Series { bench, plan, .. } => {
             out.push((NameKind::Bench, &bench.value, bench.span));
             out.push((NameKind::Plan, &plan.value, plan.span));
         }
-        ExprKind::Call { args, .. } => {
-            for arg in args {
-                expr_uses(arg, out);
-            }
-        }
-        ExprKind::Neg(a) | ExprKind::Not(a) => expr_uses(a, out),
-        ExprKind::Arith { lhs, rhs, .. }
-        | ExprKind::Compare { lhs, rhs, .. }
-        | ExprKind::And(lhs, rhs)
-        | ExprKind::Or(lhs, rhs)
-        | ExprKind::Where(lhs, rhs) => {
-            expr_uses(lhs, out);
-            expr_uses(rhs, out);
-        }
-        ExprKind::Approx { lhs, rhs, tol } => {
-            expr_uses(lhs, out);
-            expr_uses(rhs, out);
-            expr_uses(tol, out);
-        }
-        ExprKind::Number(_) | ExprKind::Percent(_) | ExprKind::Bool(_) => {}
-    }
+        _ => {}
+    });
 }

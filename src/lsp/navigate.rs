@@ -178,17 +178,7 @@ fn metric_at(e: &Expr, offset: usize) -> Option<(&Spanned<String>, &Spanned<Stri
         ExprKind::Metric { plan, metric } | ExprKind::Series { plan, metric, .. } => {
             Some((plan, metric))
         }
-        ExprKind::Call { args, .. } => args.iter().find_map(|a| metric_at(a, offset)),
-        ExprKind::Neg(x) | ExprKind::Not(x) => metric_at(x, offset),
-        ExprKind::Arith { lhs, rhs, .. }
-        | ExprKind::Compare { lhs, rhs, .. }
-        | ExprKind::And(lhs, rhs)
-        | ExprKind::Or(lhs, rhs)
-        | ExprKind::Where(lhs, rhs) => metric_at(lhs, offset).or_else(|| metric_at(rhs, offset)),
-        ExprKind::Approx { lhs, rhs, tol } => metric_at(lhs, offset)
-            .or_else(|| metric_at(rhs, offset))
-            .or_else(|| metric_at(tol, offset)),
-        ExprKind::Number(_) | ExprKind::Percent(_) | ExprKind::Bool(_) => None,
+        _ => e.children().into_iter().find_map(|c| metric_at(c, offset)),
     }
 }
 

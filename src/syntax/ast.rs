@@ -240,6 +240,35 @@ pub struct Expr {
     pub span: Span,
 }
 
+impl Expr {
+    /// The operands of this node, in source order (none for a leaf).
+    pub fn children(&self) -> Vec<&Expr> {
+        match &self.kind {
+            ExprKind::Number(_)
+            | ExprKind::Percent(_)
+            | ExprKind::Bool(_)
+            | ExprKind::Metric { .. }
+            | ExprKind::Series { .. } => Vec::new(),
+            ExprKind::Call { args, .. } => args.iter().collect(),
+            ExprKind::Neg(x) | ExprKind::Not(x) => vec![x],
+            ExprKind::Where(a, b)
+            | ExprKind::And(a, b)
+            | ExprKind::Or(a, b)
+            | ExprKind::Arith { lhs: a, rhs: b, .. }
+            | ExprKind::Compare { lhs: a, rhs: b, .. } => vec![a, b],
+            ExprKind::Approx { lhs, rhs, tol } => vec![lhs, rhs, tol],
+        }
+    }
+
+    /// Calls `f` on this node and every node below it, parents first.
+    pub fn walk<'e>(&'e self, f: &mut impl FnMut(&'e Expr)) {
+        f(self);
+        for child in self.children() {
+            child.walk(f);
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     Number(f64),

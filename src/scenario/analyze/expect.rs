@@ -594,21 +594,5 @@ impl Analyzer {
 
 /// Whether an expression reads a bench's series.
 pub(crate) fn uses_series(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::Series { .. } => true,
-        ExprKind::Number(_)
-        | ExprKind::Percent(_)
-        | ExprKind::Bool(_)
-        | ExprKind::Metric { .. } => false,
-        ExprKind::Neg(x) | ExprKind::Not(x) => uses_series(x),
-        ExprKind::Call { args, .. } => args.iter().any(uses_series),
-        ExprKind::Where(a, b)
-        | ExprKind::And(a, b)
-        | ExprKind::Or(a, b)
-        | ExprKind::Arith { lhs: a, rhs: b, .. }
-        | ExprKind::Compare { lhs: a, rhs: b, .. } => uses_series(a) || uses_series(b),
-        ExprKind::Approx { lhs, rhs, tol } => {
-            uses_series(lhs) || uses_series(rhs) || uses_series(tol)
-        }
-    }
+    matches!(e.kind, ExprKind::Series { .. }) || e.children().into_iter().any(uses_series)
 }
