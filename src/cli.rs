@@ -309,8 +309,16 @@ fn progress(args: &RunArgs, file: &Path) -> Option<indicatif::ProgressBar> {
 }
 
 fn print_text(report: &RunReport, args: &RunArgs) {
+    print_report(report, args.quiet, || {
+        report::text::render(report, args.verbose)
+    });
+}
+
+/// Prints `full` (the report, rendered), or with `quiet` only the failed
+/// checks and the summary; then a diagnostic per failed check on stderr.
+pub(crate) fn print_report(report: &RunReport, quiet: bool, full: impl FnOnce() -> String) {
     let mut out = std::io::stdout().lock();
-    if args.quiet {
+    if quiet {
         for c in report.checks.iter().filter(|c| !c.passed) {
             let _ = writeln!(out, "{}", report::text::check_line(report, c));
         }
@@ -321,7 +329,7 @@ fn print_text(report: &RunReport, args: &RunArgs) {
             report.failed()
         );
     } else {
-        let _ = write!(out, "{}", report::text::render(report, args.verbose));
+        let _ = write!(out, "{}", full());
     }
     let failed: Vec<Diag> = report
         .checks

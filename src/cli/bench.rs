@@ -1,14 +1,16 @@
 //! `scen bench FILE...` and `scen bench merge PART.jsonl...` (SPEC §4).
 
 use std::collections::BTreeSet;
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use super::{BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, print_failure, render_diags};
+use super::{
+    BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, print_failure, print_report,
+    render_diags,
+};
 use crate::bench::{self, BenchRun, RunId, Shard, TABLE_METRICS};
-use crate::diagnostics::Diag;
 use crate::report;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
@@ -129,30 +131,9 @@ fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
         let doc = report::bench::to_json(report);
         println!("{}", serde_json::to_string(&doc).unwrap_or_default());
     } else {
-        let mut out = std::io::stdout().lock();
-        if args.quiet {
-            for c in report.checks.iter().filter(|c| !c.passed) {
-                let _ = writeln!(out, "{}", report::text::check_line(report, c));
-            }
-            let _ = writeln!(
-                out,
-                "{} passed, {} failed",
-                report.passed(),
-                report.failed()
-            );
-        } else {
-            let _ = write!(out, "{}", report::bench::render(report, &metrics));
-        }
-        let failed: Vec<Diag> = report
-            .checks
-            .iter()
-            .filter(|c| !c.passed)
-            .map(|c| report::text::failed_check_diag(report, c))
-            .collect();
-        if !failed.is_empty() {
-            let _ = out.flush();
-            eprint!("{}", render_diags(&failed, &report.scenario.sources));
-        }
+        print_report(report, args.quiet, || {
+            report::bench::render(report, &metrics)
+        });
     }
     let mut failed_writes = false;
     let write = |path: &Path, text: String| -> bool {
