@@ -26,12 +26,10 @@
 
 mod common;
 
-use common::TempDir;
-use std::io::Read;
+use common::{TempDir, run_or_kill};
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitStatus, Stdio};
-use std::thread;
-use std::time::{Duration, Instant};
+use std::process::{Command, ExitStatus};
+use std::time::Duration;
 
 /// How long one `scen` process may take on a bad input.
 const TIMEOUT: Duration = Duration::from_secs(2);
@@ -146,44 +144,20 @@ impl Outcome {
 
 /// Runs the `scen` binary in `dir`, killing it after [`TIMEOUT`].
 fn run_scen(dir: &Path, args: &[&str]) -> Outcome {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_scen"))
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        // A panic must show its "run with RUST_BACKTRACE=1" note.
-        .env_remove("RUST_BACKTRACE")
-        .env_remove("RUST_LIB_BACKTRACE")
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the scen binary starts");
-    // Drain both pipes while waiting, so a chatty child cannot block.
-    let drain = |mut pipe: Box<dyn Read + Send>| {
-        thread::spawn(move || {
-            let mut bytes = Vec::new();
-            let _ = pipe.read_to_end(&mut bytes);
-            String::from_utf8_lossy(&bytes).into_owned()
-        })
-    };
-    let stdout = drain(Box::new(child.stdout.take().expect("piped stdout")));
-    let stderr = drain(Box::new(child.stderr.take().expect("piped stderr")));
-    let started = Instant::now();
-    let status = loop {
-        match child.try_wait().expect("waiting for scen") {
-            Some(status) => break Some(status),
-            None if started.elapsed() > TIMEOUT => {
-                let _ = child.kill();
-                let _ = child.wait();
-                break None;
-            }
-            None => thread::sleep(Duration::from_millis(5)),
-        }
-    };
+    let finished = run_or_kill(
+        Command::new(env!("CARGO_BIN_EXE_scen"))
+            .args(args)
+            .current_dir(dir)
+            .env("NO_COLOR", "1")
+            // A panic must show its "run with RUST_BACKTRACE=1" note.
+            .env_remove("RUST_BACKTRACE")
+            .env_remove("RUST_LIB_BACKTRACE"),
+        TIMEOUT,
+    );
     Outcome {
-        status,
-        stdout: stdout.join().expect("stdout reader"),
-        stderr: stderr.join().expect("stderr reader"),
+        status: finished.status,
+        stdout: String::from_utf8_lossy(&finished.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&finished.stderr).into_owned(),
     }
 }
 

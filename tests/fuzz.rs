@@ -40,15 +40,14 @@
 mod common;
 
 use std::fmt::Write as _;
-use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitStatus, Stdio};
+use std::process::{Command, ExitStatus};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::thread;
 use std::time::{Duration, Instant};
 
-use common::{TempDir, repo, scen_bin};
+use common::{TempDir, repo, run_or_kill, scen_bin};
 use scen::planners::registry::PLANNERS;
 use scen::rng::SplitMix64;
 
@@ -592,45 +591,22 @@ struct Ran {
 }
 
 fn run_scen(dir: &Path, args: &[&str], timeout: Duration) -> Ran {
-    let started = Instant::now();
     // `exec` keeps the process id, so that a kill reaches scen itself.
-    let mut child = Command::new("sh")
-        .arg("-c")
-        .arg(format!("ulimit -v {MEMORY_KIB} && exec \"$0\" \"$@\""))
-        .arg(scen_bin())
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .env_remove("RUST_BACKTRACE")
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("sh starts scen");
-    let drain = |mut pipe: Box<dyn Read + Send>| {
-        thread::spawn(move || {
-            let mut bytes = Vec::new();
-            let _ = pipe.read_to_end(&mut bytes);
-            String::from_utf8_lossy(&bytes).into_owned()
-        })
-    };
-    let stdout = drain(Box::new(child.stdout.take().expect("piped stdout")));
-    let stderr = drain(Box::new(child.stderr.take().expect("piped stderr")));
-    let status = loop {
-        match child.try_wait().expect("waiting for scen") {
-            Some(status) => break Some(status),
-            None if started.elapsed() > timeout => {
-                let _ = child.kill();
-                let _ = child.wait();
-                break None;
-            }
-            None => thread::sleep(Duration::from_millis(2)),
-        }
-    };
+    let finished = run_or_kill(
+        Command::new("sh")
+            .arg("-c")
+            .arg(format!("ulimit -v {MEMORY_KIB} && exec \"$0\" \"$@\""))
+            .arg(scen_bin())
+            .args(args)
+            .current_dir(dir)
+            .env("NO_COLOR", "1")
+            .env_remove("RUST_BACKTRACE"),
+        timeout,
+    );
     Ran {
-        status,
-        stdout: stdout.join().expect("stdout reader"),
-        stderr: stderr.join().expect("stderr reader"),
+        status: finished.status,
+        stdout: String::from_utf8_lossy(&finished.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&finished.stderr).into_owned(),
     }
 }
 

@@ -7,7 +7,7 @@
 pub mod random;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, ExitStatus, Output};
 use std::time::{Duration, Instant};
 
 pub fn scen_bin() -> &'static str {
@@ -158,40 +158,60 @@ impl Test {
 
 /// Runs a command, killing it after `timeout` (a hang is a test failure).
 pub fn run_with_timeout(cmd: &mut Command, timeout: Duration) -> Output {
+    let finished = run_or_kill(cmd, timeout);
+    let Some(status) = finished.status else {
+        panic!("scen did not finish within {timeout:?}");
+    };
+    Output {
+        status,
+        stdout: finished.stdout,
+        stderr: finished.stderr,
+    }
+}
+
+/// What a process did.
+pub struct Finished {
+    /// `None` when it was killed at the timeout.
+    pub status: Option<ExitStatus>,
+    pub stdout: Vec<u8>,
+    pub stderr: Vec<u8>,
+}
+
+/// Runs a command with stdin closed and its output piped (drained while it
+/// runs, so that a chatty child cannot block on a full pipe), killing it
+/// after `timeout`.
+pub fn run_or_kill(cmd: &mut Command, timeout: Duration) -> Finished {
     use std::process::Stdio;
     let mut child = cmd
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
-        .expect("spawn scen");
-    // Drain the pipes on threads so a chatty child cannot block on them.
-    let mut so = child.stdout.take().expect("stdout");
-    let mut se = child.stderr.take().expect("stderr");
-    let t1 = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        let _ = std::io::Read::read_to_end(&mut so, &mut v);
-        v
-    });
-    let t2 = std::thread::spawn(move || {
-        let mut v = Vec::new();
-        let _ = std::io::Read::read_to_end(&mut se, &mut v);
-        v
-    });
+        .expect("the command starts");
+    let drain = |mut pipe: Box<dyn std::io::Read + Send>| {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            let _ = pipe.read_to_end(&mut bytes);
+            bytes
+        })
+    };
+    let stdout = drain(Box::new(child.stdout.take().expect("piped stdout")));
+    let stderr = drain(Box::new(child.stderr.take().expect("piped stderr")));
     let began = Instant::now();
     let status = loop {
-        if let Some(s) = child.try_wait().expect("wait") {
-            break s;
+        match child.try_wait().expect("waiting for the command") {
+            Some(status) => break Some(status),
+            None if began.elapsed() > timeout => {
+                let _ = child.kill();
+                let _ = child.wait();
+                break None;
+            }
+            None => std::thread::sleep(Duration::from_millis(2)),
         }
-        if began.elapsed() > timeout {
-            let _ = child.kill();
-            panic!("scen did not finish within {timeout:?}");
-        }
-        std::thread::sleep(Duration::from_millis(5));
     };
-    Output {
+    Finished {
         status,
-        stdout: t1.join().unwrap_or_default(),
-        stderr: t2.join().unwrap_or_default(),
+        stdout: stdout.join().expect("stdout reader"),
+        stderr: stderr.join().expect("stderr reader"),
     }
 }
