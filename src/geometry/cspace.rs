@@ -446,6 +446,7 @@ impl Index {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::fixtures::world_in;
     use crate::geometry::minkowski::c_obstacle;
     use crate::geometry::polygon::{convex_hull, normalize_simple_polygon, signed_area2};
     use crate::geometry::validator::{Validator, config_collision};
@@ -468,17 +469,10 @@ mod tests {
     }
 
     fn world(shapes: Vec<Shape>) -> World {
-        World {
-            bounds: Aabb::from_corners(p(-100.0, -100.0), p(100.0, 100.0)),
-            obstacles: shapes
-                .into_iter()
-                .enumerate()
-                .map(|(i, shape)| Obstacle {
-                    name: format!("o{i}"),
-                    shape,
-                })
-                .collect(),
-        }
+        world_in(
+            Aabb::from_corners(p(-100.0, -100.0), p(100.0, 100.0)),
+            shapes,
+        )
     }
 
     fn rod() -> ConvexPolygon {

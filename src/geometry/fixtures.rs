@@ -30,11 +30,19 @@ pub(crate) fn grid(cell: f64, origin: Point, rows: &[&str]) -> Shape {
 
 /// A world of `shapes` named o0, o1, … with bounds [0, 10]².
 pub(crate) fn world(shapes: Vec<Shape>) -> World {
-    World {
-        bounds: Aabb {
+    world_in(
+        Aabb {
             min: p(0.0, 0.0),
             max: p(10.0, 10.0),
         },
+        shapes,
+    )
+}
+
+/// A world of `shapes` named o0, o1, … within `bounds`.
+pub(crate) fn world_in(bounds: Aabb, shapes: Vec<Shape>) -> World {
+    World {
+        bounds,
         obstacles: shapes
             .into_iter()
             .enumerate()

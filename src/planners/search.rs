@@ -35,6 +35,30 @@ pub struct Edge {
     pub label: u32,
 }
 
+/// The edges at `node` of an undirected petgraph graph (the roadmap's and
+/// PRM's), as successors costing `cost(weight)`.
+pub fn undirected_successors<N, W>(
+    graph: &petgraph::graph::UnGraph<N, W>,
+    node: usize,
+    cost: impl Fn(&W) -> f64,
+    out: &mut Vec<Edge>,
+) {
+    use petgraph::visit::EdgeRef;
+    for e in graph.edges(petgraph::graph::NodeIndex::new(node)) {
+        // An undirected edge is listed with `node` at either end.
+        let to = if e.source().index() == node {
+            e.target().index()
+        } else {
+            e.source().index()
+        };
+        out.push(Edge {
+            to,
+            cost: cost(e.weight()),
+            label: 0,
+        });
+    }
+}
+
 /// A graph to search.
 pub trait Graph {
     /// The number of node indices.

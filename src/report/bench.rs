@@ -319,7 +319,7 @@ pub fn to_csv(report: &RunReport) -> String {
         for m in &metrics {
             row.push(match r.metrics.get(*m) {
                 Some(MetricValue::Bool(b)) => b.to_string(),
-                Some(MetricValue::Num(x)) => csv_number(*x),
+                Some(MetricValue::Num(x)) => super::exact_number(*x),
                 None => String::new(),
             });
         }
@@ -333,17 +333,6 @@ pub fn to_csv(report: &RunReport) -> String {
         );
     }
     s
-}
-
-/// A number in the CSV: round-trip exact, `inf`/`-inf`/`nan` spelled out.
-fn csv_number(x: f64) -> String {
-    if x.is_nan() {
-        "nan".into()
-    } else if x.is_infinite() {
-        if x > 0.0 { "inf".into() } else { "-inf".into() }
-    } else {
-        format!("{x}")
-    }
 }
 
 /// A CSV field, quoted when it must be (RFC 4180).
@@ -399,7 +388,7 @@ fn exact_metrics(m: &Metrics) -> Value {
                 let v = match *v {
                     MetricValue::Bool(b) => Value::Bool(b),
                     MetricValue::Num(x) if x.is_finite() => float_json(x),
-                    MetricValue::Num(x) => Value::String(csv_number(x)),
+                    MetricValue::Num(x) => Value::String(super::exact_number(x)),
                 };
                 (k.clone(), v)
             })

@@ -7,3 +7,15 @@ pub mod ompl;
 pub mod plot;
 pub mod svg;
 pub mod text;
+
+/// A number written for another program to read back (CSV, OMPL logs):
+/// the shortest exact form, `inf`, `-inf` or `nan`.
+pub(crate) fn exact_number(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        format!("{x}")
+    }
+}

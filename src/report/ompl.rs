@@ -129,7 +129,7 @@ pub fn bench_log(report: &RunReport, b: usize) -> (String, String) {
                         let _ = write!(s, "{}; ", u8::from(*b));
                     }
                     Some(MetricValue::Num(x)) => {
-                        let _ = write!(s, "{}; ", number(x * scale));
+                        let _ = write!(s, "{}; ", super::exact_number(x * scale));
                     }
                     None => s.push_str("; "),
                 }
@@ -165,17 +165,6 @@ fn common_properties(sc: &Scenario, plan: &crate::scenario::Plan) -> Vec<String>
 /// Text on one line (log lines end at newlines).
 fn one_line(text: &str) -> String {
     text.split_whitespace().collect::<Vec<_>>().join(" ")
-}
-
-/// A number as the log writes it: `inf`, `nan` or the shortest exact form.
-fn number(x: f64) -> String {
-    if x.is_nan() {
-        "nan".into()
-    } else if x.is_infinite() {
-        if x > 0.0 { "inf".into() } else { "-inf".into() }
-    } else {
-        format!("{x}")
-    }
 }
 
 fn hostname() -> String {

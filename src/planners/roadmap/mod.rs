@@ -26,7 +26,6 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
 use std::time::Instant;
 
 use petgraph::graph::{NodeIndex, UnGraph};
-use petgraph::visit::EdgeRef;
 use rayon::prelude::*;
 
 use crate::geometry::cspace::ObstaclePieces;
@@ -35,7 +34,7 @@ use crate::geometry::{
     Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff,
 };
 use crate::planners::registry::{Planner, Settings, Task};
-use crate::planners::search::{Edge, Graph, SearchBuffers, best_first};
+use crate::planners::search::{Edge, Graph, SearchBuffers, best_first, undirected_successors};
 use crate::planners::{MetricValue, PlanOutcome, layers};
 use crate::scenario::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, num};
 use crate::scenario::{Limits, PlanArgs};
@@ -306,18 +305,7 @@ impl Graph for Visibility<'_> {
     }
 
     fn successors(&mut self, node: usize, out: &mut Vec<Edge>) {
-        for e in self.0.graph.edges(NodeIndex::new(node)) {
-            let to = if e.source().index() == node {
-                e.target().index()
-            } else {
-                e.source().index()
-            };
-            out.push(Edge {
-                to,
-                cost: *e.weight(),
-                label: 0,
-            });
-        }
+        undirected_successors(&self.0.graph, node, |w| *w, out);
     }
 
     fn heuristic(&self, _: usize) -> f64 {

@@ -27,7 +27,7 @@ use petgraph::visit::EdgeRef;
 
 use crate::geometry::Config;
 use crate::planners::registry::{Planner, Settings};
-use crate::planners::search::{Edge, Graph, SearchBuffers, best_first};
+use crate::planners::search::{Edge, Graph, SearchBuffers, best_first, undirected_successors};
 use crate::scenario::schema::RobotKind;
 use crate::scenario::{Limits, PlanArgs};
 
@@ -123,18 +123,7 @@ impl Graph for Query<'_> {
     }
 
     fn successors(&mut self, node: usize, out: &mut Vec<Edge>) {
-        for e in self.roadmap.graph.edges(NodeIndex::new(node)) {
-            let to = if e.source().index() == node {
-                e.target().index()
-            } else {
-                e.source().index()
-            };
-            out.push(Edge {
-                to,
-                cost: e.weight().0,
-                label: 0,
-            });
-        }
+        undirected_successors(&self.roadmap.graph, node, |w| w.0, out);
     }
 
     fn heuristic(&self, node: usize) -> f64 {
