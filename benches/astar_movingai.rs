@@ -126,9 +126,26 @@ fn load_bench() -> Bench {
     let tmp = std::env::temp_dir().join(format!("scen-bench-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).expect("a temporary folder");
     let file = tmp.join("world.scen");
+    // The map beside the scenario (a scenario reads only files inside its
+    // folder, SPEC 2.2), and a plan that starts on its goal at the first
+    // passable cell (a file without a plan is an error).
+    std::fs::copy(&map, tmp.join("world.map")).expect("copying the map");
+    let rows: Vec<&str> = text
+        .lines()
+        .skip_while(|l| l.trim() != "map")
+        .skip(1)
+        .collect();
+    let (x, y) = rows
+        .iter()
+        .enumerate()
+        .find_map(|(r, row)| {
+            row.chars()
+                .position(|c| c == '.')
+                .map(|c| (c as f64 + 0.5, (rows.len() - 1 - r) as f64 + 0.5))
+        })
+        .expect("a passable cell");
     let scenario = format!(
-        "world {{\n  bounds (0, 0) ({width}, {height})\n  grid G \"{}\" cell 1 origin (0, 0)\n}}\n",
-        map.display()
+        "world {{\n  bounds (0, 0) ({width}, {height})\n  grid G \"world.map\" cell 1 origin (0, 0)\n}}\nrobot dot point\nplan here astar dot {{ start ({x}, {y}) goal ({x}, {y}) }}\n"
     );
     std::fs::write(&file, scenario).expect("writing the scenario");
     let loaded = scen::load(&file);

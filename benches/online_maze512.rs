@@ -54,10 +54,9 @@ fn load(rows: &[usize]) -> Scenario {
     );
     let queries = std::fs::read_to_string(dir.join(SCEN)).expect("a readable .scen file");
     let lines: Vec<&str> = queries.lines().skip(1).collect();
-    let mut text = format!(
-        "world {{\n  bounds (0, 0) (512, 512)\n  grid G \"{}\" cell 1 origin (0, 0)\n}}\nrobot p point\n",
-        map.display()
-    );
+    // The map beside the scenario: a scenario reads only files inside its
+    // folder (SPEC 2.2).
+    let mut text = "world {\n  bounds (0, 0) (512, 512)\n  grid G \"maze.map\" cell 1 origin (0, 0)\n}\nrobot p point\n".to_string();
     for &row in rows {
         let f: Vec<&str> = lines[row].split('\t').collect();
         let int = |s: &str| s.trim().parse::<f64>().expect("a coordinate");
@@ -74,6 +73,7 @@ fn load(rows: &[usize]) -> Scenario {
     let tmp = std::env::temp_dir().join(format!("scen-online-bench-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).expect("a temporary folder");
     let file = tmp.join("maze.scen");
+    std::fs::copy(&map, tmp.join("maze.map")).expect("copying the map");
     std::fs::write(&file, text).expect("writing the scenario");
     let loaded = scen::load(&file);
     let _ = std::fs::remove_dir_all(&tmp);

@@ -36,35 +36,23 @@ struct Record {
 pub fn import_roadmap_file(path: &Path) -> Result<String, (Vec<Diag>, SourceMap)> {
     let mut sources = SourceMap::default();
     let fail = |d: Diag, sources: SourceMap| Err((vec![d], sources));
-    let bytes = match std::fs::read(path) {
+    let bytes = match crate::files::read_regular_file(path, MAX_INPUT_BYTES) {
         Ok(b) => b,
         Err(e) => {
             let id = sources.add(path, "");
+            let (code, label) = match e {
+                crate::files::ReadError::TooLarge(_) => {
+                    ("scen::import::too_large", "file too large")
+                }
+                _ => ("scen::import::unreadable", "unreadable"),
+            };
             return fail(
-                Diag::error(
-                    "scen::import::unreadable",
-                    format!("cannot read `{}`: {e}", path.display()),
-                )
-                .at(Span::new(id, 0, 0), "unreadable"),
+                Diag::error(code, format!("cannot read `{}`: {e}", path.display()))
+                    .at(Span::new(id, 0, 0), label),
                 sources,
             );
         }
     };
-    if bytes.len() as u64 > MAX_INPUT_BYTES {
-        let id = sources.add(path, "");
-        return fail(
-            Diag::error(
-                "scen::import::too_large",
-                format!(
-                    "`{}` is larger than the limit of {} MiB",
-                    path.display(),
-                    MAX_INPUT_BYTES >> 20
-                ),
-            )
-            .at(Span::new(id, 0, 0), "file too large"),
-            sources,
-        );
-    }
     let text = String::from_utf8_lossy(&bytes).into_owned();
     let id = sources.add(path, text.clone());
     let title = path

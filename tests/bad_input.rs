@@ -162,9 +162,18 @@ fn run_scen(dir: &Path, args: &[&str]) -> Outcome {
 }
 
 /// Whether `text` contains `name:LINE:COL`.
+/// `name` may end with `*`: any file whose name starts with the rest.
 fn has_location(text: &str, name: &str) -> bool {
+    let (name, any_suffix) = match name.strip_suffix('*') {
+        Some(prefix) => (prefix, true),
+        None => (name, false),
+    };
     text.match_indices(name).any(|(at, _)| {
-        let rest = &text[at + name.len()..];
+        let mut rest = &text[at + name.len()..];
+        if any_suffix {
+            rest = rest
+                .trim_start_matches(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == '.');
+        }
         let mut parts = rest.splitn(3, ':');
         let digits = |s: Option<&str>, whole: bool| {
             s.is_some_and(|s| {
@@ -345,9 +354,13 @@ fn check_case(case: &Case) -> Vec<String> {
             ));
         }
         if !with_code.iter().any(|d| {
-            d["file"]
-                .as_str()
-                .is_some_and(|f| file_name(f) == case.located_in)
+            d["file"].as_str().is_some_and(|f| {
+                let f = file_name(f);
+                match case.located_in.strip_suffix('*') {
+                    Some(prefix) => f.starts_with(prefix),
+                    None => f == case.located_in,
+                }
+            })
         }) {
             problems.push(format!(
                 "`{code}` does not point into `{}`",
@@ -471,7 +484,8 @@ fn generated_bad_inputs_are_reported() {
     );
     let mut huge = VALID.to_string();
     let padding = "# padding to make the file larger than scen accepts\n";
-    while huge.len() < 10_000_000 {
+    // Past the 16 MiB of a scenario's text (SPEC 2.2).
+    while huge.len() < 17 << 20 {
         huge.push_str(padding);
     }
     let deep = 100_000;
@@ -528,6 +542,68 @@ fn generated_bad_inputs_are_reported() {
         ),
     ];
     let mut cases = Vec::new();
+    // A file that includes the next one twice, 24 levels deep (forty bytes
+    // each): 2^24 expansions, bounded by the 16 MiB of text, at the include
+    // that crosses it (SPEC 2.2).
+    let levels = 24;
+    for k in 0..levels {
+        let next = format!("include \"_twice_{}.scen\"\n", k + 1);
+        std::fs::write(tmp.path().join(format!("_twice_{k}.scen")), next.repeat(2))
+            .expect("writing a generated include");
+    }
+    std::fs::write(
+        tmp.path().join(format!("_twice_{levels}.scen")),
+        "# the bottom of the chain: forty bytes.\n",
+    )
+    .expect("writing a generated include");
+    std::fs::write(
+        tmp.path().join("include_twice_per_level.scen"),
+        format!("include \"_twice_0.scen\"\n{VALID}"),
+    )
+    .expect("writing a generated input");
+    cases.push(Case {
+        file: "include_twice_per_level.scen".to_string(),
+        dir: tmp.path().to_path_buf(),
+        codes: vec!["scen::load::too_large".to_string()],
+        line: None,
+        // Whichever file's include crosses the bound.
+        located_in: "_twice_*".to_string(),
+        min_errors: None,
+    });
+    // Files that are not regular: a FIFO (a read would wait for a writer
+    // forever) as an include and as a map; they are refused at once.
+    #[cfg(unix)]
+    for (fifo, text, code) in [
+        (
+            "fifo.scen",
+            format!("include \"fifo.scen\"\n{VALID}"),
+            "scen::load::not_regular",
+        ),
+        (
+            "fifo.map",
+            VALID.replace(
+                "world { bounds (0, 0) (10, 10) }",
+                "world {\n  bounds (0, 0) (10, 10)\n  grid G \"fifo.map\" cell 1 origin (0, 0)\n}",
+            ),
+            "scen::load::not_regular",
+        ),
+    ] {
+        let made = Command::new("mkfifo")
+            .arg(tmp.path().join(fifo))
+            .status()
+            .is_ok_and(|s| s.success());
+        assert!(made, "mkfifo {fifo}");
+        let name = format!("reads_{}.scen", fifo.replace('.', "_"));
+        std::fs::write(tmp.path().join(&name), text).expect("writing a generated input");
+        cases.push(Case {
+            file: name.clone(),
+            dir: tmp.path().to_path_buf(),
+            codes: vec![code.to_string()],
+            line: None,
+            located_in: name,
+            min_errors: None,
+        });
+    }
     for (name, bytes, code, line) in generated {
         std::fs::write(tmp.path().join(name), bytes).expect("writing a generated input");
         cases.push(Case {
@@ -545,6 +621,8 @@ fn generated_bad_inputs_are_reported() {
 #[test]
 fn location_matcher_needs_line_and_column() {
     assert!(has_location("  ╭─[a.scen:10:3:10:3]", "a.scen"));
+    assert!(has_location("  ╭─[_twice_17.scen:1:9]", "_twice_*"));
+    assert!(!has_location("  ╭─[_twice_17.scen: 1:9]", "_twice_*"));
     assert!(has_location("at b/a.scen:1:1", "a.scen"));
     assert!(!has_location("a.scen:10", "a.scen"));
     assert!(!has_location("a.scen: 10:3", "a.scen"));

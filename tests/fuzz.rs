@@ -18,6 +18,10 @@
 //!
 //! Oracles:
 //! - no panic and no crash (a signal, `panicked`, an allocation failure);
+//! - nothing printed of a file a scenario must not read or quote (its
+//!   environment through `/proc/self/environ`, a text file that is not a
+//!   scenario): includes and maps are pointed at such files, at FIFOs,
+//!   folders, `/dev/zero` and a chain that includes a file twice per level;
 //! - no run past its limits: a process that outlives [`TIMEOUT`] is run
 //!   again with [`RETRY_TIMEOUT`], and only a second overrun is a failure
 //!   (a loaded machine must not make the test flaky);
@@ -113,6 +117,12 @@ const NUMBERS: &[&str] = &[
     "3deg",
     "1e9deg",
     "-1e308rad",
+    "1e308deg",
+    "1e10deg",
+    "-1e9rad",
+    "1e9rad",
+    "-720deg",
+    "1e-300deg",
     "2s",
     "0ms",
     "50%",
@@ -143,6 +153,56 @@ const ODD_BYTES: &[&[u8]] = &[
     "\u{202e}".as_bytes(),
     "🤖".as_bytes(),
 ];
+
+/// Files made beside every seed (see [`make_fixtures`]) that strings are
+/// pointed at: what a scenario must refuse to read, or read only within
+/// its bounds (SPEC 2.2).
+const FIXTURE_STRINGS: &[&str] = &[
+    // An include chain that includes the next file twice, 24 levels deep:
+    // 2^24 expansions unless the loader bounds them.
+    "\"_fz_twice_0.scen\"",
+    // Not regular files: a FIFO (a read would wait for a writer forever),
+    // a folder, a link to the process's environment, a link to /dev/zero.
+    "\"_fz_fifo.scen\"",
+    "\"_fz_fifo.map\"",
+    "\"_fz_dir.scen\"",
+    "\"_fz_env.scen\"",
+    "\"_fz_zero.map\"",
+    "\"/proc/self/environ\"",
+    "\"/dev/zero\"",
+    // Outside the root.
+    "\"../../../../../../etc/hostname.scen\"",
+    "\"_fz_outside.scen\"",
+    // Not a scenario file.
+    "\"_fz_notes.txt\"",
+];
+
+/// The deepest level of the `_fz_twice_K.scen` chain.
+const TWICE_LEVELS: usize = 24;
+
+/// Makes the files [`FIXTURE_STRINGS`] name, in `dir`.
+fn make_fixtures(dir: &Path, outside: &Path) {
+    for k in 0..TWICE_LEVELS {
+        let next = format!("include \"_fz_twice_{}.scen\"\n", k + 1);
+        std::fs::write(dir.join(format!("_fz_twice_{k}.scen")), next.repeat(2)).expect("a fixture");
+    }
+    std::fs::write(
+        dir.join(format!("_fz_twice_{TWICE_LEVELS}.scen")),
+        "# the bottom of the chain: forty bytes of text.\n",
+    )
+    .expect("a fixture");
+    std::fs::create_dir_all(dir.join("_fz_dir.scen")).expect("a fixture folder");
+    std::fs::write(dir.join("_fz_notes.txt"), "SECRET=do-not-print\n").expect("a fixture");
+    #[cfg(unix)]
+    {
+        for fifo in ["_fz_fifo.scen", "_fz_fifo.map"] {
+            let _ = Command::new("mkfifo").arg(dir.join(fifo)).status();
+        }
+        let _ = std::os::unix::fs::symlink("/proc/self/environ", dir.join("_fz_env.scen"));
+        let _ = std::os::unix::fs::symlink("/dev/zero", dir.join("_fz_zero.map"));
+        let _ = std::os::unix::fs::symlink(outside, dir.join("_fz_outside.scen"));
+    }
+}
 
 /// Tokens inserted or swapped in by token mutations, besides the words of
 /// the language and of the planner registry.
@@ -238,6 +298,18 @@ fn seeds(tmp: &Path) -> Vec<Seed> {
     let mut found = Vec::new();
     for dir in ["scenarios", "tests/bad_inputs"] {
         copy_tree(&repo().join(dir), &tmp.join(dir), &mut found);
+    }
+    // A scenario outside every seed's root, for links that lead out of it.
+    let outside = tmp.join("outside.scen");
+    std::fs::write(&outside, "robot outside point\n").expect("a fixture");
+    let mut dirs: Vec<PathBuf> = found
+        .iter()
+        .filter_map(|(_, copy)| copy.parent().map(Path::to_path_buf))
+        .collect();
+    dirs.sort();
+    dirs.dedup();
+    for dir in &dirs {
+        make_fixtures(dir, &outside);
     }
     found
         .into_iter()
@@ -357,6 +429,19 @@ fn pick<'a, T>(rng: &mut SplitMix64, items: &'a [T]) -> Option<&'a T> {
     }
 }
 
+/// The byte range of the `( ... )` that follows the first word `key` (a
+/// plan's `start` or `goal`).
+fn tuple_after(text: &[u8], toks: &[Token], key: &str) -> Option<(usize, usize)> {
+    let at = toks
+        .iter()
+        .position(|t| t.kind == Kind::Word && &text[t.start..t.end] == key.as_bytes())?;
+    let open = toks.get(at + 1).filter(|t| &text[t.start..t.end] == b"(")?;
+    let close = toks[at + 1..]
+        .iter()
+        .find(|t| &text[t.start..t.end] == b")")?;
+    Some((open.start, close.end))
+}
+
 /// Line ranges (without their newline).
 fn lines(text: &[u8]) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
@@ -382,8 +467,77 @@ fn mutate(text: &mut Vec<u8>, other: &[u8], words: &[String], rng: &mut SplitMix
         .copied()
         .filter(|t| t.kind == Kind::Number)
         .collect();
-    let choice = rng.next_u64() % 20;
+    let strings: Vec<Token> = toks
+        .iter()
+        .copied()
+        .filter(|t| t.kind == Kind::Str)
+        .collect();
+    let choice = rng.next_u64() % 24;
     match choice {
+        // Files: a string (an include's or a map's path) pointed at what a
+        // scenario must not read, or must read within its bounds; or an
+        // include of one inserted before a line.
+        20 | 21 => {
+            let with = pick(rng, FIXTURE_STRINGS).expect("fixture strings");
+            match pick(rng, &strings) {
+                Some(t) if choice == 20 => {
+                    let t = *t;
+                    let old = String::from_utf8_lossy(&text[t.start..t.end]).into_owned();
+                    splice(text, t.start, t.end, with.as_bytes());
+                    format!("string {old} → {with}")
+                }
+                _ => {
+                    let ls = lines(text);
+                    let at = pick(rng, &ls).map_or(0, |&(s, _)| s);
+                    text.splice(at..at, format!("include {with}\n").into_bytes());
+                    format!("`include {with}` inserted at byte {at}")
+                }
+            }
+        }
+        // A goal made equal to the start (SPEC 3: found at once).
+        22 => match (
+            tuple_after(text, &toks, "start"),
+            tuple_after(text, &toks, "goal"),
+        ) {
+            (Some((s, e)), Some((gs, ge))) => {
+                let start = text[s..e].to_vec();
+                splice(text, gs, ge, &start);
+                "the goal made the start".into()
+            }
+            _ => "nothing (no start and goal)".into(),
+        },
+        // An angle's number made huge or odd in its own unit.
+        23 => {
+            let angles: Vec<Token> = numbers
+                .iter()
+                .copied()
+                .filter(|t| {
+                    text[t.start..t.end].ends_with(b"deg") || text[t.start..t.end].ends_with(b"rad")
+                })
+                .collect();
+            let Some(&t) = pick(rng, &angles) else {
+                return "nothing (no angle)".into();
+            };
+            let unit = String::from_utf8_lossy(&text[t.end - 3..t.end]).into_owned();
+            let number = pick(
+                rng,
+                &[
+                    "1e308",
+                    "-1e308",
+                    "1e10",
+                    "1e9",
+                    "-1e9",
+                    "1000000001",
+                    "1e-300",
+                    "720",
+                    "-360",
+                ],
+            )
+            .expect("numbers");
+            let new = format!("{number}{unit}");
+            splice(text, t.start, t.end, new.as_bytes());
+            format!("angle → `{new}`")
+        }
         // Numbers: nudged (a world that still runs, with other geometry:
         // what finds planner bugs), or replaced by SPEC 2.1's edges and
         // spellings that are not numbers.
@@ -600,6 +754,7 @@ fn run_scen(dir: &Path, args: &[&str], timeout: Duration) -> Ran {
             .args(args)
             .current_dir(dir)
             .env("NO_COLOR", "1")
+            .env(CANARY_VAR, CANARY)
             .env_remove("RUST_BACKTRACE"),
         timeout,
     );
@@ -619,8 +774,22 @@ enum Verdict {
     Ran { plans: usize, found: usize },
 }
 
-/// Whether a process crashed or ran out of memory: the failure, if so.
+/// A variable of every child's environment: were `/proc/self/environ`
+/// read and quoted, it would show.
+const CANARY_VAR: &str = "SCEN_FUZZ_CANARY";
+const CANARY: &str = "canary-5c3n-f0zz";
+
+/// Whether a process crashed, ran out of memory, or printed what it must
+/// not (its environment, a file that is not a scenario): the failure, if
+/// so.
 fn crashed(what: &str, ran: &Ran) -> Option<String> {
+    for secret in [CANARY, "SECRET=do-not-print"] {
+        if ran.stdout.contains(secret) || ran.stderr.contains(secret) {
+            return Some(format!(
+                "`{what}` printed `{secret}`: bytes of a file it must not read or quote"
+            ));
+        }
+    }
     let status = ran.status?;
     if ran.stderr.contains("memory allocation of") {
         return Some(format!(

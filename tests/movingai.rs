@@ -115,15 +115,34 @@ fn read_queries(scen_file: &Path, map_file: &str, width: usize, height: usize) -
     queries
 }
 
-/// `grid G "MAP" cell 1 origin (0, 0)` with the map's absolute path (a
-/// scenario's paths are relative to its folder; an absolute one stays as is).
-fn grid_line(map: &Path) -> String {
-    let path = map
-        .display()
-        .to_string()
-        .replace('\\', "\\\\")
-        .replace('"', "\\\"");
-    format!("grid G \"{path}\" cell 1 origin (0, 0)")
+/// `grid G "MAP" cell 1 origin (0, 0)`, with the map copied beside the
+/// scenario in `tmp` (a scenario reads only files inside its folder, its
+/// root: SPEC 2.2).
+fn grid_line(map: &Path, tmp: &TempDir) -> String {
+    let name = map.file_name().expect("a map file name");
+    let copy = tmp.path().join(name);
+    if !copy.is_file() {
+        std::fs::copy(map, &copy).expect("copying the map beside the scenario");
+    }
+    format!("grid G \"{}\" cell 1 origin (0, 0)", name.to_string_lossy())
+}
+
+/// The centre of the first passable cell of a map (row 0 on top), in world
+/// coordinates: a start for a plan that only makes the world loadable.
+fn first_free_cell(map: &Path) -> (f64, f64) {
+    let text = std::fs::read_to_string(map).expect("a readable map");
+    let rows: Vec<&str> = text
+        .lines()
+        .skip_while(|l| l.trim() != "map")
+        .skip(1)
+        .collect();
+    let h = rows.len();
+    for (r, row) in rows.iter().enumerate() {
+        if let Some(c) = row.chars().position(|ch| matches!(ch, '.' | 'G' | 'S')) {
+            return (c as f64 + 0.5, (h - 1 - r) as f64 + 0.5);
+        }
+    }
+    panic!("{}: no passable cell", map.display())
 }
 
 /// `(width, height)` from a map's header, for the scenario's bounds.
@@ -142,9 +161,11 @@ fn map_size(map: &Path) -> (usize, usize) {
 fn load_world(map: &Path, tmp: &TempDir) -> (World, Grid) {
     let file = tmp.path().join("world.scen");
     let (w, h) = map_size(map);
+    let (x, y) = first_free_cell(map);
+    // A plan makes the file a scenario (SPEC §4); it starts on its goal.
     let scenario = format!(
-        "world {{\n  bounds (0, 0) ({w}, {h})\n  {}\n}}\n",
-        grid_line(map)
+        "world {{\n  bounds (0, 0) ({w}, {h})\n  {}\n}}\nrobot dot point\nplan here astar dot {{ start ({x}, {y}) goal ({x}, {y}) }}\n",
+        grid_line(map, tmp)
     );
     std::fs::write(&file, scenario).expect("writing the scenario");
     let s = match scen::load(&file) {
@@ -340,7 +361,7 @@ fn cli_finds_optimal_lengths() {
                  expect p.found and p.collision_free and p.reaches_goal\n\
                  expect p.cost ~ {} +- 0.0001\n\
                  expect p.length ~ {} +- 0.0001\n",
-                grid_line(&map),
+                grid_line(&map, &tmp),
                 pose(q.start),
                 pose(q.goal),
                 q.optimal,

@@ -20,7 +20,6 @@
 //! it must parse to the same AST with the same comments (see
 //! [`format_text`]).
 
-pub mod command;
 mod doc;
 
 use crate::diagnostics::{Diag, Span};

@@ -60,10 +60,12 @@ impl Analysis {
             sources,
             statements,
             includes,
+            maps,
             mut diags,
-        } = parse_scenario(path, overlay);
+        } = parse_scenario(path, None, overlay);
         if !diags.iter().any(Diag::is_error) {
-            let analysed = crate::scenario::analyze(path, statements.clone(), sources.clone());
+            let analysed =
+                crate::scenario::analyze(path, statements.clone(), sources.clone(), maps);
             if let Err(failure) = analysed {
                 diags = failure.diags;
             }

@@ -2,17 +2,19 @@
 //! them, include-only `_` fragments too) rewritten in place, or standard
 //! input to standard output when no file is named.
 
-use std::io::{Read, Write};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use super::{FormatError, format_text};
-use crate::cli::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, collect_scen, render_diags};
+use super::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, collect_scen, out, outln, render_diags};
 use crate::diagnostics::SourceMap;
+use crate::files::read_regular_file;
+use crate::format::{FormatError, format_text};
+use crate::scenario::loader::MAX_SCENARIO_BYTES;
 
 /// Runs `scen fmt`; returns the exit code: 0 when every file is (now) in
 /// the canonical layout, 1 with `--check` when some would change (they are
 /// listed on stdout), 2 when a file cannot be read, parsed or written.
-pub fn run(paths: &[PathBuf], check: bool) -> i32 {
+pub(super) fn run(paths: &[PathBuf], check: bool) -> i32 {
     if paths.is_empty() {
         return stdin(check);
     }
@@ -26,7 +28,10 @@ pub fn run(paths: &[PathBuf], check: bool) -> i32 {
     }
     let mut code = EXIT_OK;
     for file in &files {
-        let text = match std::fs::read_to_string(file) {
+        let text = match read_regular_file(file, MAX_SCENARIO_BYTES)
+            .map_err(|e| e.to_string())
+            .and_then(|b| String::from_utf8(b).map_err(|_| "it is not UTF-8 text".to_string()))
+        {
             Ok(t) => t,
             Err(e) => {
                 eprintln!("error: cannot read `{}`: {e}", file.display());
@@ -45,7 +50,7 @@ pub fn run(paths: &[PathBuf], check: bool) -> i32 {
             continue;
         }
         if check {
-            println!("{}", file.display());
+            outln!("{}", file.display());
             code = code.max(EXIT_CHECK_FAILED);
         } else if let Err(e) = std::fs::write(file, formatted) {
             eprintln!("error: cannot write `{}`: {e}", file.display());
@@ -56,10 +61,24 @@ pub fn run(paths: &[PathBuf], check: bool) -> i32 {
 }
 
 fn stdin(check: bool) -> i32 {
+    // At most the bound of a scenario's text: `scen fmt < /dev/zero` ends.
     let mut text = String::new();
-    if let Err(e) = std::io::stdin().read_to_string(&mut text) {
-        eprintln!("error: cannot read standard input: {e}");
-        return EXIT_BAD_INPUT;
+    match std::io::stdin()
+        .take(MAX_SCENARIO_BYTES + 1)
+        .read_to_string(&mut text)
+    {
+        Err(e) => {
+            eprintln!("error: cannot read standard input: {e}");
+            return EXIT_BAD_INPUT;
+        }
+        Ok(n) if n as u64 > MAX_SCENARIO_BYTES => {
+            eprintln!(
+                "error: standard input is larger than {}, the bound of a scenario's text",
+                crate::files::human_bytes(MAX_SCENARIO_BYTES)
+            );
+            return EXIT_BAD_INPUT;
+        }
+        Ok(_) => {}
     }
     let Some(formatted) = formatted(Path::new("<stdin>"), &text) else {
         return EXIT_BAD_INPUT;
@@ -68,10 +87,10 @@ fn stdin(check: bool) -> i32 {
         if formatted == text {
             return EXIT_OK;
         }
-        println!("<stdin>");
+        outln!("<stdin>");
         return EXIT_CHECK_FAILED;
     }
-    let _ = std::io::stdout().write_all(formatted.as_bytes());
+    out!("{formatted}");
     EXIT_OK
 }
 
