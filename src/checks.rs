@@ -167,10 +167,20 @@ fn eval_series(
     out
 }
 
-/// An aggregate of a series (SPEC 2.7); `q` is `quantile`'s level.
+/// An aggregate of a series (SPEC 2.7); `q` is `quantile`'s level. Runs
+/// whose metric has no value (NaN: the `clearance` of a run that found no
+/// path) are left out of the numeric aggregates; `count` and `rate` count
+/// every run.
 pub fn aggregate(function: &str, series: &[MetricValue], q: Option<f64>) -> MetricValue {
     use MetricValue::Num;
-    let xs: Vec<f64> = series.iter().map(|v| v.as_f64()).collect();
+    if function == "count" {
+        return Num(series.len() as f64);
+    }
+    let xs: Vec<f64> = series
+        .iter()
+        .map(|v| v.as_f64())
+        .filter(|x| !x.is_nan())
+        .collect();
     let n = xs.len() as f64;
     let sorted = || {
         let mut s = xs.clone();
@@ -179,7 +189,6 @@ pub fn aggregate(function: &str, series: &[MetricValue], q: Option<f64>) -> Metr
     };
     let mean = xs.iter().sum::<f64>() / n;
     Num(match function {
-        "count" => n,
         "sum" => xs.iter().sum(),
         "mean" => mean,
         "rate" => {
@@ -187,7 +196,7 @@ pub fn aggregate(function: &str, series: &[MetricValue], q: Option<f64>) -> Metr
                 .iter()
                 .filter(|v| **v == MetricValue::Bool(true))
                 .count() as f64
-                / n
+                / series.len() as f64
         }
         "min" => xs.iter().copied().fold(f64::NAN, f64::min),
         "max" => xs.iter().copied().fold(f64::NAN, f64::max),
@@ -258,7 +267,7 @@ pub fn describe(expr: &Expr) -> String {
 pub fn value_text(v: &Value) -> String {
     match &v.kind {
         ValueKind::Number(x) => format_num(*x),
-        ValueKind::Angle(x) => format!("{}deg", format_num(x.to_degrees())),
+        ValueKind::Angle(a) => format!("{}deg", format_num(a.radians().to_degrees())),
         ValueKind::Percent(x) => format!("{}%", format_num(x * 100.0)),
         ValueKind::Duration(x) => format!("{}s", format_num(*x)),
         ValueKind::Str(s) => format!("{s:?}"),
@@ -296,7 +305,8 @@ pub fn format_value(v: MetricValue) -> String {
 
 pub fn format_num(x: f64) -> String {
     if x.is_nan() {
-        "n/a".into()
+        // No value (SPEC §4): never a number that reads as a measurement.
+        "—".into()
     } else if x.is_infinite() {
         if x > 0.0 { "inf".into() } else { "-inf".into() }
     } else if x.fract() == 0.0 && x.abs() < 1e15 {

@@ -6,7 +6,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
-use crate::diagnostics::{Diag, SourceMap, Span, Spanned};
+use crate::diagnostics::{Diag, FileId, SourceMap, Span, Spanned};
 use crate::geometry::polygon::{self, PolygonError};
 use crate::geometry::{
     Aabb, Config, ConvexPolygon, Grid, Obstacle, Point, RobotShape, Shape, World,
@@ -15,7 +15,7 @@ use crate::syntax::ast::{self, ParamToken, Value, ValueKind};
 
 use crate::planners::registry::{self, PLANNERS, Planner};
 
-use super::loader::{LoadFailure, MAX_MAP_BYTES, SourcedStmt, read_text};
+use super::loader::{LoadFailure, SourcedStmt};
 use super::movingai::{grid_char, parse_movingai};
 use super::schema::{self, MAX_MAGNITUDE, MetricType, RobotKind, ValueSpec, did_you_mean};
 use super::{Limits, Param, ParamValue, Params, Plan, PlanArgs, Robot, Scenario};
@@ -27,13 +27,33 @@ pub use bench::BENCH_KEYS;
 pub use expect::AGGREGATES;
 
 /// Analyses the statements of a scenario (includes already spliced in).
+/// The world of a scenario's text alone (no robot or plan needed), for
+/// tests that probe a world before they write its plans; panics on
+/// diagnostics.
+#[cfg(test)]
+pub(crate) fn world_of(path: &Path) -> World {
+    let parsed = super::loader::parse_scenario(path, None, &|_| None);
+    assert!(parsed.diags.is_empty(), "{:?}", parsed.diags);
+    let mut a = Analyzer {
+        sources: parsed.sources,
+        maps: parsed.maps,
+        diags: Vec::new(),
+        invalid_robots: Vec::new(),
+    };
+    let (world, _) = a.world(&parsed.statements);
+    assert!(a.diags.is_empty(), "{:?}", a.diags);
+    world.expect("a world")
+}
+
 pub(crate) fn analyze(
     path: &Path,
     statements: Vec<SourcedStmt>,
     sources: SourceMap,
+    maps: HashMap<Span, Result<FileId, Diag>>,
 ) -> Result<Scenario, LoadFailure> {
     let mut a = Analyzer {
         sources,
+        maps,
         diags: Vec::new(),
         invalid_robots: Vec::new(),
     };
@@ -72,6 +92,8 @@ pub(crate) fn analyze(
 
 struct Analyzer {
     sources: SourceMap,
+    /// The map files the loader read, by the span of the `grid`'s path.
+    maps: HashMap<Span, Result<FileId, Diag>>,
     diags: Vec<Diag>,
     /// Robots that were declared but failed analysis (no "unknown robot"
     /// noise for plans that use them).
@@ -295,7 +317,7 @@ impl Analyzer {
                 let theta = match items.get(2) {
                     None => Some(0.0),
                     Some(t) => match &t.kind {
-                        ValueKind::Angle(a) => Some(*a),
+                        ValueKind::Angle(a) => self.bounded_angle(t, *a).map(ast::Angle::reduced),
                         ValueKind::Number(n) => {
                             self.angle_without_unit(
                                 t.span,
@@ -702,19 +724,18 @@ impl Analyzer {
         ok.then_some((width, rows.len(), cells))
     }
 
+    /// The grid of a map file, which the loader read (SPEC 2.2: the files a
+    /// scenario reads are read by the loader, inside the root).
     fn movingai_map(&mut self, f: &Spanned<String>) -> Option<(usize, usize, Vec<u8>)> {
-        let dir = self
-            .sources
-            .get(f.span.file)
-            .and_then(|s| s.path.parent().map(Path::to_path_buf))
-            .unwrap_or_default();
-        let path = dir.join(&f.value);
-        let id = match read_text(&path, MAX_MAP_BYTES, Some(f.span), "map", &mut self.sources) {
-            Ok(id) => id,
-            Err(d) => {
+        let id = match self.maps.remove(&f.span) {
+            Some(Ok(id)) => id,
+            Some(Err(d)) => {
                 self.error(d);
                 return None;
             }
+            // The loader reads every grid's file; a grid it did not see
+            // (none in practice) has nothing to analyse.
+            None => return None,
         };
         let text = self.sources.get(id)?.text.clone();
         match parse_movingai(&text) {
@@ -821,6 +842,23 @@ impl Analyzer {
     ) -> Vec<Plan> {
         let mut plans = Vec::new();
         let mut seen: HashMap<String, Span> = HashMap::new();
+        // A file without a plan would run nothing and report "0 passed, 0
+        // failed" (SPEC §4). Said once there is a world, so that an empty
+        // file gets one error, not two.
+        let any_world = statements
+            .iter()
+            .any(|s| matches!(s.stmt, ast::Stmt::World(_)));
+        if any_world
+            && !statements
+                .iter()
+                .any(|s| matches!(s.stmt, ast::Stmt::Plan(_)))
+        {
+            self.error(
+                Diag::error("scen::analyze::no_plan", "the scenario has no `plan`")
+                    .at(Span::new(0, 0, 0), "expected at least one `plan`")
+                    .help("add a plan, e.g. `plan p astar ROBOT { start (1, 1) goal (9, 9) }`, naming one of the robots"),
+            );
+        }
         for s in statements {
             let ast::Stmt::Plan(p) = &s.stmt else {
                 continue;
@@ -1488,7 +1526,8 @@ impl Analyzer {
                 }
             },
             (ValueSpec::Angle { max }, ParamToken::Value(v)) => match v.kind {
-                ValueKind::Angle(x) => {
+                ValueKind::Angle(a) => {
+                    let x = self.bounded_angle(v, a)?.radians();
                     let shown = format!("{}deg", x.to_degrees());
                     self.in_range(spec, v, x, x > 0.0 && x <= max, &shown)
                 }
@@ -1510,6 +1549,29 @@ impl Analyzer {
                 None
             }
         }
+    }
+
+    /// An angle within ±1e9 in its unit (SPEC 2.1); beyond, an error at it.
+    fn bounded_angle(&mut self, v: &Value, a: ast::Angle) -> Option<ast::Angle> {
+        if a.written.abs() <= MAX_MAGNITUDE {
+            return Some(a);
+        }
+        let unit = match a.unit {
+            ast::AngleUnit::Deg => "deg",
+            ast::AngleUnit::Rad => "rad",
+        };
+        self.error(
+            Diag::error(
+                "scen::analyze::number_too_large",
+                format!(
+                    "the angle is {}{unit}, beyond ±1e9 in its unit",
+                    short_number(a.written)
+                ),
+            )
+            .at(v.span, "more than 1e9 in magnitude")
+            .help("an angle must lie within ±1e9 in its unit; a heading is taken modulo a full turn, so write it within one turn (`0deg` to `360deg`)"),
+        );
+        None
     }
 
     /// A bare number `n` where an angle is expected: says which units to add.

@@ -39,6 +39,25 @@ pub struct Scenario {
     pub sources: SourceMap,
 }
 
+impl Scenario {
+    /// `scen bench --runs N` (SPEC §4): every bench runs `runs` seeds per
+    /// configuration of a randomized planner (a deterministic one still
+    /// runs once).
+    pub fn override_runs(&mut self, runs: u64) {
+        let Scenario { benches, plans, .. } = self;
+        for bench in benches {
+            bench.runs = runs;
+            for p in &mut bench.plans {
+                p.runs = if plans[p.plan].planner.randomized {
+                    runs
+                } else {
+                    1
+                };
+            }
+        }
+    }
+}
+
 /// A `bench` statement (SPEC 2.7): plans × configurations × runs.
 #[derive(Clone, Debug)]
 pub struct Bench {
@@ -280,15 +299,27 @@ pub struct Check {
 /// includes and spans work as for a file); panics on diagnostics. For tests.
 #[cfg(test)]
 pub(crate) fn load_text(text: &str) -> Scenario {
+    with_temp_file(text, |path| match loader::load(path) {
+        Ok(s) => s,
+        Err(f) => panic!("{:?}", f.diags),
+    })
+}
+
+/// The world of a text that may have no plan yet; panics on diagnostics.
+/// For tests that probe a world before they write its plans.
+#[cfg(test)]
+pub(crate) fn world_of_text(text: &str) -> World {
+    with_temp_file(text, analyze::world_of)
+}
+
+#[cfg(test)]
+fn with_temp_file<T>(text: &str, f: impl FnOnce(&std::path::Path) -> T) -> T {
     use std::sync::atomic::{AtomicUsize, Ordering};
     static COUNTER: AtomicUsize = AtomicUsize::new(0);
     let n = COUNTER.fetch_add(1, Ordering::SeqCst);
     let path = std::env::temp_dir().join(format!("scen-test-{}-{n}.scen", std::process::id()));
     std::fs::write(&path, text).expect("write the scenario");
-    let s = loader::load(&path);
+    let out = f(&path);
     let _ = std::fs::remove_file(&path);
-    match s {
-        Ok(s) => s,
-        Err(f) => panic!("{:?}", f.diags),
-    }
+    out
 }

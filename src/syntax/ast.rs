@@ -198,12 +198,62 @@ impl Value {
     }
 }
 
+/// An angle as written: its number and its unit. SPEC 2.1 bounds the number
+/// in its own unit and reduces it to [0, 2π) in that unit, where the
+/// reduction is exact (`fmod` is), before any geometry.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Angle {
+    pub written: f64,
+    pub unit: AngleUnit,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AngleUnit {
+    Deg,
+    Rad,
+}
+
+impl Angle {
+    pub fn deg(written: f64) -> Angle {
+        Angle {
+            written,
+            unit: AngleUnit::Deg,
+        }
+    }
+
+    pub fn rad(written: f64) -> Angle {
+        Angle {
+            written,
+            unit: AngleUnit::Rad,
+        }
+    }
+
+    /// The angle in radians, unreduced (a parameter such as `align 5deg`).
+    pub fn radians(self) -> f64 {
+        match self.unit {
+            AngleUnit::Deg => self.written.to_radians(),
+            AngleUnit::Rad => self.written,
+        }
+    }
+
+    /// The angle reduced to [0, 2π), in radians (a pose's heading): the
+    /// remainder is taken in the written unit (exactly), then converted.
+    pub fn reduced(self) -> f64 {
+        let r = match self.unit {
+            AngleUnit::Deg => self.written.rem_euclid(360.0).to_radians(),
+            AngleUnit::Rad => self.written.rem_euclid(std::f64::consts::TAU),
+        };
+        // A tiny negative remainder rounds up to a full turn.
+        if r >= std::f64::consts::TAU { 0.0 } else { r }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum ValueKind {
     /// A plain number.
     Number(f64),
-    /// An angle, converted to radians (`90deg`, `1.5rad`).
-    Angle(f64),
+    /// An angle (`90deg`, `1.5rad`), as written.
+    Angle(Angle),
     /// A percentage as a fraction (`100%` = 1.0).
     Percent(f64),
     /// A duration in seconds (`500ms`, `2s`).

@@ -8,8 +8,8 @@
 use pest::iterators::Pair;
 
 use super::ast::{
-    BenchDecl, GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamToken, PlanDecl,
-    RobotDecl, RobotShape, Stmt, Value, ValueKind, WorldBlock, WorldItem,
+    Angle, BenchDecl, GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamToken,
+    PlanDecl, RobotDecl, RobotShape, Stmt, Value, ValueKind, WorldBlock, WorldItem,
 };
 use super::parser::Rule;
 use super::scanner::is_ident_byte;
@@ -377,8 +377,8 @@ impl<'t, 'd> Builder<'t, 'd> {
         };
         match unit {
             "" => ValueKind::Number(x),
-            "deg" => ValueKind::Angle(x.to_radians()),
-            "rad" => ValueKind::Angle(x),
+            "deg" => ValueKind::Angle(Angle::deg(x)),
+            "rad" => ValueKind::Angle(Angle::rad(x)),
             "%" => ValueKind::Percent(x / 100.0),
             "ms" => ValueKind::Duration(x / 1000.0),
             "s" => ValueKind::Duration(x),
@@ -726,7 +726,7 @@ mod tests {
         };
         assert_eq!(number(&xs[0]), 0.0);
         assert_eq!(number(&xs[1]), -1.5);
-        assert_eq!(xs[2].kind, ValueKind::Angle(std::f64::consts::FRAC_PI_2));
+        assert_eq!(xs[2].kind, ValueKind::Angle(Angle::deg(90.0)));
         let ParamToken::Value(goal) = &body[3] else {
             panic!()
         };
@@ -791,12 +791,9 @@ mod tests {
             ParamToken::Value(v) => v.kind.clone(),
             other => panic!("{other:?}"),
         };
-        assert_eq!(value("180deg"), ValueKind::Angle(std::f64::consts::PI));
-        assert_eq!(
-            value("-90deg"),
-            ValueKind::Angle(-std::f64::consts::FRAC_PI_2)
-        );
-        assert_eq!(value("1.5rad"), ValueKind::Angle(1.5));
+        assert_eq!(value("180deg"), ValueKind::Angle(Angle::deg(180.0)));
+        assert_eq!(value("-90deg"), ValueKind::Angle(Angle::deg(-90.0)));
+        assert_eq!(value("1.5rad"), ValueKind::Angle(Angle::rad(1.5)));
         assert_eq!(value("50%"), ValueKind::Percent(0.5));
         assert_eq!(value("500ms"), ValueKind::Duration(0.5));
         assert_eq!(value("2s"), ValueKind::Duration(2.0));

@@ -239,7 +239,8 @@ impl Builder<'_, '_> {
                 match self.quantity(inner) {
                     ValueKind::Percent(x) => ExprKind::Percent(x),
                     // Angle metrics (`turn`) are in radians.
-                    ValueKind::Number(x) | ValueKind::Angle(x) => ExprKind::Number(x),
+                    ValueKind::Number(x) => ExprKind::Number(x),
+                    ValueKind::Angle(a) => ExprKind::Number(a.radians()),
                     ValueKind::Duration(seconds) => {
                         self.diags.push(
                         Diag::error("scen::syntax::unit_not_allowed", "a duration cannot appear in an expectation")

@@ -336,10 +336,10 @@ proptest! {
         }
         text += "}\nrobot p point\nrobot d disk 0.3\n";
         // Start and goal must be free: check with the validator's own test.
-        let probe = load(&text);
+        let probe = crate::scenario::world_of_text(&text);
         let robot = if disk_robot { RobotShape::Disk(0.3) } else { RobotShape::Point };
         let free = |(x, y): (f64, f64)| {
-            crate::geometry::validator::config_collision(&probe.world, &robot, Config::new(x, y, 0.0))
+            crate::geometry::validator::config_collision(&probe, &robot, Config::new(x, y, 0.0))
                 .is_none()
         };
         prop_assume!(free(start) && free(goal));
