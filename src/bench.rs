@@ -151,7 +151,7 @@ pub fn evaluate(report: &mut RunReport) {
         plans: run::metrics_by_plan(&report.scenario, &report.plans),
         runs: &report.bench_runs,
     };
-    let checks = run::evaluate_checks(&report.scenario, &values, |c| {
+    let (checks, skipped) = run::evaluate_checks(&report.scenario, &values, |c| {
         let mut benches = Vec::new();
         benches_used(&c.expr, &mut benches);
         benches.iter().all(|name| {
@@ -164,6 +164,7 @@ pub fn evaluate(report: &mut RunReport) {
         })
     });
     report.checks = checks;
+    report.skipped = skipped;
 }
 
 /// What bench checks read: the plain plans' metrics and the bench runs.

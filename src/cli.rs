@@ -10,9 +10,47 @@ use crate::diagnostics::{Diag, SourceMap};
 use crate::report;
 use crate::run::{RunReport, run_scenario};
 use crate::scenario::loader::LoadFailure;
-use crate::viz::rerun_sink::{self, ViewerTarget};
+use crate::viz::{self, ViewerTarget};
 
 mod bench;
+mod fmt;
+mod watch;
+
+/// Standard output with its failures remembered: a report that could not be
+/// written (a full disk, `/dev/full`, a closed pipe) makes the command exit
+/// with [`EXIT_BAD_INPUT`], never a silent success (SPEC §4).
+static STDOUT_ERROR: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+
+/// Writes to standard output; a failure is remembered for the exit code.
+pub(crate) fn write_stdout(args: std::fmt::Arguments<'_>) {
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_fmt(args) {
+        remember_stdout_error(e);
+    }
+}
+
+fn remember_stdout_error(e: std::io::Error) {
+    if let Ok(mut first) = STDOUT_ERROR.lock()
+        && first.is_none()
+    {
+        *first = Some(e.to_string());
+    }
+}
+
+/// `print!` to standard output, failures remembered ([`write_stdout`]).
+macro_rules! out {
+    ($($arg:tt)*) => { $crate::cli::write_stdout(format_args!($($arg)*)) };
+}
+
+/// `println!` to standard output, failures remembered ([`write_stdout`]).
+macro_rules! outln {
+    () => { $crate::cli::write_stdout(format_args!("\n")) };
+    ($($arg:tt)*) => {{
+        $crate::cli::write_stdout(format_args!($($arg)*));
+        $crate::cli::write_stdout(format_args!("\n"));
+    }};
+}
+pub(crate) use {out, outln};
 
 /// Exit codes (SPEC 4).
 pub const EXIT_OK: i32 = 0;
@@ -43,6 +81,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Rewrite files in the canonical layout, keeping every comment.
     Fmt(FmtArgs),
+    /// Run a scenario again on every save of it or of a file it reads.
+    Watch(RunArgs),
     /// A Language Server on stdin/stdout (for editors).
     Lsp,
     /// Convert another format into a scenario.
@@ -57,6 +97,10 @@ pub enum Command {
 pub struct RunArgs {
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
+    /// The folder the scenario may read files from (includes, maps);
+    /// default: the folder of each file named.
+    #[arg(long, value_name = "DIR")]
+    pub root: Option<PathBuf>,
     /// Run only this plan (repeatable).
     #[arg(long = "plan", value_name = "NAME")]
     pub plans: Vec<String>,
@@ -75,12 +119,52 @@ pub struct RunArgs {
     /// Write an SVG picture of the world and the paths.
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<PathBuf>,
+    /// Write every plan's path (and driven trajectory) as CSV rows.
+    #[arg(long, value_name = "OUT.csv")]
+    pub csv: Option<PathBuf>,
     /// Print only the summary and failures.
     #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,
     /// Print timings too.
     #[arg(short, long)]
     pub verbose: bool,
+}
+
+impl RunArgs {
+    /// Where `--save`, `--spawn` or `--connect` send the run, if anywhere.
+    fn viewer_target(&self) -> Option<ViewerTarget> {
+        if let Some(path) = &self.save {
+            Some(ViewerTarget::Save(path.clone()))
+        } else if self.spawn {
+            Some(ViewerTarget::Spawn)
+        } else {
+            self.connect
+                .as_ref()
+                .map(|a| ViewerTarget::Connect(Some(a.clone()).filter(|a| !a.is_empty())))
+        }
+    }
+
+    /// The options that are refused before anything runs: several files
+    /// with a single-file output, an output that cannot be written, a
+    /// viewer this build does not have. Prints the problem.
+    fn usable(&self) -> bool {
+        let single = self.save.is_some() || self.svg.is_some() || self.csv.is_some();
+        if self.files.len() > 1 && single {
+            eprintln!(
+                "error: `--save`, `--svg` and `--csv` take one scenario file; run the files one at a time"
+            );
+            return false;
+        }
+        if self.viewer_target().is_some() && !viz::VIEWER_BUILT {
+            eprintln!("error: {}", viz::ViewerError::NotBuilt);
+            return false;
+        }
+        outputs_writable(&[
+            ("--svg", self.svg.as_ref()),
+            ("--csv", self.csv.as_ref()),
+            ("--save", self.save.as_ref()),
+        ])
+    }
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -93,6 +177,10 @@ pub enum Format {
 pub struct CheckArgs {
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
+    /// The folder the scenario may read files from (includes, maps);
+    /// default: the folder of each file named.
+    #[arg(long, value_name = "DIR")]
+    pub root: Option<PathBuf>,
     /// `json`: one JSON object per diagnostic, one per line.
     #[arg(long, value_enum, default_value = "human")]
     pub format: Format,
@@ -102,6 +190,10 @@ pub struct CheckArgs {
 pub struct TestArgs {
     /// Files or folders (default: the current folder).
     pub paths: Vec<PathBuf>,
+    /// The folder the scenario may read files from (includes, maps);
+    /// default: the folder of each file named.
+    #[arg(long, value_name = "DIR")]
+    pub root: Option<PathBuf>,
     /// Run only the K-th of N parts of the files (1 ≤ K ≤ N), e.g. on a CI
     /// matrix.
     #[arg(long, value_name = "K/N")]
@@ -117,6 +209,10 @@ pub struct BenchArgs {
     /// `--shard K/N --out PART.jsonl`.
     #[arg(required = true, value_name = "FILE")]
     pub files: Vec<PathBuf>,
+    /// The folder the scenario may read files from (includes, maps);
+    /// default: the folder of each file named.
+    #[arg(long, value_name = "DIR")]
+    pub root: Option<PathBuf>,
     /// Run only this bench (repeatable).
     #[arg(long = "bench", value_name = "NAME")]
     pub benches: Vec<String>,
@@ -133,6 +229,10 @@ pub struct BenchArgs {
     /// `ompl_benchmark_statistics.py` and Planner Arena).
     #[arg(long = "ompl-log", value_name = "DIR")]
     pub ompl_log: Option<PathBuf>,
+    /// Runs per configuration, for every bench (overrides each bench's
+    /// `runs`).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+    pub runs: Option<u64>,
     /// Run only the K-th of N parts of the runs (1 ≤ K ≤ N); needs `--out`.
     #[arg(long, value_name = "K/N", requires = "out")]
     pub shard: Option<String>,
@@ -178,14 +278,26 @@ pub fn main() -> i32 {
                 .build(),
         )
     }));
-    match cli.command {
+    let code = match cli.command {
         Command::Run(args) => cmd_run(&args),
         Command::Check(args) => cmd_check(&args),
         Command::Test(args) => cmd_test(&args),
         Command::Bench(args) => bench::cmd_bench(&args),
-        Command::Fmt(args) => crate::format::command::run(&args.files, args.check),
-        Command::Lsp => crate::lsp::run(),
+        Command::Fmt(args) => fmt::run(&args.files, args.check),
+        Command::Watch(args) => watch::cmd_watch(&args),
+        // The server writes its own messages and ends on `exit`.
+        Command::Lsp => return crate::lsp::run(),
         Command::Import { format, file } => cmd_import(&format, &file),
+    };
+    if let Err(e) = std::io::stdout().flush() {
+        remember_stdout_error(e);
+    }
+    match STDOUT_ERROR.lock().ok().and_then(|mut e| e.take()) {
+        Some(e) => {
+            eprintln!("error: cannot write to standard output: {e}; the output is lost");
+            EXIT_BAD_INPUT
+        }
+        None => code,
     }
 }
 
@@ -197,7 +309,7 @@ fn cmd_import(format: &str, file: &Path) -> i32 {
     }
     match crate::import::import_roadmap_file(file) {
         Ok(text) => {
-            print!("{text}");
+            out!("{text}");
             EXIT_OK
         }
         Err((diags, sources)) => {
@@ -205,6 +317,74 @@ fn cmd_import(format: &str, file: &Path) -> i32 {
             EXIT_BAD_INPUT
         }
     }
+}
+
+/// Checks, before any planner runs, that the output file `path` of option
+/// `flag` can be written (SPEC §4): its folder exists and is writable, and
+/// the path is not a folder. A run that would only fail at its end, after
+/// minutes of planning, is refused at once.
+pub(crate) fn check_output_path(flag: &str, path: &Path) -> Result<(), String> {
+    let shown = path.display();
+    if path.as_os_str().is_empty() {
+        return Err(format!("`{flag}` needs a file name"));
+    }
+    if path.is_dir() {
+        return Err(format!(
+            "`{flag} {shown}`: `{shown}` is a folder; name a file"
+        ));
+    }
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !folder.is_dir() {
+        return Err(format!(
+            "`{flag} {shown}`: the folder `{}` does not exist; create it first",
+            folder.display()
+        ));
+    }
+    if !writable(folder) {
+        return Err(format!(
+            "`{flag} {shown}`: the folder `{}` is not writable",
+            folder.display()
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(unix)]
+fn writable(folder: &Path) -> bool {
+    use std::os::unix::ffi::OsStrExt;
+    let Ok(c) = std::ffi::CString::new(folder.as_os_str().as_bytes()) else {
+        return false;
+    };
+    // SAFETY: `c` is a NUL-terminated path that lives across the call.
+    unsafe { libc::access(c.as_ptr(), libc::W_OK) == 0 }
+}
+
+#[cfg(not(unix))]
+fn writable(folder: &Path) -> bool {
+    std::fs::metadata(folder).is_ok_and(|m| !m.permissions().readonly())
+}
+
+/// [`check_output_path`] for every output option given; prints the first
+/// problem and returns `false`.
+pub(crate) fn outputs_writable(outputs: &[(&str, Option<&PathBuf>)]) -> bool {
+    for (flag, path) in outputs {
+        if let Some(path) = path
+            && let Err(e) = check_output_path(flag, path)
+        {
+            eprintln!("error: {e}");
+            return false;
+        }
+    }
+    true
+}
+
+/// Loads a scenario named on the command line, inside `root` (`--root`;
+/// default: the file's folder).
+pub(crate) fn load(file: &Path, root: Option<&Path>) -> Result<crate::Scenario, LoadFailure> {
+    crate::scenario::load_with(file, root, &|_| None)
 }
 
 /// Renders diagnostics with their sources (miette), one after another.
@@ -223,79 +403,101 @@ pub(crate) fn print_failure(f: &LoadFailure) {
 }
 
 fn cmd_run(args: &RunArgs) -> i32 {
-    if args.files.len() > 1 && (args.save.is_some() || args.svg.is_some()) {
-        eprintln!(
-            "error: `--save` and `--svg` take one scenario file; run the files one at a time"
-        );
+    if !args.usable() {
         return EXIT_BAD_INPUT;
     }
     let mut code = EXIT_OK;
     let mut viewer_warned = false;
+    let target = args.viewer_target();
     for file in &args.files {
-        let scenario = match crate::load(file) {
-            Ok(s) => s,
-            Err(f) => {
-                print_failure(&f);
-                code = code.max(EXIT_BAD_INPUT);
-                continue;
-            }
-        };
-        if let Some(unknown) = args
-            .plans
-            .iter()
-            .find(|p| !scenario.plans.iter().any(|q| &q.name == *p))
-        {
-            let names: Vec<&str> = scenario.plans.iter().map(|p| p.name.as_str()).collect();
-            eprintln!(
-                "error: `{}` has no plan `{unknown}` (plans: {})",
-                file.display(),
-                names.join(", ")
-            );
-            code = code.max(EXIT_BAD_INPUT);
-            continue;
-        }
-        let spinner = progress(args, file);
-        let report = run_scenario(scenario, &args.plans);
-        if let Some(p) = spinner {
-            p.finish_and_clear();
-        }
-        if args.json {
-            let doc = report::json::to_json(&report);
-            println!("{}", serde_json::to_string(&doc).unwrap_or_default());
-        } else {
-            print_text(&report, args);
-        }
-        if let Some(svg) = &args.svg
-            && let Err(e) = std::fs::write(svg, report::svg::to_svg(&report))
-        {
-            eprintln!("error: cannot write `{}`: {e}", svg.display());
-            code = code.max(EXIT_BAD_INPUT);
-        }
-        let target = if let Some(path) = &args.save {
-            Some(ViewerTarget::Save(path.clone()))
-        } else if args.spawn {
-            Some(ViewerTarget::Spawn)
-        } else {
-            args.connect
-                .as_ref()
-                .map(|a| ViewerTarget::Connect(Some(a.clone()).filter(|a| !a.is_empty())))
-        };
-        if let Some(target) = target
-            && let Err(e) = rerun_sink::stream(&report, &target)
-        {
-            if let ViewerTarget::Save(_) = target {
-                eprintln!("error: {e}");
-                code = code.max(EXIT_BAD_INPUT);
-            } else if !viewer_warned {
-                eprintln!("warning: viewer: {e}; the report above is complete");
-                viewer_warned = true;
-            }
-        }
-        if report.failed() > 0 || report.plans.iter().any(|p| p.validation.is_some()) {
-            code = code.max(EXIT_CHECK_FAILED);
-        }
+        let (c, _) = run_file(file, args, target.as_ref(), &mut viewer_warned);
+        code = code.max(c);
     }
     code
+}
+
+/// `scen run` on one file: load, plan, check, print, write the outputs,
+/// stream to `target`. Returns the exit code and the files the scenario
+/// read (the main file first; `watch` watches them).
+fn run_file(
+    file: &Path,
+    args: &RunArgs,
+    target: Option<&ViewerTarget>,
+    viewer_warned: &mut bool,
+) -> (i32, Vec<PathBuf>) {
+    let mut read = vec![file.to_path_buf()];
+    let scenario = match load(file, args.root.as_deref()) {
+        Ok(s) => s,
+        Err(f) => {
+            read.extend(f.sources.files.iter().map(|s| s.path.clone()));
+            print_failure(&f);
+            return (EXIT_BAD_INPUT, read);
+        }
+    };
+    read.extend(scenario.sources.files.iter().map(|s| s.path.clone()));
+    if let Some(unknown) = args
+        .plans
+        .iter()
+        .find(|p| !scenario.plans.iter().any(|q| &q.name == *p))
+    {
+        let names: Vec<&str> = scenario.plans.iter().map(|p| p.name.as_str()).collect();
+        eprintln!(
+            "error: `{}` has no plan `{unknown}` (plans: {})",
+            file.display(),
+            names.join(", ")
+        );
+        return (EXIT_BAD_INPUT, read);
+    }
+    let spinner = progress(args, file);
+    let report = run_scenario(scenario, &args.plans);
+    if let Some(p) = spinner {
+        p.finish_and_clear();
+    }
+    if args.json {
+        let doc = report::json::to_json(&report);
+        outln!("{}", serde_json::to_string(&doc).unwrap_or_default());
+    } else {
+        print_text(&report, args);
+    }
+    let mut code = EXIT_OK;
+    if let Some(svg) = &args.svg
+        && let Err(e) = std::fs::write(svg, report::svg::to_svg(&report))
+    {
+        eprintln!("error: cannot write `{}`: {e}", svg.display());
+        code = code.max(EXIT_BAD_INPUT);
+    }
+    if let Some(csv) = &args.csv {
+        match report::csv::paths_csv(&report) {
+            Some(text) => {
+                if let Err(e) = std::fs::write(csv, text) {
+                    eprintln!("error: cannot write `{}`: {e}", csv.display());
+                    code = code.max(EXIT_BAD_INPUT);
+                }
+            }
+            None => {
+                eprintln!(
+                    "error: `--csv {}`: no plan found a path or moved the robot; nothing was written",
+                    csv.display()
+                );
+                code = code.max(EXIT_BAD_INPUT);
+            }
+        }
+    }
+    if let Some(target) = target
+        && let Err(e) = viz::stream(&report, target)
+    {
+        if let ViewerTarget::Save(_) = target {
+            eprintln!("error: {e}");
+            code = code.max(EXIT_BAD_INPUT);
+        } else if !*viewer_warned {
+            eprintln!("warning: viewer: {e}; the report above is complete");
+            *viewer_warned = true;
+        }
+    }
+    if report.failed() > 0 || report.plans.iter().any(|p| p.validation.is_some()) {
+        code = code.max(EXIT_CHECK_FAILED);
+    }
+    (code, read)
 }
 
 fn progress(args: &RunArgs, file: &Path) -> Option<indicatif::ProgressBar> {
@@ -317,19 +519,16 @@ fn print_text(report: &RunReport, args: &RunArgs) {
 /// Prints `full` (the report, rendered), or with `quiet` only the failed
 /// checks and the summary; then a diagnostic per failed check on stderr.
 pub(crate) fn print_report(report: &RunReport, quiet: bool, full: impl FnOnce() -> String) {
-    let mut out = std::io::stdout().lock();
     if quiet {
         for c in report.checks.iter().filter(|c| !c.passed) {
-            let _ = writeln!(out, "{}", report::text::check_line(report, c));
+            outln!("{}", report::text::check_line(report, c));
         }
-        let _ = writeln!(
-            out,
-            "{} passed, {} failed",
-            report.passed(),
-            report.failed()
-        );
+        if let Some(line) = report::text::skipped_line(report) {
+            outln!("{line}");
+        }
+        outln!("{} passed, {} failed", report.passed(), report.failed());
     } else {
-        let _ = write!(out, "{}", full());
+        out!("{}", full());
     }
     let failed: Vec<Diag> = report
         .checks
@@ -338,7 +537,9 @@ pub(crate) fn print_report(report: &RunReport, quiet: bool, full: impl FnOnce() 
         .map(|c| report::text::failed_check_diag(report, c))
         .collect();
     if !failed.is_empty() {
-        let _ = out.flush();
+        if let Err(e) = std::io::stdout().flush() {
+            remember_stdout_error(e);
+        }
         eprint!("{}", render_diags(&failed, &report.scenario.sources));
     }
 }
@@ -346,10 +547,10 @@ pub(crate) fn print_report(report: &RunReport, quiet: bool, full: impl FnOnce() 
 fn cmd_check(args: &CheckArgs) -> i32 {
     let mut code = EXIT_OK;
     for file in &args.files {
-        match crate::load(file) {
+        match load(file, args.root.as_deref()) {
             Ok(s) => {
                 if args.format == Format::Human {
-                    println!(
+                    outln!(
                         "{}: ok ({} robot(s), {} plan(s), {} check(s))",
                         file.display(),
                         s.robots.len(),
@@ -368,7 +569,7 @@ fn cmd_check(args: &CheckArgs) -> i32 {
                             if j.get("file").is_none() {
                                 j["file"] = serde_json::json!(file.display().to_string());
                             }
-                            println!("{}", serde_json::to_string(&j).unwrap_or_default());
+                            outln!("{}", serde_json::to_string(&j).unwrap_or_default());
                         }
                     }
                 }
@@ -442,13 +643,30 @@ fn cmd_test(args: &TestArgs) -> i32 {
         Some(Ok(s)) => Some(s),
         None => None,
     };
-    let mut files = Vec::new();
+    if !outputs_writable(&[("--junit", args.junit.as_ref())]) {
+        return EXIT_BAD_INPUT;
+    }
+    // Each file with its root: `--root`, or the folder named on the command
+    // line (for a file, its folder), so that the scenarios of a suite may
+    // share what lies anywhere in it (SPEC 2.2: the root is what was named).
+    let mut files: Vec<(PathBuf, PathBuf)> = Vec::new();
     for r in &roots {
         if !r.exists() {
             eprintln!("error: `{}` does not exist", r.display());
             return EXIT_BAD_INPUT;
         }
-        collect_scen(r, false, &mut files);
+        let root = match &args.root {
+            Some(root) => root.clone(),
+            None if r.is_dir() => r.clone(),
+            None => r
+                .parent()
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or(Path::new("."))
+                .to_path_buf(),
+        };
+        let mut found = Vec::new();
+        collect_scen(r, false, &mut found);
+        files.extend(found.into_iter().map(|f| (f, root.clone())));
     }
     if files.is_empty() {
         eprintln!(
@@ -471,17 +689,20 @@ fn cmd_test(args: &TestArgs) -> i32 {
             .map(|(_, f)| f)
             .collect();
     }
-    let results: Vec<report::junit::FileResult> = files.par_iter().map(|f| test_file(f)).collect();
+    let results: Vec<report::junit::FileResult> = files
+        .par_iter()
+        .map(|(f, root)| test_file(f, Some(root)))
+        .collect();
     let (mut passed, mut failed) = (0, 0);
     for r in &results {
-        println!("{}", r.line);
+        outln!("{}", r.line);
         if !r.diagnostics.is_empty() {
             eprint!("{}", r.diagnostics);
         }
         passed += r.cases.iter().filter(|c| c.failure.is_none()).count();
         failed += r.cases.iter().filter(|c| c.failure.is_some()).count();
     }
-    println!("{passed} passed, {failed} failed");
+    outln!("{passed} passed, {failed} failed");
     if let Some(junit) = &args.junit
         && let Err(e) = std::fs::write(junit, report::junit::to_junit(&results))
     {
@@ -496,10 +717,10 @@ fn cmd_test(args: &TestArgs) -> i32 {
 }
 
 /// One file of `scen test`: its line, its diagnostics, its test cases.
-fn test_file(f: &Path) -> report::junit::FileResult {
+fn test_file(f: &Path, root: Option<&Path>) -> report::junit::FileResult {
     use report::junit::{Case, FileResult};
     let name = f.display().to_string();
-    let loaded = crate::load(f);
+    let loaded = load(f, root);
     let expected = expected_errors(match &loaded {
         Ok(s) => &s.sources,
         Err(fail) => &fail.sources,

@@ -9,6 +9,7 @@ pub mod checks;
 pub mod cli;
 pub mod diagnostics;
 pub mod drive;
+pub mod files;
 pub mod format;
 pub mod geometry;
 pub mod import;

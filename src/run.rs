@@ -53,6 +53,9 @@ pub struct RunReport {
     /// `scen run`).
     pub bench_runs: Vec<crate::bench::BenchRun>,
     pub checks: Vec<CheckOutcome>,
+    /// The checks not evaluated because a plan they read did not run
+    /// (`scen run --plan`), as indices into `Scenario::checks`.
+    pub skipped: Vec<usize>,
 }
 
 impl RunReport {
@@ -82,12 +85,13 @@ pub fn run_scenario(scenario: Scenario, only: &[String]) -> RunReport {
     let values = RunValues {
         plans: metrics_by_plan(&scenario, &plans),
     };
-    let outcomes = evaluate_checks(&scenario, &values, |c| !c.bench);
+    let (outcomes, skipped) = evaluate_checks(&scenario, &values, |c| !c.bench);
     RunReport {
         scenario,
         plans,
         bench_runs: Vec::new(),
         checks: outcomes,
+        skipped,
     }
 }
 
@@ -117,13 +121,16 @@ pub(crate) fn metrics_by_plan<'a>(
         .collect()
 }
 
-/// Evaluates the checks that `wanted` selects and whose plans all ran.
+/// Evaluates the checks that `wanted` selects and whose plans all ran;
+/// also returns the wanted checks skipped because a plan they read did not
+/// run (`--plan`).
 pub(crate) fn evaluate_checks(
     scenario: &Scenario,
     values: &dyn checks::Values,
     wanted: impl Fn(&Check) -> bool,
-) -> Vec<CheckOutcome> {
+) -> (Vec<CheckOutcome>, Vec<usize>) {
     let mut outcomes = Vec::new();
+    let mut skipped = Vec::new();
     for (i, check) in scenario.checks.iter().enumerate() {
         if !wanted(check) {
             continue;
@@ -131,7 +138,8 @@ pub(crate) fn evaluate_checks(
         let mut needed = Vec::new();
         checks::plans_used(&check.expr, &mut needed);
         if !needed.iter().all(|p| values.metrics(p).is_some()) {
-            continue; // a plan it needs was not selected with --plan
+            skipped.push(i);
+            continue;
         }
         let mut used = checks::Used::default();
         let v = checks::eval(&check.expr, values, &mut used);
@@ -142,7 +150,7 @@ pub(crate) fn evaluate_checks(
             series: used.series,
         });
     }
-    outcomes
+    (outcomes, skipped)
 }
 
 fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
@@ -170,9 +178,11 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     let valid = motion.is_some() && validation.is_none();
     let mut metrics = common_metrics(&outcome, robot, plan, time_ms, valid);
     let path = outcome.path.as_deref();
+    // Without a path, the clearance has no value (NaN: `null` in JSON, `—`
+    // in the report), never a 0 that reads as "touched a wall".
     metrics.insert(
         "clearance".into(),
-        MetricValue::Num(path.map_or(0.0, |p| referee.clearance(robot, p, DEFAULT_TOLERANCE))),
+        MetricValue::Num(path.map_or(f64::NAN, |p| referee.clearance(robot, p, DEFAULT_TOLERANCE))),
     );
     metrics.insert(
         "smoothness".into(),

@@ -218,7 +218,7 @@ fn merge_refuses_missing_repeated_and_foreign_parts() {
     };
     refused(
         &["bench", "merge", "p1.jsonl", "p3.jsonl"],
-        "parts missing: 2/3",
+        "1 part(s) missing: 2/3",
     );
     refused(
         &[
@@ -446,4 +446,194 @@ fn test_shards_cover_every_file_once_and_junit_parses() {
     all.sort();
     seen.sort();
     assert_eq!(seen, all, "every file in exactly one shard");
+}
+
+/// FNV-1a of the run's JSON without its `check`, as `scen` writes it: a
+/// test that edits a run on purpose and mends the checksum, to reach the
+/// checks behind it.
+fn checksum(run: &serde_json::Map<String, Value>) -> String {
+    let mut copy = run.clone();
+    copy.remove("check");
+    let text = serde_json::to_string(&Value::Object(copy)).expect("JSON");
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}
+
+/// Rewrites the first run line of a part with `edit`; `mend` recomputes
+/// its checksum.
+fn edit_part(path: &Path, mend: bool, edit: impl Fn(&mut serde_json::Map<String, Value>)) {
+    let text = std::fs::read_to_string(path).expect("a part");
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let mut run: serde_json::Map<String, Value> =
+        serde_json::from_str(&lines[1]).expect("a run line");
+    edit(&mut run);
+    if mend {
+        let sum = checksum(&run);
+        run.insert("check".into(), sum.into());
+    }
+    lines[1] = serde_json::to_string(&run).expect("JSON");
+    std::fs::write(path, lines.join("\n") + "\n").expect("write");
+}
+
+/// SPEC §4: `merge` refuses a run whose seed, configuration or metrics do
+/// not match what the scenario gives, a split into more parts than runs,
+/// and inputs that are not regular files.
+#[test]
+fn merge_refuses_edited_runs_and_impossible_splits() {
+    let dir = TempDir::new("bench-merge-edits");
+    let d = dir.path();
+    std::fs::write(d.join("b.scen"), SCENARIO).expect("write");
+    let make = |name: &str| {
+        for k in 1..=2 {
+            let out = scen(
+                d,
+                &[
+                    "bench",
+                    "b.scen",
+                    "--shard",
+                    &format!("{k}/2"),
+                    "--out",
+                    &format!("{name}{k}.jsonl"),
+                ],
+            );
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+    };
+    let refused = |args: &[&str], says: &str| {
+        let out = scen(d, args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    };
+    make("ok");
+    let merged = scen(d, &["bench", "merge", "ok1.jsonl", "ok2.jsonl"]);
+    assert!(
+        merged.status.success(),
+        "{}",
+        String::from_utf8_lossy(&merged.stderr)
+    );
+
+    // A metric's value edited by hand: the checksum says so.
+    make("m");
+    edit_part(&d.join("m1.jsonl"), false, |run| {
+        run["metrics"]["length"] = Value::from(1.0);
+    });
+    refused(
+        &["bench", "merge", "m1.jsonl", "m2.jsonl"],
+        "checksum does not match",
+    );
+    // With the checksum mended, the seed, the configuration and the
+    // metrics are still checked against the scenario.
+    make("s");
+    edit_part(&d.join("s1.jsonl"), true, |run| {
+        run["seed"] = Value::from(run["seed"].as_u64().expect("a seed") + 1000);
+    });
+    refused(&["bench", "merge", "s1.jsonl", "s2.jsonl"], "another seed");
+    make("c");
+    edit_part(&d.join("c1.jsonl"), true, |run| {
+        run["config"] = serde_json::json!({"jump": 99});
+    });
+    refused(
+        &["bench", "merge", "c1.jsonl", "c2.jsonl"],
+        "another configuration",
+    );
+    make("x");
+    edit_part(&d.join("x1.jsonl"), true, |run| {
+        if let Some(m) = run["metrics"].as_object_mut() {
+            m.remove("length");
+        }
+    });
+    refused(
+        &["bench", "merge", "x1.jsonl", "x2.jsonl"],
+        "lacks a metric",
+    );
+
+    // More parts than runs: refused when splitting, and when merging.
+    refused(
+        &[
+            "bench",
+            "b.scen",
+            "--shard",
+            "1/10000000",
+            "--out",
+            "big.jsonl",
+        ],
+        "N may be at most",
+    );
+    let part = std::fs::read_to_string(d.join("ok1.jsonl")).expect("a part");
+    let header = part.lines().next().expect("a header");
+    let mut h: serde_json::Map<String, Value> = serde_json::from_str(header).expect("JSON");
+    h.insert("n".into(), Value::from(10_000_000u64));
+    std::fs::write(
+        d.join("huge_n.jsonl"),
+        serde_json::to_string(&h).expect("JSON") + "\n",
+    )
+    .expect("write");
+    refused(&["bench", "merge", "huge_n.jsonl"], "only");
+    // Not regular files: refused at once, never read to the end.
+    #[cfg(unix)]
+    refused(&["bench", "merge", "/dev/zero"], "not a regular file");
+    refused(&["bench", "merge", "."], "folder");
+}
+
+/// `scen bench --runs N` overrides every bench's `runs`; a deterministic
+/// planner still runs once per configuration (SPEC §4, 2.7).
+#[test]
+fn runs_overrides_every_bench() {
+    let dir = TempDir::new("bench-runs");
+    std::fs::write(dir.path().join("b.scen"), SCENARIO).expect("write");
+    let doc = json(&scen(
+        dir.path(),
+        &["bench", "--json", "--runs", "3", "b.scen"],
+    ));
+    let benches = doc["benches"].as_array().expect("benches");
+    let runs = |b: &Value| b["results"].as_array().expect("results").len();
+    // seeds: one randomized plan × 2 jumps × 3 runs; weights: A* × 2
+    // weights, once each.
+    assert_eq!(runs(&benches[0]), 6, "{}", benches[0]);
+    assert_eq!(runs(&benches[1]), 2, "{}", benches[1]);
+    // Sharded with the same override, the parts merge to the same table;
+    // without it, they are refused as another split.
+    let d = dir.path();
+    for k in 1..=2 {
+        let out = scen(
+            d,
+            &[
+                "bench",
+                "b.scen",
+                "--runs",
+                "3",
+                "--shard",
+                &format!("{k}/2"),
+                "--out",
+                &format!("r{k}.jsonl"),
+            ],
+        );
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let merged = without_timings(json(&scen(
+        d,
+        &["bench", "merge", "--json", "r1.jsonl", "r2.jsonl"],
+    )));
+    assert_eq!(merged, without_timings(doc));
+    let out = scen(
+        d,
+        &["bench", "b.scen", "--shard", "2/2", "--out", "plain2.jsonl"],
+    );
+    assert!(out.status.success());
+    let out = scen(d, &["bench", "merge", "r1.jsonl", "plain2.jsonl"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("does not belong"));
 }

@@ -91,7 +91,7 @@ fn check_json_prints_one_object_per_diagnostic() {
     let out = Test::new()
         .file(
             "bad.scen",
-            "world { bounds (0, 0) (10, 10) }\nrobot p point\nrobot p point\n",
+            "world { bounds (0, 0) (10, 10) }\nrobot p point\nrobot p point\nplan go astar p { start (1, 1) goal (2, 2) }\n",
         )
         .args(&["check", "--format", "json", "bad.scen"])
         .status(2)
@@ -281,4 +281,262 @@ fn every_scenario_passes_scen_test() {
         .stdout_contains(" 0 failed")
         .status(0)
         .run();
+}
+
+/// SPEC §4: output paths are checked before any planner runs, so a run of
+/// minutes cannot end in "cannot write" (and turn a pass into exit 2).
+#[test]
+fn outputs_that_cannot_be_written_are_refused_before_planning() {
+    for (flag, file) in [
+        ("--svg", "missing/out.svg"),
+        ("--csv", "missing/paths.csv"),
+        ("--save", "missing/run.rrd"),
+    ] {
+        Test::new()
+            .file("small.scen", SMALL)
+            .args(&["run", flag, file, "small.scen"])
+            .stdout("")
+            .stderr_contains(&format!(
+                "`{flag} {file}`: the folder `missing` does not exist"
+            ))
+            .status(2)
+            .run();
+    }
+    // A folder where a file is expected.
+    Test::new()
+        .file("small.scen", SMALL)
+        .file("out.svg/keep", "")
+        .args(&["run", "--svg", "out.svg", "small.scen"])
+        .stdout("")
+        .stderr_contains("`out.svg` is a folder")
+        .status(2)
+        .run();
+    Test::new()
+        .file("small.scen", SMALL)
+        .args(&["test", "--junit", "missing/junit.xml", "small.scen"])
+        .stdout("")
+        .status(2)
+        .run();
+}
+
+/// SPEC §4: a report that cannot be written to stdout is an error, not a
+/// silent success.
+#[cfg(unix)]
+#[test]
+fn a_report_lost_on_a_full_disk_is_exit_2() {
+    let dir = common::TempDir::new("dev-full");
+    std::fs::write(dir.path().join("small.scen"), SMALL).expect("write");
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .expect("/dev/full");
+    let out = std::process::Command::new(common::scen_bin())
+        .args(["run", "small.scen"])
+        .current_dir(dir.path())
+        .stdout(full)
+        .output()
+        .expect("scen runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("cannot write to standard output"), "{err}");
+}
+
+/// SPEC §4: `--plan` says which checks it left out, so a run never looks
+/// green without saying what it did not check.
+#[test]
+fn plan_reports_the_checks_it_skipped() {
+    let text = SMALL.replace(
+        "expect go.found",
+        "plan other astar p { start (0.5, 0.5) goal (0.5, 9.5) }\nexpect other.found\nexpect go.found",
+    );
+    Test::new()
+        .file("small.scen", &text)
+        .args(&["run", "--plan", "other", "small.scen"])
+        .stdout_contains(
+            "2 check(s) skipped: they read plans that did not run (`--plan`): lines 15, 16",
+        )
+        .stdout_contains("1 passed, 0 failed")
+        .run();
+    let out = Test::new()
+        .file("small.scen", &text)
+        .args(&["run", "--json", "--plan", "other", "small.scen"])
+        .run();
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(doc["skipped"][0]["line"], 15);
+    assert_eq!(doc["skipped"][1]["expr"], "go.cost == 25");
+    // Without `--plan`, nothing is skipped and the key is absent.
+    let out = Test::new()
+        .file("small.scen", &text)
+        .args(&["run", "--json", "small.scen"])
+        .run();
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert!(doc.get("skipped").is_none(), "{doc}");
+}
+
+/// SPEC §4: a metric without a value is `null` in JSON and `—` in the
+/// report, never a 0 that reads as "touched a wall".
+#[test]
+fn the_clearance_of_a_plan_without_a_path_has_no_value() {
+    let walled = SMALL.replace("rect wall (4, 0) (5, 8)", "rect wall (4, 0) (5, 10)");
+    let walled = walled
+        .replace("expect go.found\n", "expect not go.found\n")
+        .replace("expect go.cost == 25\n", "");
+    Test::new()
+        .file("small.scen", &walled)
+        .args(&["run", "small.scen"])
+        .stdout_contains("clearance —")
+        .run();
+    let out = Test::new()
+        .file("small.scen", &walled)
+        .args(&["run", "--json", "small.scen"])
+        .run();
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let metrics = &doc["plans"]["go"]["metrics"];
+    assert_eq!(metrics["found"], false);
+    assert!(metrics["clearance"].is_null(), "{metrics}");
+}
+
+/// `run --csv`: one row per configuration of each path, with the
+/// cumulative length (SPEC §4).
+#[test]
+fn csv_lists_every_path_point_with_its_length() {
+    let t = Test::new().file("small.scen", SMALL).args(&[
+        "run",
+        "-q",
+        "--csv",
+        "paths.csv",
+        "small.scen",
+    ]);
+    t.run();
+    let csv = std::fs::read_to_string(t.dir().join("paths.csv")).expect("paths.csv written");
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows[0], "plan,what,index,t,x,y,theta,length");
+    // The path of 26 configurations (`nodes 26` in the report), from the
+    // start to the goal, 25 long.
+    assert_eq!(rows.len(), 1 + 26, "{csv}");
+    assert_eq!(rows[1], "go,path,0,,0.5,0.5,0,0");
+    assert_eq!(rows[26], "go,path,25,,9.5,0.5,0,25");
+    // No path: nothing to write, and it says so.
+    let walled = SMALL
+        .replace("rect wall (4, 0) (5, 8)", "rect wall (4, 0) (5, 10)")
+        .replace("expect go.cost == 25\n", "");
+    let t = Test::new()
+        .file("small.scen", &walled)
+        .args(&["run", "-q", "--csv", "paths.csv", "small.scen"])
+        .stderr_contains("no plan found a path")
+        .status(2);
+    t.run();
+    assert!(!t.dir().join("paths.csv").exists());
+}
+
+/// SPEC 2.2: files a scenario reads lie inside its root: the folder of
+/// the file named on the command line, or `--root DIR`.
+#[test]
+fn includes_stay_inside_the_root_unless_it_is_widened() {
+    let world = "world { bounds (0, 0) (10, 10) }\n";
+    let main = "include \"../shared/_world.scen\"\nrobot p point\nplan go astar p { start (1.5, 1.5) goal (8.5, 1.5) }\nexpect go.found\n";
+    Test::new()
+        .file("shared/_world.scen", world)
+        .file("case/main.scen", main)
+        .args(&["run", "case/main.scen"])
+        .stderr_contains("scen::load::outside_root")
+        .stderr_contains("--root DIR")
+        .status(2)
+        .run();
+    Test::new()
+        .file("shared/_world.scen", world)
+        .file("case/main.scen", main)
+        .args(&["run", "-q", "--root", ".", "case/main.scen"])
+        .stdout("1 passed, 0 failed\n")
+        .run();
+}
+
+/// Without the viewer in the build, the viewer's options say so before
+/// anything runs.
+#[cfg(not(feature = "viewer"))]
+#[test]
+fn a_build_without_the_viewer_refuses_its_options() {
+    Test::new()
+        .file("small.scen", SMALL)
+        .args(&["run", "--save", "out.rrd", "small.scen"])
+        .stdout("")
+        .stderr_contains("built without the viewer")
+        .status(2)
+        .run();
+}
+
+#[test]
+fn watch_needs_an_existing_file() {
+    Test::new()
+        .args(&["watch", "nope.scen"])
+        .stderr_contains("`nope.scen` does not exist")
+        .status(2)
+        .run();
+}
+
+/// `scen watch`: a save runs the scenario again and prints the new
+/// report; a save that does not parse prints its diagnostics and waits for
+/// the next (SPEC §4).
+#[test]
+fn watch_runs_again_on_every_save() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    let dir = common::TempDir::new("watch");
+    let file = dir.path().join("small.scen");
+    std::fs::write(&file, SMALL).expect("write");
+    let mut child = Command::new(common::scen_bin())
+        .args(["watch", "-q", "small.scen"])
+        .current_dir(dir.path())
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("scen watch starts");
+    // Lines of both streams, as they come.
+    let (tx, rx) = mpsc::channel::<String>();
+    for pipe in [
+        Box::new(child.stdout.take().expect("stdout")) as Box<dyn std::io::Read + Send>,
+        Box::new(child.stderr.take().expect("stderr")),
+    ] {
+        let tx = tx.clone();
+        std::thread::spawn(move || {
+            for line in BufReader::new(pipe).lines().map_while(Result::ok) {
+                let _ = tx.send(line);
+            }
+        });
+    }
+    let mut seen = Vec::new();
+    let mut wait_for = |what: &str| {
+        loop {
+            match rx.recv_timeout(Duration::from_secs(60)) {
+                Ok(line) => {
+                    let hit = line.contains(what);
+                    seen.push(line);
+                    if hit {
+                        return;
+                    }
+                }
+                Err(_) => panic!(
+                    "`scen watch` never printed {what:?}; it printed:\n{}",
+                    seen.join("\n")
+                ),
+            }
+        }
+    };
+    wait_for("2 passed, 0 failed");
+    // A save with a failing check: the new report.
+    std::fs::write(&file, SMALL.replace("go.cost == 25", "go.cost < 20")).expect("save");
+    wait_for("1 passed, 1 failed");
+    // A save that does not parse: its diagnostics, and it waits.
+    std::fs::write(&file, SMALL.replace("plan go", "plan go go go {")).expect("save");
+    wait_for("the scenario was not run");
+    // Fixed again: a run again.
+    std::fs::write(&file, SMALL).expect("save");
+    wait_for("2 passed, 0 failed");
+    let _ = child.kill();
+    let _ = child.wait();
 }

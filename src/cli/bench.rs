@@ -1,21 +1,33 @@
 //! `scen bench FILE...` and `scen bench merge PART.jsonl...` (SPEC §4).
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
 use super::{
-    BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, print_failure, print_report,
-    render_diags,
+    BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, check_output_path, outln,
+    outputs_writable, print_failure, print_report, render_diags,
 };
 use crate::bench::{self, BenchRun, RunId, Shard, TABLE_METRICS};
+use crate::planners::MetricValue;
 use crate::report;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
+use crate::scenario::schema::MetricType;
 
 pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
+    // `--ompl-log DIR` is created if need be: its parent must be writable.
+    let ompl_parent = args.ompl_log.as_ref().map(|d| d.join("ompl.log"));
+    if !outputs_writable(&[
+        ("--csv", args.csv.as_ref()),
+        ("--svg", args.svg.as_ref()),
+        ("--out", args.out.as_ref()),
+    ]) || !ompl_log_dir_ok(args.ompl_log.as_deref(), ompl_parent.as_deref())
+    {
+        return EXIT_BAD_INPUT;
+    }
     if args.files.first().is_some_and(|f| f == Path::new("merge")) {
         return cmd_merge(args, &args.files[1..]);
     }
@@ -36,7 +48,7 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     };
     let mut code = EXIT_OK;
     for file in &args.files {
-        let scenario = match crate::load(file) {
+        let mut scenario = match super::load(file, args.root.as_deref()) {
             Ok(s) => s,
             Err(f) => {
                 print_failure(&f);
@@ -57,19 +69,54 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
             code = code.max(EXIT_BAD_INPUT);
             continue;
         }
+        if let Some(n) = args.runs {
+            scenario.override_runs(n);
+        }
         let mut ids = bench::run_ids(&scenario, &args.benches);
         if let Some(s) = shard {
+            if s.n > ids.len() as u64 {
+                eprintln!(
+                    "error: `--shard {}/{}`: `{}` has only {} bench run(s) to split; N may be at most {}",
+                    s.k,
+                    s.n,
+                    file.display(),
+                    ids.len(),
+                    ids.len()
+                );
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
             ids.retain(|id| s.takes(id.index));
         }
         let runs = run_with_progress(&scenario, &ids, args);
         if let (Some(s), Some(out)) = (shard, &args.out) {
-            code = code.max(write_part(&scenario, s, &args.benches, &runs, out));
+            code = code.max(write_part(&scenario, s, args, &runs, out));
             continue;
         }
         let report = bench::report(scenario, runs);
         code = code.max(outputs(&report, args));
     }
     code
+}
+
+/// `--ompl-log DIR`: an existing folder, or one whose parent exists (it is
+/// created when the logs are written).
+fn ompl_log_dir_ok(dir: Option<&Path>, inside: Option<&Path>) -> bool {
+    let (Some(dir), Some(inside)) = (dir, inside) else {
+        return true;
+    };
+    let probe = if dir.is_dir() {
+        check_output_path("--ompl-log", inside)
+    } else {
+        check_output_path("--ompl-log", dir)
+    };
+    match probe {
+        Ok(()) => true,
+        Err(e) => {
+            eprintln!("error: {e}");
+            false
+        }
+    }
 }
 
 /// The named benches exist.
@@ -129,7 +176,7 @@ fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
     };
     if args.json {
         let doc = report::bench::to_json(report);
-        println!("{}", serde_json::to_string(&doc).unwrap_or_default());
+        outln!("{}", serde_json::to_string(&doc).unwrap_or_default());
     } else {
         print_report(report, args.quiet, || {
             report::bench::render(report, &metrics)
@@ -181,13 +228,13 @@ fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
 fn write_part(
     scenario: &Scenario,
     shard: Shard,
-    only: &[String],
+    args: &BenchArgs,
     runs: &[BenchRun],
     out: &Path,
 ) -> i32 {
     let hash = scenario.sources.content_hash();
-    let mut text = serde_json::to_string(&report::bench::part_header(scenario, &hash, shard, only))
-        .unwrap_or_default();
+    let header = report::bench::part_header(scenario, &hash, shard, &args.benches, args.runs);
+    let mut text = serde_json::to_string(&header).unwrap_or_default();
     text.push('\n');
     for r in runs {
         text.push_str(
@@ -222,19 +269,25 @@ struct Part {
     benches: Vec<String>,
     k: u64,
     n: u64,
+    /// `--runs N`, when the parts were made with it.
+    runs_override: Option<u64>,
     runs: Vec<Value>,
 }
 
+/// The largest part `merge` reads (a part of a million runs is ~300 MB).
+const MAX_PART_BYTES: u64 = 1 << 30;
+
 fn read_part(path: &Path) -> Result<Part, String> {
-    let text = std::fs::read_to_string(path)
+    let bytes = crate::files::read_regular_file(path, MAX_PART_BYTES)
         .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
     let not_a_part = || {
         format!(
             "`{}` is not a part written by `scen bench --shard K/N --out PART.jsonl`",
             path.display()
         )
     };
+    let text = String::from_utf8(bytes).map_err(|_| not_a_part())?;
+    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
     let header: Value = lines
         .next()
         .and_then(|l| serde_json::from_str(l).ok())
@@ -258,15 +311,20 @@ fn read_part(path: &Path) -> Result<Part, String> {
             .collect(),
         k: field("k")?.as_u64().ok_or_else(not_a_part)?,
         n: field("n")?.as_u64().ok_or_else(not_a_part)?,
+        runs_override: match header.get("runs") {
+            None => None,
+            Some(v) => Some(v.as_u64().filter(|&n| n >= 1).ok_or_else(not_a_part)?),
+        },
         runs,
     })
 }
 
 /// `scen bench merge PART.jsonl...`: the report of the whole bench, as the
 /// unsharded `scen bench` prints it. Refuses parts that are missing,
-/// given twice, or made from another scenario or split.
+/// given twice, or made from another scenario or split, and runs that the
+/// scenario does not give (SPEC §4).
 fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
-    match merge(paths) {
+    match merge(paths, args.root.as_deref()) {
         Ok(report) => outputs(&report, args),
         Err(e) => {
             eprintln!("error: {e}");
@@ -275,7 +333,10 @@ fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
     }
 }
 
-fn merge(paths: &[PathBuf]) -> Result<RunReport, String> {
+/// At most this many missing parts are named in an error.
+const MISSING_SHOWN: usize = 10;
+
+fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
     if paths.is_empty() {
         return Err("`scen bench merge` needs the parts: `scen bench merge part-*.jsonl`".into());
     }
@@ -285,47 +346,35 @@ fn merge(paths: &[PathBuf]) -> Result<RunReport, String> {
         .collect::<Result<Vec<_>, _>>()?;
     let first = &parts[0];
     for p in &parts[1..] {
-        if (&p.file, &p.hash, p.n, &p.benches)
-            != (&first.file, &first.hash, first.n, &first.benches)
+        if (&p.file, &p.hash, p.n, &p.benches, p.runs_override)
+            != (
+                &first.file,
+                &first.hash,
+                first.n,
+                &first.benches,
+                first.runs_override,
+            )
         {
+            let runs =
+                |r: Option<u64>| r.map_or("as written".to_string(), |n| format!("--runs {n}"));
             return Err(format!(
-                "`{}` does not belong with `{}`: it was made from {} (hash {}), shards of {}, benches {:?}; the other from {} (hash {}), shards of {}, benches {:?}",
+                "`{}` does not belong with `{}`: it was made from {} (hash {}), shards of {}, benches {:?}, runs {}; the other from {} (hash {}), shards of {}, benches {:?}, runs {}",
                 p.path.display(),
                 first.path.display(),
                 p.file,
                 p.hash,
                 p.n,
                 p.benches,
+                runs(p.runs_override),
                 first.file,
                 first.hash,
                 first.n,
-                first.benches
+                first.benches,
+                runs(first.runs_override)
             ));
         }
     }
-    let mut seen = BTreeSet::new();
-    for p in &parts {
-        if !seen.insert(p.k) {
-            return Err(format!(
-                "part {}/{} is given twice (`{}`)",
-                p.k,
-                p.n,
-                p.path.display()
-            ));
-        }
-    }
-    let missing: Vec<String> = (1..=first.n)
-        .filter(|k| !seen.contains(k))
-        .map(|k| format!("{k}/{}", first.n))
-        .collect();
-    if !missing.is_empty() {
-        return Err(format!(
-            "parts missing: {} (of {} parts)",
-            missing.join(", "),
-            first.n
-        ));
-    }
-    let scenario = crate::load(Path::new(&first.file)).map_err(|f| {
+    let mut scenario = super::load(Path::new(&first.file), root).map_err(|f| {
         format!(
             "cannot load `{}`, the scenario the parts were made from:\n{}",
             first.file,
@@ -339,16 +388,73 @@ fn merge(paths: &[PathBuf]) -> Result<RunReport, String> {
             first.file, first.hash
         ));
     }
+    known_benches(&scenario, &first.benches)?;
+    if let Some(n) = first.runs_override {
+        scenario.override_runs(n);
+    }
     let ids = bench::run_ids(&scenario, &first.benches);
+    if first.n > ids.len() as u64 {
+        return Err(format!(
+            "the parts say {} shards, but the benches have only {} run(s): a split into more parts than runs is not one `scen bench --shard` makes",
+            first.n,
+            ids.len()
+        ));
+    }
+    let mut seen = BTreeSet::new();
+    for p in &parts {
+        if p.k == 0 || p.k > p.n {
+            return Err(format!(
+                "`{}` says it is part {}/{}",
+                p.path.display(),
+                p.k,
+                p.n
+            ));
+        }
+        if !seen.insert(p.k) {
+            return Err(format!(
+                "part {}/{} is given twice (`{}`)",
+                p.k,
+                p.n,
+                p.path.display()
+            ));
+        }
+    }
+    if seen.len() as u64 != first.n {
+        let missing: Vec<String> = (1..=first.n)
+            .filter(|k| !seen.contains(k))
+            .take(MISSING_SHOWN)
+            .map(|k| format!("{k}/{}", first.n))
+            .collect();
+        let count = first.n - seen.len() as u64;
+        return Err(format!(
+            "{count} part(s) missing: {}{} (of {} parts)",
+            missing.join(", "),
+            if count > MISSING_SHOWN as u64 {
+                ", …"
+            } else {
+                ""
+            },
+            first.n
+        ));
+    }
+    let at: HashMap<(usize, usize, usize, u64), usize> = ids
+        .iter()
+        .enumerate()
+        .map(|(i, id)| ((id.bench, id.plan, id.config, id.run), i))
+        .collect();
     let mut runs: Vec<Option<BenchRun>> = vec![None; ids.len()];
     for p in &parts {
         for v in &p.runs {
-            let (id_at, run) = decode_run(&scenario, &ids, v).ok_or_else(|| {
-                format!(
-                    "`{}` holds a run this scenario does not have: {v}",
-                    p.path.display()
-                )
-            })?;
+            let (id_at, run) = decode_run(&scenario, &at, v)
+                .map_err(|why| format!("`{}` holds a run that {why}: {v}", p.path.display()))?;
+            if !(Shard { k: p.k, n: p.n }).takes(ids[id_at].index) {
+                return Err(format!(
+                    "`{}` (part {}/{}) holds a run of another part: {v}",
+                    p.path.display(),
+                    p.k,
+                    p.n
+                ));
+            }
             if runs[id_at].is_some() {
                 return Err(format!("`{}` repeats a run: {v}", p.path.display()));
             }
@@ -365,29 +471,70 @@ fn merge(paths: &[PathBuf]) -> Result<RunReport, String> {
     ))
 }
 
-/// A part's run, placed among `ids`.
-fn decode_run(scenario: &Scenario, ids: &[RunId], v: &Value) -> Option<(usize, BenchRun)> {
-    let bench_name = v.get("bench")?.as_str()?;
-    let plan_name = v.get("plan")?.as_str()?;
-    let config = usize::try_from(v.get("config_index")?.as_u64()?).ok()?;
-    let run = v.get("run")?.as_u64()?;
-    let b = scenario.benches.iter().position(|x| x.name == bench_name)?;
-    let p = scenario.benches[b]
+/// A part's run, checked against what the scenario gives for its place
+/// (its seed, its configuration, the metrics of its planner, its checksum)
+/// and placed among the runs; or what is wrong with it.
+fn decode_run(
+    scenario: &Scenario,
+    at: &HashMap<(usize, usize, usize, u64), usize>,
+    v: &Value,
+) -> Result<(usize, BenchRun), &'static str> {
+    let o = v.as_object().ok_or("is not a JSON object")?;
+    let text = |k: &str| o.get(k).and_then(Value::as_str);
+    let number = |k: &str| o.get(k).and_then(Value::as_u64);
+    let (Some(bench_name), Some(plan_name), Some(config), Some(run), Some(seed)) = (
+        text("bench"),
+        text("plan"),
+        number("config_index"),
+        number("run"),
+        number("seed"),
+    ) else {
+        return Err("lacks its bench, plan, configuration, run or seed");
+    };
+    if text("check") != Some(report::bench::run_checksum(o).as_str()) {
+        return Err("was edited or damaged (its checksum does not match)");
+    }
+    let b = scenario
+        .benches
+        .iter()
+        .position(|x| x.name == bench_name)
+        .ok_or("names a bench this scenario does not have")?;
+    let bench = &scenario.benches[b];
+    let p = bench
         .plans
         .iter()
-        .position(|x| scenario.plans[x.plan].name == plan_name)?;
-    let at = ids
-        .iter()
-        .position(|id| (id.bench, id.plan, id.config, id.run) == (b, p, config, run))?;
-    Some((
-        at,
+        .position(|x| scenario.plans[x.plan].name == plan_name)
+        .ok_or("names a plan this bench does not run")?;
+    let config = usize::try_from(config).map_err(|_| "has no such configuration")?;
+    let id_at = *at
+        .get(&(b, p, config, run))
+        .ok_or("has a configuration or run number this bench does not have")?;
+    let plan = &bench.plans[p].configs[config];
+    if seed != plan.params.seed.wrapping_add(run) {
+        return Err("has another seed than the scenario gives its run");
+    }
+    if o.get("config") != Some(&report::bench::config_json(bench, config)) {
+        return Err("has another configuration than the scenario gives its index");
+    }
+    let metrics = report::bench::read_metrics(o.get("metrics").ok_or("has no metrics")?)
+        .ok_or("has a metric that is not a number or a boolean")?;
+    for spec in plan.planner.all_metrics() {
+        match (spec.ty, metrics.get(spec.name)) {
+            (MetricType::Bool, Some(MetricValue::Bool(_)))
+            | (MetricType::Num, Some(MetricValue::Num(_))) => {}
+            (_, None) => return Err("lacks a metric of its planner"),
+            _ => return Err("has a metric of the wrong type"),
+        }
+    }
+    Ok((
+        id_at,
         BenchRun {
             bench: b,
             plan: p,
             config,
             run,
-            seed: v.get("seed")?.as_u64()?,
-            metrics: report::bench::read_metrics(v.get("metrics")?)?,
+            seed,
+            metrics,
         },
     ))
 }

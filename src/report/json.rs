@@ -47,6 +47,18 @@ pub fn to_json(report: &RunReport) -> Value {
     doc.insert("checks".into(), Value::Array(checks));
     doc.insert("passed".into(), report.passed().into());
     doc.insert("failed".into(), report.failed().into());
+    // The checks `--plan` left out (only when there are some).
+    if !report.skipped.is_empty() {
+        let skipped: Vec<Value> = report
+            .skipped
+            .iter()
+            .map(|&c| {
+                let check = &scenario.checks[c];
+                serde_json::json!({"line": check.line, "expr": check.text})
+            })
+            .collect();
+        doc.insert("skipped".into(), Value::Array(skipped));
+    }
     Value::Object(doc)
 }
 
@@ -259,6 +271,7 @@ mod tests {
         };
         RunReport {
             bench_runs: Vec::new(),
+            skipped: Vec::new(),
             scenario,
             plans: vec![alpha, zeta],
             checks: vec![

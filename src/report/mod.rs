@@ -1,6 +1,7 @@
 //! Report sinks: the text report, JSON (SPEC 5) and SVG.
 
 pub mod bench;
+pub mod csv;
 pub mod json;
 pub mod junit;
 pub mod ompl;

@@ -128,10 +128,12 @@ pub fn bench_log(report: &RunReport, b: usize) -> (String, String) {
                     Some(MetricValue::Bool(b)) => {
                         let _ = write!(s, "{}; ", u8::from(*b));
                     }
-                    Some(MetricValue::Num(x)) => {
+                    // A metric without a value (NaN) is an empty field,
+                    // as OMPL writes a property it has no value for.
+                    Some(MetricValue::Num(x)) if !x.is_nan() => {
                         let _ = write!(s, "{}; ", super::exact_number(x * scale));
                     }
-                    None => s.push_str("; "),
+                    Some(MetricValue::Num(_)) | None => s.push_str("; "),
                 }
             }
             s.push('\n');

@@ -714,6 +714,7 @@ mod tests {
         };
         RunReport {
             bench_runs: Vec::new(),
+            skipped: Vec::new(),
             plans: vec![
                 run(2, path(scenario.plans[2].params.start)),
                 run(0, path(Config::new(18.0, 2.0, 1.0))),

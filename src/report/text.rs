@@ -109,6 +109,9 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
             let _ = writeln!(s, "  {}", check_line(report, c));
         }
     }
+    if let Some(line) = skipped_line(report) {
+        let _ = writeln!(s, "\n{line}");
+    }
     let bench_checks = sc.checks.iter().filter(|c| c.bench).count();
     if bench_checks > 0 && report.bench_runs.is_empty() {
         let _ = writeln!(
@@ -124,6 +127,26 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
         report.failed()
     );
     s
+}
+
+/// `2 check(s) skipped: they read plans that did not run (`--plan`): lines
+/// 12, 14`, when `--plan` left checks out (SPEC §4: a run never looks green
+/// without saying what it did not check).
+pub fn skipped_line(report: &RunReport) -> Option<String> {
+    if report.skipped.is_empty() {
+        return None;
+    }
+    let lines: Vec<String> = report
+        .skipped
+        .iter()
+        .map(|&c| report.scenario.checks[c].line.to_string())
+        .collect();
+    Some(format!(
+        "{} check(s) skipped: they read plans that did not run (`--plan`): line{} {}",
+        lines.len(),
+        if lines.len() == 1 { "" } else { "s" },
+        lines.join(", ")
+    ))
 }
 
 /// `PASS  line 23  offline.cost <= 90   (offline.cost = 79.1)`

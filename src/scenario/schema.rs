@@ -492,7 +492,7 @@ pub const COMMON_METRICS: &[MetricSpec] = &[
     ),
     MetricSpec::num(
         "clearance",
-        "smallest distance between the robot and any obstacle along the path (0 when it touches or without a path, +∞ with no obstacle)",
+        "smallest distance between the robot and any obstacle along the path (0 when it touches, +∞ with no obstacle; no value — `null` in JSON, `—` in the report — without a path)",
     ),
     MetricSpec::num(
         "smoothness",

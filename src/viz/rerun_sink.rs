@@ -22,7 +22,6 @@
 //! has the timelines above.
 
 use std::net::{TcpStream, ToSocketAddrs};
-use std::path::PathBuf;
 use std::time::Duration;
 
 use rerun::external::re_uri::RedapUri;
@@ -33,8 +32,8 @@ use rerun::{
 };
 
 use super::{
-    FAIL_RED, MAX_WEIGHT_CELLS, OBSTACLE_GREY, blocked_boxes, closed, obstacle_outline,
-    plan_colour, robot_outline, role_colour, weight_colour,
+    FAIL_RED, MAX_WEIGHT_CELLS, OBSTACLE_GREY, ViewerError, ViewerTarget, blocked_boxes, closed,
+    obstacle_outline, plan_colour, robot_outline, role_colour, weight_colour,
 };
 use crate::drive::DriveOutcome;
 use crate::geometry::{Config, Point, RobotShape, Shape};
@@ -42,48 +41,6 @@ use crate::planners::MetricValue;
 use crate::planners::layers::{Drawing, Layer};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
-
-/// Where [`stream`] sends a run.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum ViewerTarget {
-    /// Write an `.rrd` file (`--save`).
-    Save(PathBuf),
-    /// Start the viewer, the `rerun` executable on PATH (`--spawn`). When a
-    /// process already listens on the default port, it is used instead.
-    Spawn,
-    /// Stream to a running viewer (`--connect [ADDR]`). `ADDR` is
-    /// `HOST:PORT` or a full `rerun+http://HOST:PORT/proxy` URL; the default
-    /// is Rerun 0.36's [`rerun::DEFAULT_CONNECT_URL`],
-    /// `rerun+http://127.0.0.1:9876/proxy`.
-    Connect(Option<String>),
-}
-
-/// Why a run could not be streamed. The messages are complete sentences
-/// for a warning: they say what to do.
-#[derive(Debug, thiserror::Error)]
-pub enum ViewerError {
-    #[error("cannot write the Rerun recording `{}`: {message}", path.display())]
-    Save { path: PathBuf, message: String },
-    #[error(
-        "cannot start the Rerun viewer: `rerun` is not on PATH; \
-         install it with `pip install rerun-sdk==0.36.3`"
-    )]
-    ViewerMissing,
-    #[error("cannot start the Rerun viewer: {0}")]
-    Spawn(String),
-    #[error(
-        "`{0}` is not a Rerun viewer address; \
-         use `HOST:PORT` or `rerun+http://HOST:PORT/proxy`"
-    )]
-    BadAddress(String),
-    #[error(
-        "no Rerun viewer is listening at `{url}`; \
-         start one with `rerun`, or use `--spawn` or `--save FILE.rrd`"
-    )]
-    Unreachable { url: String },
-    #[error("streaming to the Rerun viewer failed: {0}")]
-    Stream(String),
-}
 
 /// The most poses of a driven robot sent on timeline `time`.
 pub(crate) const DRIVE_POSES: usize = 2_000;
@@ -575,6 +532,7 @@ pub(super) fn rgb([r, g, b]: [u8; 3]) -> Color {
 #[cfg(test)]
 mod tests {
     use std::collections::BTreeMap;
+    use std::path::PathBuf;
 
     use super::*;
     use crate::diagnostics::{SourceMap, Span};
@@ -696,6 +654,7 @@ mod tests {
         };
         RunReport {
             bench_runs: Vec::new(),
+            skipped: Vec::new(),
             scenario,
             plans: vec![run(1, Some(path.clone())), run(0, Some(path))],
             checks: vec![

@@ -1,0 +1,98 @@
+//! `scen watch FILE [run's options]` (SPEC §4): run again on every save of
+//! the file or of a file it reads (includes, maps), streaming to the same
+//! viewer (`--spawn` starts it once; later runs connect to it) and printing
+//! the report each time. A save that does not parse prints its diagnostics
+//! and waits for the next.
+//!
+//! Changes are found by polling the files' modification times and sizes a
+//! few times a second: no watcher library (one more dependency and its
+//! platform back-ends) for what a handful of `stat` calls do, and it works
+//! on every file system, network mounts and editors that save by renaming
+//! included.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, SystemTime};
+
+use super::{EXIT_BAD_INPUT, RunArgs, run_file};
+use crate::viz::ViewerTarget;
+
+/// How often the files are looked at.
+const POLL: Duration = Duration::from_millis(200);
+
+/// Runs until interrupted; returns only on bad usage (exit 2).
+pub(super) fn cmd_watch(args: &RunArgs) -> i32 {
+    let [file] = args.files.as_slice() else {
+        eprintln!("error: `scen watch` takes one scenario file");
+        return EXIT_BAD_INPUT;
+    };
+    if !file.is_file() {
+        eprintln!(
+            "error: `{}` does not exist (or is not a file); `scen watch` needs a scenario to run",
+            file.display()
+        );
+        return EXIT_BAD_INPUT;
+    }
+    if !args.usable() {
+        return EXIT_BAD_INPUT;
+    }
+    let mut target = args.viewer_target();
+    let mut viewer_warned = false;
+    eprintln!(
+        "watching `{}` and the files it reads; Ctrl-C to stop",
+        file.display()
+    );
+    let mut run = 1u64;
+    loop {
+        let started = SystemTime::now();
+        let (_, read) = run_file(file, args, target.as_ref(), &mut viewer_warned);
+        // The viewer `--spawn` started keeps running: later runs go to it.
+        if target == Some(ViewerTarget::Spawn) {
+            target = Some(ViewerTarget::Connect(None));
+        }
+        wait_for_change(&read, started);
+        run += 1;
+        eprintln!("\n── `{}` changed: run {run} ──", file.display());
+    }
+}
+
+/// What a file looks like to a poll: its modification time and size, or
+/// nothing when it does not exist (a file being replaced by an editor).
+type Stamp = Option<(SystemTime, u64)>;
+
+fn stamp(path: &Path) -> Stamp {
+    let meta = std::fs::metadata(path).ok()?;
+    Some((meta.modified().ok()?, meta.len()))
+}
+
+/// Returns once one of `files` changed (written, replaced, removed or
+/// created; or saved since `started`, while the run was going on) and has
+/// stayed the same for one more poll, so that a save in progress is not
+/// read half-written.
+fn wait_for_change(files: &[PathBuf], started: SystemTime) {
+    let mut files: Vec<PathBuf> = files.to_vec();
+    files.sort();
+    files.dedup();
+    let before: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
+    let saved_during_run = before
+        .iter()
+        .flatten()
+        .any(|(modified, _)| *modified > started);
+    loop {
+        if !saved_during_run {
+            std::thread::sleep(POLL);
+        }
+        let now: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
+        if saved_during_run || now != before {
+            // Settle: wait until two polls agree.
+            let mut last = now;
+            loop {
+                std::thread::sleep(POLL);
+                let again: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
+                if again == last {
+                    return;
+                }
+                last = again;
+            }
+        }
+    }
+}
