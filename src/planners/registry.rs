@@ -128,6 +128,21 @@ pub struct Task<'a> {
     pub seed: u64,
 }
 
+impl Task<'_> {
+    /// Whether the start is the goal (SPEC 3: then every planner finds the
+    /// path of that one configuration at once): the same (x, y), and for a
+    /// robot that rotates the same θ (modulo a turn), exactly, as the
+    /// runner's `reaches_goal` would see the start.
+    pub fn start_is_goal(&self) -> bool {
+        self.goal.is_some_and(|g| {
+            let s = self.start;
+            s.x == g.x
+                && s.y == g.y
+                && (!self.robot.rotates() || crate::geometry::angle_diff(s.theta, g.theta) == 0.0)
+        })
+    }
+}
+
 /// A plan's typed settings, built once by its planner's `check`; running
 /// the plan is a function of the settings and the [`Task`].
 pub trait Settings: fmt::Debug + Send + Sync {
