@@ -315,21 +315,25 @@ pub fn smoothness(path: &[Config]) -> f64 {
     }
     points
         .windows(3)
-        .map(|w| {
-            let (a, b, c) = (
-                (w[1] - w[0]).norm(),
-                (w[2] - w[1]).norm(),
-                (w[2] - w[0]).norm(),
-            );
-            let cos = (a * a + b * b - c * c) / (2.0 * a * b);
-            if cos > -1.0 && cos < 1.0 {
-                let k = 2.0 * (std::f64::consts::PI - cos.acos()) / (a + b);
-                k * k
-            } else {
-                0.0
-            }
-        })
+        .map(|w| corner_smoothness(w[0], w[1], w[2]))
         .sum()
+}
+
+/// The term of [`smoothness`] at the corner `q` of the polyline
+/// `p → q → r` (consecutive points, each different from the next): k².
+pub fn corner_smoothness(
+    p: crate::geometry::Point,
+    q: crate::geometry::Point,
+    r: crate::geometry::Point,
+) -> f64 {
+    let (a, b, c) = ((q - p).norm(), (r - q).norm(), (r - p).norm());
+    let cos = (a * a + b * b - c * c) / (2.0 * a * b);
+    if cos > -1.0 && cos < 1.0 {
+        let k = 2.0 * (std::f64::consts::PI - cos.acos()) / (a + b);
+        k * k
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]

@@ -25,7 +25,7 @@
 use crate::geometry::validator::{DEFAULT_TOLERANCE, ValidationError, Validator};
 use crate::geometry::{Config, Point, RobotShape, World, angle_diff};
 use crate::planners::MeasuredMotion;
-use crate::run::smoothness;
+use crate::run::corner_smoothness;
 
 /// Moves kept in full (SPEC 3.4).
 pub const FULL_MOVES: u64 = 4_000_000;
@@ -188,8 +188,7 @@ impl<'w> Thinned<'w> {
         match self.corner {
             [_, Some(b)] if b == p => {}
             [Some(a), Some(b)] => {
-                let at = |q: Point| Config::new(q.x, q.y, 0.0);
-                self.smoothness += smoothness(&[at(a), at(b), at(p)]);
+                self.smoothness += corner_smoothness(a, b, p);
                 self.corner = [Some(b), Some(p)];
             }
             [_, b] => self.corner = [b, Some(p)],
