@@ -161,7 +161,13 @@ fn every_planner_finds_a_start_equal_to_its_goal_at_once() {
                 if m.get("gave_up") != Some(&MetricValue::Bool(false)) {
                     problems.push(format!("{label}: gave_up is {:?}", m.get("gave_up")));
                 }
-                for (metric, want) in [("length", 0.0), ("cost", 0.0), ("nodes", 1.0)] {
+                // At once: nothing searched, sampled or walked.
+                for (metric, want) in [
+                    ("length", 0.0),
+                    ("cost", 0.0),
+                    ("nodes", 1.0),
+                    ("expanded", 0.0),
+                ] {
                     if num(m, metric) != want {
                         problems.push(format!("{label}: {metric} = {}", num(m, metric)));
                     }
@@ -205,4 +211,27 @@ fn planners_without_a_goal_ignore_one_equal_to_the_start() {
         checked > 0,
         "no planner without a goal: the test is vacuous"
     );
+}
+
+/// "At once": before any set-up, so even a plan whose time is already up
+/// finds it.
+#[test]
+fn a_start_equal_to_the_goal_needs_no_time() {
+    let mut problems = Vec::new();
+    for planner in PLANNERS.iter().filter(|p| p.needs_goal) {
+        for &kind in planner.robots {
+            let sc = scenario(planner, kind, "(1.3, 1.7)", true);
+            let plan = &sc.plans[0];
+            let mut task = plan.task(&sc);
+            task.limits.time = Some(0.0);
+            let out = plan.settings.plan(&task);
+            if out.path.as_deref() != Some(&[task.start][..]) || out.gave_up {
+                problems.push(format!(
+                    "{} / {kind:?}: path {:?}, gave_up {}, notes {:?}",
+                    planner.kind, out.path, out.gave_up, out.notes
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "\n{}", problems.join("\n"));
 }

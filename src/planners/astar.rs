@@ -548,9 +548,17 @@ fn plan_xy(task: &Task<'_>, settings: &Astar) -> PlanOutcome {
     out.extra.insert("generated".into(), MetricValue::Num(0.0));
     out.layers
         .extend(layers::grown(grown_obstacles(world, radius)));
+    // Until the lattice is classified (and for good when nothing is built).
+    out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
+    if task.start_is_goal() {
+        return PlanOutcome {
+            extra: out.extra,
+            layers: out.layers,
+            ..PlanOutcome::at_goal(task.start)
+        };
+    }
     let index = ObstacleIndex::new(world);
     let Some(mut lat) = GridLattice::build_until(spec, &index, radius, &deadline) else {
-        out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
         out.gave_up = true;
         out.notes.push(setup_note("classifying the lattice"));
         return out;
@@ -559,13 +567,6 @@ fn plan_xy(task: &Task<'_>, settings: &Astar) -> PlanOutcome {
         "free_cells".into(),
         MetricValue::Num(lat.free_count() as f64),
     );
-    if task.start_is_goal() {
-        return PlanOutcome {
-            extra: out.extra,
-            layers: out.layers,
-            ..PlanOutcome::at_goal(task.start)
-        };
-    }
     let start = task.start;
     let goal = task.goal.unwrap_or(start);
     let (s_node, g_node) = match snap_ends(&lat, &index, start, goal) {

@@ -271,11 +271,17 @@ fn run(
         .insert("cells".into(), MetricValue::Num(spec.cells_f64()));
     out.extra
         .insert("layers".into(), MetricValue::Num(thetas.len() as f64));
-    // Until the lattice is classified: the metrics of a plan whose set-up
-    // ran out of time.
+    // Until the lattice is classified (and for good when nothing is built).
+    out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
+    out.extra.insert("generated".into(), MetricValue::Num(0.0));
+    if task.start_is_goal() {
+        let out = PlanOutcome {
+            extra: out.extra,
+            ..PlanOutcome::at_goal(start)
+        };
+        return (out, profile);
+    }
     let gave_up_in_setup = |mut out: PlanOutcome, what: &str| {
-        out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
-        out.extra.insert("generated".into(), MetricValue::Num(0.0));
         out.gave_up = true;
         out.notes.push(setup_note(what));
         out
@@ -323,7 +329,6 @@ fn run(
     let free_count = free.count_ones();
     out.extra
         .insert("free_cells".into(), MetricValue::Num(free_count as f64));
-    out.extra.insert("generated".into(), MetricValue::Num(0.0));
     let layer_boxes = layers
         .iter()
         .map(|l| {
@@ -348,14 +353,6 @@ fn run(
         profile: Profile::default(),
     };
 
-    if task.start_is_goal() {
-        let out = PlanOutcome {
-            extra: out.extra,
-            layers: out.layers,
-            ..PlanOutcome::at_goal(start)
-        };
-        return (out, profile);
-    }
     let (Some(s), Some(g)) = (spec.snap(start), spec.snap(goal)) else {
         out.notes
             .push("the lattice is empty: `cell` is larger than the bounds".into());
