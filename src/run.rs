@@ -321,7 +321,7 @@ pub fn smoothness(path: &[Config]) -> f64 {
 
 /// The term of [`smoothness`] at the corner `q` of the polyline
 /// `p → q → r` (consecutive points, each different from the next): k².
-pub fn corner_smoothness(
+pub(crate) fn corner_smoothness(
     p: crate::geometry::Point,
     q: crate::geometry::Point,
     r: crate::geometry::Point,

@@ -41,7 +41,15 @@
 //! overshoots and circles the goal (SEEDS §E) always ends. `limit time`
 //! is checked every 1024 steps and between escape candidates. The escapes'
 //! look-ahead descents have a budget of their own (a multiple of the step
-//! limit), so a walk that keeps escaping ends too.
+//! limit), so a walk that keeps escaping ends too. The time counts from the
+//! plan's start, building the field and collision indexes included.
+//!
+//! # Memory
+//! The executed motion is kept in full up to 4 million moves; beyond, the
+//! list is thinned and the motion is validated and measured as it is made
+//! ([`motion`]), so memory does not grow with `limit steps`. The trace
+//! keeps at most a few thousand force samples and the first 100 000
+//! minima and jumps.
 
 mod field;
 mod motion;

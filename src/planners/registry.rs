@@ -20,7 +20,10 @@
 //!    editor test says which are missing).
 //! 4. Add scenarios under `scenarios/` and the planner's own tests; the
 //!    contract test covers it already (metrics, validator, determinism,
-//!    limits) for every robot kind it declares.
+//!    limits) for every robot kind it declares, `tests/start_is_goal.rs` a
+//!    start equal to the goal (found at once: [`Task::start_is_goal`],
+//!    [`PlanOutcome::at_goal`]) and `tests/limits.rs` a time limit spent
+//!    before the set-up is done ([`super::deadline`]).
 
 use std::any::Any;
 use std::fmt;

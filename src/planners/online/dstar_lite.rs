@@ -133,7 +133,7 @@ const PAGE: usize = 1 << PAGE_BITS;
 /// when a node of theirs is first written (SPEC 3.2: memory as in 3.1,
 /// search state only where touched). A short trip across a large lattice
 /// holds a few pages and the page table (an eighth of a byte per node);
-/// dense arrays held 72 bytes per node of the lattice.
+/// dense arrays held 65 bytes per node of the lattice.
 struct States {
     pages: Vec<Option<Box<[NodeState; PAGE]>>>,
 }
