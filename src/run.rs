@@ -174,7 +174,13 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
         None if !outcome.trajectory.is_empty() => Some(outcome.trajectory.as_slice()),
         None => None,
     };
-    let validation = motion.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err());
+    // A thinned motion was validated and measured by its planner as it
+    // was made (SPEC 3.4); the list itself skips poses.
+    let measured = outcome.measured.as_ref();
+    let validation = match measured {
+        Some(m) => m.validation.clone(),
+        None => motion.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err()),
+    };
     let valid = motion.is_some() && validation.is_none();
     let mut metrics = common_metrics(&outcome, robot, plan, time_ms, valid);
     let path = outcome.path.as_deref();
@@ -182,11 +188,18 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     // in the report), never a 0 that reads as "touched a wall".
     metrics.insert(
         "clearance".into(),
-        MetricValue::Num(path.map_or(f64::NAN, |p| referee.clearance(robot, p, DEFAULT_TOLERANCE))),
+        MetricValue::Num(path.map_or(f64::NAN, |p| {
+            measured.map_or_else(
+                || referee.clearance(robot, p, DEFAULT_TOLERANCE),
+                |m| m.clearance,
+            )
+        })),
     );
     metrics.insert(
         "smoothness".into(),
-        MetricValue::Num(path.map_or(f64::INFINITY, smoothness)),
+        MetricValue::Num(path.map_or(f64::INFINITY, |p| {
+            measured.map_or_else(|| smoothness(p), |m| m.smoothness)
+        })),
     );
     let drive = drive_plan(scenario, plan, &outcome, &mut metrics);
     PlanRun {
@@ -242,33 +255,28 @@ fn common_metrics(
     let mut m = out.extra.clone();
     let found = out.path.is_some();
     let path = out.path.as_deref().unwrap_or(&[]);
+    // The whole motion's measures when the path is thinned.
+    let measured = out.measured.as_ref().filter(|_| found);
+    let (length, turn, nodes) = match measured {
+        Some(m) => (m.length, m.turn, m.poses as f64),
+        None => (path_length(path), path_turn(path), path.len() as f64),
+    };
     m.insert("found".into(), Bool(found));
     m.insert("gave_up".into(), Bool(out.gave_up));
     m.insert(
         "cost".into(),
         Num(if found {
-            out.cost.unwrap_or(path_length(path))
+            out.cost.unwrap_or(length)
         } else {
             f64::INFINITY
         }),
     );
     m.insert(
         "length".into(),
-        Num(if found {
-            path_length(path)
-        } else {
-            f64::INFINITY
-        }),
+        Num(if found { length } else { f64::INFINITY }),
     );
-    m.insert(
-        "turn".into(),
-        Num(if robot.rotates() {
-            path_turn(path)
-        } else {
-            0.0
-        }),
-    );
-    m.insert("nodes".into(), Num(path.len() as f64));
+    m.insert("turn".into(), Num(if robot.rotates() { turn } else { 0.0 }));
+    m.insert("nodes".into(), Num(nodes));
     m.insert("expanded".into(), Num(out.expanded as f64));
     m.insert("time_ms".into(), Num((time_ms * 1000.0).round() / 1000.0));
     m.insert("collision_free".into(), Bool(valid));
@@ -317,21 +325,25 @@ pub fn smoothness(path: &[Config]) -> f64 {
     }
     points
         .windows(3)
-        .map(|w| {
-            let (a, b, c) = (
-                (w[1] - w[0]).norm(),
-                (w[2] - w[1]).norm(),
-                (w[2] - w[0]).norm(),
-            );
-            let cos = (a * a + b * b - c * c) / (2.0 * a * b);
-            if cos > -1.0 && cos < 1.0 {
-                let k = 2.0 * (std::f64::consts::PI - cos.acos()) / (a + b);
-                k * k
-            } else {
-                0.0
-            }
-        })
+        .map(|w| corner_smoothness(w[0], w[1], w[2]))
         .sum()
+}
+
+/// The term of [`smoothness`] at the corner `q` of the polyline
+/// `p → q → r` (consecutive points, each different from the next): k².
+pub(crate) fn corner_smoothness(
+    p: crate::geometry::Point,
+    q: crate::geometry::Point,
+    r: crate::geometry::Point,
+) -> f64 {
+    let (a, b, c) = ((q - p).norm(), (r - q).norm(), (r - p).norm());
+    let cos = (a * a + b * b - c * c) / (2.0 * a * b);
+    if cos > -1.0 && cos < 1.0 {
+        let k = 2.0 * (std::f64::consts::PI - cos.acos()) / (a + b);
+        k * k
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]

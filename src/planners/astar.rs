@@ -18,6 +18,7 @@ use crate::scenario::schema::{
 };
 use crate::scenario::{Limits, PlanArgs};
 
+use super::deadline::{Deadline, setup_note};
 use super::lattice::{
     BitSet, LATTICE_PARAMS, LatticeDistance, LatticeSpec, check_connect, check_lattice,
 };
@@ -217,13 +218,31 @@ impl GridLattice {
     /// Classifies every lattice point (on all cores). The caller has
     /// checked the size cap.
     pub fn build(spec: LatticeSpec, index: &ObstacleIndex, radius: f64) -> Self {
-        let n = spec.layer_len();
-        let free = BitSet::from_fn(n, |k| index.disk_free(spec.point_of(k), radius));
+        let free = BitSet::from_fn(spec.layer_len(), |k| {
+            index.disk_free(spec.point_of(k), radius)
+        });
+        Self::with_free(spec, radius, free)
+    }
+
+    /// [`GridLattice::build`], or `None` once `deadline` passes.
+    pub fn build_until(
+        spec: LatticeSpec,
+        index: &ObstacleIndex,
+        radius: f64,
+        deadline: &Deadline,
+    ) -> Option<Self> {
+        let free = BitSet::from_fn_until(spec.layer_len(), deadline, |k| {
+            index.disk_free(spec.point_of(k), radius)
+        })?;
+        Some(Self::with_free(spec, radius, free))
+    }
+
+    fn with_free(spec: LatticeSpec, radius: f64, free: BitSet) -> Self {
         GridLattice {
             spec,
             radius,
+            edges: vec![0; free.len()],
             free,
-            edges: vec![0; n],
         }
     }
 
@@ -517,39 +536,53 @@ impl<F: FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool> Graph for XyGraph<'_,
 
 /// Runs an `astar` plan for a point or disk robot.
 fn plan_xy(task: &Task<'_>, settings: &Astar) -> PlanOutcome {
+    let deadline = Deadline::start(&task.limits);
     let world = task.world;
     let radius = task.robot.radius();
     let spec = settings.lattice;
-    let cfg = SearchConfig::new(
-        settings.connect,
-        settings.cost,
-        settings.weight,
-        settings.heuristic,
-        task.limits,
-    );
-    let index = ObstacleIndex::new(world);
-    let mut lat = GridLattice::build(spec, &index, radius);
     let mut out = PlanOutcome::default();
     out.extra
         .insert("cells".into(), MetricValue::Num(spec.cells_f64()));
+    out.extra
+        .insert("layers".into(), MetricValue::Num(spec.layers as f64));
+    out.extra.insert("generated".into(), MetricValue::Num(0.0));
+    out.layers
+        .extend(layers::grown(grown_obstacles(world, radius)));
+    // Until the lattice is classified (and for good when nothing is built).
+    out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
+    if task.start_is_goal() {
+        return PlanOutcome {
+            extra: out.extra,
+            layers: out.layers,
+            ..PlanOutcome::at_goal(task.start)
+        };
+    }
+    let index = ObstacleIndex::new(world);
+    let Some(mut lat) = GridLattice::build_until(spec, &index, radius, &deadline) else {
+        out.gave_up = true;
+        out.notes.push(setup_note("classifying the lattice"));
+        return out;
+    };
     out.extra.insert(
         "free_cells".into(),
         MetricValue::Num(lat.free_count() as f64),
     );
-    out.extra
-        .insert("layers".into(), MetricValue::Num(spec.layers as f64));
-    out.layers
-        .extend(layers::grown(grown_obstacles(world, radius)));
     let start = task.start;
     let goal = task.goal.unwrap_or(start);
     let (s_node, g_node) = match snap_ends(&lat, &index, start, goal) {
         Ok(ends) => ends,
         Err(note) => {
             out.notes.push(note);
-            out.extra.insert("generated".into(), MetricValue::Num(0.0));
             return out;
         }
     };
+    let cfg = SearchConfig::new(
+        settings.connect,
+        settings.cost,
+        settings.weight,
+        settings.heuristic,
+        deadline.remaining(task.limits),
+    );
     let mut buf = SearchBuffers::default();
     let r = search(&mut lat, &index, s_node, g_node, &cfg, true, &mut buf);
     out.expanded = r.expanded;

@@ -35,6 +35,7 @@ use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
 use super::astar::{Astar, CostMetric, Heuristic};
+use super::deadline::{Deadline, setup_note};
 use super::lattice::{BitSet, LatticeDistance, LatticeSpec};
 use super::registry::Task;
 use super::search::{Edge, Graph, SearchBuffers, best_first};
@@ -44,7 +45,7 @@ use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
 use crate::geometry::motion::{MotionChecker, segment_depth};
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS};
-use crate::scenario::Limits;
+use rayon::prelude::*;
 
 /// The most C-obstacle outlines drawn over all layers; beyond it (e.g.
 /// large grids) layers are left out of the picture, not the search.
@@ -220,7 +221,7 @@ fn run(
     robot: &ConvexPolygon,
     profiling: bool,
 ) -> (PlanOutcome, Profile) {
-    let began = Instant::now();
+    let deadline = Deadline::start(&task.limits);
     let world = task.world;
     let mut profile = Profile::default();
     let shape = RobotShape::Polygon(robot.clone());
@@ -270,14 +271,39 @@ fn run(
         .insert("cells".into(), MetricValue::Num(spec.cells_f64()));
     out.extra
         .insert("layers".into(), MetricValue::Num(thetas.len() as f64));
+    // Until the lattice is classified (and for good when nothing is built).
+    out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
+    out.extra.insert("generated".into(), MetricValue::Num(0.0));
+    if task.start_is_goal() {
+        let out = PlanOutcome {
+            extra: out.extra,
+            ..PlanOutcome::at_goal(start)
+        };
+        return (out, profile);
+    }
+    let gave_up_in_setup = |mut out: PlanOutcome, what: &str| {
+        out.gave_up = true;
+        out.notes.push(setup_note(what));
+        out
+    };
     let lap = Instant::now();
     let pieces = ObstaclePieces::new(world);
-    let layers: Vec<CLayer> = if rotating {
-        pieces.layers(robot, n_layers)
+    // Layer by layer, so that the clock is asked between layers.
+    let layers: Option<Vec<CLayer>> = if rotating {
+        (0..n_layers)
+            .into_par_iter()
+            .map(|k| (!deadline.passed()).then(|| pieces.layer(robot, layer_angle(k, n_layers))))
+            .collect()
     } else {
-        vec![pieces.layer(robot, start.theta)]
+        Some(vec![pieces.layer(robot, start.theta)])
     };
     profile.cspace = lap.elapsed();
+    let Some(layers) = layers.filter(|_| !deadline.passed()) else {
+        return (
+            gave_up_in_setup(out, "building the C-space layers"),
+            profile,
+        );
+    };
     let lap = Instant::now();
     if !rotating {
         let grown = layers[0]
@@ -293,14 +319,16 @@ fn run(
     let lap = Instant::now();
     let n = spec.layer_len();
     let total = n * layers.len();
-    let free = BitSet::from_fn(total, |node| {
+    let free = BitSet::from_fn_until(total, &deadline, |node| {
         !layers[node / n].contains_interior(spec.point_of(node % n))
     });
     profile.classify = lap.elapsed();
+    let Some(free) = free else {
+        return (gave_up_in_setup(out, "classifying the lattice"), profile);
+    };
     let free_count = free.count_ones();
     out.extra
         .insert("free_cells".into(), MetricValue::Num(free_count as f64));
-    out.extra.insert("generated".into(), MetricValue::Num(0.0));
     let layer_boxes = layers
         .iter()
         .map(|l| {
@@ -383,13 +411,7 @@ fn run(
     };
     let search_began = Instant::now();
     // `limit time` counts from the start of the plan.
-    let limits = Limits {
-        time: task
-            .limits
-            .time
-            .map(|t| (t - began.elapsed().as_secs_f64()).max(0.0)),
-        ..task.limits
-    };
+    let limits = deadline.remaining(task.limits);
     let mut graph = RotGraph {
         lat: &mut lat,
         goal: g_node,

@@ -30,6 +30,7 @@ use crate::scenario::PlanArgs;
 use crate::scenario::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, Word};
 use crate::word_enum;
 
+use super::deadline::{Deadline, setup_note};
 use super::layers::{Colour, Drawing, Layer, Style, Svg};
 use super::registry::{Planner, Settings, Task};
 use super::{MetricValue, PlanOutcome};
@@ -493,9 +494,28 @@ impl Cells {
     /// Resamples `grid` with `k` grid cells per D-cell side; the D-cells
     /// that `others` overlap are blocked too.
     pub fn with_others(grid: &Grid, others: &Others, k: usize) -> Self {
+        match Self::with_others_until(grid, others, k, &Deadline::never()) {
+            Some(cells) => cells,
+            None => unreachable!("a deadline that never passes"),
+        }
+    }
+
+    /// [`Cells::with_others`], or `None` once `deadline` passes (SPEC 2.5:
+    /// resampling the grid is set-up, which `limit time` counts). The
+    /// clock is asked once per row of D-cells or mega-cells, and per row of
+    /// the D-cells under each other obstacle.
+    pub fn with_others_until(
+        grid: &Grid,
+        others: &Others,
+        k: usize,
+        deadline: &Deadline,
+    ) -> Option<Self> {
         let (cols, rows) = (grid.width / k, grid.height / k);
         let mut dcells = vec![0u8; cols * rows];
         for j in 0..rows {
+            if deadline.passed() {
+                return None;
+            }
             for i in 0..cols {
                 dcells[j * cols + i] = dcell_weight(grid, k, i, j);
             }
@@ -513,6 +533,9 @@ impl Cells {
         };
         if others.bounds.is_some() {
             for j in 0..rows {
+                if deadline.passed() {
+                    return None;
+                }
                 for i in 0..cols {
                     if others.beyond_bounds(cells.dcell_center(i, j)) {
                         cells.dcells[j * cols + i] = 0;
@@ -525,6 +548,9 @@ impl Cells {
             let is = index_range(bb.min.x, bb.max.x, cells.origin.x, cells.d, cols);
             let js = index_range(bb.min.y, bb.max.y, cells.origin.y, cells.d, rows);
             for j in js {
+                if deadline.passed() {
+                    return None;
+                }
                 for i in is.clone() {
                     if cells.dcells[j * cols + i] != 0
                         && box_overlaps(&cells.dcell_box(i, j), shape)
@@ -537,6 +563,9 @@ impl Cells {
         let (mcols, mrows) = (cells.mcols, cells.mrows);
         let mut mega = vec![0u8; mcols * mrows];
         for b in 0..mrows {
+            if deadline.passed() {
+                return None;
+            }
             for a in 0..mcols {
                 let at = |i: usize, j: usize| cells.dcells[j * cols + i];
                 let ws = [
@@ -553,8 +582,8 @@ impl Cells {
             }
         }
         cells.mega = mega;
-        cells.fence(others);
-        cells
+        cells.fence(others, deadline)?;
+        Some(cells)
     }
 
     /// The box of mega-cell `(a, b)`.
@@ -565,7 +594,7 @@ impl Cells {
     /// Blocks the mega-cells whose open box a wall meets (one lying between
     /// two of their D-cells included), and fences the sides between
     /// mega-cells that a wall meets.
-    fn fence(&mut self, others: &Others) {
+    fn fence(&mut self, others: &Others, deadline: &Deadline) -> Option<()> {
         let (mc, mr) = (self.mcols, self.mrows);
         let side = 2.0 * self.d;
         for (_, p, q) in others.walls() {
@@ -578,6 +607,9 @@ impl Cells {
             let as_ = range(p.x.min(q.x), p.x.max(q.x), self.origin.x, mc);
             let bs = range(p.y.min(q.y), p.y.max(q.y), self.origin.y, mr);
             for b in bs {
+                if deadline.passed() {
+                    return None;
+                }
                 for a in as_.clone() {
                     let m = b * mc + a;
                     let bx = self.mega_box(a, b);
@@ -595,6 +627,7 @@ impl Cells {
                 }
             }
         }
+        Some(())
     }
 
     /// Whether the tree may link mega-cell `m` to its neighbour `n`.
@@ -773,6 +806,7 @@ pub fn tour(cells: &Cells, tree: &Tree, start: (usize, usize)) -> Vec<(usize, us
 /// the analyzer checked that its footprint fits a D-cell centred on its
 /// frame origin.
 pub fn plan(task: &Task<'_>, settings: &Coverage) -> PlanOutcome {
+    let deadline = Deadline::start(&task.limits);
     let world = task.world;
     let mut out = PlanOutcome::default();
     let grid = world
@@ -796,14 +830,34 @@ pub fn plan(task: &Task<'_>, settings: &Coverage) -> PlanOutcome {
             return out;
         }
     };
-    let began = Instant::now();
-    let cells = Cells::with_others(grid, &others, k);
+    let Some(cells) = Cells::with_others_until(grid, &others, k, &deadline) else {
+        for m in [
+            "uncovered",
+            "tree_edges",
+            "tree_weight",
+            "cells_total",
+            "cells_visited",
+            "revisits",
+            "coverage",
+        ] {
+            out.extra.insert(m.into(), MetricValue::Num(0.0));
+        }
+        out.extra
+            .insert("returns_to_start".into(), MetricValue::Bool(false));
+        out.gave_up = true;
+        out.notes.push(setup_note(
+            "resampling the grid into D-cells and mega-cells",
+        ));
+        return out;
+    };
     let root = (start.1 / 2) * cells.mcols + start.0 / 2;
-    let deadline = task
-        .limits
-        .time
-        .map(|s| began + std::time::Duration::from_secs_f64(s));
-    let tree = prim(&cells, root, weights, task.limits.expansions, deadline);
+    let tree = prim(
+        &cells,
+        root,
+        weights,
+        task.limits.expansions,
+        deadline.instant(),
+    );
     out.expanded = tree.order.len() as u64;
     out.gave_up = tree.gave_up;
     let uncovered: Vec<(usize, usize)> = cells.uncovered().collect();

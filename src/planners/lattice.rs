@@ -9,6 +9,8 @@ use crate::scenario::schema::{DefaultValue, ParamSpec, ValueSpec, num};
 use crate::scenario::{DEFAULT_CELL_CAP, PlanArgs};
 use crate::word_enum;
 
+use super::deadline::{Deadline, SETUP_CHECK_EVERY};
+
 word_enum! {
     /// Where lattice points sit in each cell.
     pub enum Sample {
@@ -217,17 +219,44 @@ impl BitSet {
 
     /// Bit `i` = `bit(i)` for `i` in `0..len`, computed on all cores.
     pub fn from_fn(len: usize, bit: impl Fn(usize) -> bool + Sync) -> Self {
+        // A deadline that never passes: always `Some`.
+        Self::from_fn_until(len, &Deadline::never(), bit).unwrap_or_default()
+    }
+
+    /// [`BitSet::from_fn`], or `None` once `deadline` passes (SPEC 2.5:
+    /// classifying a lattice is set-up, which `limit time` counts). The
+    /// clock is asked once per [`SETUP_CHECK_EVERY`] bits.
+    pub fn from_fn_until(
+        len: usize,
+        deadline: &Deadline,
+        bit: impl Fn(usize) -> bool + Sync,
+    ) -> Option<Self> {
         use rayon::prelude::*;
+        use std::sync::atomic::{AtomicBool, Ordering};
+        const WORDS: usize = SETUP_CHECK_EVERY / 64;
+        let stop = AtomicBool::new(false);
         let mut words = vec![0u64; len.div_ceil(64)];
-        words.par_iter_mut().enumerate().for_each(|(w, word)| {
-            let first = w * 64;
-            for b in 0..64.min(len - first) {
-                if bit(first + b) {
-                    *word |= 1 << b;
+        words
+            .par_chunks_mut(WORDS)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                if stop.load(Ordering::Relaxed) {
+                    return;
                 }
-            }
-        });
-        BitSet { words, len }
+                if deadline.passed() {
+                    stop.store(true, Ordering::Relaxed);
+                    return;
+                }
+                for (k, word) in chunk.iter_mut().enumerate() {
+                    let first = (c * WORDS + k) * 64;
+                    for b in 0..64.min(len - first) {
+                        if bit(first + b) {
+                            *word |= 1 << b;
+                        }
+                    }
+                }
+            });
+        (!stop.into_inner()).then_some(BitSet { words, len })
     }
 
     #[inline]

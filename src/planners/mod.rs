@@ -7,6 +7,7 @@
 use std::collections::BTreeMap;
 
 use crate::geometry::Config;
+use crate::geometry::validator::ValidationError;
 
 pub use layers::Layer;
 
@@ -50,9 +51,44 @@ pub struct PlanOutcome {
     pub trajectory: Vec<Config>,
     /// What the sinks draw ([`layers`]).
     pub layers: Vec<Layer>,
+    /// Set when `path` or `trajectory` is thinned: the planner measured
+    /// and validated the whole motion as it made it, and the runner reports
+    /// these measures instead of measuring the list.
+    pub measured: Option<MeasuredMotion>,
+}
+
+/// The measures of a motion too long to return in full (SPEC 3.4: a
+/// potential-field walk beyond 4 million moves), taken by its planner as
+/// it went, exactly as the runner takes them from a path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeasuredMotion {
+    /// Configurations in the whole motion.
+    pub poses: u64,
+    /// Euclidean length of its (x, y) polyline.
+    pub length: f64,
+    /// Total absolute rotation.
+    pub turn: f64,
+    pub smoothness: f64,
+    /// Over the validator's sub-steps of the whole motion.
+    pub clearance: f64,
+    /// The validator's verdict on the whole motion (the segment counts its
+    /// moves).
+    pub validation: Option<ValidationError>,
+    /// The list keeps every `stride`-th configuration and the last.
+    pub stride: u64,
 }
 
 impl PlanOutcome {
+    /// Found at once: the path of the one configuration `start`, which is
+    /// the goal (SPEC 3), at cost 0. The planner adds its own metrics.
+    pub fn at_goal(start: Config) -> Self {
+        PlanOutcome {
+            path: Some(vec![start]),
+            cost: Some(0.0),
+            ..PlanOutcome::default()
+        }
+    }
+
     /// The layers of one entity, in order.
     pub fn layers_of<'a>(&'a self, entity: &'a str) -> impl Iterator<Item = &'a Layer> + 'a {
         self.layers.iter().filter(move |l| l.entity == entity)
@@ -67,6 +103,7 @@ impl PlanOutcome {
 pub mod astar;
 pub mod astar_rotating;
 pub mod coverage;
+pub mod deadline;
 pub mod lattice;
 pub mod layers;
 pub mod online;

@@ -27,7 +27,6 @@
 //! belief proves the goal unreachable every strategy stops with no path.
 
 use std::any::Any;
-use std::time::Instant;
 
 use crate::diagnostics::Diag;
 use crate::geometry::collide::ObstacleIndex;
@@ -40,7 +39,8 @@ use super::astar::{
     CostMetric, GridLattice, Heuristic, SearchBuffers, SearchConfig, grown_obstacles, lattice_path,
     search, search_with, snap_ends, step_costs,
 };
-use super::lattice::{LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
+use super::deadline::{Deadline, setup_note};
+use super::lattice::{BitSet, LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
 use super::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
 use super::registry::{Planner, Settings, Task};
 use super::search::Tree;
@@ -290,23 +290,43 @@ pub(crate) fn navigate_logged(
             return (out, None);
         }
     };
+    let deadline = Deadline::start(&task.limits);
     let spec = settings.lattice;
-    let index = ObstacleIndex::new(world);
-    let truth = GridLattice::build(spec, &index, radius);
     let mut out = PlanOutcome::default();
+    // What a run that never moves reports (replaced below by a run's own).
+    for m in ["traveled", "steps", "replans", "sensed"] {
+        out.extra.insert(m.into(), MetricValue::Num(0.0));
+    }
     if traced {
         out.layers
             .extend(layers::grown(grown_obstacles(world, radius)));
     }
+    if task.start_is_goal() {
+        let out = PlanOutcome {
+            extra: out.extra,
+            layers: out.layers,
+            ..PlanOutcome::at_goal(task.start)
+        };
+        // One step, the robot at the start: nothing sensed, no plan.
+        let trace = traced.then(|| OnlineTrace {
+            cell: spec.cell,
+            sensed: vec![Vec::new()],
+            plans: vec![Vec::new()],
+        });
+        return (out, trace);
+    }
+    let index = ObstacleIndex::new(world);
+    let Some(truth) = GridLattice::build_until(spec, &index, radius, &deadline) else {
+        out.gave_up = true;
+        out.notes.push(setup_note("classifying the lattice"));
+        return (out, None);
+    };
     let start = task.start;
     let goal = task.goal.unwrap_or(start);
     let (s_node, g_node) = match snap_ends(&truth, &index, start, goal) {
         Ok(ends) => ends,
         Err(note) => {
             out.notes.push(note);
-            for m in ["traveled", "steps", "replans", "sensed"] {
-                out.extra.insert(m.into(), MetricValue::Num(0.0));
-            }
             return (out, None);
         }
     };
@@ -323,7 +343,7 @@ pub(crate) fn navigate_logged(
         task.limits,
     );
     let range = settings.sense;
-    let mut rover = Rover::new(truth, &index, cfg, range, s_node, traced);
+    let mut rover = Rover::new(truth, &index, cfg, range, s_node, traced, deadline);
     let mut belief = GridLattice::optimistic(spec, radius);
     rover.sense(&mut belief);
     let end = match settings.strategy {
@@ -447,7 +467,9 @@ struct Rover<'a> {
     cfg: SearchConfig,
     moves: Moves,
     range: usize,
-    sensed: Vec<bool>,
+    /// The lattice points sensed so far, a bit each (SPEC 3.2: the memory
+    /// of 3.1).
+    sensed: BitSet,
     sensed_count: usize,
     pos: usize,
     /// The lattice points the robot stood on, in order: `walk[k]` is step k.
@@ -456,7 +478,8 @@ struct Rover<'a> {
     traveled: f64,
     expanded: u64,
     replans: u64,
-    began: Instant,
+    /// The plan's `limit time`, set-up included.
+    deadline: Deadline,
     log: Option<Log>,
 }
 
@@ -468,6 +491,7 @@ impl<'a> Rover<'a> {
         range: usize,
         start: usize,
         traced: bool,
+        deadline: Deadline,
     ) -> Self {
         let spec = truth.spec;
         let dirs = if cfg.connect == 4 { 4 } else { 8 };
@@ -484,7 +508,7 @@ impl<'a> Rover<'a> {
             truncated: false,
         });
         Rover {
-            sensed: vec![false; spec.layer_len()],
+            sensed: BitSet::new(spec.layer_len(), false),
             truth,
             index,
             spec,
@@ -497,7 +521,7 @@ impl<'a> Rover<'a> {
             traveled: 0.0,
             expanded: 0,
             replans: 0,
-            began: Instant::now(),
+            deadline,
             log,
         }
     }
@@ -511,19 +535,17 @@ impl<'a> Rover<'a> {
     }
 
     fn out_of_time(&self) -> bool {
-        self.limits()
-            .time
-            .is_some_and(|t| self.began.elapsed().as_secs_f64() > t)
+        self.deadline.passed()
     }
 
     /// The search settings for one more A* run: the limits that remain.
     fn search_cfg(&self) -> SearchConfig {
         let mut cfg = self.cfg;
-        let limits = self.limits();
-        cfg.limits.expansions = limits.expansions.map(|m| m.saturating_sub(self.expanded));
-        cfg.limits.time = limits
-            .time
-            .map(|t| (t - self.began.elapsed().as_secs_f64()).max(0.0));
+        cfg.limits = self.deadline.remaining(cfg.limits);
+        cfg.limits.expansions = cfg
+            .limits
+            .expansions
+            .map(|m| m.saturating_sub(self.expanded));
         cfg
     }
 
@@ -547,7 +569,7 @@ impl<'a> Rover<'a> {
         for jj in j0..=j1 {
             for ii in i0..=i1 {
                 let n = self.spec.index(ii, jj);
-                if !self.sensed[n] {
+                if !self.sensed.get(n) {
                     found.push(n);
                 }
             }
@@ -561,7 +583,7 @@ impl<'a> Rover<'a> {
     fn reveal(&mut self, belief: &mut GridLattice, nodes: &[usize]) -> bool {
         let mut blocked = false;
         for &n in nodes {
-            self.sensed[n] = true;
+            self.sensed.set(n, true);
             self.sensed_count += 1;
             let free = self.truth.free.get(n);
             belief.free.set(n, free);
@@ -585,7 +607,7 @@ impl<'a> Rover<'a> {
                 let Some(m) = self.truth.neighbour(n, d) else {
                     continue;
                 };
-                if self.sensed[m] && self.truth.free.get(m) {
+                if self.sensed.get(m) && self.truth.free.get(m) {
                     let ok = self.truth.edge_free(self.index, n, d, m);
                     belief.set_edge(n, d, m, ok);
                     blocked |= !ok;

@@ -41,13 +41,21 @@
 //! overshoots and circles the goal (SEEDS §E) always ends. `limit time`
 //! is checked every 1024 steps and between escape candidates. The escapes'
 //! look-ahead descents have a budget of their own (a multiple of the step
-//! limit), so a walk that keeps escaping ends too.
+//! limit), so a walk that keeps escaping ends too. The time counts from the
+//! plan's start, building the field and collision indexes included.
+//!
+//! # Memory
+//! The executed motion is kept in full up to 4 million moves; beyond, the
+//! list is thinned and the motion is validated and measured as it is made
+//! ([`motion`]), so memory does not grow with `limit steps`. The trace
+//! keeps at most a few thousand force samples and the first 100 000
+//! minima and jumps.
 
 mod field;
+mod motion;
 
 use std::any::Any;
 use std::f64::consts::TAU;
-use std::time::Instant;
 
 pub use field::{FieldIndex, Forces, Gains, Near, Source};
 
@@ -58,6 +66,7 @@ use crate::scenario::PlanArgs;
 use crate::scenario::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, Word, num};
 use crate::word_enum;
 
+use super::deadline::Deadline;
 use super::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
 use super::registry::{Planner, Settings, Task};
 use super::{MetricValue, PlanOutcome};
@@ -185,6 +194,10 @@ const SMART_VERTICES: usize = 4;
 /// is dropped and the sampling stride doubles).
 const MAX_FORCE_SAMPLES: usize = 4096;
 
+/// The trace draws at most this many minima and as many escape jumps (the
+/// first ones); the metrics count them all.
+const MAX_TRACED_EVENTS: usize = 100_000;
+
 /// A run's settings: the plan's, its limits and its seed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Run {
@@ -200,12 +213,13 @@ pub struct Run {
     pub max_steps: u64,
     /// `max_steps` is [`DEFAULT_STEP_LIMIT`], the plan set no limit.
     pub default_steps: bool,
-    /// Seconds before giving up.
-    pub max_time: Option<f64>,
+    /// `limit time`, from the plan's start.
+    pub deadline: Deadline,
     pub seed: u64,
 }
 
 impl Run {
+    /// The run of a plan starting now.
     pub fn new(p: &Potential, task: &Task<'_>) -> Self {
         let limits = task.limits;
         let max_steps = match (limits.steps, limits.expansions) {
@@ -221,7 +235,7 @@ impl Run {
             jump: p.jump,
             max_steps,
             default_steps: limits.steps.is_none() && limits.expansions.is_none(),
-            max_time: limits.time,
+            deadline: Deadline::start(&limits),
             seed: task.seed,
         }
     }
@@ -265,6 +279,7 @@ enum Advance {
 /// The fixed context of a walk: the world's indexes and the settings.
 struct Walker<'a> {
     world: &'a World,
+    robot: &'a RobotShape,
     field: &'a FieldIndex,
     obstacles: &'a ObstacleIndex,
     bounds: Aabb,
@@ -379,11 +394,19 @@ pub fn plan(task: &Task<'_>, settings: &Potential) -> PlanOutcome {
         }
     };
     let s = Run::new(settings, task);
+    if task.start_is_goal() {
+        let mut out = PlanOutcome::at_goal(task.start);
+        for m in ["steps", "minima", "escapes", "traveled"] {
+            out.extra.insert(m.into(), MetricValue::Num(0.0));
+        }
+        return out;
+    }
     let field = FieldIndex::new(world, radius, s.gains);
     let obstacles = ObstacleIndex::new(world);
     let goal = task.goal.unwrap_or(task.start);
     let walker = Walker {
         world,
+        robot: task.robot,
         field: &field,
         obstacles: &obstacles,
         bounds: world.bounds,
@@ -397,15 +420,14 @@ pub fn plan(task: &Task<'_>, settings: &Potential) -> PlanOutcome {
 
 /// The main loop: descend, detect minima, escape, until the goal or a limit.
 fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
-    let began = Instant::now();
     let s = w.s;
     let theta = start.theta;
     let mut rng = SplitMix64::new(s.seed);
     let mut out = PlanOutcome::default();
     let mut trace = FieldTrace::default();
-    let mut path = vec![start];
+    let mut motion = motion::Motion::new(w.world, w.robot, start);
     let mut descent = Descent::new(start.xy());
-    let (mut steps, mut minima, mut escapes) = (0u64, 0u64, 0u64);
+    let (mut minima, mut escapes) = (0u64, 0u64);
     let mut stride = 1usize;
     let mut closest = (start.xy() - w.goal).norm();
     let mut found = false;
@@ -414,6 +436,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         .saturating_mul(LOOK_AHEAD_PER_STEP)
         .max(MIN_LOOK_AHEAD_BUDGET);
     loop {
+        let steps = motion.moves();
         if steps >= s.max_steps {
             out.gave_up = true;
             out.notes.push(limit_note(
@@ -430,7 +453,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
             ));
             break;
         }
-        if steps % 1024 == 0 && out_of_time(began, s) {
+        if steps.is_multiple_of(1024) && s.deadline.passed() {
             out.gave_up = true;
             out.notes
                 .push(limit_note("the time limit".into(), closest, w));
@@ -438,14 +461,13 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         }
         match descent.advance(w) {
             Advance::Arrived => {
-                steps += 1;
-                path.push(goal);
+                motion.push(goal);
                 found = true;
                 break;
             }
             Advance::Moved(from, f) => {
-                let step = path.len() - 1;
-                if step % stride == 0 {
+                let step = steps as usize;
+                if step.is_multiple_of(stride) {
                     trace.forces.push(ForceSample {
                         step,
                         at: from,
@@ -457,14 +479,13 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
                         thin_samples(&mut trace.forces, &mut stride);
                     }
                 }
-                steps += 1;
-                path.push(Config::new(descent.x.x, descent.x.y, theta));
+                motion.push(Config::new(descent.x.x, descent.x.y, theta));
                 closest = closest.min((descent.x - w.goal).norm());
             }
             Advance::Stuck(why) => {
                 let at = descent.x;
                 minima += 1;
-                trace.minima.push((path.len() - 1, at));
+                trace.minimum(steps as usize, at);
                 if !s.escape {
                     out.notes.push(format!(
                         "stopped in a local minimum at ({:.3}, {:.3}) ({}) with `escape none`",
@@ -474,17 +495,16 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
                     ));
                     break;
                 }
-                match escape(w, at, &mut rng, began, &mut budget) {
+                match escape(w, at, &mut rng, &mut budget) {
                     Escape::Jumps(ends) => {
                         let mut from = at;
                         for to in ends {
-                            if steps >= s.max_steps {
+                            if motion.moves() >= s.max_steps {
                                 break; // the loop's limit check gives up
                             }
-                            trace.escapes.push((path.len() - 1, from, to));
+                            trace.escape(motion.moves() as usize, from, to);
                             escapes += 1;
-                            steps += 1;
-                            path.push(Config::new(to.x, to.y, theta));
+                            motion.push(Config::new(to.x, to.y, theta));
                             closest = closest.min((to - w.goal).norm());
                             from = to;
                         }
@@ -517,6 +537,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
             }
         }
     }
+    let steps = motion.moves();
     out.expanded = steps;
     out.extra
         .insert("steps".into(), MetricValue::Num(steps as f64));
@@ -524,17 +545,32 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
         .insert("minima".into(), MetricValue::Num(minima as f64));
     out.extra
         .insert("escapes".into(), MetricValue::Num(escapes as f64));
+    let (poses, measured) = motion.finish();
     // As the runner measures `length` (the same sum when found).
-    let traveled: f64 = path
-        .windows(2)
-        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
-        .sum();
+    let traveled = match &measured {
+        Some(m) => m.length,
+        None => crate::run::path_length(&poses),
+    };
     out.extra
         .insert("traveled".into(), MetricValue::Num(traveled));
+    if let Some(m) = &measured {
+        out.notes.push(format!(
+            "the motion has {steps} moves, more than the {} kept in full: it was validated and measured as it was made, and is listed thinned (every {}th configuration and the last)",
+            motion::FULL_MOVES,
+            m.stride
+        ));
+    }
+    if trace.minima.len() >= MAX_TRACED_EVENTS || trace.escapes.len() >= MAX_TRACED_EVENTS {
+        out.notes.push(format!(
+            "the picture shows the first {MAX_TRACED_EVENTS} minima and escape jumps"
+        ));
+    }
+    out.measured = measured;
     if found {
-        out.path = Some(path);
+        out.cost = Some(traveled);
+        out.path = Some(poses);
     } else {
-        out.trajectory = path;
+        out.trajectory = poses;
     }
     let b = w.bounds;
     out.layers = field_layers(&trace, 0.03 * b.width().max(b.height()));
@@ -557,10 +593,26 @@ struct ForceSample {
 struct FieldTrace {
     /// Forces at sampled steps (not every step: at most a few thousand).
     forces: Vec<ForceSample>,
-    /// Local minima detected: the path index and the position.
+    /// Local minima detected: the path index and the position (the first
+    /// [`MAX_TRACED_EVENTS`]).
     minima: Vec<(usize, Point)>,
-    /// Escape jumps taken: the path index where the jump starts, from, to.
+    /// Escape jumps taken: the path index where the jump starts, from, to
+    /// (the first [`MAX_TRACED_EVENTS`]).
     escapes: Vec<(usize, Point, Point)>,
+}
+
+impl FieldTrace {
+    fn minimum(&mut self, step: usize, at: Point) {
+        if self.minima.len() < MAX_TRACED_EVENTS {
+            self.minima.push((step, at));
+        }
+    }
+
+    fn escape(&mut self, step: usize, from: Point, to: Point) {
+        if self.escapes.len() < MAX_TRACED_EVENTS {
+            self.escapes.push((step, from, to));
+        }
+    }
 }
 
 /// The forces as arrows on timeline `step` (`field/attract`, `repulse`,
@@ -615,11 +667,6 @@ fn field_layers(trace: &FieldTrace, length: f64) -> Vec<Layer> {
     out
 }
 
-fn out_of_time(began: Instant, s: &Run) -> bool {
-    s.max_time
-        .is_some_and(|t| began.elapsed().as_secs_f64() > t)
-}
-
 /// The note of a run stopped by a limit; it says when the walk came close
 /// to the goal without landing (overshooting, SEEDS §E).
 /// When the goal is within reach of an obstacle's repulsion, the forces do
@@ -647,7 +694,7 @@ fn thin_samples(samples: &mut Vec<ForceSample>, stride: &mut usize) {
 }
 
 /// Draws jumps out of the local minimum at `m` (see the module docs).
-fn escape(w: &Walker, m: Point, rng: &mut SplitMix64, began: Instant, budget: &mut u64) -> Escape {
+fn escape(w: &Walker, m: Point, rng: &mut SplitMix64, budget: &mut u64) -> Escape {
     let s = w.s;
     let basin = s.gains.influence + w.radius + 2.0 * s.step;
     let mut chain = Vec::new();
@@ -657,7 +704,7 @@ fn escape(w: &Walker, m: Point, rng: &mut SplitMix64, began: Instant, budget: &m
         // the minimum, to walk on from.
         let mut fallback: Option<(f64, Point)> = None;
         for e in jump_candidates(w, from, rng) {
-            if out_of_time(began, s) {
+            if s.deadline.passed() {
                 return Escape::OutOfTime;
             }
             if *budget == 0 {

@@ -20,7 +20,10 @@
 //!    editor test says which are missing).
 //! 4. Add scenarios under `scenarios/` and the planner's own tests; the
 //!    contract test covers it already (metrics, validator, determinism,
-//!    limits) for every robot kind it declares.
+//!    limits) for every robot kind it declares, `tests/start_is_goal.rs` a
+//!    start equal to the goal (found at once: [`Task::start_is_goal`],
+//!    [`PlanOutcome::at_goal`]) and `tests/limits.rs` a time limit spent
+//!    before the set-up is done ([`super::deadline`]).
 
 use std::any::Any;
 use std::fmt;
@@ -126,6 +129,21 @@ pub struct Task<'a> {
     pub goal: Option<Config>,
     pub limits: Limits,
     pub seed: u64,
+}
+
+impl Task<'_> {
+    /// Whether the start is the goal (SPEC 3: then every planner finds the
+    /// path of that one configuration at once): the same (x, y), and for a
+    /// robot that rotates the same θ (modulo a turn), exactly, as the
+    /// runner's `reaches_goal` would see the start.
+    pub fn start_is_goal(&self) -> bool {
+        self.goal.is_some_and(|g| {
+            let s = self.start;
+            s.x == g.x
+                && s.y == g.y
+                && (!self.robot.rotates() || crate::geometry::angle_diff(s.theta, g.theta) == 0.0)
+        })
+    }
 }
 
 /// A plan's typed settings, built once by its planner's `check`; running

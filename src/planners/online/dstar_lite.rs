@@ -4,7 +4,7 @@
 //! each sensing step, in exact lattice arithmetic ([`Len`]).
 
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, HashSet};
 
 use super::{End, GridLattice, Heuristic, LatticeSpec, Moves, Rover};
 
@@ -107,6 +107,59 @@ impl Ord for Queued {
     }
 }
 
+/// What D* Lite keeps for a node: g, rhs, and the key it is queued with.
+#[derive(Clone, Copy, Debug)]
+struct NodeState {
+    g: Len,
+    rhs: Len,
+    /// The node's current key, valid while `queued`.
+    key: Key,
+    queued: bool,
+}
+
+/// A node the search never touched: g = rhs = ∞, not queued.
+const UNTOUCHED: NodeState = NodeState {
+    g: Len::INF,
+    rhs: Len::INF,
+    key: (Len::ZERO, Len::ZERO),
+    queued: false,
+};
+
+/// 64 nodes of 72 bytes: about one 4 KiB memory page.
+const PAGE_BITS: usize = 6;
+const PAGE: usize = 1 << PAGE_BITS;
+
+/// The per-node state of the nodes the search touched, in pages allocated
+/// when a node of theirs is first written (SPEC 3.2: memory as in 3.1,
+/// search state only where touched). A short trip across a large lattice
+/// holds a few pages and the page table (an eighth of a byte per node);
+/// dense arrays held 65 bytes per node of the lattice.
+struct States {
+    pages: Vec<Option<Box<[NodeState; PAGE]>>>,
+}
+
+impl States {
+    fn new(len: usize) -> Self {
+        States {
+            pages: (0..len.div_ceil(PAGE)).map(|_| None).collect(),
+        }
+    }
+
+    #[inline]
+    fn get(&self, i: usize) -> NodeState {
+        match &self.pages[i >> PAGE_BITS] {
+            Some(page) => page[i & (PAGE - 1)],
+            None => UNTOUCHED,
+        }
+    }
+
+    #[inline]
+    fn at(&mut self, i: usize) -> &mut NodeState {
+        let page = self.pages[i >> PAGE_BITS].get_or_insert_with(|| Box::new([UNTOUCHED; PAGE]));
+        &mut page[i & (PAGE - 1)]
+    }
+}
+
 /// D* Lite (Koenig & Likhachev, "D* Lite", AAAI 2002, Figure 4: the
 /// optimized version) searching from the goal, so that g(s) estimates the
 /// cost from s to the goal and the robot's moves only change the key
@@ -114,11 +167,7 @@ impl Ord for Queued {
 /// lattice distance without obstacles (octile for 8 neighbours, Manhattan
 /// for 4): admissible, consistent, and a metric, as km needs.
 struct DStarLite {
-    g: Vec<Len>,
-    rhs: Vec<Len>,
-    /// The node's current key, valid while `queued`.
-    key: Vec<Key>,
-    queued: Vec<bool>,
+    states: States,
     heap: BinaryHeap<Queued>,
     km: Len,
     goal: usize,
@@ -130,12 +179,8 @@ struct DStarLite {
 
 impl DStarLite {
     fn new(spec: LatticeSpec, eight: bool, heuristic: bool, goal: usize, start: usize) -> Self {
-        let n = spec.layer_len();
         let mut d = DStarLite {
-            g: vec![Len::INF; n],
-            rhs: vec![Len::INF; n],
-            key: vec![(Len::ZERO, Len::ZERO); n],
-            queued: vec![false; n],
+            states: States::new(spec.layer_len()),
             heap: BinaryHeap::new(),
             km: Len::ZERO,
             goal,
@@ -143,7 +188,7 @@ impl DStarLite {
             eight,
             heuristic,
         };
-        d.rhs[goal] = Len::ZERO;
+        d.states.at(goal).rhs = Len::ZERO;
         let k = (d.h(start, goal), Len::ZERO);
         d.insert(goal, k);
         d
@@ -184,14 +229,24 @@ impl DStarLite {
         Self::edge(belief, moves, u, d).map_or(Len::INF, |(_, c)| c)
     }
 
+    fn g(&self, s: usize) -> Len {
+        self.states.get(s).g
+    }
+
+    fn rhs(&self, s: usize) -> Len {
+        self.states.get(s).rhs
+    }
+
     fn calculate_key(&self, s: usize, start: usize) -> Key {
-        let m = self.g[s].min(self.rhs[s]);
+        let st = self.states.get(s);
+        let m = st.g.min(st.rhs);
         (m.add(self.h(start, s)).add(self.km), m)
     }
 
     fn insert(&mut self, s: usize, k: Key) {
-        self.key[s] = k;
-        self.queued[s] = true;
+        let st = self.states.at(s);
+        st.key = k;
+        st.queued = true;
         self.heap.push(Queued {
             key: k,
             node: s as u32,
@@ -202,7 +257,8 @@ impl DStarLite {
     fn top(&mut self) -> Option<(Key, usize)> {
         while let Some(&Queued { key, node }) = self.heap.peek() {
             let s = node as usize;
-            if self.queued[s] && self.key[s] == key {
+            let st = self.states.get(s);
+            if st.queued && st.key == key {
                 return Some((key, s));
             }
             self.heap.pop();
@@ -211,11 +267,12 @@ impl DStarLite {
     }
 
     fn update_vertex(&mut self, u: usize, start: usize) {
-        if self.g[u] != self.rhs[u] {
+        let st = self.states.get(u);
+        if st.g != st.rhs {
             let k = self.calculate_key(u, start);
             self.insert(u, k);
-        } else {
-            self.queued[u] = false;
+        } else if st.queued {
+            self.states.at(u).queued = false;
         }
     }
 
@@ -223,7 +280,7 @@ impl DStarLite {
     fn best_successor(&self, belief: &GridLattice, moves: &Moves, s: usize) -> Len {
         (0..moves.dirs)
             .filter_map(|d| Self::edge(belief, moves, s, d))
-            .map(|(v, c)| c.add(self.g[v]))
+            .map(|(v, c)| c.add(self.g(v)))
             .fold(Len::INF, Len::min)
     }
 
@@ -238,7 +295,7 @@ impl DStarLite {
             let Some((k_old, u)) = self.top() else {
                 break Ok(());
             };
-            if !(k_old < self.calculate_key(start, start) || self.rhs[start] > self.g[start]) {
+            if !(k_old < self.calculate_key(start, start) || self.rhs(start) > self.g(start)) {
                 break Ok(());
             }
             let k_new = self.calculate_key(u, start);
@@ -253,24 +310,29 @@ impl DStarLite {
             }
             rover.expanded += 1;
             expanded.push(u);
-            if self.g[u] > self.rhs[u] {
-                self.g[u] = self.rhs[u];
-                self.queued[u] = false;
+            let st = self.states.get(u);
+            if st.g > st.rhs {
+                let g_u = st.rhs;
+                let at_u = self.states.at(u);
+                at_u.g = g_u;
+                at_u.queued = false;
                 for d in 0..moves.dirs {
                     if let Some((s, c)) = Self::edge(belief, &moves, u, d) {
                         if s != self.goal {
-                            self.rhs[s] = self.rhs[s].min(c.add(self.g[u]));
+                            let rhs = self.rhs(s).min(c.add(g_u));
+                            self.states.at(s).rhs = rhs;
                         }
                         self.update_vertex(s, start);
                     }
                 }
             } else {
-                let g_old = self.g[u];
-                self.g[u] = Len::INF;
+                let g_old = st.g;
+                self.states.at(u).g = Len::INF;
                 for d in 0..moves.dirs {
                     if let Some((s, c)) = Self::edge(belief, &moves, u, d) {
-                        if self.rhs[s] == c.add(g_old) && s != self.goal {
-                            self.rhs[s] = self.best_successor(belief, &moves, s);
+                        if self.rhs(s) == c.add(g_old) && s != self.goal {
+                            let rhs = self.best_successor(belief, &moves, s);
+                            self.states.at(s).rhs = rhs;
                         }
                         self.update_vertex(s, start);
                     }
@@ -289,7 +351,7 @@ impl DStarLite {
         let mut best: Option<(Len, usize)> = None;
         for d in 0..moves.dirs {
             if let Some((v, c)) = Self::edge(belief, moves, s, d) {
-                let f = c.add(self.g[v]);
+                let f = c.add(self.g(v));
                 if !f.is_inf() && best.is_none_or(|(b, _)| f < b) {
                     best = Some((f, v));
                 }
@@ -333,14 +395,13 @@ pub(super) fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: 
     if let Err(end) = ds.compute(belief, rover) {
         return end;
     }
-    // Nodes whose out-edges may have changed, deduplicated by a stamp.
-    let mut stamp = vec![0u32; spec.layer_len()];
-    let mut round = 0u32;
+    // Nodes whose out-edges may have changed, in the order first met.
+    let mut seen = HashSet::new();
     loop {
         if rover.pos == goal {
             return End::Reached;
         }
-        if ds.rhs[rover.pos].is_inf() {
+        if ds.rhs(rover.pos).is_inf() {
             return End::Unreachable;
         }
         if rover.wants_plan() {
@@ -359,12 +420,11 @@ pub(super) fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: 
         }
         // The edges a sensed point can change join points within one cell
         // of it (its own edges and the diagonals that cut its corner).
-        round += 1;
+        seen.clear();
         let mut touched = Vec::new();
         for &n in &fresh {
             for u in std::iter::once(n).chain((0..8).filter_map(|d| belief.neighbour(n, d))) {
-                if stamp[u] != round {
-                    stamp[u] = round;
+                if seen.insert(u) {
                     touched.push(u);
                 }
             }
@@ -391,10 +451,12 @@ pub(super) fn dstar_lite(rover: &mut Rover<'_>, belief: &mut GridLattice, goal: 
             }
             if c_old > c_new {
                 if u != goal {
-                    ds.rhs[u] = ds.rhs[u].min(c_new.add(ds.g[v]));
+                    let rhs = ds.rhs(u).min(c_new.add(ds.g(v)));
+                    ds.states.at(u).rhs = rhs;
                 }
-            } else if ds.rhs[u] == c_old.add(ds.g[v]) && u != goal {
-                ds.rhs[u] = ds.best_successor(belief, &moves, u);
+            } else if ds.rhs(u) == c_old.add(ds.g(v)) && u != goal {
+                let rhs = ds.best_successor(belief, &moves, u);
+                ds.states.at(u).rhs = rhs;
             }
             ds.update_vertex(u, rover.pos);
         }

@@ -33,6 +33,7 @@ use crate::geometry::minkowski::{c_obstacle_points, disk_polygon, minkowski_sum_
 use crate::geometry::{
     Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff,
 };
+use crate::planners::deadline::Deadline;
 use crate::planners::registry::{Planner, Settings, Task};
 use crate::planners::search::{Edge, Graph, SearchBuffers, best_first, undirected_successors};
 use crate::planners::{MetricValue, PlanOutcome, layers};
@@ -267,17 +268,25 @@ impl Roadmap {
         &self,
         max_expansions: Option<u64>,
     ) -> Result<Option<(Vec<Point>, f64, u64)>, u64> {
-        let arr = &self.arrangement;
-        let starts: Vec<usize> = self.nodes_of(arr.start).map(|s| s.index()).collect();
-        let limits = Limits {
+        self.shortest_path_within(&Limits {
             expansions: max_expansions,
             ..Limits::default()
-        };
+        })
+    }
+
+    /// [`Roadmap::shortest_path`] under `limits` (`expansions`, and `time`
+    /// in seconds from the call).
+    pub fn shortest_path_within(
+        &self,
+        limits: &Limits,
+    ) -> Result<Option<(Vec<Point>, f64, u64)>, u64> {
+        let arr = &self.arrangement;
+        let starts: Vec<usize> = self.nodes_of(arr.start).map(|s| s.index()).collect();
         let mut graph = Visibility(self);
         let r = best_first(
             &mut graph,
             &starts,
-            &limits,
+            limits,
             false,
             &mut SearchBuffers::default(),
         );
@@ -319,6 +328,7 @@ impl Graph for Visibility<'_> {
 
 /// Runs a `roadmap` plan.
 pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
+    let deadline = Deadline::start(&task.limits);
     let (world, robot) = (task.world, task.robot);
     let mut out = PlanOutcome::default();
     // Zero until a graph is built (every early return keeps the metrics).
@@ -326,6 +336,12 @@ pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
         .insert("graph_nodes".into(), MetricValue::Num(0.0));
     out.extra
         .insert("graph_edges".into(), MetricValue::Num(0.0));
+    if task.start_is_goal() {
+        return PlanOutcome {
+            extra: out.extra,
+            ..PlanOutcome::at_goal(task.start)
+        };
+    }
     // The schema keeps it in 8..=MAX_ARC_SEGMENTS.
     let arc = settings.arc_segments.clamp(8, MAX_ARC_SEGMENTS);
     let start = task.start;
@@ -373,17 +389,13 @@ pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
             }
         }
     }
-    let deadline = task
-        .limits
-        .time
-        .map(|s| Instant::now() + std::time::Duration::from_secs_f64(s.clamp(0.0, 1e9)));
     let roadmap = match Roadmap::build(
         &polys,
         &walls,
         start.xy(),
         goal.xy(),
         world.bounds,
-        deadline,
+        deadline.instant(),
     ) {
         Ok(r) => r,
         Err(Stopped::Time) => {
@@ -415,12 +427,18 @@ pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
         .map(|e| (pts[e.a as usize], pts[e.b as usize]))
         .collect();
     out.layers.extend(layers::graph("roadmap", edges));
-    match roadmap.shortest_path(task.limits.expansions) {
+    match roadmap.shortest_path_within(&deadline.remaining(task.limits)) {
         Err(expanded) => {
             out.expanded = expanded;
             out.gave_up = true;
-            out.notes
-                .push("the expansion limit was reached before the goal".into());
+            out.notes.push(
+                if task.limits.expansions.is_some_and(|max| expanded >= max) {
+                    "the expansion limit was reached before the goal"
+                } else {
+                    "the time limit was reached before the goal"
+                }
+                .into(),
+            );
         }
         Ok(None) => {}
         Ok(Some((points, length, expanded))) => {

@@ -48,7 +48,7 @@ pub mod space;
 #[cfg(test)]
 mod tests;
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use crate::diagnostics::Diag;
 use crate::geometry::cspace::ObstaclePieces;
@@ -62,6 +62,7 @@ use crate::scenario::schema::{
 };
 use crate::word_enum;
 
+use super::deadline::Deadline;
 use super::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
 use super::registry::{Settings, Task};
 use super::{MetricValue, PlanOutcome};
@@ -344,6 +345,24 @@ pub fn check(args: &mut PlanArgs<'_>, algorithm: Algorithm) -> Option<Box<dyn Se
 impl Settings for Sampling {
     fn plan(&self, task: &Task<'_>) -> PlanOutcome {
         let mut run = Run::new(self, task);
+        if task.start_is_goal() {
+            // Found at once (SPEC 3): nothing is sampled, nothing built.
+            let grown = Grown {
+                path: Some(vec![task.start]),
+                iterations: 0,
+                ended: Ended::Solved,
+                first_iteration: Some(0),
+                first_cost: Some(0.0),
+                states: 0,
+                edges: 0,
+                drawn: Vec::new(),
+                entity: match self.algorithm {
+                    Algorithm::Prm | Algorithm::PrmStar => "graph",
+                    _ => "tree",
+                },
+            };
+            return run.finish(grown);
+        }
         let grown = match self.algorithm {
             Algorithm::Rrt | Algorithm::RrtStar => rrt::grow(&mut run),
             Algorithm::RrtConnect => rrt_connect::grow(&mut run),
@@ -421,12 +440,14 @@ pub struct Run<'a> {
     pub max_iterations: u64,
     /// Calls of the motion checker.
     pub checks: u64,
-    deadline: Option<Instant>,
+    deadline: Deadline,
     sigma: f64,
 }
 
 impl<'a> Run<'a> {
     pub fn new(settings: &'a Sampling, task: &'a Task<'a>) -> Self {
+        // Before the set-up (the motion checker), which `limit time` counts.
+        let deadline = Deadline::start(&task.limits);
         let bounds = task.world.bounds;
         let space = Space {
             bounds,
@@ -450,10 +471,7 @@ impl<'a> Run<'a> {
             goal,
             max_iterations: task.limits.iterations.unwrap_or(DEFAULT_ITERATIONS),
             checks: 0,
-            deadline: task
-                .limits
-                .time
-                .map(|s| Instant::now() + Duration::from_secs_f64(s.clamp(0.0, 1e9))),
+            deadline,
             sigma: SIGMA * bounds.width().hypot(bounds.height()),
         }
     }
@@ -479,10 +497,7 @@ impl<'a> Run<'a> {
         if states >= MAX_STATES {
             return Some(Ended::States);
         }
-        if let Some(d) = self.deadline
-            && iteration % CLOCK_EVERY == 1
-            && Instant::now() > d
-        {
+        if iteration % CLOCK_EVERY == 1 && self.deadline.passed() {
             return Some(Ended::Time);
         }
         None
