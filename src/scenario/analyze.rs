@@ -69,6 +69,20 @@ pub(crate) fn analyze(
         &robots,
     );
     let checks = a.checks(&statements, &plans, &benches);
+    // A file without a plan would run nothing and report "0 passed, 0
+    // failed" (SPEC §4). Said when nothing else is wrong: a file with other
+    // mistakes is not finished yet, and an empty one gets one error
+    // (`no_world`), not two.
+    let no_plan = !statements
+        .iter()
+        .any(|s| matches!(s.stmt, ast::Stmt::Plan(_)));
+    if no_plan && !a.diags.iter().any(Diag::is_error) {
+        a.error(
+            Diag::error("scen::analyze::no_plan", "the scenario has no `plan`")
+                .at(Span::new(0, 0, 0), "expected at least one `plan`")
+                .help("add a plan, e.g. `plan p astar ROBOT { start (1, 1) goal (9, 9) }`, naming one of the robots"),
+        );
+    }
     let mut diags = a.diags;
     let sources = a.sources;
     match world {
@@ -842,23 +856,6 @@ impl Analyzer {
     ) -> Vec<Plan> {
         let mut plans = Vec::new();
         let mut seen: HashMap<String, Span> = HashMap::new();
-        // A file without a plan would run nothing and report "0 passed, 0
-        // failed" (SPEC §4). Said once there is a world, so that an empty
-        // file gets one error, not two.
-        let any_world = statements
-            .iter()
-            .any(|s| matches!(s.stmt, ast::Stmt::World(_)));
-        if any_world
-            && !statements
-                .iter()
-                .any(|s| matches!(s.stmt, ast::Stmt::Plan(_)))
-        {
-            self.error(
-                Diag::error("scen::analyze::no_plan", "the scenario has no `plan`")
-                    .at(Span::new(0, 0, 0), "expected at least one `plan`")
-                    .help("add a plan, e.g. `plan p astar ROBOT { start (1, 1) goal (9, 9) }`, naming one of the robots"),
-            );
-        }
         for s in statements {
             let ast::Stmt::Plan(p) = &s.stmt else {
                 continue;
