@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
 # Runs the whole test suite on a fresh machine: installs the Rerun viewer
-# (rerun-sdk==0.36.3, whose `rerun` binary the .rrd tests use) and OMPL's
-# Python package (ompl==2.0.1, for its benchmark statistics script) into a
-# virtual environment under target/, then runs `cargo test --release`, then
-# the editor support's tests (editors/test.sh: Node.js; npm installs the
-# pinned test tools into editors/node_modules).
+# (rerun-sdk==0.36.3, whose `rerun` binary the .rrd tests use), OMPL's
+# Python package (ompl==2.0.1, for its benchmark statistics script) and
+# maturin (the wheel) into a virtual environment under target/, then runs
+# `cargo test --release`, builds the wheel from that release build and
+# installs it into a fresh venv (scripts/wheel.sh --check), then the editor
+# support's tests (editors/test.sh: Node.js; npm installs the pinned test
+# tools into editors/node_modules).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 venv="target/rerun-venv"
-if [ ! -x "$venv/bin/rerun" ] || [ ! -x "$venv/bin/ompl_benchmark_statistics" ]; then
+if [ ! -x "$venv/bin/rerun" ] || [ ! -x "$venv/bin/ompl_benchmark_statistics" ] || [ ! -x "$venv/bin/maturin" ]; then
   mkdir -p target
   python3 -m venv "$venv"
   # The Rerun viewer (for the .rrd tests) and OMPL's Python package, whose
   # ompl_benchmark_statistics turns `scen bench --ompl-log` into the
   # database Planner Arena reads (tests/bench.rs).
-  "$venv/bin/pip" install --quiet --disable-pip-version-check "rerun-sdk==0.36.3" "ompl==2.0.1"
+  # maturin builds the wheel of the `scen` binary (scripts/wheel.sh).
+  "$venv/bin/pip" install --quiet --disable-pip-version-check "rerun-sdk==0.36.3" "ompl==2.0.1" "maturin==1.16.0"
 fi
 "$venv/bin/rerun" analytics disable >/dev/null 2>&1 || true
 export PATH="$PWD/$venv/bin:$PATH"
@@ -27,6 +30,11 @@ export SCEN_OMPL_STATS="$PWD/$venv/bin/ompl_benchmark_statistics"
 export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}"
 
 cargo test --release "$@"
+
+# The wheel, from the release build cargo test just made (maturin finds the
+# crate up to date and only packages it), installed into a fresh venv: the
+# `scen` pip puts on PATH must run a scenario.
+MATURIN="$PWD/$venv/bin/maturin" bash scripts/wheel.sh --check
 
 # The VS Code grammar and the Vim syntax (after cargo test, which built
 # target/release/scen for the problem matcher's test).
