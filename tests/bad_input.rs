@@ -570,6 +570,27 @@ fn generated_bad_inputs_are_reported() {
         located_in: "_twice_*".to_string(),
         min_errors: None,
     });
+    // A map file over its 64 MiB: the diagnostic is at the grid's path, in
+    // the scenario, with a map's help (not the help of a scenario's text).
+    let big_map = tmp.path().join("big.map");
+    let file = std::fs::File::create(&big_map).expect("a map file");
+    file.set_len(65 << 20).expect("a sparse 65 MiB map");
+    std::fs::write(
+        tmp.path().join("map_too_large.scen"),
+        VALID.replace(
+            "world { bounds (0, 0) (10, 10) }",
+            "world {\n  bounds (0, 0) (10, 10)\n  grid G \"big.map\" cell 1 origin (0, 0)\n}",
+        ),
+    )
+    .expect("writing a generated input");
+    cases.push(Case {
+        file: "map_too_large.scen".to_string(),
+        dir: tmp.path().to_path_buf(),
+        codes: vec!["scen::load::too_large".to_string()],
+        line: Some(4),
+        located_in: "map_too_large.scen".to_string(),
+        min_errors: None,
+    });
     // Files that are not regular: a FIFO (a read would wait for a writer
     // forever) as an include and as a map; they are refused at once.
     #[cfg(unix)]

@@ -540,3 +540,26 @@ fn watch_runs_again_on_every_save() {
     let _ = child.kill();
     let _ = child.wait();
 }
+
+/// `scripts/wheel.sh` without maturin says how to get it and exits 2
+/// (the wheel itself is built and installed by `scripts/test.sh`).
+#[cfg(unix)]
+#[test]
+fn a_wheel_build_without_maturin_says_how_to_get_it() {
+    if ["/usr/bin/maturin", "/bin/maturin"]
+        .iter()
+        .any(|p| std::path::Path::new(p).exists())
+    {
+        eprintln!("skipped: maturin is installed system-wide");
+        return;
+    }
+    let out = std::process::Command::new("bash")
+        .arg(repo().join("scripts/wheel.sh"))
+        .env("PATH", "/usr/bin:/bin")
+        .env_remove("MATURIN")
+        .output()
+        .expect("bash runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("pip install maturin"), "{err}");
+}

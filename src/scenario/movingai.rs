@@ -32,13 +32,13 @@ pub fn parse_movingai(text: &str) -> Result<(usize, usize, Vec<u8>), (usize, Str
             (Some("height"), Some(h)) => {
                 height = Some(
                     h.parse::<usize>()
-                        .map_err(|_| (n + 1, format!("bad height `{h}`")))?,
+                        .map_err(|_| (n + 1, "the `height` is not a whole number".to_string()))?,
                 )
             }
             (Some("width"), Some(w)) => {
                 width = Some(
                     w.parse::<usize>()
-                        .map_err(|_| (n + 1, format!("bad width `{w}`")))?,
+                        .map_err(|_| (n + 1, "the `width` is not a whole number".to_string()))?,
                 )
             }
             (Some("map"), None) => break,
@@ -46,7 +46,9 @@ pub fn parse_movingai(text: &str) -> Result<(usize, usize, Vec<u8>), (usize, Str
             _ => {
                 return Err((
                     n + 1,
-                    format!("unexpected header line `{}`", truncate(line)),
+                    // The line is not quoted: the file may be anything
+                    // (SPEC 2.2: no echo of bytes that are not a scenario's).
+                    "an unexpected header line (a MovingAI header has `type`, `height`, `width` and `map` lines)".to_string(),
                 ));
             }
         }
@@ -95,8 +97,4 @@ pub fn parse_movingai(text: &str) -> Result<(usize, usize, Vec<u8>), (usize, Str
 
 fn n_lines(text: &str) -> usize {
     text.lines().count().max(1)
-}
-
-fn truncate(s: &str) -> String {
-    s.chars().take(40).collect()
 }
