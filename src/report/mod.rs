@@ -1,10 +1,11 @@
-//! Report sinks: the text report, JSON (SPEC 5) and SVG.
+//! Report sinks: the text report, JSON (SPEC 5), SVG and PNG.
 
 pub mod bench;
 pub mod json;
 pub mod junit;
 pub mod ompl;
 pub mod plot;
+pub mod png;
 pub mod svg;
 pub mod text;
 
