@@ -75,6 +75,9 @@ pub struct RunArgs {
     /// Write an SVG picture of the world and the paths.
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<PathBuf>,
+    /// Write the same picture as a PNG.
+    #[arg(long, value_name = "OUT.png")]
+    pub png: Option<PathBuf>,
     /// Print only the summary and failures.
     #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,
@@ -129,6 +132,9 @@ pub struct BenchArgs {
     /// Write box plots of the metrics per configuration.
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<PathBuf>,
+    /// Write the same plots as a PNG.
+    #[arg(long, value_name = "OUT.png")]
+    pub png: Option<PathBuf>,
     /// Write one OMPL benchmark log per bench into DIR (for
     /// `ompl_benchmark_statistics.py` and Planner Arena).
     #[arg(long = "ompl-log", value_name = "DIR")]
@@ -223,9 +229,13 @@ pub(crate) fn print_failure(f: &LoadFailure) {
 }
 
 fn cmd_run(args: &RunArgs) -> i32 {
-    if args.files.len() > 1 && (args.save.is_some() || args.svg.is_some()) {
+    if let Err(e) = report::png::check_paths(args.svg.as_deref(), args.png.as_deref()) {
+        eprintln!("error: {e}");
+        return EXIT_BAD_INPUT;
+    }
+    if args.files.len() > 1 && (args.save.is_some() || args.svg.is_some() || args.png.is_some()) {
         eprintln!(
-            "error: `--save` and `--svg` take one scenario file; run the files one at a time"
+            "error: `--save`, `--svg` and `--png` take one scenario file; run the files one at a time"
         );
         return EXIT_BAD_INPUT;
     }
@@ -265,10 +275,16 @@ fn cmd_run(args: &RunArgs) -> i32 {
         } else {
             print_text(&report, args);
         }
-        if let Some(svg) = &args.svg
-            && let Err(e) = std::fs::write(svg, report::svg::to_svg(&report))
+        if (args.svg.is_some() || args.png.is_some())
+            && let Err(errors) = report::png::write_pictures(
+                &report::svg::to_svg(&report),
+                args.svg.as_deref(),
+                args.png.as_deref(),
+            )
         {
-            eprintln!("error: cannot write `{}`: {e}", svg.display());
+            for e in errors {
+                eprintln!("error: {e}");
+            }
             code = code.max(EXIT_BAD_INPUT);
         }
         let target = if let Some(path) = &args.save {
