@@ -119,6 +119,9 @@ pub struct RunArgs {
     /// Write an SVG picture of the world and the paths.
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<PathBuf>,
+    /// Write the same picture as a PNG.
+    #[arg(long, value_name = "OUT.png")]
+    pub png: Option<PathBuf>,
     /// Write every plan's path (and driven trajectory) as CSV rows.
     #[arg(long, value_name = "OUT.csv")]
     pub csv: Option<PathBuf>,
@@ -148,10 +151,15 @@ impl RunArgs {
     /// with a single-file output, an output that cannot be written, a
     /// viewer this build does not have. Prints the problem.
     fn usable(&self) -> bool {
-        let single = self.save.is_some() || self.svg.is_some() || self.csv.is_some();
+        if let Err(e) = report::png::check_paths(self.svg.as_deref(), self.png.as_deref()) {
+            eprintln!("error: {e}");
+            return false;
+        }
+        let single =
+            self.save.is_some() || self.svg.is_some() || self.png.is_some() || self.csv.is_some();
         if self.files.len() > 1 && single {
             eprintln!(
-                "error: `--save`, `--svg` and `--csv` take one scenario file; run the files one at a time"
+                "error: `--save`, `--svg`, `--png` and `--csv` take one scenario file; run the files one at a time"
             );
             return false;
         }
@@ -161,6 +169,7 @@ impl RunArgs {
         }
         outputs_writable(&[
             ("--svg", self.svg.as_ref()),
+            ("--png", self.png.as_ref()),
             ("--csv", self.csv.as_ref()),
             ("--save", self.save.as_ref()),
         ])
@@ -225,6 +234,9 @@ pub struct BenchArgs {
     /// Write box plots of the metrics per configuration.
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<PathBuf>,
+    /// Write the same plots as a PNG.
+    #[arg(long, value_name = "OUT.png")]
+    pub png: Option<PathBuf>,
     /// Write one OMPL benchmark log per bench into DIR (for
     /// `ompl_benchmark_statistics.py` and Planner Arena).
     #[arg(long = "ompl-log", value_name = "DIR")]
@@ -460,10 +472,16 @@ fn run_file(
         print_text(&report, args);
     }
     let mut code = EXIT_OK;
-    if let Some(svg) = &args.svg
-        && let Err(e) = std::fs::write(svg, report::svg::to_svg(&report))
+    if (args.svg.is_some() || args.png.is_some())
+        && let Err(errors) = report::png::write_pictures(
+            &report::svg::to_svg(&report),
+            args.svg.as_deref(),
+            args.png.as_deref(),
+        )
     {
-        eprintln!("error: cannot write `{}`: {e}", svg.display());
+        for e in errors {
+            eprintln!("error: {e}");
+        }
         code = code.max(EXIT_BAD_INPUT);
     }
     if let Some(csv) = &args.csv {

@@ -18,11 +18,16 @@ use crate::scenario::Scenario;
 use crate::scenario::schema::MetricType;
 
 pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
+    if let Err(e) = report::png::check_paths(args.svg.as_deref(), args.png.as_deref()) {
+        eprintln!("error: {e}");
+        return EXIT_BAD_INPUT;
+    }
     // `--ompl-log DIR` is created if need be: its parent must be writable.
     let ompl_parent = args.ompl_log.as_ref().map(|d| d.join("ompl.log"));
     if !outputs_writable(&[
         ("--csv", args.csv.as_ref()),
         ("--svg", args.svg.as_ref()),
+        ("--png", args.png.as_ref()),
         ("--out", args.out.as_ref()),
     ]) || !ompl_log_dir_ok(args.ompl_log.as_deref(), ompl_parent.as_deref())
     {
@@ -31,10 +36,11 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     if args.files.first().is_some_and(|f| f == Path::new("merge")) {
         return cmd_merge(args, &args.files[1..]);
     }
-    let single = args.csv.is_some() || args.svg.is_some() || args.out.is_some();
+    let single =
+        args.csv.is_some() || args.svg.is_some() || args.png.is_some() || args.out.is_some();
     if args.files.len() > 1 && single {
         eprintln!(
-            "error: `--csv`, `--svg` and `--out` take one scenario file; run the files one at a time"
+            "error: `--csv`, `--svg`, `--png` and `--out` take one scenario file; run the files one at a time"
         );
         return EXIT_BAD_INPUT;
     }
@@ -193,13 +199,17 @@ fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
     if let Some(csv) = &args.csv {
         failed_writes |= write(csv, report::bench::to_csv(report));
     }
-    if let Some(svg) = &args.svg {
-        match report::plot::to_svg(report, &metrics) {
-            Ok(text) => failed_writes |= write(svg, text),
-            Err(e) => {
-                eprintln!("error: cannot draw `{}`: {e}", svg.display());
-                failed_writes = true;
+    if let Some(picture) = args.svg.as_ref().or(args.png.as_ref()) {
+        let written = report::plot::to_svg(report, &metrics)
+            .map_err(|e| vec![format!("cannot draw `{}`: {e}", picture.display())])
+            .and_then(|text| {
+                report::png::write_pictures(&text, args.svg.as_deref(), args.png.as_deref())
+            });
+        if let Err(errors) = written {
+            for e in errors {
+                eprintln!("error: {e}");
             }
+            failed_writes = true;
         }
     }
     if let Some(dir) = &args.ompl_log {

@@ -12,7 +12,8 @@
 use std::any::Any;
 
 use crate::geometry::collide::ObstacleIndex;
-use crate::geometry::{Config, Point, RobotShape, Shape, World, polygon};
+use crate::geometry::cspace::shape_pieces;
+use crate::geometry::{Config, Point, RobotShape, Shape, World};
 use crate::scenario::schema::{
     DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, Word, YesNo, at_least, num,
 };
@@ -23,10 +24,11 @@ use super::lattice::{
     BitSet, LATTICE_PARAMS, LatticeDistance, LatticeSpec, check_connect, check_lattice,
 };
 pub use super::lattice::{CostMetric, Heuristic};
+use super::layers::{self, Rounded};
 use super::registry::{Planner, Settings, Task};
 use super::search::{Edge, Graph, Tree, best_first};
 pub use super::search::{SearchBuffers, SearchResult};
-use super::{MetricValue, PlanOutcome, layers};
+use super::{MetricValue, PlanOutcome};
 
 /// `astar` in the registry.
 pub static PLANNER: Planner = Planner {
@@ -547,7 +549,7 @@ fn plan_xy(task: &Task<'_>, settings: &Astar) -> PlanOutcome {
         .insert("layers".into(), MetricValue::Num(spec.layers as f64));
     out.extra.insert("generated".into(), MetricValue::Num(0.0));
     out.layers
-        .extend(layers::grown(grown_obstacles(world, radius)));
+        .extend(layers::grown_by_disk(grown_obstacles(world, radius)));
     // Until the lattice is classified (and for good when nothing is built).
     out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
     if task.start_is_goal() {
@@ -657,42 +659,19 @@ pub fn lattice_path(
     path
 }
 
-/// Obstacles grown by a disk robot's radius, for drawing (grids excluded:
-/// their cells are drawn as they are).
-pub(crate) fn grown_obstacles(world: &World, radius: f64) -> Vec<Vec<Point>> {
+/// Obstacles grown by a disk robot's radius, for drawing: each convex
+/// piece exactly (a disk grown by a disk is a disk of the summed radii);
+/// grids excluded, their cells are drawn as they are.
+pub(crate) fn grown_obstacles(world: &World, radius: f64) -> Vec<Rounded> {
     if radius <= 0.0 {
         return Vec::new();
     }
-    let circle: Vec<Point> = (0..32)
-        .map(|k| {
-            let a = k as f64 * std::f64::consts::TAU / 32.0;
-            Point::new(radius * a.cos(), radius * a.sin())
-        })
-        .collect();
-    let grow = |pts: &[Point]| -> Vec<Point> {
-        let all: Vec<Point> = pts
-            .iter()
-            .flat_map(|p| circle.iter().map(move |c| Point::new(p.x + c.x, p.y + c.y)))
-            .collect();
-        polygon::convex_hull(&all)
-    };
     let mut out = Vec::new();
     for o in &world.obstacles {
         match &o.shape {
-            Shape::Polygon { pieces, .. } => {
-                for p in pieces {
-                    out.push(grow(&p.vertices));
-                }
-            }
-            Shape::Rect(r) => out.push(grow(&r.corners())),
-            Shape::Segment(a, b) => out.push(grow(&[*a, *b])),
-            Shape::Disk { center, radius: r } => out.push(grow(&[
-                Point::new(center.x + r, center.y),
-                Point::new(center.x, center.y + r),
-                Point::new(center.x - r, center.y),
-                Point::new(center.x, center.y - r),
-            ])),
+            Shape::Disk { center, radius: r } => out.push(Rounded::new(&[*center], r + radius)),
             Shape::Grid(_) => {}
+            shape => shape_pieces(shape, 0, |points| out.push(Rounded::new(&points, radius))),
         }
     }
     out

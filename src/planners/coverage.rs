@@ -882,12 +882,13 @@ pub fn plan(task: &Task<'_>, settings: &Coverage) -> PlanOutcome {
     out.layers.push(Layer::new(
         "mega_cells",
         Drawing::Boxes(mega_cells),
-        Style::new(Colour::Faint, 0.5, 3.0).svg(Svg::fill(0.08).outlined(0.3)),
+        Style::new(Colour::Faint, 0.5, 3.0)
+            .svg(Svg::fill(0.08).outlined(0.3).key("free mega-cells")),
     ));
     out.layers.push(Layer::new(
         "uncovered",
         Drawing::Boxes(uncovered_boxes),
-        Style::new(Colour::Grey, 0.0, 4.0).svg(Svg::fill(0.35)),
+        Style::new(Colour::Grey, 0.0, 4.0).svg(Svg::fill(0.35).key("cells left uncovered")),
     ));
     if tree.order.len() > MAX_TRACED || uncovered.len() > MAX_TRACED {
         out.notes.push(format!(
@@ -913,7 +914,7 @@ pub fn plan(task: &Task<'_>, settings: &Coverage) -> PlanOutcome {
     out.layers.push(Layer::new(
         "tree",
         Drawing::Segments(tree_edges),
-        Style::new(Colour::Plan, 1.0, 28.0).svg(Svg::line(0.7)),
+        Style::new(Colour::Plan, 1.0, 28.0).svg(Svg::line(0.7).key("spanning tree")),
     ));
     let cycle = tour(&cells, &tree, start);
     let mut seen = vec![false; cells.dcells.len()];

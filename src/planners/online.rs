@@ -238,7 +238,8 @@ fn knowledge_layers(log: &OnlineTrace) -> Vec<Layer> {
                 continue;
             }
             let style = if blocked {
-                Style::new(Colour::Blocked, 0.0, 12.0).svg(Svg::fill(0.6))
+                Style::new(Colour::Blocked, 0.0, 12.0)
+                    .svg(Svg::fill(0.6).key("cells found blocked"))
             } else {
                 Style::new(Colour::Free, 0.0, 2.0)
             };
@@ -299,7 +300,7 @@ pub(crate) fn navigate_logged(
     }
     if traced {
         out.layers
-            .extend(layers::grown(grown_obstacles(world, radius)));
+            .extend(layers::grown_by_disk(grown_obstacles(world, radius)));
     }
     if task.start_is_goal() {
         let out = PlanOutcome {

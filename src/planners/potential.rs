@@ -649,14 +649,15 @@ fn field_layers(trace: &FieldTrace, length: f64) -> Vec<Layer> {
         out.push(Layer::new(
             "field/minima",
             Drawing::Points(trace.minima.iter().map(|&(_, p)| p).collect()),
-            Style::new(Colour::Red, 5.0, 36.0).svg(Svg::line(1.0)),
+            Style::new(Colour::Red, 5.0, 36.0).svg(Svg::line(1.0).key("local minima")),
         ));
     }
     if !trace.escapes.is_empty() {
         out.push(Layer::new(
             "field/escapes",
             Drawing::Segments(trace.escapes.iter().map(|&(_, a, b)| (a, b)).collect()),
-            Style::new(Colour::Plan, 1.0, 36.0).svg(Svg::line(1.0).dashed()),
+            Style::new(Colour::Plan, 1.0, 36.0)
+                .svg(Svg::line(1.0).dashed().key("escapes from minima")),
         ));
         out.push(Layer::new(
             "field/escapes",

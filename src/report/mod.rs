@@ -1,4 +1,4 @@
-//! Report sinks: the text report, JSON (SPEC 5) and SVG.
+//! Report sinks: the text report, JSON (SPEC 5), SVG and PNG.
 
 pub mod bench;
 pub mod csv;
@@ -6,6 +6,7 @@ pub mod json;
 pub mod junit;
 pub mod ompl;
 pub mod plot;
+pub mod png;
 pub mod svg;
 pub mod text;
 

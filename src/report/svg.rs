@@ -1,18 +1,22 @@
-//! A static SVG picture of a run (`scen run --svg`): the world, each plan's
-//! layers that its planner marked for the picture (grown obstacles, graphs,
-//! trees; [`crate::planners::layers`]) and its path in the plan's colour,
-//! the robot's body at start and goal, a legend and the title — for people
-//! without the viewer.
+//! A static SVG picture of a run (`scen run --svg`, and `--png` through
+//! [`crate::report::png`]): the world with axes in world units, each plan's
+//! layers that its planner marked for the picture (C-obstacles, graphs,
+//! trees; [`crate::planners::layers`]), its path in the plan's colour, the
+//! robot's body at start and goal, and a legend: each plan's colour and
+//! whether it found a path, and what each drawn layer means.
 //!
-//! The picture is drawn in pixels: the world (the bounds, grown by a margin
-//! and the largest robot's radius) is scaled so its longer side is
-//! [`PLOT_SIZE`] pixels, with y flipped so the world's y axis points up.
-//! Colours are those of the Rerun sink ([`crate::viz::plan_colour`]).
+//! The world (the bounds, grown by a margin and the largest robot's radius)
+//! is scaled so its longer side is [`PLOT_SIZE`] pixels, with y flipped so
+//! the world's y axis points up. Colours are those of the Rerun sink
+//! ([`crate::viz::plan_colour`]). Layers go under every path, a layer of
+//! thousands of edges (a PRM's roadmap) faded by its size, so paths stay
+//! visible; each path has a light halo over what it crosses.
 
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use crate::geometry::{Aabb, Config, Point, RobotShape, Shape};
-use crate::planners::layers::{Drawing, Layer, Svg};
+use crate::planners::layers::{Colour, Drawing, Layer, Rounded, Svg};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 use crate::viz::{
@@ -21,29 +25,48 @@ use crate::viz::{
 
 /// Pixels along the longer side of the drawn world.
 const PLOT_SIZE: f64 = 800.0;
-/// Pixels around the plot.
+/// Pixels around the picture.
 const PAD: f64 = 12.0;
 /// Height of the title band above the plot.
 const HEADER: f64 = 34.0;
-/// Height of one legend row below the plot.
+/// Width left of the plot: the y axis's tick labels and name.
+const AXIS_LEFT: f64 = 62.0;
+/// Height below the plot: the x axis's tick labels and name.
+const AXIS_BELOW: f64 = 46.0;
+/// The narrowest picture (room for the legend of a narrow world).
+const MIN_WIDTH: f64 = 460.0;
+/// Height of one legend row.
 const ROW: f64 = 20.0;
+/// Font sizes of the text, the tick labels and the title.
+const FONT: f64 = 13.0;
+const TICK_FONT: f64 = 11.0;
+const TITLE_FONT: f64 = 16.0;
+/// The font; `--png` has exactly this one ([`crate::report::png`]).
+const FONT_FAMILY: &str = "DejaVu Sans, Verdana, sans-serif";
 const BACKGROUND: &str = "#fcfcfa";
 const INK: &str = "#333333";
+/// Key swatches of layers drawn for several plans, each in its colour.
+const NEUTRAL: [u8; 3] = [100, 100, 100];
+/// A kind of layer of more things than this (edges, points), over all
+/// plans, is faded by its size.
+const LARGE_LAYER: usize = 1_000;
+/// At most about this many things of a large kind of layer are drawn
+/// (every k-th edge): a denser shade says no more, and costs megabytes.
+const MAX_DRAWN: usize = 4_000;
+/// About this many axis ticks along the longer side.
+const TICKS: f64 = 10.0;
 
 /// The SVG document as text. The same report gives the same text.
 pub fn to_svg(report: &RunReport) -> String {
     let scenario = &report.scenario;
-    let view = View::fit(scenario);
-    let mut runs: Vec<(&Plan, &PlanRun)> = report
-        .plans
-        .iter()
-        .filter_map(|run| Some((scenario.plans.get(run.plan)?, run)))
-        .collect();
-    runs.sort_by_key(|(_, run)| run.plan);
+    let runs = plan_runs(report);
+    let view = View::fit(scenario, &runs);
 
-    let width = (view.plot_width() + 2.0 * PAD).max(420.0);
-    let legend_top = HEADER + view.plot_height() + PAD;
-    let height = legend_top + ROW * (runs.len() + 1) as f64 + PAD;
+    let width = (AXIS_LEFT + view.plot_width() + 2.0 * PAD).max(MIN_WIDTH);
+    let legend_top = HEADER + view.plot_height() + AXIS_BELOW;
+    let layers = drawn_layers(&runs);
+    let legend = Legend::new(report, &runs, &layers, width);
+    let height = legend_top + legend.height() + PAD;
     let title = title(scenario);
 
     let mut svg = String::new();
@@ -51,7 +74,7 @@ pub fn to_svg(report: &RunReport) -> String {
     let _ = writeln!(
         svg,
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
-         viewBox=\"0 0 {w} {h}\" font-family=\"sans-serif\" font-size=\"13\">",
+         viewBox=\"0 0 {w} {h}\" font-family=\"{FONT_FAMILY}\" font-size=\"{FONT}\">",
         w = num(width),
         h = num(height),
     );
@@ -64,22 +87,54 @@ pub fn to_svg(report: &RunReport) -> String {
     );
     let _ = writeln!(
         svg,
-        "<text x=\"{PAD}\" y=\"{}\" font-size=\"16\" font-weight=\"bold\" fill=\"{INK}\">{}</text>",
+        "<text x=\"{PAD}\" y=\"{}\" font-size=\"{TITLE_FONT}\" font-weight=\"bold\" fill=\"{INK}\">{}</text>",
         num(HEADER - 12.0),
         escape(&title)
     );
+    draw_axes(&mut svg, &view);
+    // What lies beyond the frame (a rod's C-obstacles along the bounds) is
+    // cut off there, not drawn over the axes and the legend.
+    let _ = writeln!(
+        svg,
+        "<clipPath id=\"plot\"><rect {}/></clipPath>",
+        view.rect(&view.extent)
+    );
+    svg.push_str("<g clip-path=\"url(#plot)\">\n");
     draw_obstacles(&mut svg, &view, scenario);
+    for drawn in &layers {
+        draw_layer(&mut svg, &view, drawn);
+    }
+    svg.push_str("</g>\n");
     let b = view.rect(&scenario.world.bounds);
     let _ = writeln!(
         svg,
         "<rect id=\"bounds\" {b} fill=\"none\" stroke=\"{INK}\" stroke-width=\"1\"/>"
     );
+    // Every plan's motions and paths over every plan's layers, then the
+    // bodies and markers over every path.
+    for &(_, run) in &runs {
+        draw_motions(&mut svg, &view, run, &hex(plan_colour(run.plan)));
+    }
+    for &(_, run) in &runs {
+        draw_path(&mut svg, &view, run);
+    }
     for &(plan, run) in &runs {
         draw_plan(&mut svg, &view, scenario, plan, run);
     }
-    draw_legend(&mut svg, report, &runs, legend_top);
+    legend.draw(&mut svg, legend_top);
     svg.push_str("</svg>\n");
     svg
+}
+
+/// The runs with their plans, in the order the plans are declared.
+fn plan_runs(report: &RunReport) -> Vec<(&Plan, &PlanRun)> {
+    let mut runs: Vec<(&Plan, &PlanRun)> = report
+        .plans
+        .iter()
+        .filter_map(|run| Some((report.scenario.plans.get(run.plan)?, run)))
+        .collect();
+    runs.sort_by_key(|(_, run)| run.plan);
+    runs
 }
 
 /// The scenario's title, or its file name when it has none.
@@ -100,19 +155,46 @@ struct View {
 }
 
 impl View {
-    fn fit(scenario: &Scenario) -> View {
+    /// The bounds, the C-obstacles of disk robots along them, and every
+    /// body and path drawn, with a small margin: a long rod's reach makes
+    /// no empty border where nothing is drawn.
+    fn fit(scenario: &Scenario, runs: &[(&Plan, &PlanRun)]) -> View {
         let bounds = scenario.world.bounds;
-        let reach = scenario
-            .plans
+        let disk = runs
             .iter()
-            .filter_map(|p| scenario.robots.get(p.robot))
-            .map(|r| r.shape.radius())
+            .filter_map(|(p, _)| scenario.robots.get(p.robot))
+            .filter_map(|r| match r.shape {
+                RobotShape::Disk(r) => Some(r),
+                _ => None,
+            })
             .fold(0.0, f64::max);
+        let mut corners = vec![
+            Point::new(bounds.min.x - disk, bounds.min.y - disk),
+            Point::new(bounds.max.x + disk, bounds.max.y + disk),
+        ];
+        for &(plan, run) in runs {
+            let Some(robot) = scenario.robots.get(plan.robot) else {
+                continue;
+            };
+            let path = run.outcome.path.as_deref().unwrap_or_default();
+            corners.extend(path.iter().map(Config::xy));
+            let mut poses = vec![plan.params.start];
+            poses.extend(plan.params.goal);
+            poses.extend(path.first().into_iter().chain(path.last()).copied());
+            if robot.shape.rotates() {
+                poses.extend(poses_along(path, BODIES_ALONG));
+            }
+            for c in poses {
+                corners.extend(body_corners(&robot.shape, c));
+            }
+        }
+        corners.retain(|p| p.x.is_finite() && p.y.is_finite());
+        let drawn = Aabb::around(&corners);
         let size = bounds.width().max(bounds.height());
-        let margin = (0.03 * size + reach).max(f64::EPSILON);
+        let margin = (0.03 * size).max(f64::EPSILON);
         let extent = Aabb {
-            min: Point::new(bounds.min.x - margin, bounds.min.y - margin),
-            max: Point::new(bounds.max.x + margin, bounds.max.y + margin),
+            min: Point::new(drawn.min.x - margin, drawn.min.y - margin),
+            max: Point::new(drawn.max.x + margin, drawn.max.y + margin),
         };
         let scale = PLOT_SIZE / extent.width().max(extent.height());
         View { extent, scale }
@@ -127,7 +209,7 @@ impl View {
     }
 
     fn x(&self, x: f64) -> f64 {
-        PAD + (x - self.extent.min.x) * self.scale
+        AXIS_LEFT + (x - self.extent.min.x) * self.scale
     }
 
     fn y(&self, y: f64) -> f64 {
@@ -171,6 +253,161 @@ impl View {
             num(-b.width() * self.scale)
         )
     }
+
+    /// The exact boundary of a grown region: its straight edges and, in
+    /// pixels, its arcs. The picture shows the world as it is, so an arc
+    /// counter-clockwise in the world is counter-clockwise on the screen,
+    /// the negative-angle direction of SVG's y-down pixels: sweep flag 0.
+    /// `None` for a single corner, which is a circle.
+    fn rounded_path(&self, region: &Rounded) -> Option<String> {
+        let arcs = region.arcs();
+        let &(first, _) = arcs.first()?;
+        let r = num(region.radius * self.scale);
+        let mut d = format!("M{} {}", num(self.x(first.x)), num(self.y(first.y)));
+        for (k, &(start, end)) in arcs.iter().enumerate() {
+            if k > 0 {
+                let _ = write!(d, "L{} {}", num(self.x(start.x)), num(self.y(start.y)));
+            }
+            let _ = write!(
+                d,
+                "A{r} {r} 0 0 0 {} {}",
+                num(self.x(end.x)),
+                num(self.y(end.y))
+            );
+        }
+        d.push('z');
+        Some(d)
+    }
+}
+
+/// The step between axis ticks: 1, 2 or 5 × 10^k, the smallest that gives
+/// at most about `target` ticks over `span` and at least `min_gap` world
+/// units between ticks (room for their labels).
+fn tick_step(span: f64, target: f64, min_gap: f64) -> f64 {
+    let raw = (span / target).max(min_gap).max(f64::MIN_POSITIVE);
+    let magnitude = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * magnitude)
+        .find(|&s| s >= raw * (1.0 - 1e-9))
+        .unwrap_or(10.0 * magnitude)
+}
+
+/// The ticks of `step` within `[lo, hi]`, as values and labels with the
+/// decimals the step needs (`0.5` has one, `2` none).
+fn ticks(lo: f64, hi: f64, step: f64) -> Vec<(f64, String)> {
+    if !(step > 0.0 && lo.is_finite() && hi.is_finite()) {
+        return Vec::new();
+    }
+    let decimals = (-step.log10() - 1e-9).ceil().max(0.0) as usize;
+    let (first, last) = ((lo / step).ceil() as i64, (hi / step).floor() as i64);
+    (first..=last)
+        .map(|k| {
+            let v = k as f64 * step;
+            let label = format!("{v:.decimals$}");
+            let label = if label
+                .trim_start_matches('-')
+                .chars()
+                .all(|c| c == '0' || c == '.')
+            {
+                label.trim_start_matches('-').to_string()
+            } else {
+                label
+            };
+            (v, label)
+        })
+        .collect()
+}
+
+/// Light grid lines at the ticks, the plot's frame, and the ticks with
+/// their labels in world units below and left of it.
+fn draw_axes(svg: &mut String, view: &View) {
+    let e = view.extent;
+    let widest = [e.min.x, e.max.x, e.min.y, e.max.y]
+        .iter()
+        .map(|v| format!("{v:.2}").len())
+        .max()
+        .unwrap_or(4);
+    // A label needs its width and a little more between its neighbours.
+    let label_gap = (text_width(&"0".repeat(widest), TICK_FONT) + 12.0) / view.scale;
+    let step = tick_step(e.width().max(e.height()), TICKS, label_gap);
+    let xs = ticks(e.min.x, e.max.x, step);
+    let ys = ticks(e.min.y, e.max.y, step);
+    let (left, right) = (view.x(e.min.x), view.x(e.max.x));
+    let (top, bottom) = (view.y(e.max.y), view.y(e.min.y));
+
+    let mut grid = String::new();
+    for (v, _) in &xs {
+        let x = num(view.x(*v));
+        let _ = write!(grid, "M{x} {}V{}", num(top), num(bottom));
+    }
+    for (v, _) in &ys {
+        let y = num(view.y(*v));
+        let _ = write!(grid, "M{} {y}H{}", num(left), num(right));
+    }
+    let _ = writeln!(
+        svg,
+        "<path id=\"grid\" d=\"{grid}\" fill=\"none\" stroke=\"#000000\" stroke-opacity=\"0.07\" stroke-width=\"1\"/>"
+    );
+    let _ = writeln!(
+        svg,
+        "<rect id=\"frame\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#9a9a9a\" stroke-width=\"1\"/>",
+        num(left),
+        num(top),
+        num(right - left),
+        num(bottom - top)
+    );
+    let mut marks = String::new();
+    for (v, _) in &xs {
+        let _ = write!(marks, "M{} {}v5", num(view.x(*v)), num(bottom));
+    }
+    for (v, _) in &ys {
+        let _ = write!(marks, "M{} {}h-5", num(left), num(view.y(*v)));
+    }
+    let _ = writeln!(
+        svg,
+        "<path id=\"ticks\" d=\"{marks}\" stroke=\"{INK}\" stroke-width=\"1\"/>"
+    );
+    let _ = writeln!(
+        svg,
+        "<g id=\"x-axis\" font-size=\"{TICK_FONT}\" fill=\"{INK}\" text-anchor=\"middle\">"
+    );
+    for (v, label) in &xs {
+        let _ = writeln!(
+            svg,
+            "<text class=\"tick\" x=\"{}\" y=\"{}\">{label}</text>",
+            num(view.x(*v)),
+            num(bottom + 18.0)
+        );
+    }
+    let _ = writeln!(
+        svg,
+        "<text x=\"{}\" y=\"{}\" font-size=\"{FONT}\" font-style=\"italic\">x</text>",
+        num((left + right) / 2.0),
+        num(bottom + 36.0)
+    );
+    svg.push_str("</g>\n");
+    let _ = writeln!(
+        svg,
+        "<g id=\"y-axis\" font-size=\"{TICK_FONT}\" fill=\"{INK}\" text-anchor=\"end\">"
+    );
+    for (v, label) in &ys {
+        let _ = writeln!(
+            svg,
+            "<text class=\"tick\" x=\"{}\" y=\"{}\">{label}</text>",
+            num(left - 8.0),
+            num(view.y(*v) + 4.0)
+        );
+    }
+    let mid = (top + bottom) / 2.0;
+    let _ = writeln!(
+        svg,
+        "<text x=\"{PAD}\" y=\"{}\" font-size=\"{FONT}\" font-style=\"italic\" text-anchor=\"middle\" \
+         transform=\"rotate(-90 {PAD} {})\">y</text>",
+        num(mid),
+        num(mid)
+    );
+    svg.push_str("</g>\n");
 }
 
 fn draw_obstacles(svg: &mut String, view: &View, scenario: &Scenario) {
@@ -246,29 +483,256 @@ fn draw_obstacles(svg: &mut String, view: &View, scenario: &Scenario) {
     svg.push_str("</g>\n");
 }
 
-/// Grown obstacles, the path, the robot's body at start and goal, and the
-/// start and goal markers of one plan.
-fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, run: &PlanRun) {
-    let colour = hex(plan_colour(run.plan));
-    let _ = writeln!(svg, "<g id=\"plan-{}\">", escape(&plan.name));
-    for layer in &run.outcome.layers {
-        if let Some(style) = layer.style.svg {
-            draw_layer(svg, view, layer, style, run.plan);
+/// A layer as the picture draws it: the plan it belongs to, its legend key,
+/// and the stroke it gets (faded when its kind is large).
+struct Drawn<'a> {
+    layer: &'a Layer,
+    style: Svg,
+    plan: usize,
+    key: String,
+    /// The layer's kind, over all plans, draws more than [`LARGE_LAYER`]
+    /// things.
+    large: bool,
+    /// Every `every`-th edge or point is drawn.
+    every: usize,
+}
+
+/// The layers of every plan that the planners marked for the picture, in
+/// drawing order: large kinds first (under the rest), then by the
+/// planner's own order, then by plan.
+fn drawn_layers<'a>(runs: &[(&Plan, &'a PlanRun)]) -> Vec<Drawn<'a>> {
+    let mut sizes: BTreeMap<String, usize> = BTreeMap::new();
+    let mut out = Vec::new();
+    for &(_, run) in runs {
+        for layer in &run.outcome.layers {
+            let Some(style) = layer.style.svg else {
+                continue;
+            };
+            if layer.drawing.is_empty() || matches!(layer.drawing, Drawing::Text(_)) {
+                continue;
+            }
+            let key = layer_key(layer, style);
+            *sizes.entry(key.clone()).or_default() += layer.drawing.len();
+            out.push(Drawn {
+                layer,
+                style,
+                plan: run.plan,
+                key,
+                large: false,
+                every: 1,
+            });
         }
     }
-    draw_motions(svg, view, run, &colour);
+    for d in &mut out {
+        let n = sizes.get(&d.key).copied().unwrap_or(0);
+        let thinnable = matches!(d.layer.drawing, Drawing::Segments(_) | Drawing::Points(_));
+        if n > LARGE_LAYER && thinnable {
+            d.large = true;
+            d.every = n.div_ceil(MAX_DRAWN);
+            // The more edges drawn, the fainter each: the roadmap reads as
+            // a shade, not a hairball over the paths.
+            let drawn = n.div_ceil(d.every);
+            let fade = LARGE_LAYER as f32 / drawn as f32;
+            d.style.stroke = (d.style.stroke * fade).max(d.style.stroke.min(0.06));
+            d.style.fill = (d.style.fill * fade).max(d.style.fill.min(0.04));
+        }
+    }
+    out.sort_by(|a, b| {
+        b.large
+            .cmp(&a.large)
+            .then(a.layer.style.order.total_cmp(&b.layer.style.order))
+            .then(a.plan.cmp(&b.plan))
+    });
+    out
+}
 
-    let path = run.outcome.path.as_deref().filter(|p| !p.is_empty());
-    if let Some(path) = path {
-        let xy: Vec<Point> = path.iter().map(Config::xy).collect();
+/// What a layer means in the legend: its planner's words, or its entity
+/// without batch numbers (`tree/0007` is "tree", `raw_path` "raw path").
+fn layer_key(layer: &Layer, style: Svg) -> String {
+    if !style.key.is_empty() {
+        return style.key.to_string();
+    }
+    layer
+        .entity
+        .split('/')
+        .rfind(|part| !part.is_empty() && !part.chars().all(|c| c.is_ascii_digit()))
+        .unwrap_or(&layer.entity)
+        .replace('_', " ")
+}
+
+/// The width of a layer's lines, in pixels: its style's, thinner when
+/// the layer is large.
+fn line_width(drawn: &Drawn<'_>) -> f64 {
+    let width = f64::from(drawn.layer.style.width);
+    let width = if width > 0.0 { width } else { 1.0 };
+    if drawn.large { width.min(0.5) } else { width }
+}
+
+/// One layer the planner marked for the SVG ([`Layer::style`]).
+fn draw_layer(svg: &mut String, view: &View, drawn: &Drawn<'_>) {
+    let style = drawn.style;
+    let [r, g, b, _] = role_colour(drawn.layer.style.colour, drawn.plan);
+    let colour = hex([r, g, b]);
+    let width = line_width(drawn);
+    let mut attrs = String::new();
+    if style.fill > 0.0 {
+        let _ = write!(
+            attrs,
+            "fill=\"{colour}\" fill-opacity=\"{}\"",
+            num(f64::from(style.fill))
+        );
+    } else {
+        attrs.push_str("fill=\"none\"");
+    }
+    if style.stroke > 0.0 {
+        let _ = write!(
+            attrs,
+            " stroke=\"{colour}\" stroke-opacity=\"{}\" stroke-width=\"{}\"",
+            num(f64::from(style.stroke)),
+            num(width)
+        );
+        if style.dashed {
+            attrs.push_str(" stroke-dasharray=\"4 3\"");
+        }
+    }
+    let _ = writeln!(
+        svg,
+        "<g class=\"layer\" data-plan=\"{}\" data-key=\"{}\" {attrs}>",
+        drawn.plan,
+        escape(&drawn.key)
+    );
+    match &drawn.layer.drawing {
+        Drawing::Segments(segments) => {
+            // One path: a roadmap of ten thousand edges stays a small file.
+            let mut d = String::new();
+            for (a, b) in segments.iter().step_by(drawn.every) {
+                if [a.x, a.y, b.x, b.y].iter().all(|v| v.is_finite()) {
+                    let _ = write!(
+                        d,
+                        "M{} {}L{} {}",
+                        num(view.x(a.x)),
+                        num(view.y(a.y)),
+                        num(view.x(b.x)),
+                        num(view.y(b.y))
+                    );
+                }
+            }
+            let _ = writeln!(svg, "<path d=\"{d}\"/>");
+        }
+        Drawing::Polylines(lines) => {
+            for line in lines {
+                let _ = writeln!(svg, "<polyline points=\"{}\"/>", view.points(line));
+            }
+        }
+        Drawing::Polygons(outlines) => {
+            for outline in outlines {
+                let _ = writeln!(svg, "<polygon points=\"{}\"/>", view.points(outline));
+            }
+        }
+        Drawing::Rounded(regions) => {
+            for region in regions {
+                match (view.rounded_path(region), region.corners.first()) {
+                    (Some(d), _) => {
+                        let _ = writeln!(svg, "<path d=\"{d}\"/>");
+                    }
+                    (None, Some(c)) => {
+                        let _ = writeln!(
+                            svg,
+                            "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
+                            num(view.x(c.x)),
+                            num(view.y(c.y)),
+                            num(region.radius * view.scale)
+                        );
+                    }
+                    (None, None) => {}
+                }
+            }
+        }
+        Drawing::Boxes(boxes) => {
+            let d: String = boxes.iter().map(|b| view.box_path(b)).collect();
+            let _ = writeln!(svg, "<path d=\"{d}\"/>");
+        }
+        Drawing::Points(points) => {
+            let radius = if drawn.large { width.min(1.0) } else { width };
+            for p in points.iter().step_by(drawn.every) {
+                let _ = writeln!(
+                    svg,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
+                    num(view.x(p.x)),
+                    num(view.y(p.y)),
+                    num(radius)
+                );
+            }
+        }
+        Drawing::Arrows(arrows) => {
+            let mut d = String::new();
+            for (p, v) in arrows {
+                let _ = write!(
+                    d,
+                    "M{} {}L{} {}",
+                    num(view.x(p.x)),
+                    num(view.y(p.y)),
+                    num(view.x(p.x + v.x)),
+                    num(view.y(p.y + v.y))
+                );
+            }
+            let _ = writeln!(svg, "<path d=\"{d}\"/>");
+        }
+        // Text and 3D lines are the viewer's.
+        Drawing::Text(_) | Drawing::Polylines3D(_) => {}
+    }
+    svg.push_str("</g>\n");
+}
+
+/// Motions that are not the path: what a run executed before it stopped
+/// short of the goal, and a driven robot's trajectory.
+fn draw_motions(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
+    let trajectory = &run.outcome.trajectory;
+    if trajectory.len() > 1 {
+        let xy: Vec<Point> = trajectory.iter().map(Config::xy).collect();
         let _ = writeln!(
             svg,
-            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"2.5\" \
-             stroke-linejoin=\"round\" stroke-linecap=\"round\"/>",
+            "<polyline class=\"executed\" points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\" stroke-opacity=\"0.6\" stroke-dasharray=\"6 3\"/>",
             view.points(&xy)
         );
     }
+    if let Some(drive) = run.drive.as_ref().filter(|d| !d.samples.is_empty()) {
+        let xy: Vec<Point> = drive.samples.iter().map(|(_, c)| c.xy()).collect();
+        let _ = writeln!(
+            svg,
+            "<polyline class=\"driven\" points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\" stroke-dasharray=\"2 2\"/>",
+            view.points(&xy)
+        );
+    }
+}
 
+/// A plan's path in its colour, over a light halo that sets it off from
+/// the layers under it.
+fn draw_path(svg: &mut String, view: &View, run: &PlanRun) {
+    let Some(path) = run.outcome.path.as_deref().filter(|p| !p.is_empty()) else {
+        return;
+    };
+    let xy: Vec<Point> = path.iter().map(Config::xy).collect();
+    let points = view.points(&xy);
+    let _ = writeln!(
+        svg,
+        "<polyline class=\"halo\" points=\"{points}\" fill=\"none\" stroke=\"#ffffff\" stroke-opacity=\"0.85\" \
+         stroke-width=\"6\" stroke-linejoin=\"round\" stroke-linecap=\"round\"/>"
+    );
+    let _ = writeln!(
+        svg,
+        "<polyline class=\"path\" points=\"{points}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2.5\" \
+         stroke-linejoin=\"round\" stroke-linecap=\"round\"/>",
+        hex(plan_colour(run.plan))
+    );
+}
+
+/// The robot's body along a rotating robot's path and at start and goal,
+/// and the start and goal markers of one plan.
+fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, run: &PlanRun) {
+    let colour = hex(plan_colour(run.plan));
+    let _ = writeln!(svg, "<g id=\"plan-{}\">", escape(&plan.name));
+    let path = run.outcome.path.as_deref().filter(|p| !p.is_empty());
     // A rotating robot's body at a few poses along its path, lightly: how
     // it turned on the way.
     if let (Some(path), Some(robot)) = (path, scenario.robots.get(plan.robot))
@@ -289,127 +753,32 @@ fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, ru
             draw_body(svg, view, &robot.shape, c, &colour);
         }
     }
+    start_marker(svg, view.x(start.x), view.y(start.y), &colour);
+    if let Some(goal) = goal {
+        goal_marker(svg, view.x(goal.x), view.y(goal.y), &colour);
+    }
+    svg.push_str("</g>\n");
+}
+
+/// The start: a dot.
+fn start_marker(svg: &mut String, x: f64, y: f64, colour: &str) {
     let _ = writeln!(
         svg,
         "<circle cx=\"{}\" cy=\"{}\" r=\"4.5\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"1.5\"/>",
-        num(view.x(start.x)),
-        num(view.y(start.y))
+        num(x),
+        num(y)
     );
-    if let Some(goal) = goal {
-        let (x, y) = (view.x(goal.x), view.y(goal.y));
-        let diamond = [(0.0, -6.0), (6.0, 0.0), (0.0, 6.0), (-6.0, 0.0)]
-            .map(|(dx, dy)| format!("{},{}", num(x + dx), num(y + dy)))
-            .join(" ");
-        let _ = writeln!(
-            svg,
-            "<polygon points=\"{diamond}\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"1.5\"/>"
-        );
-    }
-    svg.push_str("</g>\n");
 }
 
-/// One layer the planner marked for the SVG ([`Layer::style`]).
-fn draw_layer(svg: &mut String, view: &View, layer: &Layer, style: Svg, plan: usize) {
-    let [r, g, b, _] = role_colour(layer.style.colour, plan);
-    let colour = hex([r, g, b]);
-    let width = if layer.style.width > 0.0 {
-        layer.style.width
-    } else {
-        1.0
-    };
-    let mut attrs = String::new();
-    if style.fill > 0.0 {
-        let _ = write!(attrs, "fill=\"{colour}\" fill-opacity=\"{}\"", style.fill);
-    } else {
-        attrs.push_str("fill=\"none\"");
-    }
-    if style.stroke > 0.0 {
-        let _ = write!(
-            attrs,
-            " stroke=\"{colour}\" stroke-opacity=\"{}\" stroke-width=\"{width}\"",
-            style.stroke
-        );
-        if style.dashed {
-            attrs.push_str(" stroke-dasharray=\"4 3\"");
-        }
-    }
-    let _ = writeln!(svg, "<g {attrs}>");
-    match &layer.drawing {
-        Drawing::Segments(segments) => {
-            for (a, b) in segments {
-                let _ = writeln!(
-                    svg,
-                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
-                    num(view.x(a.x)),
-                    num(view.y(a.y)),
-                    num(view.x(b.x)),
-                    num(view.y(b.y))
-                );
-            }
-        }
-        Drawing::Polylines(lines) => {
-            for line in lines {
-                let _ = writeln!(svg, "<polyline points=\"{}\"/>", view.points(line));
-            }
-        }
-        Drawing::Polygons(outlines) => {
-            for outline in outlines {
-                let _ = writeln!(svg, "<polygon points=\"{}\"/>", view.points(outline));
-            }
-        }
-        Drawing::Boxes(boxes) if !boxes.is_empty() => {
-            let d: String = boxes.iter().map(|b| view.box_path(b)).collect();
-            let _ = writeln!(svg, "<path d=\"{d}\"/>");
-        }
-        Drawing::Points(points) => {
-            for p in points {
-                let _ = writeln!(
-                    svg,
-                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
-                    num(view.x(p.x)),
-                    num(view.y(p.y)),
-                    num(f64::from(width))
-                );
-            }
-        }
-        Drawing::Arrows(arrows) => {
-            for (p, v) in arrows {
-                let _ = writeln!(
-                    svg,
-                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
-                    num(view.x(p.x)),
-                    num(view.y(p.y)),
-                    num(view.x(p.x + v.x)),
-                    num(view.y(p.y + v.y))
-                );
-            }
-        }
-        // Text, boxes without boxes, and 3D lines are the viewer's.
-        Drawing::Boxes(_) | Drawing::Text(_) | Drawing::Polylines3D(_) => {}
-    }
-    svg.push_str("</g>\n");
-}
-
-/// Motions that are not the path: what a run executed before it stopped
-/// short of the goal, and a driven robot's trajectory.
-fn draw_motions(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
-    let trajectory = &run.outcome.trajectory;
-    if trajectory.len() > 1 {
-        let xy: Vec<Point> = trajectory.iter().map(Config::xy).collect();
-        let _ = writeln!(
-            svg,
-            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\" stroke-opacity=\"0.6\" stroke-dasharray=\"6 3\"/>",
-            view.points(&xy)
-        );
-    }
-    if let Some(drive) = run.drive.as_ref().filter(|d| !d.samples.is_empty()) {
-        let xy: Vec<Point> = drive.samples.iter().map(|(_, c)| c.xy()).collect();
-        let _ = writeln!(
-            svg,
-            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\" stroke-dasharray=\"2 2\"/>",
-            view.points(&xy)
-        );
-    }
+/// The goal: a diamond.
+fn goal_marker(svg: &mut String, x: f64, y: f64, colour: &str) {
+    let diamond = [(0.0, -6.0), (6.0, 0.0), (0.0, 6.0), (-6.0, 0.0)]
+        .map(|(dx, dy)| format!("{},{}", num(x + dx), num(y + dy)))
+        .join(" ");
+    let _ = writeln!(
+        svg,
+        "<polygon points=\"{diamond}\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"1.5\"/>"
+    );
 }
 
 /// Bodies drawn along a rotating robot's path, between start and goal.
@@ -448,6 +817,15 @@ fn poses_along(path: &[Config], n: usize) -> Vec<Config> {
         ));
     }
     out
+}
+
+/// The corners of the box around the robot's body at `c`.
+fn body_corners(shape: &RobotShape, c: Config) -> Vec<Point> {
+    match shape {
+        RobotShape::Point => vec![c.xy()],
+        RobotShape::Disk(r) => vec![Point::new(c.x - r, c.y - r), Point::new(c.x + r, c.y + r)],
+        RobotShape::Polygon(_) => shape.placed_vertices(c),
+    }
 }
 
 /// The robot's body at `c`; a point robot has none (its marker shows it).
@@ -489,52 +867,300 @@ fn draw_body_as(
     }
 }
 
-/// One row per plan (colour, name, kind, found or not, length), then the
-/// checks' summary, in red when a check failed.
-fn draw_legend(svg: &mut String, report: &RunReport, runs: &[(&Plan, &PlanRun)], top: f64) {
-    svg.push_str("<g id=\"legend\">\n");
-    for (row, &(plan, run)) in runs.iter().enumerate() {
-        let y = top + ROW * row as f64 + ROW / 2.0;
-        let colour = hex(plan_colour(run.plan));
-        let status = match &run.outcome.path {
-            Some(_) => match run.metrics.get("length") {
-                Some(length) => format!("found, length {}", short(length.as_f64())),
-                None => "found".to_string(),
-            },
-            None if run.outcome.gave_up => "not found (gave up)".to_string(),
-            None => "not found".to_string(),
+/// How a legend entry shows what it names.
+enum Swatch {
+    /// A plan's path: a thick line in its colour.
+    Path([u8; 3]),
+    /// A layer, drawn small in its own style.
+    Layer {
+        colour: [u8; 3],
+        style: Svg,
+        /// Points: a dot of this radius.
+        dot: Option<f64>,
+    },
+    Obstacle,
+    Body,
+    Start,
+    Goal,
+    /// A dashed line in ink: a trajectory.
+    Dashed(&'static str),
+}
+
+/// The legend under the plot: one row per plan (its colour, name, kind,
+/// found or not, length), then a key to everything else drawn, flowed
+/// into rows, then the checks' summary, in red when a check failed.
+struct Legend {
+    plans: Vec<(Swatch, String)>,
+    /// Each key entry with its place: row (after the plans) and x.
+    keys: Vec<(Swatch, String, usize, f64)>,
+    key_rows: usize,
+    checks: (String, bool),
+}
+
+impl Legend {
+    fn new(
+        report: &RunReport,
+        runs: &[(&Plan, &PlanRun)],
+        layers: &[Drawn<'_>],
+        width: f64,
+    ) -> Self {
+        let scenario = &report.scenario;
+        let plans = runs
+            .iter()
+            .map(|&(plan, run)| {
+                let status = match &run.outcome.path {
+                    Some(_) => match run.metrics.get("length") {
+                        Some(length) => format!("found, length {}", short(length.as_f64())),
+                        None => "found".to_string(),
+                    },
+                    None if run.outcome.gave_up => "not found (gave up)".to_string(),
+                    None => "not found".to_string(),
+                };
+                (
+                    Swatch::Path(plan_colour(run.plan)),
+                    format!("{} ({}): {status}", plan.name, plan.kind()),
+                )
+            })
+            .collect();
+
+        let mut entries: Vec<(Swatch, String)> = Vec::new();
+        if !scenario.world.obstacles.is_empty() {
+            entries.push((Swatch::Obstacle, "obstacles".into()));
+        }
+        // One entry per meaning, in the plan's colour when one plan drew it.
+        let mut keys: Vec<(&str, &Drawn<'_>, bool)> = Vec::new();
+        for d in layers {
+            match keys.iter_mut().find(|(k, _, _)| *k == d.key) {
+                Some((_, first, shared)) => *shared |= first.plan != d.plan,
+                None => keys.push((&d.key, d, false)),
+            }
+        }
+        for (key, d, shared) in keys {
+            let role = d.layer.style.colour;
+            let colour = if shared && matches!(role, Colour::Plan | Colour::Faint) {
+                NEUTRAL
+            } else {
+                let [r, g, b, _] = role_colour(role, d.plan);
+                [r, g, b]
+            };
+            let dot = matches!(d.layer.drawing, Drawing::Points(_))
+                .then(|| f64::from(d.layer.style.width).clamp(2.0, 5.0));
+            // The legend shows the layer's look, not its fading.
+            let style = d.layer.style.svg.unwrap_or(d.style);
+            let text = if d.large {
+                let n: usize = layers
+                    .iter()
+                    .filter(|l| l.key == key)
+                    .map(|l| l.layer.drawing.len())
+                    .sum();
+                let things = match d.layer.drawing {
+                    Drawing::Points(_) => "points",
+                    _ => "edges",
+                };
+                if d.every > 1 {
+                    format!(
+                        "{key} ({} {things}, 1 in {} drawn, faint)",
+                        thousands(n),
+                        d.every
+                    )
+                } else {
+                    format!("{key} ({} {things}, faint)", thousands(n))
+                }
+            } else {
+                key.to_string()
+            };
+            entries.push((Swatch::Layer { colour, style, dot }, text));
+        }
+        if runs.iter().any(|(_, r)| r.outcome.trajectory.len() > 1) {
+            entries.push((Swatch::Dashed("6 3"), "executed before stopping".into()));
+        }
+        if runs.iter().any(|(_, r)| r.drive.is_some()) {
+            entries.push((Swatch::Dashed("2 2"), "driven trajectory".into()));
+        }
+        if runs.iter().any(|(plan, _)| {
+            scenario
+                .robots
+                .get(plan.robot)
+                .is_some_and(|r| !matches!(r.shape, RobotShape::Point))
+        }) {
+            entries.push((Swatch::Body, "robot".into()));
+        }
+        entries.push((Swatch::Start, "start".into()));
+        entries.push((Swatch::Goal, "goal".into()));
+
+        let mut placed = Vec::with_capacity(entries.len());
+        let (mut row, mut x) = (0, PAD);
+        for (swatch, text) in entries {
+            let w = SWATCH + 6.0 + text_width(&text, FONT) + 18.0;
+            if x > PAD && x + w > width - PAD {
+                row += 1;
+                x = PAD;
+            }
+            placed.push((swatch, text, row, x));
+            x += w;
+        }
+        let key_rows = if placed.is_empty() { 0 } else { row + 1 };
+        Legend {
+            plans,
+            keys: placed,
+            key_rows,
+            checks: (
+                format!(
+                    "checks: {} passed, {} failed",
+                    report.passed(),
+                    report.failed()
+                ),
+                report.failed() > 0,
+            ),
+        }
+    }
+
+    fn height(&self) -> f64 {
+        ROW * (self.plans.len() + self.key_rows + 1) as f64
+    }
+
+    fn draw(&self, svg: &mut String, top: f64) {
+        let _ = writeln!(svg, "<g id=\"legend\" fill=\"{INK}\">");
+        let middle = |row: usize| top + ROW * row as f64 + ROW / 2.0;
+        for (row, (swatch, text)) in self.plans.iter().enumerate() {
+            let y = middle(row);
+            draw_swatch(svg, swatch, PAD, y);
+            let _ = writeln!(
+                svg,
+                "<text class=\"plan\" x=\"{}\" y=\"{}\">{}</text>",
+                num(PAD + SWATCH + 6.0),
+                num(y + 4.5),
+                escape(text)
+            );
+        }
+        for (swatch, text, row, x) in &self.keys {
+            let y = middle(self.plans.len() + row);
+            draw_swatch(svg, swatch, *x, y);
+            let _ = writeln!(
+                svg,
+                "<text class=\"key\" x=\"{}\" y=\"{}\">{}</text>",
+                num(x + SWATCH + 6.0),
+                num(y + 4.5),
+                escape(text)
+            );
+        }
+        let (text, failed) = &self.checks;
+        let fill = if *failed {
+            hex(FAIL_RED)
+        } else {
+            INK.to_string()
         };
         let _ = writeln!(
             svg,
-            "<line x1=\"{PAD}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"{colour}\" stroke-width=\"4\"/>",
-            num(PAD + 24.0),
-            y = num(y)
+            "<text class=\"checks\" x=\"{PAD}\" y=\"{}\" fill=\"{fill}\">{}</text>",
+            num(middle(self.plans.len() + self.key_rows) + 4.5),
+            escape(text)
         );
+        svg.push_str("</g>\n");
+    }
+}
+
+/// Width of a legend swatch.
+const SWATCH: f64 = 26.0;
+
+/// A swatch [`SWATCH`] wide from `x`, centred on `y`.
+fn draw_swatch(svg: &mut String, swatch: &Swatch, x: f64, y: f64) {
+    let (x0, x1, mid) = (num(x), num(x + SWATCH), x + SWATCH / 2.0);
+    let area = |svg: &mut String, attrs: &str| {
         let _ = writeln!(
             svg,
-            "<text x=\"{}\" y=\"{}\" fill=\"{INK}\">{} ({}): {}</text>",
-            num(PAD + 32.0),
-            num(y + 4.5),
-            escape(&plan.name),
-            escape(plan.kind()),
-            escape(&status)
+            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"12\" {attrs}/>",
+            num(x + 2.0),
+            num(y - 6.0),
+            num(SWATCH - 4.0)
         );
-    }
-    let y = top + ROW * runs.len() as f64 + ROW / 2.0 + 4.5;
-    let fill = if report.failed() > 0 {
-        hex(FAIL_RED)
-    } else {
-        INK.to_string()
     };
-    let _ = writeln!(
-        svg,
-        "<text x=\"{PAD}\" y=\"{}\" fill=\"{fill}\">checks: {} passed, {} failed \
-         \u{2014} \u{25CF} start, \u{25C6} goal</text>",
-        num(y),
-        report.passed(),
-        report.failed()
-    );
-    svg.push_str("</g>\n");
+    match swatch {
+        Swatch::Path(colour) => {
+            let _ = writeln!(
+                svg,
+                "<line x1=\"{x0}\" y1=\"{y}\" x2=\"{x1}\" y2=\"{y}\" stroke=\"{}\" stroke-width=\"4\" stroke-linecap=\"round\"/>",
+                hex(*colour),
+                y = num(y)
+            );
+        }
+        Swatch::Layer { colour, style, dot } => {
+            let c = hex(*colour);
+            // At least visible: a 7 % fill is a shade over a map, nothing
+            // in a swatch.
+            let fill = if style.fill > 0.0 {
+                format!(
+                    "fill=\"{c}\" fill-opacity=\"{}\"",
+                    num(f64::from(style.fill.max(0.2)))
+                )
+            } else {
+                "fill=\"none\"".to_string()
+            };
+            let mut stroke = if style.stroke > 0.0 {
+                format!(
+                    "stroke=\"{c}\" stroke-opacity=\"{}\" stroke-width=\"1.5\"",
+                    num(f64::from(style.stroke.max(0.5)))
+                )
+            } else {
+                String::new()
+            };
+            if style.dashed {
+                stroke.push_str(" stroke-dasharray=\"4 3\"");
+            }
+            match dot {
+                Some(r) => {
+                    let _ = writeln!(
+                        svg,
+                        "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" {fill} {stroke}/>",
+                        num(mid),
+                        num(y),
+                        num(*r)
+                    );
+                }
+                None if style.fill > 0.0 => area(svg, &format!("{fill} {stroke}")),
+                None => {
+                    let _ = writeln!(
+                        svg,
+                        "<line x1=\"{x0}\" y1=\"{y}\" x2=\"{x1}\" y2=\"{y}\" {stroke}/>",
+                        y = num(y)
+                    );
+                }
+            }
+        }
+        Swatch::Obstacle => area(
+            svg,
+            &format!(
+                "fill=\"{}\" stroke=\"{}\" stroke-width=\"1\"",
+                hex(OBSTACLE_GREY),
+                hex(OBSTACLE_GREY.map(|c| c / 2))
+            ),
+        ),
+        Swatch::Body => {
+            let _ = writeln!(
+                svg,
+                "<circle cx=\"{}\" cy=\"{}\" r=\"6\" fill=\"{n}\" fill-opacity=\"0.15\" stroke=\"{n}\" stroke-width=\"1.5\"/>",
+                num(mid),
+                num(y),
+                n = hex(NEUTRAL)
+            );
+        }
+        Swatch::Start => start_marker(svg, mid, y, &hex(NEUTRAL)),
+        Swatch::Goal => goal_marker(svg, mid, y, &hex(NEUTRAL)),
+        Swatch::Dashed(dashes) => {
+            let _ = writeln!(
+                svg,
+                "<line x1=\"{x0}\" y1=\"{y}\" x2=\"{x1}\" y2=\"{y}\" stroke=\"{}\" stroke-width=\"1.5\" stroke-dasharray=\"{dashes}\"/>",
+                hex(NEUTRAL),
+                y = num(y)
+            );
+        }
+    }
+}
+
+/// About the width of `text` in the picture's font at `size` pixels
+/// (DejaVu Sans averages a little over half an em; wider is safer).
+fn text_width(text: &str, size: f64) -> f64 {
+    text.chars().count() as f64 * size * 0.58
 }
 
 /// A pixel coordinate: two decimals, no trailing zeros, no `-0`.
@@ -546,6 +1172,19 @@ fn num(x: f64) -> String {
     } else {
         s.to_string()
     }
+}
+
+/// A count with thousands separated: `12,345`.
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// A metric for the legend: at most three decimals.
@@ -785,7 +1424,12 @@ mod tests {
     #[test]
     fn one_polyline_per_found_path_in_its_plans_colour() {
         let svg = to_svg(&report(Some("demo")));
-        let polylines: Vec<&str> = svg.lines().filter(|l| l.starts_with("<polyline")).collect();
+        // Each over its halo, a white polyline.
+        assert_eq!(svg.matches("<polyline class=\"halo\"").count(), 2);
+        let polylines: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.starts_with("<polyline class=\"path\""))
+            .collect();
         assert_eq!(polylines.len(), 2);
         for (line, plan) in polylines.iter().zip([0, 2]) {
             assert!(
@@ -824,7 +1468,8 @@ mod tests {
 
     #[test]
     fn y_axis_points_up() {
-        let view = View::fit(&report(None).scenario);
+        let r = report(None);
+        let view = View::fit(&r.scenario, &plan_runs(&r));
         assert!(view.y(10.0) < view.y(0.0));
         assert!(view.x(20.0) > view.x(0.0));
     }
@@ -832,6 +1477,204 @@ mod tests {
     #[test]
     fn output_is_deterministic() {
         assert_eq!(to_svg(&report(Some("t"))), to_svg(&report(Some("t"))));
+    }
+
+    #[test]
+    fn tick_steps_are_one_two_or_five_times_a_power_of_ten() {
+        assert_eq!(tick_step(23.2, 10.0, 0.0), 5.0);
+        assert_eq!(tick_step(10.6, 10.0, 0.0), 2.0);
+        assert_eq!(tick_step(10.0, 10.0, 0.0), 1.0);
+        assert!((tick_step(0.9, 10.0, 0.0) - 0.1).abs() < 1e-12);
+        assert_eq!(tick_step(512.0, 10.0, 0.0), 100.0);
+        // Room for the labels first: 15 units apart at least.
+        assert_eq!(tick_step(100.0, 10.0, 15.0), 20.0);
+    }
+
+    #[test]
+    fn ticks_are_multiples_of_the_step_with_its_decimals() {
+        let labels = |lo, hi, step| -> Vec<String> {
+            ticks(lo, hi, step).into_iter().map(|(_, l)| l).collect()
+        };
+        assert_eq!(labels(-1.6, 21.6, 5.0), ["0", "5", "10", "15", "20"]);
+        assert_eq!(labels(-0.3, 1.3, 0.5), ["0.0", "0.5", "1.0"]);
+        assert_eq!(labels(-1.0, 0.0, 0.5), ["-1.0", "-0.5", "0.0"]);
+        assert_eq!(labels(-0.02, 0.05, 0.02), ["-0.02", "0.00", "0.02", "0.04"]);
+        assert!(ticks(0.0, 1.0, 0.0).is_empty());
+    }
+
+    #[test]
+    fn the_plot_has_axes_in_world_units() {
+        let svg = to_svg(&report(None));
+        let r = report(None);
+        let view = View::fit(&r.scenario, &plan_runs(&r));
+        // World 20 × 10 with margins: ticks every 5 along x.
+        let x_axis = &svg[svg.find("<g id=\"x-axis\"").unwrap_or(0)..];
+        for v in [0.0, 5.0, 10.0, 15.0, 20.0] {
+            let tick = format!(
+                "<text class=\"tick\" x=\"{}\" y=\"{}\">{v}</text>",
+                num(view.x(v)),
+                num(view.y(view.extent.min.y) + 18.0)
+            );
+            assert!(x_axis.contains(&tick), "no {tick}");
+        }
+        assert!(svg.contains("id=\"frame\"") && svg.contains("id=\"grid\""));
+    }
+
+    #[test]
+    fn c_obstacles_of_a_disk_robot_are_drawn_exactly() {
+        let mut r = report(None);
+        for p in &mut r.plans {
+            p.outcome.layers.clear();
+        }
+        r.plans[0].outcome.layers = layers::grown_by_disk(vec![
+            Rounded::new(&[Point::new(12.0, 7.0)], 1.5),
+            Rounded::new(
+                &[
+                    Point::new(8.0, 1.0),
+                    Point::new(9.0, 1.0),
+                    Point::new(9.0, 3.0),
+                    Point::new(8.0, 3.0),
+                ],
+                0.5,
+            ),
+        ])
+        .into_iter()
+        .collect();
+        let svg = to_svg(&r);
+        let view = View::fit(&r.scenario, &plan_runs(&r));
+        let layer = svg
+            .split("<g class=\"layer\"")
+            .nth(1)
+            .and_then(|l| l.split("</g>").next())
+            .unwrap_or_default();
+        let circle = format!(
+            "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
+            num(view.x(12.0)),
+            num(view.y(7.0)),
+            num(1.5 * view.scale)
+        );
+        assert!(layer.contains(&circle), "no {circle} in {layer}");
+        // The box: four straight edges and four quarter arcs, from (7.5, 1)
+        // beside the left edge's lower end around the corner.
+        let r = num(0.5 * view.scale);
+        let arc = format!("A{r} {r} 0 0 0 ");
+        assert_eq!(layer.matches(&arc).count(), 4, "{layer}");
+        assert!(layer.contains(&format!(
+            "<path d=\"M{} {}{arc}{} {}L",
+            num(view.x(7.5)),
+            num(view.y(1.0)),
+            num(view.x(8.0)),
+            num(view.y(0.5))
+        )));
+    }
+
+    /// Rasterised, a grown box bulges out at its corners: the arcs turn
+    /// the right way round (a wrong sweep flag draws them hollow).
+    #[test]
+    fn grown_corners_are_round_outwards_in_the_png() {
+        let mut r = report(None);
+        for p in &mut r.plans {
+            p.outcome.layers.clear();
+        }
+        let region = Rounded::new(
+            &[
+                Point::new(8.0, 1.0),
+                Point::new(9.0, 1.0),
+                Point::new(9.0, 3.0),
+                Point::new(8.0, 3.0),
+            ],
+            0.5,
+        );
+        r.plans[0].outcome.layers.push(Layer::new(
+            "grown",
+            Drawing::Rounded(vec![region]),
+            crate::planners::layers::Style::new(Colour::Plan, 0.0, 15.0).svg(Svg::fill(1.0)),
+        ));
+        let svg = to_svg(&r);
+        let view = View::fit(&r.scenario, &plan_runs(&r));
+        let png = crate::report::png::to_png(&svg).unwrap_or_default();
+        let image = resvg::tiny_skia::Pixmap::decode_png(&png).expect("a PNG");
+        let s = f64::from(crate::report::png::SCALE);
+        let colour = plan_colour(r.plans[0].plan);
+        let at = |x: f64, y: f64| {
+            let p = image
+                .pixel((view.x(x) * s) as u32, (view.y(y) * s) as u32)
+                .expect("inside")
+                .demultiply();
+            [p.red(), p.green(), p.blue()]
+        };
+        // Out from each corner along its diagonal, 0.4 of the radius.
+        let d = 0.4 * 0.5 / std::f64::consts::SQRT_2;
+        for (x, y) in [
+            (8.0 - d, 1.0 - d),
+            (9.0 + d, 1.0 - d),
+            (9.0 + d, 3.0 + d),
+            (8.0 - d, 3.0 + d),
+        ] {
+            let got = at(x, y);
+            let near = got.iter().zip(colour).all(|(a, b)| a.abs_diff(b) <= 24);
+            assert!(near, "({x}, {y}) is {got:?}, not the region's {colour:?}");
+        }
+        // Beyond the arc, on the same diagonal: not the region.
+        let far = 0.6 * 0.5 / std::f64::consts::SQRT_2 + 0.5 / std::f64::consts::SQRT_2;
+        assert_ne!(at(9.0 + far, 3.0 + far), colour);
+    }
+
+    #[test]
+    fn a_large_layer_is_faded_thin_and_under_the_paths() {
+        let mut r = report(None);
+        let edges: Vec<(Point, Point)> = (0..3000)
+            .map(|i| {
+                let x = f64::from(i % 20);
+                (Point::new(x, 1.0), Point::new(x + 0.5, 9.0))
+            })
+            .collect();
+        r.plans[1]
+            .outcome
+            .layers
+            .extend(layers::graph("roadmap", edges));
+        let svg = to_svg(&r);
+        let line = svg
+            .lines()
+            .find(|l| l.contains("data-key=\"roadmap\""))
+            .unwrap_or_default();
+        // 0.35 × 1000 / 3000.
+        assert!(line.contains("stroke-opacity=\"0.12\""), "{line}");
+        assert!(line.contains("stroke-width=\"0.5\""), "{line}");
+        let (roadmap, grown) = (
+            svg.find("data-key=\"roadmap\"").unwrap_or(usize::MAX),
+            svg.find("data-key=\"C-obstacles").unwrap_or(0),
+        );
+        assert!(roadmap < grown, "the large layer is not underneath");
+        let first_path = svg.find("<polyline class=\"path\"").unwrap_or(0);
+        assert!(svg.rfind("<g class=\"layer\"").unwrap_or(usize::MAX) < first_path);
+        assert!(svg.contains("roadmap (3,000 edges, faint)"));
+        // One path element for all the edges.
+        let after = &svg[roadmap..];
+        let group = &after[..after.find("</g>").unwrap_or(after.len())];
+        assert_eq!(group.matches("<path").count(), 1);
+    }
+
+    #[test]
+    fn the_legend_keys_each_kind_of_layer_once() {
+        let svg = to_svg(&report(None));
+        let keys: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.starts_with("<text class=\"key\""))
+            .filter_map(|l| l.split('>').nth(1)?.split('<').next())
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                "obstacles",
+                "C-obstacles (obstacles grown by the robot)",
+                "robot",
+                "start",
+                "goal"
+            ]
+        );
+        assert_eq!(thousands(1234567), "1,234,567");
+        assert_eq!(thousands(999), "999");
     }
 
     #[test]

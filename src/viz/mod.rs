@@ -106,6 +106,7 @@ pub(crate) const FAIL_RED: [u8; 3] = [211, 47, 47];
 
 /// Vertices of the polygon that stands for a circle (disk obstacles and
 /// disk robots where the sink has no circle primitive).
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))] // the Rerun sink's
 pub(crate) const CIRCLE_VERTICES: usize = 64;
 
 /// Distinct colours on a light background, without grey (obstacles) and
@@ -131,6 +132,7 @@ pub fn plan_colour(plan: usize) -> [u8; 3] {
 
 /// `n` vertices on the circle, counter-clockwise from angle 0 (open: the
 /// first vertex is not repeated).
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))] // the Rerun sink's
 pub(crate) fn circle_polygon(center: Point, radius: f64, n: usize) -> Vec<Point> {
     (0..n)
         .map(|k| {
@@ -141,6 +143,7 @@ pub(crate) fn circle_polygon(center: Point, radius: f64, n: usize) -> Vec<Point>
 }
 
 /// `vertices` as a closed line strip (the first vertex repeated at the end).
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))] // the Rerun sink's
 pub(crate) fn closed(mut vertices: Vec<Point>) -> Vec<Point> {
     if let Some(&first) = vertices.first() {
         vertices.push(first);
@@ -151,6 +154,7 @@ pub(crate) fn closed(mut vertices: Vec<Point>) -> Vec<Point> {
 /// The outline of an obstacle as line strips: closed for polygons,
 /// rectangles and disks (as [`CIRCLE_VERTICES`]-gons), a two-point open
 /// strip for a segment, none for a grid (see [`blocked_boxes`]).
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))] // the Rerun sink's
 pub(crate) fn obstacle_outline(shape: &Shape) -> Vec<Vec<Point>> {
     match shape {
         Shape::Polygon { outline, .. } => vec![closed(outline.clone())],
@@ -166,6 +170,7 @@ pub(crate) fn obstacle_outline(shape: &Shape) -> Vec<Vec<Point>> {
 /// The robot's body placed at `c`, as line strips: a polygon or a disk
 /// (as a [`CIRCLE_VERTICES`]-gon) as one closed strip; a point robot, which
 /// has no body, as a cross of two strips with half-width `mark`.
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))] // the Rerun sink's
 pub(crate) fn robot_outline(shape: &RobotShape, c: Config, mark: f64) -> Vec<Vec<Point>> {
     match shape {
         RobotShape::Point => vec![

@@ -346,6 +346,10 @@ fn log_plan(
     Ok(())
 }
 
+/// The largest turn of one edge of a [`Drawing::Rounded`] region's arcs in
+/// the viewer, as its circles ([`super::CIRCLE_VERTICES`]).
+const ROUNDED_TURN: f64 = std::f64::consts::TAU / super::CIRCLE_VERTICES as f64;
+
 /// One layer of a plan (see [`crate::planners::layers`]): its drawing
 /// as the matching archetype, at its timeline index or static.
 fn log_layer(
@@ -387,6 +391,13 @@ fn log_layer(
         Drawing::Polylines(lines) => log(&strips2(lines.iter().map(|l| strip(l)).collect())),
         Drawing::Polygons(outlines) => log(&strips2(
             outlines.iter().map(|o| strip(&closed(o.clone()))).collect(),
+        )),
+        // The viewer has no arcs: fine polygons around the exact regions.
+        Drawing::Rounded(regions) => log(&strips2(
+            regions
+                .iter()
+                .map(|r| strip(&closed(r.outline(ROUNDED_TURN))))
+                .collect(),
         )),
         Drawing::Boxes(boxes) => {
             let centres = boxes.iter().map(|b| {
@@ -727,6 +738,13 @@ mod tests {
                 "deep/in/3d",
                 Drawing::Polylines3D(vec![vec![[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]]),
             ),
+            (
+                "rounded",
+                Drawing::Rounded(vec![
+                    layers::Rounded::new(&[p(1.0, 1.0)], 0.5),
+                    layers::Rounded::new(&[p(3.0, 1.0), p(4.0, 1.0), p(3.5, 2.0)], 0.25),
+                ]),
+            ),
         ];
         let timelines = [Timeline::Step, Timeline::Expansion, Timeline::Iteration];
         for (k, (entity, drawing)) in drawings.into_iter().enumerate() {
@@ -784,6 +802,7 @@ mod tests {
             "/plans/dot/arrows ",
             "/plans/dot/note ",
             "/plans/dot/deep/in/3d ",
+            "/plans/dot/rounded ",
             "/plans/dot/search ",
             "/plans/dot/grown ",
             "/plans/dot/drive/path ",

@@ -649,7 +649,12 @@ impl<'a> Run<'a> {
         let mut out = Vec::new();
         let drawn = &grown.drawn;
         if !drawn.is_empty() {
-            let style = Style::new(Colour::Faint, 0.5, 16.0).svg(Svg::line(0.3));
+            let key = if grown.entity == "graph" {
+                "roadmap edges"
+            } else {
+                "tree edges"
+            };
+            let style = Style::new(Colour::Faint, 0.5, 16.0).svg(Svg::line(0.3).key(key));
             let batch = drawn.len().div_ceil(layers::BATCHES);
             for (b, chunk) in drawn.chunks(batch).enumerate() {
                 let segments = chunk.iter().map(|e| (e.a.xy(), e.b.xy())).collect();
@@ -683,7 +688,8 @@ impl<'a> Run<'a> {
             out.push(Layer::new(
                 "raw_path",
                 Drawing::Polylines(vec![xy]),
-                Style::new(Colour::Plan, 1.0, 25.0).svg(Svg::line(0.6).dashed()),
+                Style::new(Colour::Plan, 1.0, 25.0)
+                    .svg(Svg::line(0.6).dashed().key("path before simplifying")),
             ));
         }
         out

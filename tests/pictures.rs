@@ -1,0 +1,397 @@
+//! The pictures of `scen run` and `scen bench` (SPEC §4 "Pictures"): the
+//! SVG read back (axes, legend, exact C-obstacles, faded large layers) and
+//! the PNG decoded (its size, and the path's colour where the path is).
+
+mod common;
+
+use common::Test;
+use resvg::tiny_skia::Pixmap;
+
+/// A disk robot around a disk obstacle, and a plan whose goal is walled in.
+const DISKS: &str = r#"scenario "Disks"
+world {
+  bounds (0, 0) (10, 5)
+  disk pillar (5, 2.5) 1
+  segment w1 (8, 3.5) (9.5, 3.5)
+  segment w2 (9.5, 3.5) (9.5, 4.8)
+  segment w3 (9.5, 4.8) (8, 4.8)
+  segment w4 (8, 4.8) (8, 3.5)
+}
+robot round disk 0.5
+robot dot point
+plan around astar round {
+  start (1, 2.5)
+  goal (9, 1)
+  cell 0.25
+}
+plan shut astar dot {
+  start (1, 1)
+  goal (8.75, 4.1)
+  cell 0.25
+}
+"#;
+
+/// The attribute `name` of an SVG element's text.
+fn attr<'a>(element: &'a str, name: &str) -> Option<&'a str> {
+    let at = element.find(&format!(" {name}=\""))? + name.len() + 3;
+    let rest = &element[at..];
+    Some(&rest[..rest.find('"')?])
+}
+
+fn num(element: &str, name: &str) -> f64 {
+    attr(element, name)
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no number {name} in {element}"))
+}
+
+/// The lines of `svg` that start an element `<tag` and contain `with`.
+fn elements<'a>(svg: &'a str, tag: &str, with: &str) -> Vec<&'a str> {
+    svg.lines()
+        .filter(|l| l.starts_with(&format!("<{tag} ")) && l.contains(with))
+        .collect()
+}
+
+/// The text of `<text ...>TEXT</text>` lines with `with` in the tag.
+fn texts(svg: &str, with: &str) -> Vec<(String, String)> {
+    elements(svg, "text", with)
+        .into_iter()
+        .filter_map(|l| {
+            let open = l.find('>')?;
+            let close = l.rfind("</text>")?;
+            Some((l[..open].to_string(), l[open + 1..close].to_string()))
+        })
+        .collect()
+}
+
+/// The part of `svg` between the line `<g id="ID"...` and its `</g>`.
+fn group<'a>(svg: &'a str, id: &str) -> &'a str {
+    let start = svg
+        .find(&format!("<g id=\"{id}\""))
+        .unwrap_or_else(|| panic!("no group {id}"));
+    let end = svg[start..].find("</g>").map_or(svg.len(), |e| start + e);
+    &svg[start..end]
+}
+
+fn run_disks(extra: &[&str]) -> (Test, String) {
+    let mut args = vec!["run", "-q", "--svg", "out.svg", "disks.scen"];
+    args.extend_from_slice(extra);
+    let t = Test::new().file("disks.scen", DISKS).args(&args);
+    t.run();
+    let svg = std::fs::read_to_string(t.dir().join("out.svg")).expect("out.svg written");
+    (t, svg)
+}
+
+/// The bounds rectangle: its left and bottom pixel, and pixels per unit.
+fn bounds_frame(svg: &str, world: (f64, f64)) -> (f64, f64, f64) {
+    let bounds = elements(svg, "rect", "id=\"bounds\"");
+    let b = bounds.first().expect("a bounds rectangle");
+    let (x, y, w, h) = (num(b, "x"), num(b, "y"), num(b, "width"), num(b, "height"));
+    let scale = w / world.0;
+    assert!((h / world.1 - scale).abs() < 0.01, "unequal axes: {b}");
+    (x, y + h, scale)
+}
+
+#[test]
+fn the_axes_have_ticks_in_world_units_where_they_say() {
+    let (_, svg) = run_disks(&[]);
+    let (left, bottom, scale) = bounds_frame(&svg, (10.0, 5.0));
+    for (axis, along) in [("x-axis", "x"), ("y-axis", "y")] {
+        let ticks = texts(group(&svg, axis), "class=\"tick\"");
+        assert!(ticks.len() >= 3, "{axis}: {ticks:?}");
+        let values: Vec<f64> = ticks
+            .iter()
+            .map(|(_, t)| t.parse().unwrap_or_else(|_| panic!("tick {t}")))
+            .collect();
+        // One step of 1, 2 or 5 × 10^k between ticks.
+        let step = values[1] - values[0];
+        let mantissa = step / 10f64.powf(step.log10().floor());
+        assert!(
+            [1.0, 2.0, 5.0].iter().any(|m| (mantissa - m).abs() < 1e-9),
+            "{axis} step {step}"
+        );
+        for w in values.windows(2) {
+            assert!((w[1] - w[0] - step).abs() < 1e-9, "{axis}: {values:?}");
+        }
+        // The ticks cover the bounds: 0 to 10 along x, 0 to 5 along y.
+        let hi = if along == "x" { 10.0 } else { 5.0 };
+        assert!(
+            values[0] <= 0.0 && *values.last().unwrap_or(&0.0) >= hi - step,
+            "{values:?}"
+        );
+        // Each label stands where its value is in the world.
+        for ((tag, _), v) in ticks.iter().zip(&values) {
+            if along == "x" {
+                assert!(
+                    (num(tag, "x") - (left + v * scale)).abs() < 0.02,
+                    "{tag} for {v}"
+                );
+            } else {
+                // The label's baseline is a little under the tick.
+                let y = num(tag, "y") - 4.0;
+                assert!((y - (bottom - v * scale)).abs() < 0.02, "{tag} for {v}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_legend_names_each_plan_its_colour_and_whether_it_found_a_path() {
+    let (_, svg) = run_disks(&[]);
+    let legend = group(&svg, "legend");
+    let plans = texts(legend, "class=\"plan\"");
+    let names: Vec<&str> = plans.iter().map(|(_, t)| t.as_str()).collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    assert!(
+        names[0].starts_with("around (astar): found, length "),
+        "{names:?}"
+    );
+    assert_eq!(names[1], "shut (astar): not found");
+    // Each plan's swatch is in the colour of its path.
+    let swatches = elements(legend, "line", "stroke-width=\"4\"");
+    let paths = elements(&svg, "polyline", "class=\"path\"");
+    assert_eq!(paths.len(), 1, "one path found");
+    assert_eq!(attr(swatches[0], "stroke"), attr(paths[0], "stroke"));
+    assert_ne!(attr(swatches[0], "stroke"), attr(swatches[1], "stroke"));
+    // A key to what else is drawn.
+    let keys: Vec<String> = texts(legend, "class=\"key\"")
+        .into_iter()
+        .map(|(_, t)| t)
+        .collect();
+    for key in [
+        "obstacles",
+        "C-obstacles (obstacles grown by the robot)",
+        "robot",
+        "start",
+        "goal",
+    ] {
+        assert!(keys.iter().any(|k| k == key), "no key {key} in {keys:?}");
+    }
+    // The legend is below the plot.
+    let frame = elements(&svg, "rect", "id=\"frame\"");
+    let plot_bottom = num(frame[0], "y") + num(frame[0], "height");
+    for (tag, _) in texts(legend, "class=") {
+        assert!(num(&tag, "y") > plot_bottom + 30.0, "{tag} over the plot");
+    }
+}
+
+#[test]
+fn a_disk_grown_by_a_disk_robot_is_a_circle_of_the_summed_radii() {
+    let (_, svg) = run_disks(&[]);
+    let (left, bottom, scale) = bounds_frame(&svg, (10.0, 5.0));
+    let pillar = elements(&svg, "circle", "id=\"pillar\"");
+    let pillar = pillar.first().expect("the pillar");
+    let grown_layer = svg
+        .split("<g class=\"layer\"")
+        .find(|g| g.contains("data-key=\"C-obstacles"))
+        .and_then(|g| g.split("</g>").next())
+        .expect("a C-obstacle layer");
+    let circles: Vec<&str> = grown_layer
+        .lines()
+        .filter(|l| l.starts_with("<circle "))
+        .collect();
+    assert_eq!(circles.len(), 1, "{grown_layer}");
+    let c = circles[0];
+    let (cx, cy) = (left + 5.0 * scale, bottom - 2.5 * scale);
+    for e in [c, *pillar] {
+        assert!(
+            (num(e, "cx") - cx).abs() < 0.01 && (num(e, "cy") - cy).abs() < 0.01,
+            "{e}"
+        );
+    }
+    assert!((num(c, "r") - 1.5 * scale).abs() < 0.01, "{c}");
+    assert!((num(pillar, "r") - 1.0 * scale).abs() < 0.01, "{pillar}");
+    // The walls, grown, are stadiums: two half circles each.
+    assert_eq!(grown_layer.matches("<path ").count(), 4, "{grown_layer}");
+    assert!(grown_layer.contains("A"), "{grown_layer}");
+}
+
+#[test]
+fn the_png_is_the_picture_rasterised() {
+    let (t, svg) = run_disks(&["--png", "out.png"]);
+    let bytes = std::fs::read(t.dir().join("out.png")).expect("out.png written");
+    let image = Pixmap::decode_png(&bytes).expect("a PNG");
+    let root = svg.lines().find(|l| l.starts_with("<svg ")).expect("<svg>");
+    let (w, h) = (num(root, "width"), num(root, "height"));
+    assert_eq!(
+        (image.width(), image.height()),
+        ((2.0 * w).ceil() as u32, (2.0 * h).ceil() as u32)
+    );
+    let pixel = |x: f64, y: f64| {
+        let p = image
+            .pixel((2.0 * x) as u32, (2.0 * y) as u32)
+            .expect("inside")
+            .demultiply();
+        [p.red(), p.green(), p.blue()]
+    };
+    // The path's colour at the middle of each of its segments.
+    let path = elements(&svg, "polyline", "class=\"path\"")[0];
+    let colour = attr(path, "stroke").expect("a colour");
+    let rgb = |hex: &str| {
+        let v = u32::from_str_radix(hex.trim_start_matches('#'), 16).expect("hex");
+        [(v >> 16) as u8, (v >> 8) as u8, v as u8]
+    };
+    let want = rgb(colour);
+    let points: Vec<(f64, f64)> = attr(path, "points")
+        .expect("points")
+        .split(' ')
+        .filter_map(|p| {
+            let (x, y) = p.split_once(',')?;
+            Some((x.parse().ok()?, y.parse().ok()?))
+        })
+        .collect();
+    assert!(points.len() >= 2);
+    let ends = [points[0], points[points.len() - 1]];
+    let mut checked = 0;
+    for w in points.windows(2) {
+        let (x, y) = ((w[0].0 + w[1].0) / 2.0, (w[0].1 + w[1].1) / 2.0);
+        // The start and goal markers cover the path's ends.
+        if ends.iter().any(|e| (e.0 - x).hypot(e.1 - y) < 10.0) {
+            continue;
+        }
+        let got = pixel(x, y);
+        let near = got.iter().zip(want).all(|(a, b)| a.abs_diff(b) <= 12);
+        assert!(
+            near,
+            "pixel {got:?} at ({x}, {y}) is not the path's {want:?}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 5, "only {checked} points of the path checked");
+    // The background where nothing is drawn: the top right corner.
+    assert_eq!(pixel(w - 2.0, 2.0), rgb("#fcfcfa"));
+    // Text was drawn: the title band has dark pixels.
+    let dark = (0..(2.0 * w) as u32)
+        .flat_map(|x| (0..40).map(move |y| (x, y)))
+        .filter(|&(x, y)| image.pixel(x, y).is_some_and(|p| p.red() < 100))
+        .count();
+    assert!(dark > 200, "no title drawn ({dark} dark pixels)");
+}
+
+#[test]
+fn a_large_roadmap_is_faint_and_under_the_paths() {
+    let scenario = r#"world {
+  bounds (0, 0) (20, 20)
+  rect a (5, 0) (6, 15)
+  rect b (12, 5) (13, 20)
+}
+robot p point
+plan many prm p {
+  start (1, 1)
+  goal (19, 19)
+  seed 1
+  stop limit
+  limit iterations 2500
+}
+"#;
+    let t = Test::new()
+        .file("prm.scen", scenario)
+        .args(&["run", "-q", "--svg", "out.svg", "prm.scen"]);
+    t.run();
+    let svg = std::fs::read_to_string(t.dir().join("out.svg")).expect("out.svg");
+    let layers: Vec<&str> = elements(&svg, "g", "class=\"layer\"");
+    let graph: Vec<&&str> = layers
+        .iter()
+        .filter(|g| attr(g, "data-key") == Some("roadmap edges"))
+        .collect();
+    assert!(!graph.is_empty(), "no roadmap layer");
+    for g in &graph {
+        let opacity = num(g, "stroke-opacity");
+        assert!(opacity < 0.2, "the roadmap is not faded: {g}");
+        assert!(num(g, "stroke-width") <= 0.5, "{g}");
+    }
+    let last_layer = svg.rfind("<g class=\"layer\"").expect("layers");
+    let path = svg.find("<polyline class=\"path\"").expect("a path");
+    assert!(last_layer < path, "a layer drawn over the path");
+    let keys = texts(group(&svg, "legend"), "class=\"key\"");
+    assert!(
+        keys.iter()
+            .any(|(_, k)| k.starts_with("roadmap edges (") && k.ends_with(" drawn, faint)")),
+        "{keys:?}"
+    );
+}
+
+#[test]
+fn a_picture_file_needs_its_extension_before_anything_runs() {
+    for (args, flag) in [
+        (
+            vec!["run", "--svg", "out.png", "missing.scen"],
+            "`--svg out.png`",
+        ),
+        (
+            vec!["run", "--png", "out.svg", "missing.scen"],
+            "`--png out.svg`",
+        ),
+        (
+            vec!["bench", "--png", "plots.svg", "missing.scen"],
+            "`--png plots.svg`",
+        ),
+        (
+            vec!["bench", "--svg", "plots", "missing.scen"],
+            "`--svg plots`",
+        ),
+    ] {
+        let out = Test::new()
+            .args(&args)
+            .status(2)
+            .stderr_contains(flag)
+            .run();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        // Refused at once: the missing scenario was never opened.
+        assert!(!stderr.contains("missing.scen"), "{stderr}");
+    }
+}
+
+#[test]
+fn bench_pictures_have_the_legend_right_of_the_plots_and_a_png() {
+    let scenario = r#"world {
+  bounds (0, 0) (20, 20)
+  segment bottom (10, 2) (10, 8)
+}
+robot p point
+plan walk potential p { start (7, 5) goal (15, 5) limit steps 20000 }
+bench seeds {
+  plans [walk]
+  vary jump [2, 4, 10]
+  runs 5
+}
+"#;
+    let t = Test::new().file("b.scen", scenario).args(&[
+        "bench",
+        "-q",
+        "--metrics",
+        "length",
+        "--svg",
+        "plots.svg",
+        "--png",
+        "plots.png",
+        "b.scen",
+    ]);
+    t.run();
+    let svg = std::fs::read_to_string(t.dir().join("plots.svg")).expect("plots.svg");
+    let root = svg.lines().find(|l| l.starts_with("<svg")).expect("<svg>");
+    let (w, h) = (num(root, "width"), num(root, "height"));
+    // Two panels of 620 pixels (boxes, lines), the legend right of them.
+    // Plotters writes a text's content on a line of its own.
+    let legend: Vec<f64> = svg
+        .split("<text")
+        .skip(1)
+        .filter(|t| {
+            let inner = t.split_once('>').map_or("", |(_, rest)| rest);
+            inner.split("</text>").next().map(str::trim) == Some("walk")
+        })
+        .map(|t| num(t, "x"))
+        .collect();
+    assert_eq!(legend.len(), 1, "{svg}");
+    assert!(
+        legend[0] >= 1240.0,
+        "the legend is over the plots: x = {}",
+        legend[0]
+    );
+    assert!(svg.contains("band: 25–75 % of runs"));
+    let image =
+        Pixmap::decode_png(&std::fs::read(t.dir().join("plots.png")).expect("png")).expect("a PNG");
+    assert_eq!(
+        (image.width(), image.height()),
+        ((2.0 * w) as u32, (2.0 * h) as u32)
+    );
+}
