@@ -4,6 +4,7 @@
 //! the input (its bounding box), so that a polygon given in millimetres and
 //! the same polygon given in metres are treated alike.
 
+pub(crate) mod proximity;
 mod simplicity;
 mod sweep_status;
 mod triangulation;
@@ -22,6 +23,10 @@ pub enum PolygonError {
     /// Edges `i` and `j` (indices into the input, edge i = v_i → v_{i+1}) cross or overlap.
     SelfIntersecting { edges: (usize, usize) },
 }
+
+/// The most vertices a polygon may have (SPEC 2.2); the analysis of one is
+/// O(n log n).
+pub const MAX_POLYGON_VERTICES: usize = 100_000;
 
 /// Relative tolerance: two points closer than `REL_TOL · size` are the same
 /// point, a vertex closer than that to the line of its neighbours is collinear.
