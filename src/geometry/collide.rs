@@ -27,6 +27,7 @@
 //! whose four cells are blocked — because those lie inside the obstacle.
 
 use super::buckets::Buckets;
+use super::polygon::proximity::{VertexIndex, shared_edges};
 use super::polygon::{self, distance_point_segment};
 use super::{Aabb, Point, Shape, TOUCH_EPS, Vector, World};
 
@@ -251,7 +252,7 @@ impl ObstacleIndex {
                             edges.truncate(first as usize);
                         }
                     }
-                    let vertices = OutlineVertices::new(outline);
+                    let vertices = VertexIndex::new(outline);
                     let shared = seams(
                         outline,
                         &vertices,
@@ -758,78 +759,29 @@ fn convex_meets_box(v: &[Point], b: &Aabb) -> bool {
     })
 }
 
-/// An outline's vertices by exact position (−0 and +0 alike, as `==` has
-/// them): the first index of each.
-struct OutlineVertices(std::collections::HashMap<(u64, u64), usize>);
-
-impl OutlineVertices {
-    fn key(p: Point) -> (u64, u64) {
-        ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
-    }
-
-    fn new(outline: &[Point]) -> Self {
-        let mut at = std::collections::HashMap::with_capacity(outline.len());
-        for (k, &v) in outline.iter().enumerate() {
-            at.entry(Self::key(v)).or_insert(k);
-        }
-        OutlineVertices(at)
-    }
-
-    fn index(&self, p: Point) -> Option<usize> {
-        self.0.get(&Self::key(p)).copied()
-    }
-}
-
 /// The edges shared by two pieces (edges of a piece whose midpoint is not
-/// within `1e-9 ×` the outline's size of the outline), once each.
-///
-/// O(n log n): an outline edge is known by its ends; the other edges'
-/// midpoints are tested together
-/// ([`polygon::proximity::points_near_outline`]); edges already taken are
-/// in a hash set.
+/// within `1e-9 ×` the outline's size of the outline), once each, in
+/// O(n log n) ([`polygon::proximity::shared_edges`]).
 fn seams<'a>(
     outline: &[Point],
-    vertices: &OutlineVertices,
+    vertices: &VertexIndex,
     pieces: impl Iterator<Item = &'a [Point]>,
 ) -> Vec<(Point, Point)> {
     let n = outline.len();
     let b = Aabb::around(outline);
     let tol = 1e-9 * b.width().max(b.height());
-    let outline_edge = |a: Point, b: Point| match (vertices.index(a), vertices.index(b)) {
-        (Some(i), Some(j)) => (i + 1) % n == j || (j + 1) % n == i,
-        _ => false,
-    };
-    let key = |(a, b): (Point, Point)| (OutlineVertices::key(a), OutlineVertices::key(b));
-    let mut taken = std::collections::HashSet::new();
-    let mut out: Vec<(Point, Point)> = Vec::new();
-    for v in pieces {
-        for j in 0..v.len() {
-            let (a, b) = (v[j], v[(j + 1) % v.len()]);
-            if !outline_edge(a, b) && !taken.contains(&key((b, a))) && taken.insert(key((a, b))) {
-                out.push((a, b));
-            }
-        }
-    }
-    let mids: Vec<Point> = out
-        .iter()
-        .map(|(a, b)| Point::from((a.coords + b.coords) * 0.5))
-        .collect();
-    let on_outline = polygon::proximity::points_near_outline(outline, &mids, tol, |p, i| {
+    shared_edges(outline, vertices, pieces, tol, |p, i| {
         distance_point_segment(p, outline[i], outline[(i + 1) % n])
-    });
-    out.into_iter()
-        .zip(on_outline)
-        .filter_map(|(seam, on)| (!on).then_some(seam))
-        .collect()
+    })
 }
 
 /// How far from its end `a` the band around the seam `a → b` starts, so
 /// that the band (half-width ε) stays ε away from the outline edges at `a`:
 /// a point u along the seam and w across is |u·sin α − w·cos α| from an edge
 /// at angle α, which is ≥ ε when u ≥ ε·(1 + |cos α|)/sin α.
-fn seam_end_margin(outline: &[Point], vertices: &OutlineVertices, a: Point, b: Point) -> f64 {
+fn seam_end_margin(outline: &[Point], vertices: &VertexIndex, a: Point, b: Point) -> f64 {
     let n = outline.len();
-    let Some(k) = vertices.index(a) else {
+    let Some(k) = vertices.of(a) else {
         return 2.0 * TOUCH_EPS;
     };
     let d = (b - a).normalize();
@@ -1004,7 +956,7 @@ mod tests {
         let Shape::Polygon { outline, pieces } = &l else {
             unreachable!()
         };
-        let vertices = OutlineVertices::new(outline);
+        let vertices = VertexIndex::new(outline);
         let shared = seams(
             outline,
             &vertices,
@@ -1174,7 +1126,7 @@ mod tests {
         ) {
             let input: Vec<Point> = v.iter().map(|&(x, y)| p(x as f64 * scale, y as f64 * scale)).collect();
             if let Some(Shape::Polygon { outline, pieces }) = polygon_shape(&input) {
-                let vertices = OutlineVertices::new(&outline);
+                let vertices = VertexIndex::new(&outline);
                 prop_assert_eq!(
                     seams(&outline, &vertices, pieces.iter().map(|pc| pc.vertices.as_slice())),
                     all_pairs_seams(&outline, &pieces)

@@ -852,59 +852,24 @@ fn prepare(shape: &Shape) -> Prepared<'_> {
 /// along the outline never meets it.
 ///
 /// An edge is on the outline when its midpoint is within `1e-9 ×` the
-/// outline's size of an outline edge. O(n log n) in the outline's and the
-/// pieces' vertices: outline edges are known by their ends (outline
-/// vertices by position in a hash map), the other midpoints are tested
-/// together ([`polygon::proximity::points_near_outline`]), and seams already
-/// taken are in a hash set.
+/// outline's size of an outline edge (by parry's point projection), found
+/// in O(n log n) ([`polygon::proximity::shared_edges`]).
 fn seam_zones<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) -> Vec<Core> {
-    use std::collections::{HashMap, HashSet};
+    use polygon::proximity::{VertexIndex, shared_edges};
 
     let n = outline.len();
     let bounds = aabb_of(outline);
     let scale = bounds.width().max(bounds.height());
-    // Exact positions (−0 and +0 alike, as `==` has them).
-    let key = |p: Point| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
-    let mut vertex_at: HashMap<(u64, u64), usize> = HashMap::with_capacity(n);
-    for (k, v) in outline.iter().enumerate() {
-        vertex_at.entry(key(*v)).or_insert(k);
-    }
-    let outline_edge = |a: Point, b: Point| match (vertex_at.get(&key(a)), vertex_at.get(&key(b))) {
-        (Some(&i), Some(&j)) => (i + 1) % n == j || (j + 1) % n == i,
-        _ => false,
-    };
-    let mut taken: HashSet<((u64, u64), (u64, u64))> = HashSet::new();
-    let mut candidates: Vec<(Point, Point)> = Vec::new();
-    for piece in pieces {
-        for i in 0..piece.len() {
-            let (a, b) = (piece[i], piece[(i + 1) % piece.len()]);
-            if !outline_edge(a, b)
-                && !taken.contains(&(key(b), key(a)))
-                && taken.insert((key(a), key(b)))
-            {
-                candidates.push((a, b));
-            }
-        }
-    }
-    let midpoints: Vec<Point> = candidates
-        .iter()
-        .map(|(a, b)| Point::from((a.coords + b.coords) / 2.0))
-        .collect();
-    let on_outline =
-        polygon::proximity::points_near_outline(outline, &midpoints, 1e-9 * scale, |p, i| {
-            let edge = Segment::new(outline[i], outline[(i + 1) % n]);
-            parry2d_f64::query::PointQuery::distance_to_point(
-                &edge,
-                &Isometry::identity(),
-                &p,
-                true,
-            )
-        });
+    let vertices = VertexIndex::new(outline);
+    let seams = shared_edges(outline, &vertices, pieces, 1e-9 * scale, |p, i| {
+        let edge = Segment::new(outline[i], outline[(i + 1) % n]);
+        parry2d_f64::query::PointQuery::distance_to_point(&edge, &Isometry::identity(), &p, true)
+    });
     // How far from its end `a` a band along `a → b` must start: a point at
     // distance u along it and within ε of it is at least
     // u·sin α − ε·|cos α| from an outline edge leaving `a` at angle α.
     let end_margin = |a: Point, b: Point| -> f64 {
-        let Some(&k) = vertex_at.get(&key(a)) else {
+        let Some(k) = vertices.of(a) else {
             return 2.0 * TOUCH_EPS;
         };
         let d = (b - a).normalize();
@@ -918,13 +883,9 @@ fn seam_zones<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) 
             .fold(TOUCH_EPS, f64::max)
             * 1.01
     };
-    candidates
+    seams
         .into_iter()
-        .zip(on_outline)
-        .filter_map(|((a, b), on_outline)| {
-            if on_outline {
-                return None;
-            }
+        .filter_map(|(a, b)| {
             let length = (b - a).norm();
             let (ma, mb) = (end_margin(a, b), end_margin(b, a));
             // (Also drops the band when a margin is NaN or infinite.)

@@ -574,15 +574,13 @@ impl Server {
             })
             .collect();
         for uri in uris {
-            if let Some(doc) = self.docs.get(&uri)
+            if let Some(doc) = self.docs.get_mut(&uri)
                 && doc.too_large
             {
                 if doc.published_too_large {
                     continue;
                 }
-                if let Some(doc) = self.docs.get_mut(&uri) {
-                    doc.published_too_large = true;
-                }
+                doc.published_too_large = true;
             }
             let encoding = self.encoding;
             let diagnostics = catch_unwind(AssertUnwindSafe(|| {

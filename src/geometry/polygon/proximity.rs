@@ -271,6 +271,72 @@ pub(crate) fn points_near_outline(
     near
 }
 
+/// A polygon's vertices by exact position (−0 and +0 alike, as `==` has
+/// them): the first index of each.
+pub(crate) struct VertexIndex(HashMap<(u64, u64), usize>);
+
+impl VertexIndex {
+    fn key(p: Point) -> (u64, u64) {
+        ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
+    }
+
+    pub(crate) fn new(outline: &[Point]) -> Self {
+        let mut at = HashMap::with_capacity(outline.len());
+        for (k, &v) in outline.iter().enumerate() {
+            at.entry(Self::key(v)).or_insert(k);
+        }
+        VertexIndex(at)
+    }
+
+    /// The index of the first vertex at `p`.
+    pub(crate) fn of(&self, p: Point) -> Option<usize> {
+        self.0.get(&Self::key(p)).copied()
+    }
+}
+
+/// The edges where the convex pieces of a polygon meet: the edges of the
+/// pieces whose midpoint is not within `near` of the outline (by
+/// `distance`, as in [`points_near_outline`]), once each (either way
+/// round), in the order the pieces give them.
+///
+/// O(n log n) in the outline's and the pieces' vertices: an outline edge
+/// is known by its ends ([`VertexIndex`]), the other midpoints are tested
+/// together, edges already taken are in a hash set.
+pub(crate) fn shared_edges<'a>(
+    outline: &[Point],
+    vertices: &VertexIndex,
+    pieces: impl Iterator<Item = &'a [Point]>,
+    near: f64,
+    distance: impl Fn(Point, usize) -> f64,
+) -> Vec<(Point, Point)> {
+    let n = outline.len();
+    let outline_edge = |a: Point, b: Point| match (vertices.of(a), vertices.of(b)) {
+        (Some(i), Some(j)) => (i + 1) % n == j || (j + 1) % n == i,
+        _ => false,
+    };
+    let key = |a: Point, b: Point| (VertexIndex::key(a), VertexIndex::key(b));
+    let mut taken = std::collections::HashSet::new();
+    let mut edges: Vec<(Point, Point)> = Vec::new();
+    for piece in pieces {
+        for j in 0..piece.len() {
+            let (a, b) = (piece[j], piece[(j + 1) % piece.len()]);
+            if !outline_edge(a, b) && !taken.contains(&key(b, a)) && taken.insert(key(a, b)) {
+                edges.push((a, b));
+            }
+        }
+    }
+    let midpoints: Vec<Point> = edges
+        .iter()
+        .map(|(a, b)| Point::from((a.coords + b.coords) / 2.0))
+        .collect();
+    let on_outline = points_near_outline(outline, &midpoints, near, distance);
+    edges
+        .into_iter()
+        .zip(on_outline)
+        .filter_map(|(edge, on)| (!on).then_some(edge))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::{distance_point_segment, normalize_simple_polygon};
