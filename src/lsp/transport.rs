@@ -17,6 +17,7 @@ pub(crate) const MAX_HEADER_BYTES: usize = 8 << 10;
 /// The largest body taken: above the loader's bound on a scenario's text,
 /// so that an oversized document still arrives and is diagnosed.
 pub(crate) const MAX_BODY_BYTES: usize = 64 << 20;
+const _: () = assert!(MAX_BODY_BYTES as u64 > crate::scenario::loader::MAX_SCEN_BYTES);
 /// How much is read from the input at once.
 const CHUNK: usize = 64 << 10;
 const CONTENT_LENGTH: &[u8] = b"content-length:";

@@ -218,6 +218,9 @@ fn drop_collinear(
             if left < 3 {
                 break;
             }
+            if !kept[i] {
+                continue;
+            }
             let (p, q) = (prev[i], next[i]);
             let (a, b, c) = (ring[p].0, ring[i].0, ring[q].0);
             if turn_deviation(a, b, c) > tol {
@@ -314,21 +317,24 @@ fn closest_input_edges(
     b: impl Iterator<Item = usize>,
     b_edge: (Point, Point),
 ) -> (usize, usize) {
-    let n = points.len();
-    let ends = |e: usize| (points[e], points[(e + 1) % n]);
-    let closest = |edges: &mut dyn Iterator<Item = usize>, (c, d): (Point, Point)| {
+    /// The first of `edges` closest to the segment `(c, d)`.
+    fn closest(
+        points: &[Point],
+        edges: impl Iterator<Item = usize>,
+        (c, d): (Point, Point),
+    ) -> usize {
+        let n = points.len();
         let mut best = (f64::INFINITY, 0);
         for e in edges {
-            let (a, b) = ends(e);
-            let dist = distance_segment_segment(a, b, c, d);
+            let dist = distance_segment_segment(points[e], points[(e + 1) % n], c, d);
             if dist < best.0 {
                 best = (dist, e);
             }
         }
         best.1
-    };
-    let e = closest(&mut { a }, b_edge);
-    let f = closest(&mut { b }, ends(e));
+    }
+    let e = closest(points, a, b_edge);
+    let f = closest(points, b, (points[e], points[(e + 1) % points.len()]));
     (e, f)
 }
 

@@ -187,20 +187,31 @@ fn pieces(pts: &[Point], diagonals: &[(usize, usize)]) -> Vec<Vec<usize>> {
         around[a].push(b);
         around[b].push(a);
     }
-    // Each vertex's neighbours counter-clockwise by direction (from the
-    // positive x axis), compared exactly by half-plane and turn.
+    // Each vertex's neighbours counter-clockwise by direction, from the
+    // positive x axis: by half-plane, then by angle. (Keys, not a
+    // comparison of turns, which rounding could make inconsistent, and a
+    // sort may panic on an inconsistent order.)
     for (v, list) in around.iter_mut().enumerate() {
         let o = pts[v];
-        let half = |w: usize| {
+        let direction = |w: usize| {
             let d = pts[w] - o;
-            d.y < 0.0 || (d.y == 0.0 && d.x < 0.0)
+            if d.y > 0.0 || (d.y == 0.0 && d.x > 0.0) {
+                (0u8, d.y.atan2(d.x))
+            } else if d.y == 0.0 {
+                (1, -std::f64::consts::PI)
+            } else {
+                (1, d.y.atan2(d.x))
+            }
         };
-        list.sort_by(|&a, &b| {
-            half(a).cmp(&half(b)).then_with(|| {
-                let (da, db) = (pts[a] - o, pts[b] - o);
-                0.0_f64.total_cmp(&(da.x * db.y - da.y * db.x))
+        let mut keyed: Vec<(u8, f64, usize)> = list
+            .iter()
+            .map(|&w| {
+                let (half, angle) = direction(w);
+                (half, angle, w)
             })
-        });
+            .collect();
+        keyed.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+        *list = keyed.into_iter().map(|(_, _, w)| w).collect();
         list.dedup();
     }
     // Half-edge `v → around[v][k]` is number `first[v] + k`.
