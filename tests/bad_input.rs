@@ -489,7 +489,25 @@ fn generated_bad_inputs_are_reported() {
         huge.push_str(padding);
     }
     let deep = 100_000;
+    // One vertex more than a polygon may have (SPEC 2.2), on line 4.
+    let too_many_vertices = format!(
+        "scenario \"Generated\"\nworld {{\n  bounds (0, 0) (10, 10)\n  polygon P [{}]\n}}\n\
+         robot dot point\nplan p astar dot {{\n  start (0.5, 0.5)\n  goal (9.5, 9.5)\n}}\n",
+        (0..=scen::geometry::polygon::MAX_POLYGON_VERTICES)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 100_001.0;
+                format!("({:.6}, {:.6})", 5.0 + 4.0 * a.cos(), 5.0 + 4.0 * a.sin())
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
     let generated: Vec<(&str, Vec<u8>, &str, Option<usize>)> = vec![
+        (
+            "polygon_too_large.scen",
+            too_many_vertices.into_bytes(),
+            "scen::analyze::polygon_too_large",
+            Some(4),
+        ),
         ("empty.scen", Vec::new(), "scen::analyze::no_world", Some(1)),
         (
             "comments_only.scen",

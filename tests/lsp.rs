@@ -3,179 +3,9 @@
 
 mod common;
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::path::Path;
-use std::process::{Child, ChildStdin, Command, Stdio};
-use std::sync::mpsc::{Receiver, channel};
-use std::time::Duration;
-
-use common::{TempDir, scen_bin};
+use common::TempDir;
+use common::lsp_client::{Client, range, uri};
 use serde_json::{Value, json};
-
-/// A client: the server's stdin, and its messages as they arrive.
-struct Client {
-    child: Child,
-    stdin: ChildStdin,
-    messages: Receiver<Value>,
-    next_id: i64,
-    /// Notifications read while waiting for a response.
-    notifications: Vec<Value>,
-}
-
-impl Client {
-    fn start() -> Client {
-        let mut child = Command::new(scen_bin())
-            .arg("lsp")
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("start scen lsp");
-        let stdin = child.stdin.take().unwrap();
-        let stdout = child.stdout.take().unwrap();
-        let (tx, messages) = channel();
-        std::thread::spawn(move || {
-            let mut reader = BufReader::new(stdout);
-            loop {
-                let mut length = 0;
-                loop {
-                    let mut line = String::new();
-                    if reader.read_line(&mut line).unwrap_or(0) == 0 {
-                        return;
-                    }
-                    let line = line.trim_end();
-                    if line.is_empty() {
-                        break;
-                    }
-                    if let Some(n) = line.strip_prefix("Content-Length: ") {
-                        length = n.parse().unwrap();
-                    }
-                }
-                let mut body = vec![0; length];
-                if reader.read_exact(&mut body).is_err() {
-                    return;
-                }
-                if tx.send(serde_json::from_slice(&body).unwrap()).is_err() {
-                    return;
-                }
-            }
-        });
-        let mut client = Client {
-            child,
-            stdin,
-            messages,
-            next_id: 0,
-            notifications: Vec::new(),
-        };
-        let init = client.request(
-            "initialize",
-            json!({ "processId": null, "rootUri": null, "capabilities": {} }),
-        );
-        assert_eq!(init["capabilities"]["positionEncoding"], "utf-16");
-        assert_eq!(init["capabilities"]["textDocumentSync"], 2);
-        assert_eq!(init["serverInfo"]["name"], "scen");
-        client.notify("initialized", json!({}));
-        client
-    }
-
-    fn send(&mut self, message: Value) {
-        let body = message.to_string();
-        write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).unwrap();
-        self.stdin.flush().unwrap();
-    }
-
-    fn notify(&mut self, method: &str, params: Value) {
-        self.send(json!({ "jsonrpc": "2.0", "method": method, "params": params }));
-    }
-
-    fn receive(&mut self) -> Value {
-        self.messages
-            .recv_timeout(Duration::from_secs(30))
-            .expect("the server answers within 30 s")
-    }
-
-    /// Sends a request and returns its result (panics on an error).
-    fn request(&mut self, method: &str, params: Value) -> Value {
-        self.next_id += 1;
-        let id = self.next_id;
-        self.send(json!({ "jsonrpc": "2.0", "id": id, "method": method, "params": params }));
-        loop {
-            let message = self.receive();
-            if message["id"] == id {
-                assert!(message.get("error").is_none(), "{method}: {message}");
-                return message["result"].clone();
-            }
-            self.notifications.push(message);
-        }
-    }
-
-    /// The next diagnostics published for `uri`.
-    fn diagnostics(&mut self, uri: &str) -> Value {
-        if let Some(k) = self.notifications.iter().position(|n| {
-            n["method"] == "textDocument/publishDiagnostics" && n["params"]["uri"] == uri
-        }) {
-            return self.notifications.remove(k)["params"]["diagnostics"].clone();
-        }
-        loop {
-            let message = self.receive();
-            if message["method"] == "textDocument/publishDiagnostics"
-                && message["params"]["uri"] == uri
-            {
-                return message["params"]["diagnostics"].clone();
-            }
-        }
-    }
-
-    fn open(&mut self, uri: &str, text: &str) {
-        self.notify(
-            "textDocument/didOpen",
-            json!({ "textDocument": { "uri": uri, "languageId": "scen", "version": 1, "text": text } }),
-        );
-    }
-
-    fn change(&mut self, uri: &str, version: i32, changes: Value) {
-        self.notify(
-            "textDocument/didChange",
-            json!({ "textDocument": { "uri": uri, "version": version }, "contentChanges": changes }),
-        );
-    }
-
-    fn at(&mut self, method: &str, uri: &str, line: u32, character: u32) -> Value {
-        let mut params = json!({
-            "textDocument": { "uri": uri },
-            "position": { "line": line, "character": character },
-        });
-        if method == "textDocument/references" {
-            params["context"] = json!({ "includeDeclaration": true });
-        }
-        self.request(method, params)
-    }
-
-    fn labels(&mut self, uri: &str, line: u32, character: u32) -> Vec<String> {
-        let items = self.at("textDocument/completion", uri, line, character);
-        items
-            .as_array()
-            .unwrap_or(&Vec::new())
-            .iter()
-            .map(|i| i["label"].as_str().unwrap().to_string())
-            .collect()
-    }
-
-    fn shutdown(mut self) {
-        assert_eq!(self.request("shutdown", Value::Null), Value::Null);
-        self.notify("exit", Value::Null);
-        let status = self.child.wait().unwrap();
-        assert!(status.success(), "{status:?}");
-    }
-}
-
-fn uri(path: &Path) -> String {
-    format!("file://{}", path.canonicalize().unwrap().display())
-}
-
-fn range(l0: u32, c0: u32, l1: u32, c1: u32) -> Value {
-    json!({ "start": { "line": l0, "character": c0 }, "end": { "line": l1, "character": c1 } })
-}
 
 const MAIN: &str = "\
 include \"_robots.scen\"
@@ -667,5 +497,263 @@ fn latencies_on_a_two_thousand_line_file() {
         median(&mut completion),
         median(&mut hover)
     );
+    c.shutdown();
+}
+
+/// The error response to a message that could not be taken (its `id` is
+/// null: none could be read from it), skipping other messages.
+fn error_without_id(c: &mut Client) -> Value {
+    loop {
+        let message = c.receive();
+        if message.get("method").is_none() && message["id"].is_null() {
+            assert_eq!(message["jsonrpc"], "2.0", "{message}");
+            return message["error"].clone();
+        }
+        c.notifications.push(message);
+    }
+}
+
+fn framed(body: &str) -> Vec<u8> {
+    format!("Content-Length: {}\r\n\r\n{body}", body.len()).into_bytes()
+}
+
+#[test]
+fn malformed_messages_get_error_responses_and_the_server_goes_on() {
+    let (_dir, main, _) = setup();
+    let mut c = Client::start();
+    c.open(&main, MAIN);
+    assert_eq!(c.diagnostics(&main), json!([]));
+    let hover = |id: i64, position: Value| {
+        json!({ "jsonrpc": "2.0", "id": id, "method": "textDocument/hover",
+                "params": { "textDocument": { "uri": main }, "position": position } })
+        .to_string()
+    };
+    // (what is sent, the error code, the id of the response)
+    let cases: Vec<(Vec<u8>, i64, Value)> = vec![
+        // Framing: −32700 with id null, and the stream is found again.
+        (
+            b"Content-Length: twelve\r\n\r\n{}".to_vec(),
+            -32700,
+            Value::Null,
+        ),
+        (
+            b"Content-Type: application/json\r\n\r\n{}".to_vec(),
+            -32700,
+            Value::Null,
+        ),
+        (b"this is no header\r\n\r\n".to_vec(), -32700, Value::Null),
+        (
+            b"Content-Length: 1000000000000\r\n\r\n{\"jsonrpc\":\"2.0\"}".to_vec(),
+            -32700,
+            Value::Null,
+        ),
+        (b"stray bytes, no line end".to_vec(), -32700, Value::Null),
+        // Bodies that are not JSON.
+        (
+            framed(r#"{"jsonrpc": "2.0", "id": 5, "method": "textDocu"#),
+            -32700,
+            Value::Null,
+        ),
+        (framed("\u{0}\u{1}\u{2}PK"), -32700, Value::Null),
+        // JSON that is not a message: −32600, with the id when it has one.
+        (framed("[1, 2, 3]"), -32600, Value::Null),
+        (framed("17"), -32600, Value::Null),
+        (
+            framed(r#"{"id": 41, "method": "textDocument/hover"}"#),
+            -32600,
+            json!(41),
+        ),
+        (
+            framed(r#"{"jsonrpc": "2.0", "id": "x", "method": 12}"#),
+            -32600,
+            json!("x"),
+        ),
+        (
+            framed(r#"{"jsonrpc": "2.0", "id": 1e40, "method": "shutdown"}"#),
+            -32600,
+            json!(1e40),
+        ),
+        // Requests with bad params: −32602; unknown methods: −32601.
+        (
+            framed(
+                &json!({ "jsonrpc": "2.0", "id": 42, "method": "textDocument/hover",
+                         "params": { "textDocument": { "uri": main } } })
+                .to_string(),
+            ),
+            -32602,
+            json!(42),
+        ),
+        (
+            framed(&hover(43, json!({ "line": -1, "character": 0 }))),
+            -32602,
+            json!(43),
+        ),
+        (
+            framed(&hover(44, json!({ "line": 4294967296u64, "character": 0 }))),
+            -32602,
+            json!(44),
+        ),
+        (
+            framed(&hover(45, json!({ "line": "one", "character": 0 }))),
+            -32602,
+            json!(45),
+        ),
+        (
+            framed(r#"{"jsonrpc": "2.0", "id": 46, "method": "textDocument/hover", "params": 7}"#),
+            -32602,
+            json!(46),
+        ),
+        (
+            framed(r#"{"jsonrpc": "2.0", "id": 47, "method": "no/such/method"}"#),
+            -32601,
+            json!(47),
+        ),
+    ];
+    for (k, (bytes, code, id)) in cases.into_iter().enumerate() {
+        let sent = String::from_utf8_lossy(&bytes).into_owned();
+        // A valid request right behind: the server cannot know where stray
+        // bytes end before the next message begins.
+        let probe = json!(format!("probe {k}"));
+        let hover = json!({ "jsonrpc": "2.0", "id": probe, "method": "textDocument/hover",
+                            "params": { "textDocument": { "uri": main },
+                                        "position": { "line": 8, "character": 3 } } });
+        let bytes = [bytes, framed(&hover.to_string())].concat();
+        assert!(c.send_bytes(&bytes), "{sent:?}");
+        let error = if id.is_null() {
+            error_without_id(&mut c)
+        } else {
+            let response = c.response(&id);
+            assert_eq!(response["jsonrpc"], "2.0", "{response}");
+            response["error"].clone()
+        };
+        assert_eq!(error["code"], code, "{sent:?}: {error}");
+        assert!(error["message"].is_string(), "{sent:?}: {error}");
+        // The valid request sent afterwards is still answered.
+        let hover = c.response(&probe);
+        assert_eq!(
+            hover["result"]["range"],
+            range(8, 2, 8, 8),
+            "after {sent:?}"
+        );
+    }
+    // Positions past the end of a line or of the text are the end.
+    assert_eq!(
+        c.at("textDocument/hover", &main, u32::MAX, u32::MAX),
+        Value::Null
+    );
+    assert_eq!(c.exited(), None, "{}", c.stderr());
+    c.shutdown();
+}
+
+#[test]
+fn the_server_exits_only_on_exit_or_at_the_end_of_its_input() {
+    // After `shutdown`, requests are refused until `exit`, which ends the
+    // server with status 0.
+    let (_dir, main, _) = setup();
+    let mut c = Client::start();
+    c.open(&main, MAIN);
+    assert_eq!(c.request("shutdown", Value::Null), Value::Null);
+    c.send_bytes(b"garbage\r\n\r\n");
+    assert_eq!(error_without_id(&mut c)["code"], -32700);
+    let refused = c.call(
+        "textDocument/documentSymbol",
+        json!({ "textDocument": { "uri": main } }),
+    );
+    assert_eq!(refused["error"]["code"], -32600, "{refused}");
+    assert_eq!(c.exited(), None);
+    c.notify("exit", Value::Null);
+    assert_eq!(c.wait().code(), Some(0));
+
+    // `exit` without `shutdown`: status 1, as the LSP specifies.
+    let mut c = Client::start();
+    c.send_bytes(&framed("{}"));
+    assert_eq!(error_without_id(&mut c)["code"], -32600);
+    c.notify("exit", Value::Null);
+    assert_eq!(c.wait().code(), Some(1));
+
+    // Before `initialize`: requests are refused (−32002), bad messages get
+    // their errors, and the server waits for `initialize`.
+    let mut c = Client::spawn();
+    let early = c.call("textDocument/hover", json!({}));
+    assert_eq!(early["error"]["code"], -32002, "{early}");
+    c.send_bytes(b"Content-Length: -3\r\n\r\n");
+    assert_eq!(error_without_id(&mut c)["code"], -32700);
+    let bad_init = c.call("initialize", json!({ "capabilities": 5 }));
+    assert_eq!(bad_init["error"]["code"], -32602, "{bad_init}");
+    let init = c.request("initialize", json!({ "capabilities": {} }));
+    assert_eq!(init["serverInfo"]["name"], "scen");
+
+    // The end of the input ends it too (without `shutdown`: status 1).
+    c.close_stdin();
+    assert_eq!(c.wait().code(), Some(1));
+}
+
+#[test]
+fn an_oversized_document_is_diagnosed_once_and_not_analysed_per_edit() {
+    use scen::scenario::loader::MAX_SCENARIO_BYTES;
+    let (dir, main, _) = setup();
+    // `big.scen` sorts before `main.scen`: in one publication of every
+    // document's diagnostics, the big one's would come first.
+    std::fs::write(dir.path().join("big.scen"), "").unwrap();
+    let big = uri(&dir.path().join("big.scen"));
+    let filler = MAX_SCENARIO_BYTES as usize + 1 - MAIN.len();
+    let text = format!("{MAIN}#{}", "x".repeat(filler - 1));
+    assert_eq!(text.len() as u64, MAX_SCENARIO_BYTES + 1);
+    let mut c = Client::start();
+    c.open(&big, &text);
+    let d = c.diagnostics(&big);
+    assert_eq!(d.as_array().unwrap().len(), 1, "{d}");
+    assert_eq!(d[0]["code"], "scen::load::too_large");
+    assert_eq!(d[0]["range"], range(0, 0, 0, 0));
+    assert!(
+        d[0]["message"].as_str().unwrap().contains("larger than"),
+        "{d}"
+    );
+    // Edits that keep it too large, and requests on it, answered with
+    // nothing.
+    for version in 2..8 {
+        c.change(
+            &big,
+            version,
+            json!([{ "range": range(1, 0, 1, 0), "text": "# one more line\n" }]),
+        );
+        assert_eq!(c.at("textDocument/completion", &big, 1, 0), Value::Null);
+        assert_eq!(c.at("textDocument/hover", &big, 5, 6), Value::Null);
+        assert_eq!(c.at("textDocument/definition", &big, 5, 14), Value::Null);
+    }
+    let symbols = c.request(
+        "textDocument/documentSymbol",
+        json!({ "textDocument": { "uri": big } }),
+    );
+    assert_eq!(symbols, json!([]));
+    // Another document opened: its diagnostics come, the big one's are not
+    // published again (not after its edits, not after this change).
+    c.open(&main, MAIN);
+    let mut published = Vec::new();
+    loop {
+        let message = c.receive();
+        if message["method"] == "textDocument/publishDiagnostics" {
+            let uri = message["params"]["uri"].as_str().unwrap().to_string();
+            published.push(uri.clone());
+            if uri == main {
+                assert_eq!(message["params"]["diagnostics"], json!([]));
+                break;
+            }
+        }
+    }
+    assert_eq!(published, [main.as_str()]);
+    assert!(
+        c.notifications
+            .iter()
+            .all(|n| n["params"]["uri"] != big.as_str()),
+        "published again"
+    );
+    // Made small again: analysed again; too large again: diagnosed again.
+    c.change(&big, 20, json!([{ "text": MAIN }]));
+    assert_eq!(c.diagnostics(&big), json!([]));
+    assert_eq!(c.labels(&big, 8, 9), ["center", "corner"]);
+    c.change(&big, 21, json!([{ "text": text }]));
+    let d = c.diagnostics(&big);
+    assert_eq!(d[0]["code"], "scen::load::too_large", "{d}");
     c.shutdown();
 }

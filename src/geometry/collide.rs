@@ -27,6 +27,7 @@
 //! whose four cells are blocked — because those lie inside the obstacle.
 
 use super::buckets::Buckets;
+use super::polygon::proximity::{VertexIndex, shared_edges};
 use super::polygon::{self, distance_point_segment};
 use super::{Aabb, Point, Shape, TOUCH_EPS, Vector, World};
 
@@ -251,10 +252,16 @@ impl ObstacleIndex {
                             edges.truncate(first as usize);
                         }
                     }
-                    for (a, b) in seams(outline, convex.iter().map(|p| p.vertices.as_slice())) {
+                    let vertices = VertexIndex::new(outline);
+                    let shared = seams(
+                        outline,
+                        &vertices,
+                        convex.iter().map(|p| p.vertices.as_slice()),
+                    );
+                    for (a, b) in shared {
                         let (u0, u1) = (
-                            seam_end_margin(outline, a, b),
-                            (b - a).norm() - seam_end_margin(outline, b, a),
+                            seam_end_margin(outline, &vertices, a, b),
+                            (b - a).norm() - seam_end_margin(outline, &vertices, b, a),
                         );
                         if u0 < u1 {
                             let d = (b - a).normalize();
@@ -752,38 +759,29 @@ fn convex_meets_box(v: &[Point], b: &Aabb) -> bool {
     })
 }
 
-/// The edges shared by two pieces (edges of a piece that are not on the
-/// outline), once each.
-fn seams<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) -> Vec<(Point, Point)> {
+/// The edges shared by two pieces (edges of a piece whose midpoint is not
+/// within `1e-9 ×` the outline's size of the outline), once each, in
+/// O(n log n) ([`polygon::proximity::shared_edges`]).
+fn seams<'a>(
+    outline: &[Point],
+    vertices: &VertexIndex,
+    pieces: impl Iterator<Item = &'a [Point]>,
+) -> Vec<(Point, Point)> {
     let n = outline.len();
     let b = Aabb::around(outline);
     let tol = 1e-9 * b.width().max(b.height());
-    let mut out: Vec<(Point, Point)> = Vec::new();
-    for v in pieces {
-        for j in 0..v.len() {
-            let (a, b) = (v[j], v[(j + 1) % v.len()]);
-            let mid = Point::from((a.coords + b.coords) * 0.5);
-            let on_outline = (0..n)
-                .any(|i| distance_point_segment(mid, outline[i], outline[(i + 1) % n]) <= tol);
-            if !on_outline
-                && !out
-                    .iter()
-                    .any(|&(x, y)| (x, y) == (a, b) || (x, y) == (b, a))
-            {
-                out.push((a, b));
-            }
-        }
-    }
-    out
+    shared_edges(outline, vertices, pieces, tol, |p, i| {
+        distance_point_segment(p, outline[i], outline[(i + 1) % n])
+    })
 }
 
 /// How far from its end `a` the band around the seam `a → b` starts, so
 /// that the band (half-width ε) stays ε away from the outline edges at `a`:
 /// a point u along the seam and w across is |u·sin α − w·cos α| from an edge
 /// at angle α, which is ≥ ε when u ≥ ε·(1 + |cos α|)/sin α.
-fn seam_end_margin(outline: &[Point], a: Point, b: Point) -> f64 {
+fn seam_end_margin(outline: &[Point], vertices: &VertexIndex, a: Point, b: Point) -> f64 {
     let n = outline.len();
-    let Some(k) = outline.iter().position(|&v| v == a) else {
+    let Some(k) = vertices.of(a) else {
         return 2.0 * TOUCH_EPS;
     };
     let d = (b - a).normalize();
@@ -958,7 +956,12 @@ mod tests {
         let Shape::Polygon { outline, pieces } = &l else {
             unreachable!()
         };
-        let shared = seams(outline, pieces.iter().map(|pc| pc.vertices.as_slice()));
+        let vertices = VertexIndex::new(outline);
+        let shared = seams(
+            outline,
+            &vertices,
+            pieces.iter().map(|pc| pc.vertices.as_slice()),
+        );
         assert!(!shared.is_empty());
         let ix = ObstacleIndex::new(&world(vec![l.clone()]));
         for (a, b) in shared {
@@ -1014,6 +1017,35 @@ mod tests {
     }
 
     // ------------------------------------------------ agreement with the validator
+
+    /// `seams` as it was: every outline edge against every piece edge's
+    /// midpoint, every seam against those taken. The oracle of the test
+    /// below.
+    fn all_pairs_seams(
+        outline: &[Point],
+        pieces: &[crate::geometry::ConvexPolygon],
+    ) -> Vec<(Point, Point)> {
+        let n = outline.len();
+        let b = Aabb::around(outline);
+        let tol = 1e-9 * b.width().max(b.height());
+        let mut out: Vec<(Point, Point)> = Vec::new();
+        for v in pieces.iter().map(|p| &p.vertices) {
+            for j in 0..v.len() {
+                let (a, b) = (v[j], v[(j + 1) % v.len()]);
+                let mid = Point::from((a.coords + b.coords) * 0.5);
+                let on_outline = (0..n)
+                    .any(|i| distance_point_segment(mid, outline[i], outline[(i + 1) % n]) <= tol);
+                if !on_outline
+                    && !out
+                        .iter()
+                        .any(|&(x, y)| (x, y) == (a, b) || (x, y) == (b, a))
+                {
+                    out.push((a, b));
+                }
+            }
+        }
+        out
+    }
 
     fn probe_radius() -> impl Strategy<Value = f64> {
         prop_oneof![Just(0.0), 0.01..1.5f64]
@@ -1080,6 +1112,27 @@ mod tests {
         let (lo, hi) = ((r - 1e-7).max(0.0), r + 1e-7);
         ix.sweep_free(p, q, lo) != ix.sweep_free(p, q, hi)
             || validator_sweep_free(v, p, q, lo) != validator_sweep_free(v, p, q, hi)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// The seams, found with the outline's vertices hashed and the
+        /// midpoints swept, are those of the all-pairs search, in order.
+        #[test]
+        fn seams_are_those_of_the_all_pairs_search(
+            v in prop::collection::vec((0..6i32, 0..6i32), 4..14),
+            scale in prop::sample::select(vec![1.0, 1e-3, 7.5]),
+        ) {
+            let input: Vec<Point> = v.iter().map(|&(x, y)| p(x as f64 * scale, y as f64 * scale)).collect();
+            if let Some(Shape::Polygon { outline, pieces }) = polygon_shape(&input) {
+                let vertices = VertexIndex::new(&outline);
+                prop_assert_eq!(
+                    seams(&outline, &vertices, pieces.iter().map(|pc| pc.vertices.as_slice())),
+                    all_pairs_seams(&outline, &pieces)
+                );
+            }
+        }
     }
 
     proptest! {

@@ -44,7 +44,7 @@
 
 use nalgebra::Unit;
 use parry2d_f64::math::Isometry;
-use parry2d_f64::query::{self, sat};
+use parry2d_f64::query;
 use parry2d_f64::shape::{
     Ball, ConvexPolygon as ParryPolygon, Cuboid, Segment, Shape as ParryShape, SupportMap,
 };
@@ -850,26 +850,26 @@ fn prepare(shape: &Shape) -> Prepared<'_> {
 /// `TOUCH_EPS` around the edge. A band stops short of the edge's ends where
 /// it would come within `TOUCH_EPS` of the outline, so that a robot moving
 /// along the outline never meets it.
+///
+/// An edge is on the outline when its midpoint is within `1e-9 ×` the
+/// outline's size of an outline edge (by parry's point projection), found
+/// in O(n log n) ([`polygon::proximity::shared_edges`]).
 fn seam_zones<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) -> Vec<Core> {
+    use polygon::proximity::{VertexIndex, shared_edges};
+
     let n = outline.len();
     let bounds = aabb_of(outline);
     let scale = bounds.width().max(bounds.height());
-    let on_outline = |p: Point| {
-        (0..n).any(|i| {
-            let edge = Segment::new(outline[i], outline[(i + 1) % n]);
-            parry2d_f64::query::PointQuery::distance_to_point(
-                &edge,
-                &Isometry::identity(),
-                &p,
-                true,
-            ) <= 1e-9 * scale
-        })
-    };
+    let vertices = VertexIndex::new(outline);
+    let seams = shared_edges(outline, &vertices, pieces, 1e-9 * scale, |p, i| {
+        let edge = Segment::new(outline[i], outline[(i + 1) % n]);
+        parry2d_f64::query::PointQuery::distance_to_point(&edge, &Isometry::identity(), &p, true)
+    });
     // How far from its end `a` a band along `a → b` must start: a point at
     // distance u along it and within ε of it is at least
     // u·sin α − ε·|cos α| from an outline edge leaving `a` at angle α.
     let end_margin = |a: Point, b: Point| -> f64 {
-        let Some(k) = outline.iter().position(|v| *v == a) else {
+        let Some(k) = vertices.of(a) else {
             return 2.0 * TOUCH_EPS;
         };
         let d = (b - a).normalize();
@@ -883,19 +883,6 @@ fn seam_zones<'a>(outline: &[Point], pieces: impl Iterator<Item = &'a [Point]>) 
             .fold(TOUCH_EPS, f64::max)
             * 1.01
     };
-    let mut seams: Vec<(Point, Point)> = Vec::new();
-    for piece in pieces {
-        for i in 0..piece.len() {
-            let (a, b) = (piece[i], piece[(i + 1) % piece.len()]);
-            if on_outline(Point::from((a.coords + b.coords) / 2.0))
-                || seams.contains(&(b, a))
-                || seams.contains(&(a, b))
-            {
-                continue;
-            }
-            seams.push((a, b));
-        }
-    }
     seams
         .into_iter()
         .filter_map(|(a, b)| {
@@ -966,6 +953,31 @@ impl Core {
         }
     }
 
+    /// Calls `f` with each outward edge normal (as [`Core::for_each_normal`])
+    /// and the core's support point along it. A polygon's is an end of the
+    /// edge, the farther of the two (the first in the polygon's order on a
+    /// tie, as parry's scan of every vertex picks it), found in O(1): the
+    /// separating-axis test against a polygon of n vertices takes O(n), not
+    /// O(n²).
+    fn for_each_normal_with_support(&self, mut f: impl FnMut(Unit<Vector>, Point)) {
+        match self {
+            Core::Polygon(p) => {
+                let points = p.points();
+                for (i, n) in p.normals().iter().enumerate() {
+                    let j = (i + 1) % points.len();
+                    let (first, second) = (i.min(j), i.max(j));
+                    let far = if points[second].coords.dot(n) > points[first].coords.dot(n) {
+                        second
+                    } else {
+                        first
+                    };
+                    f(*n, points[far]);
+                }
+            }
+            _ => self.for_each_normal(|n| f(n, self.local_support_point(&n))),
+        }
+    }
+
     /// Runs `f` on the core as a parry shape and its position.
     fn with_shape<R>(&self, f: impl FnOnce(&Isometry<f64>, &dyn ParryShape) -> R) -> R {
         match self {
@@ -993,18 +1005,18 @@ impl SupportMap for Core {
 /// polygonal cores a negative gap is exactly minus the penetration depth;
 /// a non-negative gap means the cores are disjoint or touch.
 fn largest_gap(a: &Core, b: &Core) -> Option<f64> {
-    let id = Isometry::identity();
     let mut gap: Option<f64> = None;
     let mut keep = |g: f64| gap = Some(gap.map_or(g, |h: f64| h.max(g)));
-    a.for_each_normal(|u| {
-        keep(sat::support_map_support_map_compute_separation(
-            a, b, &id, &u,
-        ))
+    // parry's `sat::support_map_support_map_compute_separation(a, b, id, u)`,
+    // (b's support toward −u − a's toward u)·u, with the support of the
+    // core whose normal `u` is known without a scan.
+    a.for_each_normal_with_support(|u, on_a| {
+        let on_b = b.local_support_point(&-*u);
+        keep((on_b - on_a).dot(&u));
     });
-    b.for_each_normal(|n| {
-        keep(sat::support_map_support_map_compute_separation(
-            a, b, &id, &-n,
-        ))
+    b.for_each_normal_with_support(|n, on_b| {
+        let on_a = a.local_support_point(&-*n);
+        keep((on_b - on_a).dot(&-*n));
     });
     gap
 }
@@ -1200,6 +1212,138 @@ mod tests {
 
     fn clearance(w: &World, robot: &RobotShape, path: &[Config]) -> f64 {
         Validator::new(w).clearance(robot, path, DEFAULT_TOLERANCE)
+    }
+
+    /// `seam_zones` as it was: every piece edge's midpoint against every
+    /// outline edge, every seam against those taken, every end against
+    /// every outline vertex. The oracle of the test below.
+    fn all_pairs_seam_zones(
+        outline: &[Point],
+        pieces: &[crate::geometry::ConvexPolygon],
+    ) -> Vec<Core> {
+        let n = outline.len();
+        let bounds = aabb_of(outline);
+        let scale = bounds.width().max(bounds.height());
+        let on_outline = |p: Point| {
+            (0..n).any(|i| {
+                let edge = Segment::new(outline[i], outline[(i + 1) % n]);
+                parry2d_f64::query::PointQuery::distance_to_point(
+                    &edge,
+                    &Isometry::identity(),
+                    &p,
+                    true,
+                ) <= 1e-9 * scale
+            })
+        };
+        let end_margin = |a: Point, b: Point| -> f64 {
+            let Some(k) = outline.iter().position(|v| *v == a) else {
+                return 2.0 * TOUCH_EPS;
+            };
+            let d = (b - a).normalize();
+            [outline[(k + n - 1) % n], outline[(k + 1) % n]]
+                .iter()
+                .map(|&v| {
+                    let e = (v - a).normalize();
+                    let (sin, cos) = (d.perp(&e).abs(), d.dot(&e));
+                    TOUCH_EPS * (1.0 + cos.abs()) / sin
+                })
+                .fold(TOUCH_EPS, f64::max)
+                * 1.01
+        };
+        let mut seams: Vec<(Point, Point)> = Vec::new();
+        for piece in pieces.iter().map(|p| &p.vertices) {
+            for i in 0..piece.len() {
+                let (a, b) = (piece[i], piece[(i + 1) % piece.len()]);
+                if on_outline(Point::from((a.coords + b.coords) / 2.0))
+                    || seams.contains(&(b, a))
+                    || seams.contains(&(a, b))
+                {
+                    continue;
+                }
+                seams.push((a, b));
+            }
+        }
+        seams
+            .into_iter()
+            .filter_map(|(a, b)| {
+                let length = (b - a).norm();
+                let (ma, mb) = (end_margin(a, b), end_margin(b, a));
+                if ma + mb >= length || ma.is_nan() || mb.is_nan() {
+                    return None;
+                }
+                let d = (b - a) / length;
+                let n = Vector::new(-d.y, d.x) * TOUCH_EPS;
+                let (a, b) = (a + d * ma, b - d * mb);
+                ParryPolygon::from_convex_polyline_unmodified(vec![a - n, b - n, b + n, a + n])
+                    .map(Core::Polygon)
+            })
+            .collect()
+    }
+
+    /// `largest_gap` as it was, with parry's separation along every normal
+    /// (a scan of every vertex for each). The oracle of the test below.
+    fn largest_gap_by_parry(a: &Core, b: &Core) -> Option<f64> {
+        use parry2d_f64::query::sat;
+        let id = Isometry::identity();
+        let mut gap: Option<f64> = None;
+        let mut keep = |g: f64| gap = Some(gap.map_or(g, |h: f64| h.max(g)));
+        a.for_each_normal(|u| {
+            keep(sat::support_map_support_map_compute_separation(
+                a, b, &id, &u,
+            ))
+        });
+        b.for_each_normal(|n| {
+            keep(sat::support_map_support_map_compute_separation(
+                a, b, &id, &-n,
+            ))
+        });
+        gap
+    }
+
+    fn zone_points(zones: &[Core]) -> Vec<Vec<Point>> {
+        zones
+            .iter()
+            .map(|z| match z {
+                Core::Polygon(p) => p.points().to_vec(),
+                _ => Vec::new(),
+            })
+            .collect()
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+
+        /// The gaps of the separating-axis test, with a polygon's support
+        /// along its own normals taken from the edge, are parry's.
+        #[test]
+        fn largest_gap_is_parrys(
+            a in proptest::collection::vec((-3.0..3.0f64, -3.0..3.0f64), 1..12),
+            b in proptest::collection::vec((-3.0..3.0f64, -3.0..3.0f64), 1..12),
+            shift in (-4.0..4.0f64, -4.0..4.0f64),
+        ) {
+            let a: Vec<Point> = a.iter().map(|&(x, y)| Point::new(x, y)).collect();
+            let b: Vec<Point> = b.iter().map(|&(x, y)| Point::new(x + shift.0, y + shift.1)).collect();
+            let (a, b) = (convex_core(&a), convex_core(&b));
+            let boxed = Core::from_aabb(&aabb_of(&[Point::new(shift.0, shift.1), Point::new(shift.1, 1.0)]));
+            for (x, y) in [(&a, &b), (&b, &a), (&a, &boxed), (&boxed, &b)] {
+                proptest::prop_assert_eq!(largest_gap(x, y), largest_gap_by_parry(x, y));
+            }
+        }
+
+        /// The seam bands, found with the outline's vertices hashed and the
+        /// midpoints swept, are those of the all-pairs search, in order.
+        #[test]
+        fn seam_zones_are_those_of_the_all_pairs_search(
+            v in proptest::collection::vec((0..6i32, 0..6i32), 4..14),
+            scale in proptest::sample::select(vec![1.0, 1e-3, 7.5]),
+        ) {
+            let input: Vec<Point> = v.iter().map(|&(x, y)| Point::new(x as f64 * scale, y as f64 * scale)).collect();
+            if let Ok(outline) = polygon::normalize_simple_polygon(&input) {
+                let pieces = polygon::convex_decomposition(&outline);
+                let fast = seam_zones(&outline, pieces.iter().map(|p| p.vertices.as_slice()));
+                proptest::prop_assert_eq!(zone_points(&fast), zone_points(&all_pairs_seam_zones(&outline, &pieces)));
+            }
+        }
     }
 
     #[test]

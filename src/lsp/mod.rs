@@ -1,5 +1,8 @@
-//! `scen lsp`: a Language Server on stdin/stdout (SPEC §4), on the
-//! synchronous `lsp-server` scaffold that rust-analyzer uses.
+//! `scen lsp`: a Language Server on stdin/stdout (SPEC §4), on the message
+//! types of the synchronous `lsp-server` scaffold that rust-analyzer uses,
+//! with a transport of our own ([`transport`]): a malformed message gets a
+//! JSON-RPC error response and the server goes on; it stops at `exit` or at
+//! the end of its input.
 //!
 //! One thread answers messages in order. Each open document is analysed as
 //! `scen check` would analyse it (the loader and the analyzer, with the
@@ -14,20 +17,23 @@ mod analysis;
 mod complete;
 mod navigate;
 mod text;
+mod transport;
 
-use std::collections::HashMap;
+use std::collections::BTreeMap;
+use std::io::{self, Write};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::sync::mpsc::{Receiver, sync_channel};
 
-use lsp_server::{Connection, ErrorCode, Message, Notification, Request, Response};
+use lsp_server::{ErrorCode, Message, Notification, Request, RequestId, Response};
 use lsp_types::notification::{
-    DidChangeTextDocument, DidCloseTextDocument, DidOpenTextDocument, DidSaveTextDocument,
+    DidChangeTextDocument, DidCloseTextDocument, DidOpenTextDocument, DidSaveTextDocument, Exit,
     Notification as _, PublishDiagnostics,
 };
 use lsp_types::request::{
-    Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest, References,
-    Request as _,
+    Completion, DocumentSymbolRequest, Formatting, GotoDefinition, HoverRequest, Initialize,
+    References, Request as _, Shutdown,
 };
 use lsp_types::{
     CompletionOptions, CompletionParams, CompletionResponse, Diagnostic,
@@ -40,32 +46,100 @@ use lsp_types::{
 };
 
 use crate::diagnostics::{Diag, FileId, Level, Span};
-use crate::scenario::loader::canonical;
+use crate::scenario::loader::{MAX_SCENARIO_BYTES, canonical};
 
 use analysis::Analysis;
 use text::{Encoding, LineIndex};
+use transport::{Incoming, Reader, Rejected};
 
-/// Runs the server until the client says `exit` (or closes stdin); returns
-/// the exit code.
+/// Runs the server until the client says `exit` or closes stdin; returns
+/// the exit code the LSP specifies for `exit`: 0 when `shutdown` came
+/// before, 1 otherwise.
 pub fn run() -> i32 {
-    let (connection, io_threads) = Connection::stdio();
-    let code = match serve(&connection) {
-        Ok(()) => 0,
+    let incoming = read_stdin();
+    match serve(&incoming, &mut io::stdout().lock()) {
+        Ok(code) => code,
         Err(e) => {
             eprintln!("scen lsp: {e}");
             1
         }
-    };
-    drop(connection);
-    if let Err(e) = io_threads.join() {
-        eprintln!("scen lsp: {e}");
     }
-    code
 }
 
-fn serve(connection: &Connection) -> Result<(), Box<dyn std::error::Error>> {
-    let (id, params) = connection.initialize_start()?;
-    let params: InitializeParams = serde_json::from_value(params).unwrap_or_default();
+/// Reads stdin on a thread of its own, so that the messages that arrive
+/// while one is handled are there to be handled before the next analysis.
+/// (The thread is not joined: it may be blocked reading when `exit` comes,
+/// and the process ends then.)
+fn read_stdin() -> Receiver<Incoming> {
+    // A few messages read ahead, not more: each may be large.
+    let (sender, receiver) = sync_channel(4);
+    std::thread::spawn(move || {
+        let mut reader = Reader::new(io::stdin().lock());
+        loop {
+            match reader.next_message() {
+                Ok(Some(message)) => {
+                    if sender.send(message).is_err() {
+                        return;
+                    }
+                }
+                Ok(None) => return,
+                Err(e) => {
+                    eprintln!("scen lsp: cannot read stdin: {e}");
+                    return;
+                }
+            }
+        }
+    });
+    receiver
+}
+
+fn send(out: &mut impl Write, message: impl Into<Message>) -> io::Result<()> {
+    message.into().write(out)
+}
+
+fn refuse(out: &mut impl Write, rejected: &Rejected) -> io::Result<()> {
+    transport::write_message(out, &rejected.response())
+}
+
+/// Waits for `initialize` and returns it (`None` when the client leaves
+/// first): requests before it get an error, notifications are dropped.
+fn initialize(
+    incoming: &Receiver<Incoming>,
+    out: &mut impl Write,
+) -> io::Result<Option<(RequestId, InitializeParams)>> {
+    while let Ok(message) = incoming.recv() {
+        match message {
+            Err(rejected) => refuse(out, &rejected)?,
+            Ok(Message::Request(req)) if req.method == Initialize::METHOD => {
+                match serde_json::from_value(req.params) {
+                    Ok(params) => return Ok(Some((req.id, params))),
+                    Err(e) => send(
+                        out,
+                        Response::new_err(req.id, ErrorCode::InvalidParams as i32, e.to_string()),
+                    )?,
+                }
+            }
+            Ok(Message::Request(req)) => send(
+                out,
+                Response::new_err(
+                    req.id,
+                    ErrorCode::ServerNotInitialized as i32,
+                    format!("`{}` before `initialize`", req.method),
+                ),
+            )?,
+            Ok(Message::Notification(n)) if n.method == Exit::METHOD => return Ok(None),
+            Ok(_) => {}
+        }
+    }
+    Ok(None)
+}
+
+/// Answers messages until `exit` or the end of the input; returns the exit
+/// code.
+fn serve(incoming: &Receiver<Incoming>, out: &mut impl Write) -> io::Result<i32> {
+    let Some((id, params)) = initialize(incoming, out)? else {
+        return Ok(1);
+    };
     let utf8 = params
         .capabilities
         .general
@@ -95,42 +169,58 @@ fn serve(connection: &Connection) -> Result<(), Box<dyn std::error::Error>> {
         document_formatting_provider: Some(OneOf::Left(true)),
         ..ServerCapabilities::default()
     };
-    connection.initialize_finish(
-        id,
-        serde_json::json!({
-            "capabilities": capabilities,
-            "serverInfo": { "name": "scen", "version": env!("CARGO_PKG_VERSION") },
-        }),
+    send(
+        out,
+        Response::new_ok(
+            id,
+            serde_json::json!({
+                "capabilities": capabilities,
+                "serverInfo": { "name": "scen", "version": env!("CARGO_PKG_VERSION") },
+            }),
+        ),
     )?;
     let mut server = Server {
-        docs: HashMap::new(),
+        docs: BTreeMap::new(),
         encoding,
         generation: 0,
         published: 0,
         closed: Vec::new(),
     };
-    while let Ok(message) = connection.receiver.recv() {
+    let mut shut_down = false;
+    while let Ok(message) = incoming.recv() {
         let mut next = Some(message);
         while let Some(message) = next.take() {
             match message {
-                Message::Request(req) => {
-                    if connection.handle_shutdown(&req)? {
-                        return Ok(());
-                    }
-                    let response = server.answer(req);
-                    connection.sender.send(response.into())?;
+                Err(rejected) => refuse(out, &rejected)?,
+                Ok(Message::Request(req)) => {
+                    let response = if shut_down {
+                        Response::new_err(
+                            req.id,
+                            ErrorCode::InvalidRequest as i32,
+                            "the server is shut down: only `exit` is expected".into(),
+                        )
+                    } else if req.method == Shutdown::METHOD {
+                        shut_down = true;
+                        Response::new_ok(req.id, ())
+                    } else {
+                        server.answer(req)
+                    };
+                    send(out, response)?;
                 }
-                Message::Notification(n) => server.notify(n),
-                Message::Response(_) => {}
+                Ok(Message::Notification(n)) if n.method == Exit::METHOD => {
+                    return Ok(if shut_down { 0 } else { 1 });
+                }
+                Ok(Message::Notification(n)) if !shut_down => server.notify(n),
+                Ok(_) => {}
             }
             // Handle what has arrived before analysing for diagnostics.
-            next = connection.receiver.try_recv().ok();
+            next = incoming.try_recv().ok();
         }
         for notification in server.diagnostics() {
-            connection.sender.send(notification.into())?;
+            send(out, notification)?;
         }
     }
-    Ok(())
+    Ok(if shut_down { 0 } else { 1 })
 }
 
 struct Doc {
@@ -139,10 +229,34 @@ struct Doc {
     text: String,
     /// The analysis and the generation it was made at.
     analysis: Option<(Arc<Analysis>, u64)>,
+    /// Over the loader's bound ([`MAX_SCENARIO_BYTES`]): the loader refuses it
+    /// whatever it says, so it is analysed once when it becomes so (its
+    /// one diagnostic published once), and not again while edits keep it
+    /// too large; requests on it answer nothing.
+    too_large: bool,
+    /// Whether the diagnostic of a too large text has been published.
+    published_too_large: bool,
+}
+
+impl Doc {
+    fn new(path: PathBuf, text: String) -> Doc {
+        Doc {
+            path,
+            too_large: is_too_large(&text),
+            text,
+            analysis: None,
+            published_too_large: false,
+        }
+    }
+}
+
+fn is_too_large(text: &str) -> bool {
+    text.len() as u64 > MAX_SCENARIO_BYTES
 }
 
 struct Server {
-    docs: HashMap<Url, Doc>,
+    /// By URI, in order, so that diagnostics are published in one order.
+    docs: BTreeMap<Url, Doc>,
     encoding: Encoding,
     /// Counts changes to open documents: an analysis of an older generation
     /// may be out of date (an included document changed too).
@@ -182,11 +296,7 @@ impl Server {
                 else {
                     return;
                 };
-                let doc = Doc {
-                    path: uri_path(&p.text_document.uri),
-                    text: p.text_document.text,
-                    analysis: None,
-                };
+                let doc = Doc::new(uri_path(&p.text_document.uri), p.text_document.text);
                 self.docs.insert(p.text_document.uri, doc);
                 self.generation += 1;
             }
@@ -205,7 +315,18 @@ impl Server {
                             self.encoding,
                         );
                     }
-                    self.generation += 1;
+                    let was_too_large = doc.too_large;
+                    doc.too_large = is_too_large(&doc.text);
+                    if was_too_large != doc.too_large {
+                        // Its last analysis, and what was published, were
+                        // of the other kind.
+                        doc.analysis = None;
+                        doc.published_too_large = false;
+                    }
+                    // Still too large: nothing that reads it can tell.
+                    if !(was_too_large && doc.too_large) {
+                        self.generation += 1;
+                    }
                 }
             }
             DidCloseTextDocument::METHOD => {
@@ -223,23 +344,25 @@ impl Server {
         }
     }
 
-    /// The current analysis of a document (made now if out of date).
+    /// The current analysis of a document (made now if out of date; a too
+    /// large document's first one is kept).
     fn analysis(&mut self, uri: &Url) -> Option<Arc<Analysis>> {
         let generation = self.generation;
-        if let Some((a, g)) = &self.docs.get(uri)?.analysis
-            && *g == generation
+        let doc = self.docs.get(uri)?;
+        if let Some((a, g)) = &doc.analysis
+            && (*g == generation || doc.too_large)
         {
             return Some(a.clone());
         }
-        let overlay: HashMap<PathBuf, Arc<str>> = self
-            .docs
-            .values()
-            .map(|d| (d.path.clone(), Arc::from(d.text.as_str())))
-            .collect();
-        let doc = self.docs.get_mut(uri)?;
-        let lookup = |p: &Path| overlay.get(p).cloned();
+        // Only the files the loader reads are copied.
+        let docs = &self.docs;
+        let lookup = |p: &Path| {
+            docs.values()
+                .find(|d| d.path == p)
+                .map(|d| Arc::from(d.text.as_str()))
+        };
         let analysis = Arc::new(Analysis::new(&doc.path, &lookup));
-        doc.analysis = Some((analysis.clone(), generation));
+        self.docs.get_mut(uri)?.analysis = Some((analysis.clone(), generation));
         Some(analysis)
     }
 
@@ -347,7 +470,8 @@ impl Server {
             Formatting::METHOD => {
                 let p: DocumentFormattingParams = params(req)?;
                 let encoding = self.encoding;
-                let edits = self.docs.get(&p.text_document.uri).and_then(|doc| {
+                let doc = self.docs.get(&p.text_document.uri);
+                let edits = doc.filter(|doc| !doc.too_large).and_then(|doc| {
                     let formatted = crate::format::format_text(&doc.text).ok()?;
                     let index = LineIndex::new(&doc.text, encoding);
                     let edits = if formatted == doc.text {
@@ -379,6 +503,9 @@ impl Server {
         stale: bool,
         f: impl FnOnce(&Doc, &Analysis, usize) -> T,
     ) -> Option<T> {
+        if self.docs.get(uri)?.too_large {
+            return None;
+        }
         let analysis = if stale {
             self.any_analysis(uri)?
         } else {
@@ -447,6 +574,14 @@ impl Server {
             })
             .collect();
         for uri in uris {
+            if let Some(doc) = self.docs.get_mut(&uri)
+                && doc.too_large
+            {
+                if doc.published_too_large {
+                    continue;
+                }
+                doc.published_too_large = true;
+            }
             let encoding = self.encoding;
             let diagnostics = catch_unwind(AssertUnwindSafe(|| {
                 let a = self.analysis(&uri)?;

@@ -323,6 +323,29 @@ impl Analyzer {
         }
     }
 
+    /// A polygon's vertices, at most [`polygon::MAX_POLYGON_VERTICES`] of
+    /// them (SPEC 2.2), refused before they are read one by one.
+    fn polygon_points(&mut self, v: &Value, what: &str) -> Option<(Vec<Point>, Vec<Span>)> {
+        if let ValueKind::List(items) = &v.kind
+            && items.len() > polygon::MAX_POLYGON_VERTICES
+        {
+            self.error(
+                Diag::error(
+                    "scen::analyze::polygon_too_large",
+                    format!(
+                        "{what} has {} vertices, more than the limit of {}",
+                        items.len(),
+                        polygon::MAX_POLYGON_VERTICES
+                    ),
+                )
+                .at(v.span, "too many vertices")
+                .help("simplify the outline, or split the obstacle into several polygons"),
+            );
+            return None;
+        }
+        self.expect_points(v, what)
+    }
+
     fn expect_pose(&mut self, v: &Value, what: &str) -> Option<Config> {
         match &v.kind {
             ValueKind::Tuple(items) if items.len() == 2 || items.len() == 3 => {
@@ -566,7 +589,7 @@ impl Analyzer {
                 }
             }
             ast::ObstacleShape::Polygon(v) => {
-                let (pts, vspans) = self.expect_points(v, "a polygon")?;
+                let (pts, vspans) = self.polygon_points(v, "a polygon")?;
                 match polygon::normalize_simple_polygon(&pts) {
                     Ok(outline) => {
                         let pieces = if polygon::is_convex(&outline) {
@@ -826,7 +849,7 @@ impl Analyzer {
     }
 
     fn robot_polygon(&mut self, v: &Value) -> Option<RobotShape> {
-        let (pts, vspans) = self.expect_points(v, "the robot polygon")?;
+        let (pts, vspans) = self.polygon_points(v, "the robot polygon")?;
         match polygon::normalize_simple_polygon(&pts) {
             Ok(outline) if polygon::is_convex(&outline) => {
                 Some(RobotShape::Polygon(ConvexPolygon { vertices: outline }))

@@ -4,6 +4,7 @@
 
 #![allow(dead_code)]
 
+pub mod lsp_client;
 pub mod random;
 
 use std::path::{Path, PathBuf};
