@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::process::Command;
 use std::time::Duration;
 
-use common::{TempDir, repo, run_with_timeout, scen_bin};
+#[cfg(feature = "viewer")]
+use common::TempDir;
+use common::{repo, run_with_timeout, scen_bin};
 
 fn scenario_files() -> Vec<PathBuf> {
     fn walk(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
