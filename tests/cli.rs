@@ -568,3 +568,31 @@ fn a_wheel_build_without_maturin_says_how_to_get_it() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("pip install maturin"), "{err}");
 }
+
+/// `fmt` and `import` read only regular files, bounded: a device or a FIFO
+/// is refused at once instead of read until memory runs out or forever
+/// (SPEC 2.2, §4).
+#[cfg(unix)]
+#[test]
+fn fmt_and_import_refuse_files_that_are_not_regular() {
+    Test::new()
+        .args(&["fmt", "--check", "/dev/zero"])
+        .stderr_contains("not a regular file")
+        .status(2)
+        .run();
+    Test::new()
+        .args(&["import", "roadmap", "/dev/zero"])
+        .stderr_contains("not a regular file")
+        .status(2)
+        .run();
+    let t = Test::new().file("ok.scen", SMALL);
+    let made = std::process::Command::new("mkfifo")
+        .arg(t.dir().join("pipe.scen"))
+        .status()
+        .is_ok_and(|s| s.success());
+    assert!(made, "mkfifo");
+    t.args(&["fmt", "--check", "pipe.scen"])
+        .stderr_contains("a FIFO (named pipe), not a regular file")
+        .status(2)
+        .run();
+}

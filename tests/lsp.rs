@@ -757,3 +757,57 @@ fn an_oversized_document_is_diagnosed_once_and_not_analysed_per_edit() {
     assert_eq!(d[0]["code"], "scen::load::too_large", "{d}");
     c.shutdown();
 }
+
+/// The loader's bounds hold in the server too (issue: a file included
+/// twice per level, 24 levels deep, ran past 60 s; a FIFO hung it): the
+/// document's diagnostics come at once, and the server answers after.
+#[test]
+fn includes_that_double_at_every_level_or_are_fifos_are_refused_at_once() {
+    let dir = common::TempDir::new("lsp-includes");
+    for k in 0..24 {
+        let next = format!("include \"_twice_{}.scen\"\n", k + 1);
+        std::fs::write(dir.path().join(format!("_twice_{k}.scen")), next.repeat(2)).expect("write");
+    }
+    std::fs::write(
+        dir.path().join("_twice_24.scen"),
+        "# the bottom of the chain: forty bytes.\n",
+    )
+    .expect("write");
+    let main = dir.path().join("main.scen");
+    let text = format!("include \"_twice_0.scen\"\n{MAIN}");
+    std::fs::write(&main, &text).expect("write");
+    let main = uri(&main);
+    let mut c = Client::start();
+    c.open(&main, &text);
+    let diags = c.diagnostics(&main);
+    assert!(
+        diags.to_string().contains("scen::load::too_large"),
+        "{diags}"
+    );
+    #[cfg(unix)]
+    {
+        let fifo = dir.path().join("pipe.scen");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .is_ok_and(|s| s.success());
+        assert!(made, "mkfifo");
+        let other = dir.path().join("other.scen");
+        let text = format!("include \"pipe.scen\"\n{MAIN}");
+        std::fs::write(&other, &text).expect("write");
+        let other = uri(&other);
+        c.open(&other, &text);
+        let diags = c.diagnostics(&other);
+        assert!(
+            diags.to_string().contains("scen::load::not_regular"),
+            "{diags}"
+        );
+    }
+    // Still answering.
+    let symbols = c.request(
+        "textDocument/documentSymbol",
+        json!({ "textDocument": { "uri": main } }),
+    );
+    assert!(symbols.is_array(), "{symbols}");
+    c.shutdown();
+}
