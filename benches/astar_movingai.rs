@@ -32,13 +32,13 @@ use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
 use pathfinding::num_traits::Zero;
+use scen::contract::Limits;
 use scen::geometry::collide::ObstacleIndex;
 use scen::geometry::{Shape, World};
-use scen::planners::astar::{
+use scen::planners::grid_lattice::{
     CostMetric, GridLattice, Heuristic, SearchBuffers, SearchConfig, search,
 };
 use scen::planners::lattice::{LatticeSpec, Sample};
-use scen::scenario::Limits;
 
 /// Every `EVERY`-th scenario row is in the sample.
 const EVERY: usize = 32;

@@ -20,10 +20,10 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use scen::contract::Limits;
+use scen::contract::Task;
 use scen::geometry::{Config, Grid, Obstacle, Point, RobotShape, Shape, World};
 use scen::planners::coverage::{Cells, Coverage, EdgeWeights, prim, tour};
-use scen::planners::registry::Task;
-use scen::scenario::Limits;
 
 const SIDE: usize = 2000;
 

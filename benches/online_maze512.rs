@@ -19,7 +19,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
-use scen::planners::MetricValue;
+use scen::contract::MetricValue;
 use scen::planners::online::{Online, Options, navigate};
 use scen::scenario::Scenario;
 
@@ -83,7 +83,7 @@ fn load(rows: &[usize]) -> Scenario {
     }
 }
 
-fn run(s: &Scenario, name: &str, options: Options) -> scen::planners::PlanOutcome {
+fn run(s: &Scenario, name: &str, options: Options) -> scen::contract::PlanOutcome {
     let plan = s.plans.iter().find(|p| p.name == name).expect("a plan");
     let settings = plan
         .settings
@@ -93,7 +93,7 @@ fn run(s: &Scenario, name: &str, options: Options) -> scen::planners::PlanOutcom
     navigate(&plan.task(s), settings, options)
 }
 
-fn metric(out: &scen::planners::PlanOutcome, m: &str) -> f64 {
+fn metric(out: &scen::contract::PlanOutcome, m: &str) -> f64 {
     match out.extra.get(m) {
         Some(MetricValue::Num(x)) => *x,
         _ => f64::NAN,

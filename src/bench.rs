@@ -14,25 +14,10 @@ use std::collections::BTreeMap;
 use rayon::prelude::*;
 
 use crate::checks::{self, Values};
-use crate::planners::{MetricValue, Metrics};
-use crate::run::{self, RunReport};
+use crate::contract::{MetricValue, Metrics};
+use crate::run::{self, BenchRun, RunReport};
 use crate::scenario::{Bench, Scenario};
 use crate::syntax::ast::Selection;
-
-/// One run of a bench: which, and its metrics.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BenchRun {
-    /// Index into `Scenario::benches`.
-    pub bench: usize,
-    /// Index into the bench's `plans`.
-    pub plan: usize,
-    /// The configuration ([`Bench::config_values`]).
-    pub config: usize,
-    /// The run's index in its configuration.
-    pub run: u64,
-    pub seed: u64,
-    pub metrics: Metrics,
-}
 
 /// Where a run sits: its number in the file's order, and its coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::planners::{MetricValue, Metrics};
+use crate::contract::{MetricValue, Metrics};
 use crate::syntax::ast::{ArithOp, CompareOp, Expr, ExprKind, Selection, Value, ValueKind};
 
 /// What an expression reads: plans' metrics, and benches' series.

@@ -13,10 +13,10 @@
 
 use std::collections::BTreeMap;
 
+use crate::contract::schema::{DRIVE_PARAMS, DefaultValue};
+use crate::contract::{Param, ParamValue};
 use crate::geometry::polygon::distance_point_segment;
 use crate::geometry::{Config, angle_diff};
-use crate::scenario::schema::{DRIVE_PARAMS, DefaultValue};
-use crate::scenario::{Param, ParamValue};
 
 /// The most simulated steps of one drive; a drive that needs more stops
 /// there, unfinished.
@@ -290,7 +290,7 @@ mod tests {
     #[test]
     fn the_defaults_are_the_ones_the_schema_writes() {
         // A block giving every key its documented default, as written.
-        let block: Vec<String> = crate::scenario::schema::DRIVE_PARAMS
+        let block: Vec<String> = crate::contract::schema::DRIVE_PARAMS
             .iter()
             .map(|p| format!("{} {}", p.key, p.default.text()))
             .collect();
@@ -303,7 +303,7 @@ mod tests {
         let Some(ParamValue::Block(_, given)) = scenario.plans[0].params.get("drive") else {
             panic!("no drive block");
         };
-        assert_eq!(given.len(), crate::scenario::schema::DRIVE_PARAMS.len());
+        assert_eq!(given.len(), crate::contract::schema::DRIVE_PARAMS.len());
         assert_eq!(Unicycle::from_block(given), Unicycle::default());
         // The values the simulation documents (DECISIONS.md).
         let d = Unicycle::default();

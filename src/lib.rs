@@ -7,6 +7,7 @@
 pub mod bench;
 pub mod checks;
 pub mod cli;
+pub mod contract;
 pub mod diagnostics;
 pub mod drive;
 pub mod files;

@@ -8,12 +8,14 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::checks;
+use crate::contract::ParamValue;
+use crate::contract::Task;
+use crate::contract::{MetricValue, Metrics, PlanOutcome};
 use crate::drive::{self, DriveOutcome, Unicycle};
+use crate::geometry::path::{path_length, path_turn, smoothness};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError, Validator};
 use crate::geometry::{Config, RobotShape, angle_diff};
-use crate::planners::registry::Task;
-use crate::planners::{MetricValue, Metrics, PlanOutcome};
-use crate::scenario::{Check, ParamValue, Plan, Scenario};
+use crate::scenario::{Check, Plan, Scenario};
 use crate::syntax::ast::Selection;
 
 /// The result of one plan.
@@ -44,6 +46,21 @@ pub struct CheckOutcome {
     pub series: BTreeMap<String, checks::SeriesStats>,
 }
 
+/// One run of a bench: which, and its metrics.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BenchRun {
+    /// Index into `Scenario::benches`.
+    pub bench: usize,
+    /// Index into the bench's `plans`.
+    pub plan: usize,
+    /// The configuration ([`Bench::config_values`]).
+    pub config: usize,
+    /// The run's index in its configuration.
+    pub run: u64,
+    pub seed: u64,
+    pub metrics: Metrics,
+}
+
 /// Everything a run produced, for the sinks.
 #[derive(Clone, Debug)]
 pub struct RunReport {
@@ -51,7 +68,7 @@ pub struct RunReport {
     pub plans: Vec<PlanRun>,
     /// The runs of the benches (`scen bench`, `scen test`; empty for
     /// `scen run`).
-    pub bench_runs: Vec<crate::bench::BenchRun>,
+    pub bench_runs: Vec<BenchRun>,
     pub checks: Vec<CheckOutcome>,
     /// The checks not evaluated because a plan they read did not run
     /// (`scen run --plan`), as indices into `Scenario::checks`.
@@ -294,87 +311,4 @@ fn common_metrics(
     };
     m.insert("reaches_goal".into(), Bool(reaches));
     m
-}
-
-/// Euclidean length of the (x, y) polyline.
-pub fn path_length(path: &[Config]) -> f64 {
-    path.windows(2)
-        .map(|w| (w[1].x - w[0].x).hypot(w[1].y - w[0].y))
-        .sum()
-}
-
-/// Total absolute rotation along the shorter arcs, in radians.
-pub fn path_turn(path: &[Config]) -> f64 {
-    path.windows(2)
-        .map(|w| angle_diff(w[0].theta, w[1].theta).abs())
-        .sum()
-}
-
-/// OMPL's smoothness of the (x, y) polyline (`PathGeometric::smoothness`):
-/// for consecutive segments of lengths a, b whose ends are c apart,
-/// k = 2(π − acos((a² + b² − c²)/(2ab)))/(a + b), summed as k². Zero-length
-/// segments are skipped; as in OMPL, a vertex where the cosine is not
-/// strictly inside (−1, 1) (a straight continuation, or a turn back)
-/// adds nothing. 0 for a straight path.
-pub fn smoothness(path: &[Config]) -> f64 {
-    let mut points: Vec<crate::geometry::Point> = Vec::with_capacity(path.len());
-    for c in path {
-        if points.last() != Some(&c.xy()) {
-            points.push(c.xy());
-        }
-    }
-    points
-        .windows(3)
-        .map(|w| corner_smoothness(w[0], w[1], w[2]))
-        .sum()
-}
-
-/// The term of [`smoothness`] at the corner `q` of the polyline
-/// `p → q → r` (consecutive points, each different from the next): k².
-pub(crate) fn corner_smoothness(
-    p: crate::geometry::Point,
-    q: crate::geometry::Point,
-    r: crate::geometry::Point,
-) -> f64 {
-    let (a, b, c) = ((q - p).norm(), (r - q).norm(), (r - p).norm());
-    let cos = (a * a + b * b - c * c) / (2.0 * a * b);
-    if cos > -1.0 && cos < 1.0 {
-        let k = 2.0 * (std::f64::consts::PI - cos.acos()) / (a + b);
-        k * k
-    } else {
-        0.0
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn path(points: &[(f64, f64)]) -> Vec<Config> {
-        points
-            .iter()
-            .map(|&(x, y)| Config::new(x, y, 0.0))
-            .collect()
-    }
-
-    #[test]
-    fn smoothness_is_omplish() {
-        // Straight, with a repeated point and a collinear vertex: 0.
-        assert_eq!(
-            smoothness(&path(&[(0.0, 0.0), (1.0, 0.0), (1.0, 0.0), (3.0, 0.0)])),
-            0.0
-        );
-        assert_eq!(smoothness(&path(&[(0.0, 0.0)])), 0.0);
-        // One right angle between unit segments: k = 2·(π/2)/2, k² = π²/4.
-        let s = smoothness(&path(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)]));
-        assert!(
-            (s - std::f64::consts::PI.powi(2) / 4.0).abs() < 1e-12,
-            "{s}"
-        );
-        // Sharper turns cost more; longer segments soften them.
-        let sharp = smoothness(&path(&[(0.0, 0.0), (1.0, 0.0), (0.0, 0.1)]));
-        assert!(sharp > s);
-        let long = smoothness(&path(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0)]));
-        assert!(long < s);
-    }
 }

@@ -19,11 +19,12 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::TempDir;
+use scen::contract::MetricValue;
+use scen::contract::Planner;
+use scen::contract::schema::{COMMON_METRICS, DefaultValue, MetricType, RobotKind, ValueSpec};
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
-use scen::planners::MetricValue;
-use scen::planners::registry::{PLANNERS, Planner};
+use scen::planners::registry::PLANNERS;
 use scen::report::json::to_json;
-use scen::scenario::schema::{COMMON_METRICS, DefaultValue, MetricType, RobotKind, ValueSpec};
 use scen::{Scenario, run_scenario};
 
 /// 16 × 16 unit cells; a 3 × 3 block off the diagonal between the start
@@ -312,8 +313,8 @@ fn robots_a_planner_does_not_declare_are_refused() {
 /// default's value, for every planner's parameters and the `drive` block's.
 #[test]
 fn written_defaults_read_as_their_values() {
-    use scen::scenario::ParamValue;
-    use scen::scenario::schema::DRIVE_PARAMS;
+    use scen::contract::ParamValue;
+    use scen::contract::schema::DRIVE_PARAMS;
     let mut problems = Vec::new();
     for planner in PLANNERS {
         let numeric: Vec<(&str, f64, &str)> = planner

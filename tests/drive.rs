@@ -5,8 +5,8 @@
 mod common;
 
 use common::TempDir;
+use scen::contract::MetricValue;
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
-use scen::planners::MetricValue;
 use scen::{load, run_scenario};
 
 const WORLD: &str = r#"

@@ -14,16 +14,16 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-use scen::planners::registry::PLANNERS;
-use scen::scenario::schema::{
+use scen::contract::schema::{
     COMMON_METRICS, COMMON_PARAMS, DRIVE_MODELS, LIMIT_KINDS, ParamSpec, ValueSpec,
 };
+use scen::planners::registry::PLANNERS;
 use scen::scenario::{AGGREGATES, BENCH_KEYS};
 use serde_json::Value;
 
 /// The keys of `drive unicycle { ... }` (SPEC 3.6), from the drive schema.
 fn drive_keys() -> impl Iterator<Item = &'static str> {
-    scen::scenario::schema::DRIVE_PARAMS.iter().map(|p| p.key)
+    scen::contract::schema::DRIVE_PARAMS.iter().map(|p| p.key)
 }
 
 fn root() -> PathBuf {
@@ -198,7 +198,7 @@ fn metrics() -> BTreeSet<&'static str> {
     COMMON_METRICS
         .iter()
         .chain(PLANNERS.iter().flat_map(|p| p.metrics.iter()))
-        .chain(scen::scenario::schema::DRIVE_METRICS.iter())
+        .chain(scen::contract::schema::DRIVE_METRICS.iter())
         .map(|m| m.name)
         .collect()
 }

@@ -23,8 +23,9 @@ use std::process::Command;
 use std::time::Duration;
 
 use common::{Finished, TempDir, run_or_kill, scen_bin};
-use scen::planners::registry::{PLANNERS, Planner};
-use scen::scenario::schema::{DefaultValue, RobotKind, ValueSpec};
+use scen::contract::Planner;
+use scen::contract::schema::{DefaultValue, RobotKind, ValueSpec};
+use scen::planners::registry::PLANNERS;
 
 /// The address space the memory tests allow the binary.
 const ADDRESS_SPACE_MIB: u64 = 512;

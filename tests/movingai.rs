@@ -17,14 +17,14 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+use scen::contract::Limits;
 use scen::geometry::collide::ObstacleIndex;
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use scen::geometry::{Config, Grid, RobotShape, Shape, World};
-use scen::planners::astar::{
+use scen::planners::grid_lattice::{
     CostMetric, GridLattice, Heuristic, SearchBuffers, SearchConfig, search,
 };
 use scen::planners::lattice::{LatticeSpec, Sample};
-use scen::scenario::Limits;
 
 /// Optimal lengths are given to 5 or 8 decimals.
 const TOLERANCE: f64 = 1e-4;

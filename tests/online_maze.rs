@@ -12,8 +12,8 @@ mod common;
 use common::TempDir;
 use std::path::PathBuf;
 
+use scen::contract::MetricValue;
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
-use scen::planners::MetricValue;
 
 const ROWS: [usize; 5] = [500, 1000, 2000, 4000, 6000];
 

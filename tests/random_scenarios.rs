@@ -13,7 +13,7 @@ mod common;
 use common::TempDir;
 use common::random::scenario;
 use proptest::prelude::*;
-use scen::planners::MetricValue;
+use scen::contract::MetricValue;
 use scen::{load, run_scenario};
 
 proptest! {

@@ -14,10 +14,11 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::TempDir;
+use scen::contract::MetricValue;
+use scen::contract::Planner;
+use scen::contract::schema::{COMMON_METRICS, DefaultValue, RobotKind, ValueSpec};
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
-use scen::planners::MetricValue;
-use scen::planners::registry::{PLANNERS, Planner};
-use scen::scenario::schema::{COMMON_METRICS, DefaultValue, RobotKind, ValueSpec};
+use scen::planners::registry::PLANNERS;
 use scen::{Scenario, run_scenario};
 
 /// 16 × 16 unit cells with a block, as in the contract test.

@@ -10,12 +10,13 @@ use super::{
     BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, check_output_path, outln,
     outputs_writable, print_failure, print_report, render_diags,
 };
-use crate::bench::{self, BenchRun, RunId, Shard, TABLE_METRICS};
-use crate::planners::MetricValue;
+use crate::bench::{self, RunId, Shard, TABLE_METRICS};
+use crate::contract::MetricValue;
+use crate::contract::schema::MetricType;
 use crate::report;
+use crate::run::BenchRun;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
-use crate::scenario::schema::MetricType;
 
 pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     if let Err(e) = report::png::check_paths(args.svg.as_deref(), args.png.as_deref()) {

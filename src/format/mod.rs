@@ -22,9 +22,9 @@
 
 mod doc;
 
+use crate::contract::schema::ValueSpec;
 use crate::diagnostics::{Diag, Span};
 use crate::scenario::grouping::{ParamKeys, group_bench, group_params};
-use crate::scenario::schema::ValueSpec;
 use crate::syntax::ast::{
     self, Expr, ExprKind, ObstacleShape, ParamToken, RobotShape, Stmt, Value, ValueKind, WorldItem,
 };

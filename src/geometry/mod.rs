@@ -10,6 +10,7 @@ pub mod cspace;
 mod fixtures;
 pub mod minkowski;
 pub mod motion;
+pub mod path;
 pub mod polygon;
 pub mod union;
 pub mod validator;

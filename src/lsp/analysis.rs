@@ -5,10 +5,10 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use crate::contract::schema::ValueSpec;
 use crate::diagnostics::{Diag, FileId, SourceMap, Span};
 use crate::scenario::grouping::{ParamKeys, group_params};
 use crate::scenario::loader::{Overlay, Parsed, SourcedStmt, parse_scenario};
-use crate::scenario::schema::ValueSpec;
 use crate::syntax::ast::{Expr, ExprKind, ParamToken, Stmt, ValueKind, WorldItem};
 
 /// What a name names.

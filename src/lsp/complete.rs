@@ -5,11 +5,11 @@
 use lsp_types::{CompletionItem, CompletionItemKind, Documentation, MarkupContent, MarkupKind};
 
 use super::analysis::{Analysis, NameKind};
-use crate::planners::registry::{self, PLANNERS};
-use crate::scenario::grouping::ParamKeys;
-use crate::scenario::schema::{
+use crate::contract::schema::{
     DRIVE_METRICS, DRIVE_PARAMS, MetricSpec, MetricType, ParamSpec, ValueSpec,
 };
+use crate::planners::registry::{self, PLANNERS};
+use crate::scenario::grouping::ParamKeys;
 use crate::scenario::{AGGREGATES, BENCH_KEYS};
 use crate::syntax::{
     EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token,

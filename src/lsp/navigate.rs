@@ -1,10 +1,10 @@
 //! Hover, go to definition, references and the outline, from the AST of a
 //! document and of its includes (spans carry their file).
 
+use crate::contract::schema::{DRIVE_METRICS, ValueSpec};
 use crate::diagnostics::{Span, Spanned};
 use crate::planners::registry;
 use crate::scenario::grouping::{ParamKeys, group_params};
-use crate::scenario::schema::{DRIVE_METRICS, ValueSpec};
 use crate::syntax::ast::{Expr, ExprKind, ParamToken, Stmt, WorldItem};
 
 use super::analysis::{Analysis, NameKind, Symbol};
@@ -14,7 +14,7 @@ use super::complete::{metric_doc, param_doc};
 enum Target<'a> {
     Symbol(&'a Symbol),
     Planner(&'a str),
-    Param(&'static crate::scenario::schema::ParamSpec, &'a str),
+    Param(&'static crate::contract::schema::ParamSpec, &'a str),
     Metric { plan: &'a str, metric: &'a str },
     Include(Span),
 }

@@ -34,12 +34,13 @@
 use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
-use super::astar::{Astar, CostMetric, Heuristic};
+use super::astar::Astar;
 use super::deadline::{Deadline, setup_note};
 use super::lattice::{BitSet, LatticeDistance, LatticeSpec};
-use super::registry::Task;
+use super::lattice::{CostMetric, Heuristic};
 use super::search::{Edge, Graph, SearchBuffers, best_first};
-use super::{MetricValue, PlanOutcome};
+use crate::contract::Task;
+use crate::contract::{MetricValue, PlanOutcome};
 use crate::geometry::angle_diff;
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
 use crate::geometry::motion::{MotionChecker, segment_depth};
@@ -311,9 +312,10 @@ fn run(
             .iter()
             .map(|c| c.vertices.clone())
             .collect();
-        out.layers.extend(super::layers::grown(grown));
+        out.layers.extend(crate::contract::layers::grown(grown));
     } else if layers.iter().map(|l| l.c_obstacles.len()).sum::<usize>() <= MAX_TRACED_C_OBSTACLES {
-        out.layers.extend(super::layers::cspace(world, &layers));
+        out.layers
+            .extend(crate::contract::layers::cspace(world, &layers));
     }
     profile.trace = lap.elapsed();
     let lap = Instant::now();
@@ -426,7 +428,8 @@ fn run(
         .collect();
     out.expanded = r.expanded;
     out.gave_up = r.gave_up;
-    out.layers.extend(super::layers::search(&expanded_at));
+    out.layers
+        .extend(crate::contract::layers::search(&expanded_at));
     out.extra
         .insert("generated".into(), MetricValue::Num(r.generated as f64));
     match r.nodes {

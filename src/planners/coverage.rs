@@ -23,17 +23,17 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::time::Instant;
 
+use crate::contract::PlanArgs;
+use crate::contract::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, Word};
 use crate::diagnostics::Diag;
 use crate::geometry::collide::{box_overlaps, segment_meets_open_box};
 use crate::geometry::{Aabb, Config, Grid, Point, RobotShape, Shape, World};
-use crate::scenario::PlanArgs;
-use crate::scenario::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, Word};
 use crate::word_enum;
 
 use super::deadline::{Deadline, setup_note};
-use super::layers::{Colour, Drawing, Layer, Style, Svg};
-use super::registry::{Planner, Settings, Task};
-use super::{MetricValue, PlanOutcome};
+use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
+use crate::contract::{MetricValue, PlanOutcome};
+use crate::contract::{Planner, Settings, Task};
 
 /// `coverage` in the registry.
 pub static PLANNER: Planner = Planner {
@@ -970,9 +970,9 @@ fn mega_center(cells: &Cells, m: usize) -> Point {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contract::Limits;
     use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
     use crate::geometry::{ConvexPolygon, Obstacle};
-    use crate::scenario::Limits;
     use petgraph::data::Element;
     use petgraph::graph::UnGraph;
     use proptest::prelude::*;

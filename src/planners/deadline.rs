@@ -5,7 +5,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::scenario::Limits;
+use crate::contract::Limits;
 
 /// Set-up loops ask the clock once per this many lattice configurations
 /// (or grid cells): a few milliseconds of work at most between two looks.

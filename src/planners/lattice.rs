@@ -3,10 +3,10 @@
 //! before anything is allocated, and the parameters and checks both
 //! planners share (`cell`, `sample`, `connect`, the size cap).
 
+use crate::contract::schema::{DefaultValue, ParamSpec, ValueSpec, num};
+use crate::contract::{DEFAULT_CELL_CAP, PlanArgs};
 use crate::diagnostics::Diag;
 use crate::geometry::{Config, Point, World};
-use crate::scenario::schema::{DefaultValue, ParamSpec, ValueSpec, num};
-use crate::scenario::{DEFAULT_CELL_CAP, PlanArgs};
 use crate::word_enum;
 
 use super::deadline::{Deadline, SETUP_CHECK_EVERY};
@@ -299,7 +299,7 @@ pub const LATTICE_PARAMS: [ParamSpec; 3] = [
     ParamSpec::positive("cell", num(1.0, "1"), "lattice spacing δ in x and y"),
     ParamSpec::word(
         "sample",
-        <Sample as crate::scenario::schema::Word>::WORDS,
+        <Sample as crate::contract::schema::Word>::WORDS,
         "center",
         "lattice points at cell centres or corners",
     ),

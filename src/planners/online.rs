@@ -28,25 +28,25 @@
 
 use std::any::Any;
 
+use crate::contract::schema::{MetricSpec, ParamSpec, RobotKind, Word, at_least, num};
+use crate::contract::{Limits, PlanArgs};
 use crate::diagnostics::Diag;
 use crate::geometry::collide::ObstacleIndex;
 use crate::geometry::{Aabb, Config, Point, RobotShape};
-use crate::scenario::schema::{MetricSpec, ParamSpec, RobotKind, Word, at_least, num};
-use crate::scenario::{Limits, PlanArgs};
 use crate::word_enum;
 
-use super::astar::{
+use super::deadline::{Deadline, setup_note};
+use super::grid_lattice::{
     CostMetric, GridLattice, Heuristic, SearchBuffers, SearchConfig, grown_obstacles, lattice_path,
     search, search_with, snap_ends, step_costs,
 };
-use super::deadline::{Deadline, setup_note};
 use super::lattice::{BitSet, LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice};
-use super::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
-use super::registry::{Planner, Settings, Task};
 use super::search::Tree;
+use crate::contract::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
+use crate::contract::{Planner, Settings, Task};
 
 mod dstar_lite;
-use super::{MetricValue, PlanOutcome};
+use crate::contract::{MetricValue, PlanOutcome};
 use dstar_lite::dstar_lite;
 
 /// `online` in the registry.
@@ -982,7 +982,8 @@ mod tests {
                 return dist;
             }
             dist[goal] = 0.0;
-            let moves = &crate::planners::astar::DIRS[..if self.connect == 4 { 4 } else { 8 }];
+            let moves =
+                &crate::planners::grid_lattice::DIRS[..if self.connect == 4 { 4 } else { 8 }];
             let free = |i: i64, j: i64| {
                 i >= 0
                     && j >= 0

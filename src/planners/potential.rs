@@ -59,17 +59,17 @@ use std::f64::consts::TAU;
 
 pub use field::{FieldIndex, Forces, Gains, Near, Source};
 
+use crate::contract::PlanArgs;
+use crate::contract::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, Word, num};
 use crate::geometry::collide::ObstacleIndex;
 use crate::geometry::{Aabb, Config, Point, RobotShape, Vector, World};
 use crate::rng::SplitMix64;
-use crate::scenario::PlanArgs;
-use crate::scenario::schema::{DefaultValue, MetricSpec, ParamSpec, RobotKind, Word, num};
 use crate::word_enum;
 
 use super::deadline::Deadline;
-use super::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
-use super::registry::{Planner, Settings, Task};
-use super::{MetricValue, PlanOutcome};
+use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
+use crate::contract::{MetricValue, PlanOutcome};
+use crate::contract::{Planner, Settings, Task};
 
 /// `potential` in the registry.
 pub static PLANNER: Planner = Planner {
@@ -549,7 +549,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
     // As the runner measures `length` (the same sum when found).
     let traveled = match &measured {
         Some(m) => m.length,
-        None => crate::run::path_length(&poses),
+        None => crate::geometry::path::path_length(&poses),
     };
     out.extra
         .insert("traveled".into(), MetricValue::Num(traveled));

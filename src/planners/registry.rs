@@ -25,18 +25,10 @@
 //!    [`PlanOutcome::at_goal`]) and `tests/limits.rs` a time limit spent
 //!    before the set-up is done ([`super::deadline`]).
 
-use std::any::Any;
-use std::fmt;
-
-use crate::geometry::{Config, RobotShape, World};
-use crate::scenario::schema::{
-    COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec, RobotKind,
-};
-use crate::scenario::{Limits, PlanArgs};
-
-use super::PlanOutcome;
 use super::sampling::{prm, rrt, rrt_connect};
 use super::{astar, coverage, online, potential, roadmap};
+use crate::contract::Planner;
+use crate::contract::schema::{COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec};
 
 /// Every planner kind, in the order the docs list them.
 pub static PLANNERS: &[&Planner] = &[
@@ -57,111 +49,10 @@ pub fn planner(kind: &str) -> Option<&'static Planner> {
     PLANNERS.iter().copied().find(|p| p.kind == kind)
 }
 
-/// What a planner is, for the analyzer, the runner and the tools.
-pub struct Planner {
-    /// The kind as written in `plan NAME KIND ROBOT { ... }`.
-    pub kind: &'static str,
-    /// One line for help texts and the docs.
-    pub summary: &'static str,
-    /// The robots it plans for.
-    pub robots: &'static [RobotKind],
-    /// Its own parameters (the common ones of SPEC 2.5 come on top).
-    pub params: &'static [ParamSpec],
-    /// Its own metrics (the common ones of SPEC 3 come on top).
-    pub metrics: &'static [MetricSpec],
-    /// The `limit` kinds it honours; others are analysis errors.
-    pub limits: &'static [&'static str],
-    /// Whether a plan must have a `goal`.
-    pub needs_goal: bool,
-    /// Whether it draws random numbers (from the plan's `seed`): a bench
-    /// runs such a planner `runs` times per configuration, others once.
-    pub randomized: bool,
-    /// Reads the validated parameters into the planner's settings. Problems
-    /// that involve several parameters, the world or the robot are reported
-    /// through [`PlanArgs::error`] with spans; `None` (or any error
-    /// reported) means the plan does not run.
-    pub check: fn(&mut PlanArgs<'_>) -> Option<Box<dyn Settings>>,
-}
-
-impl Planner {
-    /// A parameter of this planner, common ones included.
-    pub fn param(&self, key: &str) -> Option<&'static ParamSpec> {
-        self.all_params().find(|p| p.key == key)
-    }
-
-    /// The common parameters, then the planner's own.
-    pub fn all_params(&self) -> impl Iterator<Item = &'static ParamSpec> + use<> {
-        let own: &'static [ParamSpec] = self.params;
-        COMMON_PARAMS.iter().chain(own.iter())
-    }
-
-    /// The type of a metric of this planner (common ones included; the
-    /// drive metrics are the analyzer's business).
-    pub fn metric(&self, name: &str) -> Option<MetricType> {
-        self.all_metrics().find(|m| m.name == name).map(|m| m.ty)
-    }
-
-    /// The common metrics, then the planner's own.
-    pub fn all_metrics(&self) -> impl Iterator<Item = &'static MetricSpec> + use<> {
-        let own: &'static [MetricSpec] = self.metrics;
-        COMMON_METRICS.iter().chain(own.iter())
-    }
-
-    /// Whether it plans for robots of this kind.
-    pub fn plans_for(&self, robot: RobotKind) -> bool {
-        self.robots.contains(&robot)
-    }
-}
-
-impl fmt::Debug for Planner {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Planner").field("kind", &self.kind).finish()
-    }
-}
-
-/// One planning problem, as the runner hands it to a planner.
-#[derive(Clone, Copy, Debug)]
-pub struct Task<'a> {
-    pub world: &'a World,
-    pub robot: &'a RobotShape,
-    pub start: Config,
-    /// `None` only for planners that need no goal.
-    pub goal: Option<Config>,
-    pub limits: Limits,
-    pub seed: u64,
-}
-
-impl Task<'_> {
-    /// Whether the start is the goal (SPEC 3: then every planner finds the
-    /// path of that one configuration at once): the same (x, y), and for a
-    /// robot that rotates the same θ (modulo a turn), exactly, as the
-    /// runner's `reaches_goal` would see the start.
-    pub fn start_is_goal(&self) -> bool {
-        self.goal.is_some_and(|g| {
-            let s = self.start;
-            s.x == g.x
-                && s.y == g.y
-                && (!self.robot.rotates() || crate::geometry::angle_diff(s.theta, g.theta) == 0.0)
-        })
-    }
-}
-
-/// A plan's typed settings, built once by its planner's `check`; running
-/// the plan is a function of the settings and the [`Task`].
-pub trait Settings: fmt::Debug + Send + Sync {
-    /// Runs the plan. Planners know nothing of output: they return the path,
-    /// their metrics and drawable layers.
-    fn plan(&self, task: &Task<'_>) -> PlanOutcome;
-
-    /// For benchmarks and tests that call a planner's own entry points with
-    /// its concrete settings.
-    fn as_any(&self) -> &dyn Any;
-}
-
 /// The planner reference (`docs/planners.md`): every planner's robots,
 /// limits, parameters and metrics, and the common ones, as Markdown.
 pub fn reference() -> String {
-    use crate::scenario::schema::{DRIVE_METRICS, DRIVE_PARAMS, DefaultValue};
+    use crate::contract::schema::{DRIVE_METRICS, DRIVE_PARAMS, DefaultValue};
     use std::fmt::Write as _;
     let mut md = String::from(
         "# Planners\n\n\
@@ -232,7 +123,7 @@ pub fn reference() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::schema::{DefaultValue, LIMIT_KINDS, ValueSpec};
+    use crate::contract::schema::{DefaultValue, LIMIT_KINDS, ValueSpec};
 
     #[test]
     fn kinds_keys_and_metrics_are_unique() {

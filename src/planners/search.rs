@@ -24,7 +24,7 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::time::Instant;
 
-use crate::scenario::Limits;
+use crate::contract::Limits;
 
 /// A successor candidate: the neighbour, the edge's cost, and the graph's
 /// own label for the edge (handed back to [`Graph::usable`]).

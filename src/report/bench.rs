@@ -6,9 +6,10 @@ use std::fmt::Write as _;
 
 use serde_json::{Map, Value};
 
-use crate::bench::{self, BenchRun};
+use crate::bench;
 use crate::checks::{format_num, value_text};
-use crate::planners::{MetricValue, Metrics};
+use crate::contract::{MetricValue, Metrics};
+use crate::run::BenchRun;
 use crate::run::RunReport;
 use crate::scenario::{Bench, Scenario};
 use crate::syntax::ast::{self, ValueKind};

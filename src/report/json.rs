@@ -9,8 +9,8 @@
 
 use serde_json::{Map, Number, Value};
 
+use crate::contract::{MetricValue, Metrics};
 use crate::geometry::Config;
-use crate::planners::{MetricValue, Metrics};
 use crate::run::{CheckOutcome, PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 
@@ -171,10 +171,11 @@ mod tests {
     use std::path::PathBuf;
 
     use super::*;
+    use crate::contract::PlanOutcome;
+    use crate::contract::Robot;
     use crate::diagnostics::{SourceMap, Span};
     use crate::geometry::{Aabb, ConvexPolygon, Point, RobotShape, World};
-    use crate::planners::PlanOutcome;
-    use crate::scenario::{Check, Robot};
+    use crate::scenario::Check;
     use crate::syntax::ast::{Expr, ExprKind};
 
     fn robot(name: &str, shape: RobotShape) -> Robot {

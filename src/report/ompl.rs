@@ -15,8 +15,8 @@
 
 use std::fmt::Write as _;
 
-use crate::bench::BenchRun;
-use crate::planners::MetricValue;
+use crate::contract::MetricValue;
+use crate::run::BenchRun;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
 

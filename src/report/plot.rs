@@ -15,8 +15,9 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::bench::{BenchRun, TABLE_METRICS};
+use crate::bench::TABLE_METRICS;
 use crate::checks::{format_num, quantile};
+use crate::run::BenchRun;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
 use crate::syntax::ast::ValueKind;
@@ -533,7 +534,7 @@ mod tests {
     use std::sync::Arc;
 
     use super::*;
-    use crate::planners::MetricValue;
+    use crate::contract::MetricValue;
 
     /// A bench of two plans over a numeric key, with made-up runs: plan
     /// `a`'s length at `weight = w` is w + run, plan `b`'s twice that.

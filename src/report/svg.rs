@@ -1,7 +1,7 @@
 //! A static SVG picture of a run (`scen run --svg`, and `--png` through
 //! [`crate::report::png`]): the world with axes in world units, each plan's
 //! layers that its planner marked for the picture (C-obstacles, graphs,
-//! trees; [`crate::planners::layers`]), its path in the plan's colour, the
+//! trees; [`crate::contract::layers`]), its path in the plan's colour, the
 //! robot's body at start and goal, and a legend: each plan's colour and
 //! whether it found a path, and what each drawn layer means.
 //!
@@ -15,8 +15,8 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+use crate::contract::layers::{Colour, Drawing, Layer, Rounded, Svg};
 use crate::geometry::{Aabb, Config, Point, RobotShape, Shape};
-use crate::planners::layers::{Colour, Drawing, Layer, Rounded, Svg};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 use crate::viz::{
@@ -1225,11 +1225,12 @@ mod tests {
     use std::path::PathBuf;
 
     use super::*;
+    use crate::contract::Robot;
+    use crate::contract::layers;
+    use crate::contract::{MetricValue, PlanOutcome};
     use crate::diagnostics::{SourceMap, Span};
     use crate::geometry::{ConvexPolygon, Grid, Obstacle, World};
-    use crate::planners::{MetricValue, PlanOutcome, layers};
     use crate::run::CheckOutcome;
-    use crate::scenario::Robot;
 
     fn plan(name: &str, robot: usize, goal: Config) -> Plan {
         let planner = crate::planners::registry::PLANNERS[0];
@@ -1588,7 +1589,7 @@ mod tests {
         r.plans[0].outcome.layers.push(Layer::new(
             "grown",
             Drawing::Rounded(vec![region]),
-            crate::planners::layers::Style::new(Colour::Plan, 0.0, 15.0).svg(Svg::fill(1.0)),
+            crate::contract::layers::Style::new(Colour::Plan, 0.0, 15.0).svg(Svg::fill(1.0)),
         ));
         let svg = to_svg(&r);
         let view = View::fit(&r.scenario, &plan_runs(&r));

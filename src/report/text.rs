@@ -4,8 +4,8 @@
 use std::fmt::Write;
 
 use crate::checks::{format_num, format_value};
+use crate::contract::MetricValue;
 use crate::diagnostics::Diag;
-use crate::planners::MetricValue;
 use crate::run::{CheckOutcome, RunReport};
 
 /// Metrics shown first, in this order; the rest follow alphabetically.

@@ -10,7 +10,7 @@ use std::ops::Range;
 use crate::planners::registry::{self, PLANNERS};
 use crate::syntax::ast::ParamToken;
 
-use super::schema::{COMMON_PARAMS, DRIVE_PARAMS, ParamSpec, ValueSpec};
+use crate::contract::schema::{COMMON_PARAMS, DRIVE_PARAMS, ParamSpec, ValueSpec};
 
 /// One parameter of a body: the range of its tokens, the first being its
 /// key when `spec` is known.

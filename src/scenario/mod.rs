@@ -3,24 +3,20 @@
 //! against their planner's schema, expressions typed.
 
 mod analyze;
-mod args;
 pub mod grouping;
 pub mod loader;
 pub mod movingai;
-pub mod schema;
 
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use crate::contract::{Limits, Params, Planner, Robot, Settings, Task};
 use crate::diagnostics::{SourceMap, Span};
-use crate::geometry::{Config, Point, RobotShape, World};
-use crate::planners::registry::{Planner, Settings, Task};
+use crate::geometry::World;
 use crate::syntax::ast::Expr;
 
 pub(crate) use analyze::analyze;
 pub use analyze::{AGGREGATES, BENCH_KEYS};
-pub use args::PlanArgs;
 pub use loader::{load, load_with};
 
 /// A fully analysed scenario, ready to run.
@@ -132,13 +128,6 @@ impl Bench {
 }
 
 #[derive(Clone, Debug)]
-pub struct Robot {
-    pub name: String,
-    pub shape: RobotShape,
-    pub span: Span,
-}
-
-#[derive(Clone, Debug)]
 pub struct Plan {
     pub name: String,
     /// Its planner, from the registry.
@@ -178,13 +167,13 @@ impl Plan {
         name: &str,
         planner: &'static Planner,
         robot: usize,
-        start: Config,
-        goal: Option<Config>,
+        start: crate::geometry::Config,
+        goal: Option<crate::geometry::Config>,
     ) -> Plan {
         #[derive(Debug)]
         struct NotRun;
         impl Settings for NotRun {
-            fn plan(&self, _: &Task<'_>) -> crate::planners::PlanOutcome {
+            fn plan(&self, _: &Task<'_>) -> crate::contract::PlanOutcome {
                 unreachable!("a fixture plan is never run")
             }
             fn as_any(&self) -> &dyn std::any::Any {
@@ -202,84 +191,12 @@ impl Plan {
                 goal_span: None,
                 limits: Limits::default(),
                 seed: 0,
-                values: BTreeMap::new(),
+                values: std::collections::BTreeMap::new(),
             },
             settings: Arc::new(NotRun),
             span: Span::default(),
         }
     }
-}
-
-/// Validated parameters of a plan, as written: keys not given by the user
-/// are absent (the planner's `check` reads the schema's defaults through
-/// [`PlanArgs`]).
-#[derive(Clone, Debug)]
-pub struct Params {
-    pub start: Config,
-    pub start_span: Span,
-    pub goal: Option<Config>,
-    pub goal_span: Option<Span>,
-    pub limits: Limits,
-    pub seed: u64,
-    pub values: BTreeMap<&'static str, Param>,
-}
-
-impl Params {
-    pub fn get(&self, key: &str) -> Option<&ParamValue> {
-        self.values.get(key).map(|p| &p.value)
-    }
-}
-
-/// Limits of SPEC 2.5 (`limit expansions N`, `limit time 2s`, ...).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Limits {
-    pub expansions: Option<u64>,
-    pub steps: Option<u64>,
-    /// Seconds.
-    pub time: Option<f64>,
-    /// Lattice-size cap (default [`DEFAULT_CELL_CAP`]).
-    pub cells: Option<u64>,
-    /// Samples drawn, for the sampling-based planners.
-    pub iterations: Option<u64>,
-}
-
-impl Limits {
-    /// Both sets of limits: the smaller of each kind holds.
-    pub fn and(self, other: Limits) -> Limits {
-        fn min<T: PartialOrd>(a: Option<T>, b: Option<T>) -> Option<T> {
-            match (a, b) {
-                (Some(a), Some(b)) => Some(if b < a { b } else { a }),
-                (a, b) => a.or(b),
-            }
-        }
-        Limits {
-            expansions: min(self.expansions, other.expansions),
-            steps: min(self.steps, other.steps),
-            time: min(self.time, other.time),
-            cells: min(self.cells, other.cells),
-            iterations: min(self.iterations, other.iterations),
-        }
-    }
-}
-
-/// The default cap on lattice sizes (SPEC 3.1).
-pub const DEFAULT_CELL_CAP: u64 = 200_000_000;
-
-#[derive(Clone, Debug, PartialEq)]
-pub struct Param {
-    pub value: ParamValue,
-    pub span: Span,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub enum ParamValue {
-    Num(f64),
-    Word(String),
-    Str(String),
-    Point(Point),
-    Pose(Config),
-    /// A word with nested parameters (`drive unicycle { dt 0.02 }`).
-    Block(String, BTreeMap<&'static str, Param>),
 }
 
 /// One `expect` statement.

@@ -12,8 +12,8 @@ use std::path::PathBuf;
 
 use std::collections::BTreeMap;
 
+use crate::contract::layers::Colour;
 use crate::geometry::{Aabb, Config, Grid, Point, RobotShape, Shape};
-use crate::planners::layers::Colour;
 
 /// Where [`stream`] sends a run.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -14,7 +14,7 @@
 //! | `plans/NAME/trail/B` | LineStrips2D: piece B of the path, drawn from the step where it starts (at most 100 pieces), so the path grows with the robot | `step` |
 //! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross; at most 10 000 poses, evenly spread) | `step` = i |
 //! | `plans/NAME/drive/path`, `plans/NAME/drive/robot` | LineStrips2D: a driven trajectory and the body along it | static, `time` (s) |
-//! | `plans/NAME/LAYER` | the planner's drawable layers ([`crate::planners::layers`]): `search`, `grown`, `cspace/layer_K`, `roadmap`, `tree`, ... as each planner documents them | static or its timeline |
+//! | `plans/NAME/LAYER` | the planner's drawable layers ([`crate::contract::layers`]): `search`, `grown`, `cspace/layer_K`, `roadmap`, `tree`, ... as each planner documents them | static or its timeline |
 //! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
 //!
 //! Colours: obstacles grey, each plan its [`plan_colour`], failed checks red.
@@ -35,10 +35,10 @@ use super::{
     FAIL_RED, MAX_WEIGHT_CELLS, OBSTACLE_GREY, ViewerError, ViewerTarget, blocked_boxes, closed,
     obstacle_outline, plan_colour, robot_outline, role_colour, weight_colour,
 };
+use crate::contract::MetricValue;
+use crate::contract::layers::{Drawing, Layer};
 use crate::drive::DriveOutcome;
 use crate::geometry::{Config, Point, RobotShape, Shape};
-use crate::planners::MetricValue;
-use crate::planners::layers::{Drawing, Layer};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 
@@ -350,7 +350,7 @@ fn log_plan(
 /// the viewer, as its circles ([`super::CIRCLE_VERTICES`]).
 const ROUNDED_TURN: f64 = std::f64::consts::TAU / super::CIRCLE_VERTICES as f64;
 
-/// One layer of a plan (see [`crate::planners::layers`]): its drawing
+/// One layer of a plan (see [`crate::contract::layers`]): its drawing
 /// as the matching archetype, at its timeline index or static.
 fn log_layer(
     rec: &RecordingStream,
@@ -546,11 +546,13 @@ mod tests {
     use std::path::PathBuf;
 
     use super::*;
+    use crate::contract::PlanOutcome;
+    use crate::contract::Robot;
+    use crate::contract::layers;
     use crate::diagnostics::{SourceMap, Span};
     use crate::geometry::{Aabb, ConvexPolygon, Grid, Obstacle, RobotShape, World};
-    use crate::planners::{PlanOutcome, layers};
     use crate::run::CheckOutcome;
-    use crate::scenario::{Check, Robot};
+    use crate::scenario::Check;
     use crate::syntax::ast::{Expr, ExprKind};
 
     fn plan(name: &str, robot: usize) -> Plan {
@@ -705,9 +707,9 @@ mod tests {
     /// on the real scenarios).
     #[test]
     fn saves_every_kind_of_layer() {
+        use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
         use crate::drive::DriveOutcome;
         use crate::geometry::Vector;
-        use crate::planners::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
         let mut r = report();
         let p = |x: f64, y: f64| Point::new(x, y);
         let style = Style::new(Colour::Plan, 1.0, 20.0).svg(Svg::line(1.0));

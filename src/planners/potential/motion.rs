@@ -22,10 +22,10 @@
 //! ends the chunk touching an obstacle), and the verdicts of the chunks are
 //! the verdict on the whole motion.
 
+use crate::contract::MeasuredMotion;
+use crate::geometry::path::corner_smoothness;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, ValidationError, Validator};
 use crate::geometry::{Config, Point, RobotShape, World, angle_diff};
-use crate::planners::MeasuredMotion;
-use crate::run::corner_smoothness;
 
 /// Moves kept in full (SPEC 3.4).
 pub const FULL_MOVES: u64 = 4_000_000;
@@ -236,8 +236,8 @@ fn overlap(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::path::{path_length, smoothness};
     use crate::geometry::{Aabb, Obstacle, Shape};
-    use crate::run::{path_length, smoothness};
 
     fn world() -> World {
         World {

@@ -28,17 +28,18 @@ use std::time::Instant;
 use petgraph::graph::{NodeIndex, UnGraph};
 use rayon::prelude::*;
 
+use crate::contract::layers;
+use crate::contract::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, num};
+use crate::contract::{Limits, PlanArgs};
+use crate::contract::{MetricValue, PlanOutcome};
+use crate::contract::{Planner, Settings, Task};
 use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::minkowski::{c_obstacle_points, disk_polygon, minkowski_sum_points};
 use crate::geometry::{
     Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff,
 };
 use crate::planners::deadline::Deadline;
-use crate::planners::registry::{Planner, Settings, Task};
 use crate::planners::search::{Edge, Graph, SearchBuffers, best_first, undirected_successors};
-use crate::planners::{MetricValue, PlanOutcome, layers};
-use crate::scenario::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, num};
-use crate::scenario::{Limits, PlanArgs};
 
 /// `roadmap` in the registry.
 pub static PLANNER: Planner = Planner {

@@ -1,12 +1,13 @@
 use proptest::prelude::*;
 
 use super::*;
+use crate::contract::Limits;
 use crate::geometry::polygon::convex_hull;
 use crate::geometry::validator::{Validator, validate_path};
 use crate::geometry::{Aabb, Obstacle, Shape};
-use crate::planners::astar::{Astar, CostMetric, Heuristic};
+use crate::planners::astar::Astar;
+use crate::planners::lattice::{CostMetric, Heuristic};
 use crate::planners::lattice::{LatticeSpec, Sample};
-use crate::scenario::Limits;
 
 fn p(x: f64, y: f64) -> Point {
     Point::new(x, y)

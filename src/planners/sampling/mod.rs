@@ -50,22 +50,21 @@ mod tests;
 
 use std::time::Instant;
 
+use crate::contract::PlanArgs;
+use crate::contract::schema::{
+    DefaultValue, MetricSpec, ParamSpec, ValueSpec, Word, YesNo, at_least, num,
+};
 use crate::diagnostics::Diag;
 use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::motion::MotionChecker;
+use crate::geometry::path::path_length;
 use crate::geometry::{Config, Point, RobotShape, angle_diff};
 use crate::rng::SplitMix64;
-use crate::run::path_length;
-use crate::scenario::PlanArgs;
-use crate::scenario::schema::{
-    DefaultValue, MetricSpec, ParamSpec, ValueSpec, Word, YesNo, at_least, num,
-};
 use crate::word_enum;
 
 use super::deadline::Deadline;
-use super::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
-use super::registry::{Settings, Task};
-use super::{MetricValue, PlanOutcome};
+use crate::contract::layers::{self, Colour, Drawing, Layer, Style, Svg, Timeline};
+use crate::contract::{MetricValue, PlanOutcome, Settings, Task};
 
 use nn::KdTree;
 pub use space::Space;

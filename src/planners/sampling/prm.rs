@@ -25,11 +25,11 @@ use petgraph::graph::{EdgeIndex, NodeIndex, UnGraph};
 use petgraph::unionfind::UnionFind;
 use petgraph::visit::EdgeRef;
 
+use crate::contract::schema::RobotKind;
+use crate::contract::{Limits, PlanArgs};
+use crate::contract::{Planner, Settings};
 use crate::geometry::Config;
-use crate::planners::registry::{Planner, Settings};
 use crate::planners::search::{Edge, Graph, SearchBuffers, best_first, undirected_successors};
-use crate::scenario::schema::RobotKind;
-use crate::scenario::{Limits, PlanArgs};
 
 use super::space::Space;
 use super::{

@@ -24,10 +24,10 @@
 //! The tree's edges are drawn as `tree/NNNN` on timeline `iteration` (each
 //! state at the iteration it joined, with its final parent).
 
+use crate::contract::PlanArgs;
+use crate::contract::schema::RobotKind;
+use crate::contract::{Planner, Settings};
 use crate::geometry::Config;
-use crate::planners::registry::{Planner, Settings};
-use crate::scenario::PlanArgs;
-use crate::scenario::schema::RobotKind;
 
 use super::space::Informed;
 use super::{

@@ -13,10 +13,10 @@
 //! the solution does not improve: RRT-Connect is not an optimising
 //! planner).
 
+use crate::contract::PlanArgs;
+use crate::contract::schema::RobotKind;
+use crate::contract::{Planner, Settings};
 use crate::geometry::Config;
-use crate::planners::registry::{Planner, Settings};
-use crate::scenario::PlanArgs;
-use crate::scenario::schema::RobotKind;
 
 use super::nn::KdTree;
 use super::{

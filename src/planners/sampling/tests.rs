@@ -5,9 +5,9 @@ use petgraph::graph::{NodeIndex, UnGraph};
 
 use super::prm::Roadmap;
 use super::space::Space;
+use crate::contract::PlanOutcome;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use crate::geometry::{Aabb, Config, Point};
-use crate::planners::PlanOutcome;
 use crate::rng::SplitMix64;
 use crate::scenario::{Scenario, load_text};
 
@@ -114,7 +114,10 @@ fn simplified_paths_are_valid_and_no_longer() {
         let shape = &s.robots[s.plans[0].robot].shape;
         assert!(validate_path(&s.world, shape, &path, DEFAULT_TOLERANCE).is_ok());
         let raw = out.extra["raw_length"].as_f64();
-        assert!(crate::run::path_length(&path) <= raw + 1e-9, "{how}");
+        assert!(
+            crate::geometry::path::path_length(&path) <= raw + 1e-9,
+            "{how}"
+        );
         assert_eq!(path[0], s.plans[0].params.start);
         assert_eq!(path.last().copied(), s.plans[0].params.goal);
     }

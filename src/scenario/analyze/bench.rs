@@ -7,12 +7,14 @@
 
 use std::collections::{BTreeSet, HashMap};
 
+use crate::contract::Planner;
+use crate::contract::schema::{self, RobotKind, ValueSpec, did_you_mean};
+use crate::contract::{Limits, Robot};
 use crate::diagnostics::{Diag, Span, Spanned};
 use crate::geometry::World;
-use crate::planners::registry::{self, Planner};
+use crate::planners::registry;
 use crate::scenario::loader::SourcedStmt;
-use crate::scenario::schema::{self, RobotKind, ValueSpec, did_you_mean};
-use crate::scenario::{Bench, BenchPlan, Limits, Plan, Robot, Vary, VaryValue};
+use crate::scenario::{Bench, BenchPlan, Plan, Vary, VaryValue};
 use crate::syntax::ast::{self, Ident, ParamToken, Value, ValueKind};
 
 use super::Analyzer;

@@ -6,10 +6,10 @@
 
 use std::collections::HashMap;
 
+use crate::contract::schema::{self, MetricType, did_you_mean};
 use crate::diagnostics::Diag;
 use crate::planners::registry;
 use crate::scenario::loader::SourcedStmt;
-use crate::scenario::schema::{self, MetricType, did_you_mean};
 use crate::scenario::{Bench, Check, Plan};
 use crate::syntax::ast::{self, Expr, ExprKind, ParamToken, Selection};
 

@@ -308,7 +308,7 @@ macro_rules! word_enum {
             $($(#[$vmeta])* $variant),+
         }
 
-        impl $crate::scenario::schema::Word for $name {
+        impl $crate::contract::schema::Word for $name {
             const WORDS: &'static [&'static str] = &[$($word),+];
 
             fn from_index(index: usize) -> Option<Self> {

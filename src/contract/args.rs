@@ -1,13 +1,13 @@
 //! What a planner's `check` sees of a plan: its validated parameters with
 //! the schema's defaults, the world and the robot, and a place to report
-//! problems with spans ([`crate::planners::registry::Planner::check`]).
+//! problems with spans ([`crate::contract::Planner::check`]).
 
+use crate::contract::Planner;
 use crate::diagnostics::{Diag, Span};
 use crate::geometry::World;
-use crate::planners::registry::Planner;
 
-use super::schema::{DefaultValue, ParamSpec, ValueSpec, Word};
 use super::{ParamValue, Params, Robot};
+use crate::contract::schema::{DefaultValue, ParamSpec, ValueSpec, Word};
 
 /// A plan's parameters on their way into the planner's typed settings.
 ///
