@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use rayon::prelude::*;
 
 use crate::checks::{self, Values};
-use crate::contract::{MetricValue, Metrics};
+use crate::contract::{MetricValue, Metrics, Task};
 use crate::run::{self, BenchRun, RunReport};
 use crate::scenario::{Bench, Scenario};
 use crate::syntax::ast::Selection;
@@ -86,21 +86,36 @@ pub fn run_ids(scenario: &Scenario, only: &[String]) -> Vec<RunId> {
 
 /// Runs one run.
 pub fn execute(scenario: &Scenario, id: &RunId) -> BenchRun {
-    let bench = &scenario.benches[id.bench];
-    let bench_plan = &bench.plans[id.plan];
-    let plan = &bench_plan.configs[id.config];
-    let seed = plan.params.seed.wrapping_add(id.run);
-    let mut task = plan.task(scenario);
-    task.seed = seed;
-    task.limits = plan.params.limits.and(bench.limits);
-    let ran = run::run_task(scenario, bench_plan.plan, plan, &task);
+    let bench_plan = &scenario.benches[id.bench].plans[id.plan];
+    let task = task_of(scenario, id);
+    let ran = run::run_task(
+        scenario,
+        bench_plan.plan,
+        &bench_plan.configs[id.config],
+        &task,
+    );
     BenchRun {
         bench: id.bench,
         plan: id.plan,
         config: id.config,
         run: id.run,
-        seed,
+        seed: task.seed,
         metrics: ran.metrics,
+    }
+}
+
+/// The task of a bench run: its configuration's plan, the run's seed, the
+/// bench's limits added; and no layers, since a bench draws no world
+/// picture (its tables and plots are of metrics), so no planner records
+/// what only a picture would show.
+fn task_of<'s>(scenario: &'s Scenario, id: &RunId) -> Task<'s> {
+    let bench = &scenario.benches[id.bench];
+    let plan = &bench.plans[id.plan].configs[id.config];
+    Task {
+        seed: plan.params.seed.wrapping_add(id.run),
+        limits: plan.params.limits.and(bench.limits),
+        draw: false,
+        ..plan.task(scenario)
     }
 }
 
@@ -120,7 +135,7 @@ pub fn run_all(scenario: &Scenario, ids: &[RunId], tick: &(dyn Fn() + Sync)) -> 
 /// and the bench checks that read their metrics need them), then every
 /// check whose plans and benches ran.
 pub fn report(scenario: Scenario, runs: Vec<BenchRun>) -> RunReport {
-    let mut report = run::run_scenario(scenario, &[]);
+    let mut report = run::run_scenario_drawing(scenario, &[], false);
     report.bench_runs = runs;
     evaluate(&mut report);
     report
@@ -297,6 +312,30 @@ pub fn rows(scenario: &Scenario, bench: usize, runs: &[BenchRun], metrics: &[&st
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// No bench run draws: its planners leave their layers empty, so a
+    /// bench never pays for them (issue: 14 % of a PRM's time).
+    #[test]
+    fn bench_runs_build_no_layers() {
+        let scenario = crate::scenario::load_text(
+            "world { bounds (0, 0) (10, 10) rect (4, 0) (5, 8) }\nrobot p point\n\
+             plan a astar p { start (1, 1) goal (9, 1) }\n\
+             bench b { runs 2 }\n",
+        );
+        let ids = run_ids(&scenario, &[]);
+        assert!(!ids.is_empty());
+        for id in &ids {
+            let task = task_of(&scenario, id);
+            assert!(!task.draw);
+            let plan = &scenario.benches[id.bench].plans[id.plan];
+            let out = plan.configs[id.config].settings.plan(&task);
+            assert!(out.path.is_some());
+            assert!(out.layers.is_empty(), "{:?}", out.layers.len());
+        }
+        // Drawn, the same plan has its search and grown obstacles.
+        let plan = &scenario.plans[0];
+        assert!(!plan.settings.plan(&plan.task(&scenario)).layers.is_empty());
+    }
 
     #[test]
     fn shards_split_the_runs_exactly_once() {

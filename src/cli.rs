@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use crate::diagnostics::{Diag, SourceMap};
 use crate::report;
-use crate::run::{RunReport, run_scenario};
+use crate::run::{RunReport, run_scenario_drawing};
 use crate::scenario::loader::LoadFailure;
 use crate::viz::{self, ViewerTarget};
 
@@ -461,7 +461,9 @@ fn run_file(
         return (EXIT_BAD_INPUT, read);
     }
     let spinner = progress(args, file);
-    let report = run_scenario(scenario, &args.plans);
+    // Layers only for a sink that draws them (a picture, the viewer).
+    let draw = args.svg.is_some() || args.png.is_some() || target.is_some();
+    let report = run_scenario_drawing(scenario, &args.plans, draw);
     if let Some(p) = spinner {
         p.finish_and_clear();
     }
@@ -803,7 +805,7 @@ fn test_file(f: &Path, root: Option<&Path>) -> report::junit::FileResult {
         (Ok(s), _) => {
             // The plans, their checks, and the benches with theirs.
             let report = if s.benches.is_empty() {
-                run_scenario(s, &[])
+                run_scenario_drawing(s, &[], false)
             } else {
                 let ids = crate::bench::run_ids(&s, &[]);
                 let runs = crate::bench::run_all(&s, &ids, &|| {});

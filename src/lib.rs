@@ -24,5 +24,5 @@ pub mod syntax;
 pub mod viz;
 
 pub use diagnostics::{Diag, SourceMap, Span};
-pub use run::{RunReport, run_scenario};
+pub use run::{RunReport, run_scenario, run_scenario_drawing};
 pub use scenario::{Scenario, load};

@@ -90,14 +90,21 @@ impl RunReport {
 }
 
 /// Runs every plan (or only those named in `only`, when it is not empty)
-/// and evaluates the checks whose plans all ran.
+/// and evaluates the checks whose plans all ran; the planners build their
+/// drawable layers.
 pub fn run_scenario(scenario: Scenario, only: &[String]) -> RunReport {
+    run_scenario_drawing(scenario, only, true)
+}
+
+/// [`run_scenario`], the planners building their layers only when `draw`
+/// (a sink will draw them: [`Task::draw`]).
+pub fn run_scenario_drawing(scenario: Scenario, only: &[String], draw: bool) -> RunReport {
     let selected: Vec<usize> = (0..scenario.plans.len())
         .filter(|&i| only.is_empty() || only.contains(&scenario.plans[i].name))
         .collect();
     let plans: Vec<PlanRun> = selected
         .par_iter()
-        .map(|&i| run_plan(&scenario, i))
+        .map(|&i| run_plan(&scenario, i, draw))
         .collect();
     let values = RunValues {
         plans: metrics_by_plan(&scenario, &plans),
@@ -170,9 +177,13 @@ pub(crate) fn evaluate_checks(
     (outcomes, skipped)
 }
 
-fn run_plan(scenario: &Scenario, index: usize) -> PlanRun {
+fn run_plan(scenario: &Scenario, index: usize, draw: bool) -> PlanRun {
     let plan = &scenario.plans[index];
-    run_task(scenario, index, plan, &plan.task(scenario))
+    let task = Task {
+        draw,
+        ..plan.task(scenario)
+    };
+    run_task(scenario, index, plan, &task)
 }
 
 /// Runs `plan` (plan `index` of the scenario, or one of a bench's

@@ -84,6 +84,12 @@ pub struct Task<'a> {
     pub goal: Option<Config>,
     pub limits: Limits,
     pub seed: u64,
+    /// Whether a sink will draw the outcome's [`layers`](super::layers)
+    /// (an SVG or PNG picture, the Rerun viewer). When it will not (a plain
+    /// `scen run`, `scen test`, every run of `scen bench`), a planner leaves
+    /// its layers empty and skips recording what only they would show
+    /// (expansions, tree edges, forces): that work is timed with the plan.
+    pub draw: bool,
 }
 
 impl Task<'_> {

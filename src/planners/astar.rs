@@ -155,8 +155,10 @@ fn plan_xy(task: &Task<'_>, settings: &Astar) -> PlanOutcome {
     out.extra
         .insert("layers".into(), MetricValue::Num(spec.layers as f64));
     out.extra.insert("generated".into(), MetricValue::Num(0.0));
-    out.layers
-        .extend(layers::grown_by_disk(grown_obstacles(world, radius)));
+    if task.draw {
+        out.layers
+            .extend(layers::grown_by_disk(grown_obstacles(world, radius)));
+    }
     // Until the lattice is classified (and for good when nothing is built).
     out.extra.insert("free_cells".into(), MetricValue::Num(0.0));
     if task.start_is_goal() {
@@ -193,17 +195,19 @@ fn plan_xy(task: &Task<'_>, settings: &Astar) -> PlanOutcome {
         deadline.remaining(task.limits),
     );
     let mut buf = SearchBuffers::default();
-    let r = search(&mut lat, &index, s_node, g_node, &cfg, true, &mut buf);
+    let r = search(&mut lat, &index, s_node, g_node, &cfg, task.draw, &mut buf);
     out.expanded = r.expanded;
     out.gave_up = r.gave_up;
     out.extra
         .insert("generated".into(), MetricValue::Num(r.generated as f64));
-    let expanded: Vec<Point> = r
-        .expansion_order
-        .iter()
-        .map(|&n| spec.point_of(n))
-        .collect();
-    out.layers.extend(layers::search(&expanded));
+    if task.draw {
+        let expanded: Vec<Point> = r
+            .expansion_order
+            .iter()
+            .map(|&n| spec.point_of(n))
+            .collect();
+        out.layers.extend(layers::search(&expanded));
+    }
     if let Some(nodes) = r.nodes {
         let (s_pt, g_pt) = (spec.point_of(s_node), spec.point_of(g_node));
         let cost = cfg.cost.between(start.xy(), s_pt) + r.cost + cfg.cost.between(g_pt, goal.xy());

@@ -306,7 +306,9 @@ fn run(
         );
     };
     let lap = Instant::now();
-    if !rotating {
+    if !task.draw {
+        // Nothing will draw the C-space.
+    } else if !rotating {
         let grown = layers[0]
             .c_obstacles
             .iter()
@@ -420,16 +422,18 @@ fn run(
         h: heuristic,
     };
     let mut buf = SearchBuffers::default();
-    let r = best_first(&mut graph, &[s_node], &limits, true, &mut buf);
-    let expanded_at: Vec<Point> = r
-        .expansion_order
-        .iter()
-        .map(|&n| lat.config(n).xy())
-        .collect();
+    let r = best_first(&mut graph, &[s_node], &limits, task.draw, &mut buf);
     out.expanded = r.expanded;
     out.gave_up = r.gave_up;
-    out.layers
-        .extend(crate::contract::layers::search(&expanded_at));
+    if task.draw {
+        let expanded_at: Vec<Point> = r
+            .expansion_order
+            .iter()
+            .map(|&n| lat.config(n).xy())
+            .collect();
+        out.layers
+            .extend(crate::contract::layers::search(&expanded_at));
+    }
     out.extra
         .insert("generated".into(), MetricValue::Num(r.generated as f64));
     match r.nodes {

@@ -868,32 +868,34 @@ pub fn plan(task: &Task<'_>, settings: &Coverage) -> PlanOutcome {
         .insert("tree_weight".into(), MetricValue::Num(tree.weight as f64));
     let total = 4 * tree.order.len();
     out.extra.insert("cells_total".into(), num(total));
-    let mega_cells: Vec<Aabb> = tree
-        .order
-        .iter()
-        .take(MAX_TRACED)
-        .map(|&m| cells.mega_box(m % cells.mcols, m / cells.mcols))
-        .collect();
-    let uncovered_boxes: Vec<Aabb> = uncovered
-        .iter()
-        .take(MAX_TRACED)
-        .map(|&(i, j)| cells.dcell_box(i, j))
-        .collect();
-    out.layers.push(Layer::new(
-        "mega_cells",
-        Drawing::Boxes(mega_cells),
-        Style::new(Colour::Faint, 0.5, 3.0)
-            .svg(Svg::fill(0.08).outlined(0.3).key("free mega-cells")),
-    ));
-    out.layers.push(Layer::new(
-        "uncovered",
-        Drawing::Boxes(uncovered_boxes),
-        Style::new(Colour::Grey, 0.0, 4.0).svg(Svg::fill(0.35).key("cells left uncovered")),
-    ));
-    if tree.order.len() > MAX_TRACED || uncovered.len() > MAX_TRACED {
-        out.notes.push(format!(
+    if task.draw {
+        let mega_cells: Vec<Aabb> = tree
+            .order
+            .iter()
+            .take(MAX_TRACED)
+            .map(|&m| cells.mega_box(m % cells.mcols, m / cells.mcols))
+            .collect();
+        let uncovered_boxes: Vec<Aabb> = uncovered
+            .iter()
+            .take(MAX_TRACED)
+            .map(|&(i, j)| cells.dcell_box(i, j))
+            .collect();
+        out.layers.push(Layer::new(
+            "mega_cells",
+            Drawing::Boxes(mega_cells),
+            Style::new(Colour::Faint, 0.5, 3.0)
+                .svg(Svg::fill(0.08).outlined(0.3).key("free mega-cells")),
+        ));
+        out.layers.push(Layer::new(
+            "uncovered",
+            Drawing::Boxes(uncovered_boxes),
+            Style::new(Colour::Grey, 0.0, 4.0).svg(Svg::fill(0.35).key("cells left uncovered")),
+        ));
+        if tree.order.len() > MAX_TRACED || uncovered.len() > MAX_TRACED {
+            out.notes.push(format!(
             "the picture shows the first {MAX_TRACED} mega-cells, tree edges and uncovered cells"
         ));
+        }
     }
     if tree.gave_up {
         for m in ["cells_visited", "revisits", "coverage"] {
@@ -905,17 +907,19 @@ pub fn plan(task: &Task<'_>, settings: &Coverage) -> PlanOutcome {
             .push("a limit stopped the spanning tree before it spanned the free mega-cells".into());
         return out;
     }
-    let tree_edges = tree
-        .edges
-        .iter()
-        .take(MAX_TRACED)
-        .map(|&(p, c)| (mega_center(&cells, p), mega_center(&cells, c)))
-        .collect();
-    out.layers.push(Layer::new(
-        "tree",
-        Drawing::Segments(tree_edges),
-        Style::new(Colour::Plan, 1.0, 28.0).svg(Svg::line(0.7).key("spanning tree")),
-    ));
+    if task.draw {
+        let tree_edges = tree
+            .edges
+            .iter()
+            .take(MAX_TRACED)
+            .map(|&(p, c)| (mega_center(&cells, p), mega_center(&cells, c)))
+            .collect();
+        out.layers.push(Layer::new(
+            "tree",
+            Drawing::Segments(tree_edges),
+            Style::new(Colour::Plan, 1.0, 28.0).svg(Svg::line(0.7).key("spanning tree")),
+        ));
+    }
     let cycle = tour(&cells, &tree, start);
     let mut seen = vec![false; cells.dcells.len()];
     let mut visited = 0usize;
@@ -1036,6 +1040,7 @@ mod tests {
             goal: None,
             limits,
             seed: 0,
+            draw: true,
         };
         let k = cells_per_tool(grid, tool);
         plan(&task, &Coverage { on, k, weights })

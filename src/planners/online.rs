@@ -146,7 +146,13 @@ fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
 
 impl Settings for Online {
     fn plan(&self, task: &Task<'_>) -> PlanOutcome {
-        navigate(task, self, Options::default())
+        // The trace (what the robot knew and planned, step by step) only
+        // for a sink that draws it.
+        let options = Options {
+            traced: task.draw,
+            ..Options::default()
+        };
+        navigate(task, self, options)
     }
 
     fn as_any(&self) -> &dyn Any {
@@ -1073,6 +1079,7 @@ mod tests {
             goal: Some(goal),
             limits,
             seed: 0,
+            draw: true,
         }
     }
 

@@ -216,6 +216,8 @@ pub struct Run {
     /// `limit time`, from the plan's start.
     pub deadline: Deadline,
     pub seed: u64,
+    /// The walk's trace is drawn ([`Task::draw`]): forces, minima, escapes.
+    pub draw: bool,
 }
 
 impl Run {
@@ -237,6 +239,7 @@ impl Run {
             default_steps: limits.steps.is_none() && limits.expansions.is_none(),
             deadline: Deadline::start(&limits),
             seed: task.seed,
+            draw: task.draw,
         }
     }
 }
@@ -467,7 +470,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
             }
             Advance::Moved(from, f) => {
                 let step = steps as usize;
-                if step.is_multiple_of(stride) {
+                if s.draw && step.is_multiple_of(stride) {
                     trace.forces.push(ForceSample {
                         step,
                         at: from,
@@ -560,7 +563,9 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
             m.stride
         ));
     }
-    if trace.minima.len() >= MAX_TRACED_EVENTS || trace.escapes.len() >= MAX_TRACED_EVENTS {
+    if s.draw
+        && (trace.minima.len() >= MAX_TRACED_EVENTS || trace.escapes.len() >= MAX_TRACED_EVENTS)
+    {
         out.notes.push(format!(
             "the picture shows the first {MAX_TRACED_EVENTS} minima and escape jumps"
         ));
@@ -572,8 +577,10 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
     } else {
         out.trajectory = poses;
     }
-    let b = w.bounds;
-    out.layers = field_layers(&trace, 0.03 * b.width().max(b.height()));
+    if s.draw {
+        let b = w.bounds;
+        out.layers = field_layers(&trace, 0.03 * b.width().max(b.height()));
+    }
     out
 }
 

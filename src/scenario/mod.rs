@@ -146,7 +146,7 @@ impl Plan {
         self.planner.kind
     }
 
-    /// The planning problem of this plan in `scenario`.
+    /// The planning problem of this plan in `scenario`, its layers drawn.
     pub fn task<'s>(&self, scenario: &'s Scenario) -> Task<'s> {
         Task {
             world: &scenario.world,
@@ -155,6 +155,7 @@ impl Plan {
             goal: self.params.goal,
             limits: self.params.limits,
             seed: self.params.seed,
+            draw: true,
         }
     }
 }

@@ -362,9 +362,11 @@ pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
         ));
         return out;
     }
-    out.layers.extend(layers::grown(
-        polys.iter().map(|p| p.vertices.clone()).collect(),
-    ));
+    if task.draw {
+        out.layers.extend(layers::grown(
+            polys.iter().map(|p| p.vertices.clone()).collect(),
+        ));
+    }
     // The analyzer refused poses in collision with the true obstacles; the
     // grown disks are a little larger (circumscribed polygons).
     if !polys.is_empty() {
@@ -420,14 +422,16 @@ pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
         "graph_edges".into(),
         MetricValue::Num(roadmap.graph.edge_count() as f64),
     );
-    let pts = &roadmap.arrangement.points;
-    let edges = roadmap
-        .visible
-        .iter()
-        .take(MAX_TRACED_EDGES)
-        .map(|e| (pts[e.a as usize], pts[e.b as usize]))
-        .collect();
-    out.layers.extend(layers::graph("roadmap", edges));
+    if task.draw {
+        let pts = &roadmap.arrangement.points;
+        let edges = roadmap
+            .visible
+            .iter()
+            .take(MAX_TRACED_EDGES)
+            .map(|e| (pts[e.a as usize], pts[e.b as usize]))
+            .collect();
+        out.layers.extend(layers::graph("roadmap", edges));
+    }
     match roadmap.shortest_path_within(&deadline.remaining(task.limits)) {
         Err(expanded) => {
             out.expanded = expanded;
