@@ -15,9 +15,8 @@
 //!    enums, defaults only in the schema) and `impl Settings`.
 //! 2. Add `pub mod KIND;` to `src/planners/mod.rs` and `&KIND::PLANNER` to
 //!    [`PLANNERS`] below.
-//! 3. Run `SCEN_BLESS=1 cargo test --release --test docs` to regenerate
-//!    `docs/planners.md`, and add the new words to the editors' files (the
-//!    editor test says which are missing).
+//! 3. Run `scripts/regenerate.sh` to regenerate `docs/planners.md` and the
+//!    editors' word lists and `plan-KIND` snippets.
 //! 4. Add scenarios under `scenarios/` and the planner's own tests; the
 //!    contract test covers it already (metrics, validator, determinism,
 //!    limits) for every robot kind it declares, `tests/start_is_goal.rs` a
@@ -166,7 +165,7 @@ pub fn reference() -> String {
     let mut md = String::from(
         "# Planners\n\n\
          Generated from the planner registry (`src/planners/registry.rs`) by\n\
-         `SCEN_BLESS=1 cargo test --release --test docs`; do not edit by hand.\n",
+         `scripts/regenerate.sh`; do not edit by hand.\n",
     );
     let params = |md: &mut String, specs: &mut dyn Iterator<Item = &ParamSpec>| {
         md.push_str("\n| key | value | default | meaning |\n|---|---|---|---|\n");
