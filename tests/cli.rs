@@ -246,6 +246,7 @@ fn svg_is_written() {
     assert!(svg.contains("polyline"), "{svg}");
 }
 
+#[cfg(feature = "viewer")]
 #[test]
 fn an_unreachable_viewer_warns_once_and_the_report_is_complete() {
     Test::new()
@@ -287,11 +288,15 @@ fn every_scenario_passes_scen_test() {
 /// minutes cannot end in "cannot write" (and turn a pass into exit 2).
 #[test]
 fn outputs_that_cannot_be_written_are_refused_before_planning() {
-    for (flag, file) in [
+    let mut outputs = vec![
         ("--svg", "missing/out.svg"),
+        ("--png", "missing/out.png"),
         ("--csv", "missing/paths.csv"),
-        ("--save", "missing/run.rrd"),
-    ] {
+    ];
+    if cfg!(feature = "viewer") {
+        outputs.push(("--save", "missing/run.rrd"));
+    }
+    for (flag, file) in outputs {
         Test::new()
             .file("small.scen", SMALL)
             .args(&["run", flag, file, "small.scen"])

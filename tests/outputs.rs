@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::process::Command;
 use std::time::Duration;
 
-use common::{TempDir, repo, run_with_timeout, scen_bin};
+#[cfg(feature = "viewer")]
+use common::TempDir;
+use common::{repo, run_with_timeout, scen_bin};
 
 fn scenario_files() -> Vec<PathBuf> {
     fn walk(dir: &std::path::Path, out: &mut Vec<PathBuf>) {
@@ -75,6 +77,7 @@ fn two_runs_of_every_scenario_give_identical_json() {
     }
 }
 
+#[cfg(feature = "viewer")]
 /// The `rerun` binary of rerun-sdk==0.36.3: `SCEN_RERUN`, else PATH.
 fn rerun_binary() -> Option<PathBuf> {
     if let Some(p) = std::env::var_os("SCEN_RERUN") {
@@ -94,12 +97,14 @@ fn rerun_binary() -> Option<PathBuf> {
 /// A verified recording of a scenario: `scen run FILE --save` into a temp
 /// folder, checked with `rerun rrd verify`. `None` (skip) only outside CI
 /// when there is no `rerun` binary.
+#[cfg(feature = "viewer")]
 struct Recording {
     rerun: PathBuf,
     rrd: PathBuf,
     _dir: TempDir,
 }
 
+#[cfg(feature = "viewer")]
 fn verified_recording(scenario: &str) -> Option<Recording> {
     let Some(rerun) = rerun_binary() else {
         assert_ne!(
@@ -145,6 +150,7 @@ fn verified_recording(scenario: &str) -> Option<Recording> {
     })
 }
 
+#[cfg(feature = "viewer")]
 #[test]
 fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
     // Keep the whole recording: its folder lives as long as it does.
@@ -200,6 +206,7 @@ fn the_recording_passes_rerun_verify_and_has_the_spec_entities() {
     }
 }
 
+#[cfg(feature = "viewer")]
 #[test]
 fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
     // Keep the whole recording: its folder lives as long as it does.
@@ -231,6 +238,7 @@ fn the_recording_of_a_rotating_robot_has_the_c_space_layers() {
     );
 }
 
+#[cfg(feature = "viewer")]
 /// The entities `rerun rrd print` lists for a scenario's recording.
 fn recorded_entities(scenario: &str) -> Option<String> {
     let recording = verified_recording(scenario)?;
@@ -244,6 +252,7 @@ fn recorded_entities(scenario: &str) -> Option<String> {
     Some(String::from_utf8_lossy(&print.stdout).into_owned())
 }
 
+#[cfg(feature = "viewer")]
 fn assert_lists(text: &str, entities: &[&str]) {
     for entity in entities {
         assert!(
@@ -253,6 +262,7 @@ fn assert_lists(text: &str, entities: &[&str]) {
     }
 }
 
+#[cfg(feature = "viewer")]
 #[test]
 fn the_recording_of_coverage_has_the_tree_the_growing_tour_and_the_driven_robot() {
     let Some(text) = recorded_entities("scenarios/coverage_rooms.scen") else {
@@ -274,6 +284,7 @@ fn the_recording_of_coverage_has_the_tree_the_growing_tour_and_the_driven_robot(
     assert_lists(&text, &["/world/weights/W"]);
 }
 
+#[cfg(feature = "viewer")]
 #[test]
 fn the_recording_of_a_potential_field_has_forces_minima_escapes_and_the_stuck_run() {
     let Some(text) = recorded_entities("scenarios/potential_walls.scen") else {
@@ -295,6 +306,7 @@ fn the_recording_of_a_potential_field_has_forces_minima_escapes_and_the_stuck_ru
     assert!(!text.contains("/plans/descent/path "));
 }
 
+#[cfg(feature = "viewer")]
 #[test]
 fn the_recording_of_online_navigation_has_what_the_robot_knew_and_planned() {
     let Some(text) = recorded_entities("scenarios/apartment_online.scen") else {
@@ -315,6 +327,7 @@ fn the_recording_of_online_navigation_has_what_the_robot_knew_and_planned() {
     assert!(text.contains("/plans/dstar/known/blocked/"));
 }
 
+#[cfg(feature = "viewer")]
 #[test]
 fn the_recording_of_a_roadmap_has_the_visibility_edges() {
     let Some(text) = recorded_entities("scenarios/roadmap_segments.scen") else {
