@@ -13,12 +13,20 @@
 # 5. checks that `git status` lists only the new file, the registry line and
 #    the regenerated files.
 # Not part of CI: it builds the crate (in target/check_new_planner, apart
-# from target/release, so that it reuses nothing it could overwrite) and
-# runs slow tests. Extra arguments go to cargo, e.g.
+# from target/release, whose dependencies it copies the first time) and runs
+# slow tests. Extra arguments go to cargo, e.g.
 # `scripts/check_new_planner.sh --no-default-features` (no viewer).
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$repo/target/check_new_planner}"
+# The first time, start from a copy of target/release's dependencies (not
+# links: a rebuild there must not write into target/release).
+if [ ! -d "$CARGO_TARGET_DIR/release" ] && [ -d "$repo/target/release/deps" ]; then
+  mkdir -p "$CARGO_TARGET_DIR/release"
+  for dir in deps build .fingerprint; do
+    cp -a --reflink=auto "$repo/target/release/$dir" "$CARGO_TARGET_DIR/release/"
+  done
+fi
 work="$(mktemp -d "${TMPDIR:-/tmp}/scen-new-planner.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
 step() { printf '\n=== %s\n' "$*"; }
