@@ -8,8 +8,9 @@
 # 2. shows that the tests of generated files now fail, naming the command;
 # 3. runs that command, scripts/regenerate.sh;
 # 4. runs the tests that list planners (the registry's own, docs, editors,
-#    lsp, contract, start_is_goal, limits) and `cargo fmt --check`, and runs
-#    a scenario with the new planner;
+#    lsp, contract, start_is_goal, limits), `cargo fmt --check`, the editors'
+#    grammar tests (editors/test.sh, when npm is there) and a scenario with
+#    the new planner;
 # 5. checks that `git status` lists only the new file, the registry line and
 #    the regenerated files.
 # Not part of CI: it builds the crate (in target/check_new_planner, apart
@@ -112,11 +113,13 @@ git diff src/planners/registry.rs
   || { echo "the registry change is not one added line" >&2; exit 1; }
 
 step "2. before regenerating, the generated files are stale"
-if stale="$(cargo test --release "$@" --test docs --test editors -- up_to_date 2>&1)"; then
+if stale="$(cargo test --release --no-fail-fast "$@" --test docs --test editors -- up_to_date 2>&1)"; then
   echo "the tests of generated files pass with a planner they do not list" >&2
   exit 1
 fi
 grep -E 'stale.*scripts/regenerate.sh' <<<"$stale"
+[ "$(grep -cE 'stale.*scripts/regenerate.sh' <<<"$stale")" = 2 ] \
+  || { echo "not both tests (docs, editors) name the command:" >&2; echo "$stale" >&2; exit 1; }
 
 step "3. scripts/regenerate.sh $*"
 scripts/regenerate.sh "$@" > "$work/regenerate.log" 2>&1 \
@@ -146,6 +149,18 @@ expect below.found and below.collision_free and below.length ~ 8 +- 1e-9
 expect not across.found
 EOF
 "$CARGO_TARGET_DIR/release/scen" test "$work/straight.scen"
+# The grammars colour the new kind as a planner (editors/test.sh installs
+# their test tools; needs npm).
+if command -v npm >/dev/null; then
+  SCEN="$CARGO_TARGET_DIR/release/scen" bash editors/test.sh > "$work/editors.log" 2>&1 \
+    || { cat "$work/editors.log" >&2; exit 1; }
+  grep -E '^(✓|ok|# (pass|fail))' "$work/editors.log"
+  node editors/test/tokenize.js "$work/straight.scen" | grep '"straight"' | tee "$work/tokens"
+  [ "$(grep -c 'support.type.planner.scen' "$work/tokens")" = 2 ] \
+    || { echo "VS Code does not colour \`straight\` as a planner kind" >&2; exit 1; }
+else
+  echo "editors/test.sh skipped: no npm"
+fi
 
 step "5. git status: the new file, the registry line and the regenerated files only"
 git status --porcelain
