@@ -1,18 +1,26 @@
 //! The planner contract, driven by the registry: every planner, for every
-//! robot kind it declares, on a small world (a grid with a block, so that
-//! `on`-style planners have a grid to work on):
+//! robot kind it declares, on two small worlds (16 × 16 cells of a grid, so
+//! that `on`-style planners have a grid to work on): [`World::Open`], with
+//! nothing in the way, and [`World::Detour`], with a block across the
+//! straight line from the start to the goal:
 //! - the metrics it reports are exactly the common ones of SPEC 3 and the
 //!   ones its schema declares, with the declared types;
 //! - a path it finds starts at `start`, ends at `goal` (for planners that
-//!   have one) and passes the independent validator;
+//!   have one) and passes the independent validator; in the open world it
+//!   finds one for every robot kind it declares, so that these checks are
+//!   never vacuous (a planner too simple to go round the block still has
+//!   its paths checked there);
 //! - the same input and seed give byte-identical JSON (timings aside);
-//! - its limits are honoured: a tiny `limit expansions|steps|iterations`
-//!   stops it (no path, `gave_up`, at most that many counted), `limit cells`
-//!   refuses a lattice at analysis, `limit time` ends the run;
+//! - its limits are honoured: a `limit expansions|steps|iterations` below
+//!   what a run counts stops it (no path, `gave_up`, at most that many
+//!   counted), `limit cells` refuses a lattice at analysis, `limit time`
+//!   ends the run;
 //! - robots it does not plan for are refused at analysis.
 //!
-//! A new planner gets all of this by its registry line; a required
-//! parameter of a kind this test cannot fill makes the test say so.
+//! A new planner gets all of this by its registry line. What the test
+//! cannot exercise fails it with a message rather than passing unchecked:
+//! a required parameter of a kind it cannot fill, no path in the open
+//! world, a counted limit that a run never reaches more than once.
 
 mod common;
 
@@ -27,30 +35,37 @@ use scen::planners::registry::PLANNERS;
 use scen::report::json::to_json;
 use scen::{Scenario, run_scenario};
 
-/// 16 × 16 unit cells; a 3 × 3 block off the diagonal between the start
-/// and the goal.
-const WORLD: &str = r#"world {
-  bounds (0, 0) (16, 16)
-  grid G cell 1 origin (0, 0) {
-    "................"
-    "................"
-    "................"
-    ".........###...."
-    ".........###...."
-    ".........###...."
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-  }
+/// The worlds of the contract: 16 × 16 unit cells of a grid `G`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum World {
+    /// Nothing in the way.
+    Open,
+    /// A 3 × 3 block across the straight line from [`START`] to [`GOAL`]
+    /// (rows 3 to 5 from the top, columns 9 to 11).
+    Detour,
 }
-"#;
+
+const WORLDS: [World; 2] = [World::Open, World::Detour];
+
+fn world(world: World) -> String {
+    let mut rows = String::new();
+    for row in 0..16 {
+        let line: String = (0..16)
+            .map(|col| {
+                let blocked = (3..6).contains(&row) && (9..12).contains(&col);
+                if blocked && world == World::Detour {
+                    '#'
+                } else {
+                    '.'
+                }
+            })
+            .collect();
+        rows.push_str(&format!("    \"{line}\"\n"));
+    }
+    format!(
+        "world {{\n  bounds (0, 0) (16, 16)\n  grid G cell 1 origin (0, 0) {{\n{rows}  }}\n}}\n"
+    )
+}
 
 const START: (f64, f64) = (1.5, 1.5);
 const GOAL: (f64, f64) = (13.5, 14.5);
@@ -80,18 +95,19 @@ fn required(planner: &Planner) -> Vec<String> {
         .collect()
 }
 
-fn scenario_text(planner: &Planner, kind: RobotKind, extra: &str) -> String {
+fn scenario_text(planner: &Planner, kind: RobotKind, place: World, extra: &str) -> String {
     let goal = if planner.needs_goal {
         format!("goal ({}, {})", GOAL.0, GOAL.1)
     } else {
         String::new()
     };
     format!(
-        "scenario \"contract {kind}\"\n{WORLD}robot r {robot}\nplan p {kind} r {{\n  start ({}, {}) {goal} seed 3\n  {}\n  {extra}\n}}\n",
+        "scenario \"contract {kind}\"\n{world}robot r {robot}\nplan p {kind} r {{\n  start ({}, {}) {goal} seed 3\n  {}\n  {extra}\n}}\n",
         START.0,
         START.1,
         required(planner).join(" "),
         kind = planner.kind,
+        world = world(place),
         robot = robot(kind),
     )
 }
@@ -105,9 +121,11 @@ fn load(text: &str) -> Result<Scenario, Vec<String>> {
     scen::load(&file).map_err(|f| f.diags.iter().map(|d| d.code.to_string()).collect())
 }
 
-fn loaded(planner: &Planner, kind: RobotKind, extra: &str) -> Scenario {
-    let text = scenario_text(planner, kind, extra);
-    load(&text).unwrap_or_else(|codes| panic!("{} / {kind:?}: {codes:?}\n{text}", planner.kind))
+fn loaded(planner: &Planner, kind: RobotKind, place: World, extra: &str) -> Scenario {
+    let text = scenario_text(planner, kind, place, extra);
+    load(&text).unwrap_or_else(|codes| {
+        panic!("{} / {kind:?} / {place:?}: {codes:?}\n{text}", planner.kind)
+    })
 }
 
 /// The JSON document without its timings.
@@ -138,79 +156,108 @@ fn budget(planner: &Planner) -> &'static str {
 }
 
 #[test]
+fn the_detour_world_blocks_the_straight_line() {
+    // Else a planner that only tries the straight line would pass the
+    // detour case by finding it.
+    let astar = scen::planners::registry::planner("astar").expect("astar");
+    for (place, blocked) in [(World::Open, false), (World::Detour, true)] {
+        let scenario = loaded(astar, RobotKind::Point, place, "");
+        let params = &scenario.plans[0].params;
+        let line = [params.start, params.goal.expect("a goal")];
+        let robot = &scenario.robots[0].shape;
+        let verdict = validate_path(&scenario.world, robot, &line, DEFAULT_TOLERANCE);
+        assert_eq!(verdict.is_err(), blocked, "{place:?}: {verdict:?}");
+    }
+}
+
+#[test]
 fn every_planner_honours_its_contract() {
     let mut problems = Vec::new();
-    let mut found_any: BTreeMap<&str, bool> = BTreeMap::new();
+    let mut detours_found = 0;
     for planner in PLANNERS {
         for &kind in planner.robots {
-            let label = format!("{} / {kind:?}", planner.kind);
-            let scenario = loaded(planner, kind, budget(planner));
-            let report = run_scenario(scenario.clone(), &[]);
-            let run = &report.plans[0];
+            for place in WORLDS {
+                let label = format!("{} / {kind:?} / {place:?}", planner.kind);
+                let scenario = loaded(planner, kind, place, budget(planner));
+                let report = run_scenario(scenario.clone(), &[]);
+                let run = &report.plans[0];
 
-            // Exactly the declared metrics, with their types.
-            let declared: BTreeMap<&str, MetricType> = COMMON_METRICS
-                .iter()
-                .chain(planner.metrics)
-                .map(|m| (m.name, m.ty))
-                .collect();
-            let reported: Vec<&str> = run.metrics.keys().map(String::as_str).collect();
-            let expected: Vec<&str> = declared.keys().copied().collect();
-            if reported != expected {
-                problems.push(format!(
-                    "{label}: metrics {reported:?}, declared {expected:?}"
-                ));
-            }
-            for (name, value) in &run.metrics {
-                let ok = matches!(
-                    (declared.get(name.as_str()), value),
-                    (Some(MetricType::Bool), MetricValue::Bool(_))
-                        | (Some(MetricType::Num), MetricValue::Num(_))
-                );
-                if !ok {
+                // Exactly the declared metrics, with their types.
+                let declared: BTreeMap<&str, MetricType> = COMMON_METRICS
+                    .iter()
+                    .chain(planner.metrics)
+                    .map(|m| (m.name, m.ty))
+                    .collect();
+                let reported: Vec<&str> = run.metrics.keys().map(String::as_str).collect();
+                let expected: Vec<&str> = declared.keys().copied().collect();
+                if reported != expected {
                     problems.push(format!(
-                        "{label}: metric `{name}` = {value:?} has the wrong type"
+                        "{label}: metrics {reported:?}, declared {expected:?}"
                     ));
                 }
-            }
+                for (name, value) in &run.metrics {
+                    let ok = matches!(
+                        (declared.get(name.as_str()), value),
+                        (Some(MetricType::Bool), MetricValue::Bool(_))
+                            | (Some(MetricType::Num), MetricValue::Num(_))
+                    );
+                    if !ok {
+                        problems.push(format!(
+                            "{label}: metric `{name}` = {value:?} has the wrong type"
+                        ));
+                    }
+                }
 
-            // A found path: from start to goal, valid.
-            if let Some(path) = &run.outcome.path {
-                *found_any.entry(planner.kind).or_default() = true;
-                let robot = &scenario.robots[0].shape;
-                let first = path.first().map(|c| (c.x, c.y));
-                if first != Some(START) {
-                    problems.push(format!("{label}: the path starts at {first:?}"));
+                // A found path: from start to goal, valid.
+                if let Some(path) = &run.outcome.path {
+                    detours_found += usize::from(place == World::Detour);
+                    let robot = &scenario.robots[0].shape;
+                    let first = path.first().map(|c| (c.x, c.y));
+                    if first != Some(START) {
+                        problems.push(format!("{label}: the path starts at {first:?}"));
+                    }
+                    let last = path.last().map(|c| (c.x, c.y));
+                    if planner.needs_goal && last != Some(GOAL) {
+                        problems.push(format!("{label}: the path ends at {last:?}"));
+                    }
+                    if let Err(e) = validate_path(&scenario.world, robot, path, DEFAULT_TOLERANCE) {
+                        problems.push(format!("{label}: the path fails the validator: {e:?}"));
+                    }
+                    if run.metrics.get("collision_free") != Some(&MetricValue::Bool(true)) {
+                        problems.push(format!("{label}: a valid path without collision_free"));
+                    }
+                } else if place == World::Open {
+                    problems.push(format!(
+                        "{label}: no path with nothing in the way (gave_up {}, notes {:?}): the path checks would be vacuous",
+                        run.outcome.gave_up, run.outcome.notes
+                    ));
                 }
-                let last = path.last().map(|c| (c.x, c.y));
-                if planner.needs_goal && last != Some(GOAL) {
-                    problems.push(format!("{label}: the path ends at {last:?}"));
-                }
-                if let Err(e) = validate_path(&scenario.world, robot, path, DEFAULT_TOLERANCE) {
-                    problems.push(format!("{label}: the path fails the validator: {e:?}"));
-                }
-                if run.metrics.get("collision_free") != Some(&MetricValue::Bool(true)) {
-                    problems.push(format!("{label}: a valid path without collision_free"));
-                }
-            } else {
-                found_any.entry(planner.kind).or_default();
-            }
 
-            // Deterministic: the same input gives the same bytes.
-            let (a, b) = (json(&scenario), json(&scenario));
-            if a != b {
-                problems.push(format!("{label}: two runs differ:\n{a}\n{b}"));
+                // Deterministic: the same input gives the same bytes.
+                let (a, b) = (json(&scenario), json(&scenario));
+                if a != b {
+                    problems.push(format!("{label}: two runs differ:\n{a}\n{b}"));
+                }
             }
         }
     }
-    for (kind, found) in found_any {
-        if !found {
-            problems.push(format!(
-                "{kind}: no robot kind found a path, the contract is vacuous"
-            ));
-        }
+    if detours_found == 0 {
+        problems.push("no planner found a path round the block: the validator's check of paths near obstacles is vacuous".into());
     }
     assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+}
+
+/// The metric that shows what `limit KIND` counts.
+fn counted_metric(planner: &Planner, counted: &'static str) -> &'static str {
+    match counted {
+        "expansions" => "expanded",
+        other if planner.metric(other).is_some() => other,
+        _ => "expanded",
+    }
+}
+
+fn metric(metrics: &BTreeMap<String, MetricValue>, name: &str) -> f64 {
+    metrics.get(name).map_or(f64::NAN, |v| v.as_f64())
 }
 
 #[test]
@@ -224,14 +271,19 @@ fn every_planner_honours_its_limits() {
                 "time" => {
                     // The run ends (no hang) and a path found in time is
                     // still a path, else the run says it gave up.
-                    let scenario = loaded(planner, kind, "limit time 1ms");
+                    let scenario = loaded(planner, kind, World::Open, "limit time 1ms");
                     let report = run_scenario(scenario, &[]);
                     let run = &report.plans[0];
                     if run.outcome.path.is_none() && !run.outcome.gave_up {
                         problems.push(format!("{label}: stopped without a path nor gave_up"));
                     }
                 }
-                "cells" => match load(&scenario_text(planner, kind, "limit cells 10")) {
+                "cells" => match load(&scenario_text(
+                    planner,
+                    kind,
+                    World::Detour,
+                    "limit cells 10",
+                )) {
                     Err(codes)
                         if codes
                             .iter()
@@ -242,26 +294,39 @@ fn every_planner_honours_its_limits() {
                     )),
                 },
                 counted => {
-                    let scenario = loaded(planner, kind, &format!("limit {counted} 3"));
+                    // A cap below what a whole run counts, so that it
+                    // must stop the run short of the goal.
+                    let metric_name = counted_metric(planner, counted);
+                    let whole =
+                        run_scenario(loaded(planner, kind, World::Detour, budget(planner)), &[]);
+                    let used = metric(&whole.plans[0].metrics, metric_name);
+                    if used.is_nan() || used < 2.0 {
+                        problems.push(format!(
+                            "{label}: a whole run on the detour world counts {used} `{metric_name}`: no cap can stop it short (teach the contract a harder case)"
+                        ));
+                        continue;
+                    }
+                    let cap = (used - 1.0).min(3.0);
+                    let scenario = loaded(
+                        planner,
+                        kind,
+                        World::Detour,
+                        &format!("limit {counted} {cap}"),
+                    );
                     let report = run_scenario(scenario, &[]);
                     let run = &report.plans[0];
                     if run.outcome.path.is_some() || !run.outcome.gave_up {
                         problems.push(format!(
-                            "{label}: 3 was not enough for this world, yet: found {}, gave_up {}",
+                            "{label}: {cap} (of the {used} a whole run counts) did not stop it: found {}, gave_up {}",
                             run.outcome.path.is_some(),
                             run.outcome.gave_up
                         ));
                     }
                     // What the limit counts stays within it.
-                    let metric = match counted {
-                        "expansions" => "expanded",
-                        other if planner.metric(other).is_some() => other,
-                        _ => "expanded",
-                    };
-                    let n = run.metrics.get(metric).map_or(f64::NAN, |v| v.as_f64());
-                    if n.is_nan() || n > 3.0 {
+                    let n = metric(&run.metrics, metric_name);
+                    if n.is_nan() || n > cap {
                         problems.push(format!(
-                            "{label}: `{metric}` = {n} after `limit {counted} 3`"
+                            "{label}: `{metric_name}` = {n} after `limit {counted} {cap}`"
                         ));
                     }
                     // Stopped short: `collision_free` says whether the
@@ -295,7 +360,7 @@ fn robots_a_planner_does_not_declare_are_refused() {
             if planner.plans_for(kind) {
                 continue;
             }
-            match load(&scenario_text(planner, kind, "")) {
+            match load(&scenario_text(planner, kind, World::Open, "")) {
                 Err(codes) if codes.iter().any(|c| c == "scen::analyze::robot_kind") => {}
                 other => problems.push(format!(
                     "{} / {kind:?}: not refused as `robot_kind`: {:?}",
@@ -335,7 +400,7 @@ fn written_defaults_read_as_their_values() {
             given.join(" "),
             drive.join(" ")
         );
-        let scenario = loaded(planner, planner.robots[0], &extra);
+        let scenario = loaded(planner, planner.robots[0], World::Open, &extra);
         let values = &scenario.plans[0].params.values;
         for (key, x, written) in numeric {
             match values.get(key).map(|p| &p.value) {

@@ -2,8 +2,7 @@
 //!
 //! - `docs/planners.md` is the planner registry as Markdown
 //!   (`scen::planners::registry::reference`): it fails when the committed
-//!   file is stale. `SCEN_BLESS=1 cargo test --release --test docs` rewrites
-//!   it.
+//!   file is stale. `scripts/regenerate.sh` (`SCEN_BLESS=1`) rewrites it.
 //! - Every ```` ```scen ```` block of every `docs/**/*.md` is checked, by the
 //!   rule the manual states (docs/README.md, "Snippets"):
 //!   - a block whose opening comment lines hold `# expect-error: CODE` shows
@@ -53,7 +52,7 @@ fn the_planner_reference_is_up_to_date() {
     let committed = std::fs::read_to_string(&path).unwrap_or_default();
     assert!(
         committed == generated,
-        "docs/planners.md is stale: run `SCEN_BLESS=1 cargo test --release --test docs`"
+        "docs/planners.md is stale: run `scripts/regenerate.sh`"
     );
 }
 

@@ -5,11 +5,19 @@
 //! is coloured by the VS Code grammar and by the Vim syntax, in the right
 //! class, as are the keys of a `bench` and the aggregates of `expect`
 //! (src/scenario/analyze/), and every planner kind and `bench` have a
-//! snippet listing their parameters. The lists come from the schemas, so a
-//! new parameter cannot be forgotten.
+//! snippet listing their parameters.
+//!
+//! Those lists and the `plan-KIND` snippets are generated from the registry
+//! ([`generated`]): `the_generated_editor_files_are_up_to_date` fails when
+//! the committed files are stale, and `scripts/regenerate.sh`
+//! (`SCEN_BLESS=1`) rewrites them. The other tests read the files as an
+//! editor does, whatever wrote them.
 //!
 //! This test only reads files; editors/test.sh (run by scripts/test.sh)
 //! runs the grammars themselves.
+
+#[path = "editors/generated.rs"]
+mod generated;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -224,6 +232,80 @@ fn pest_keywords() -> BTreeSet<String> {
 }
 
 #[test]
+fn the_generated_editor_files_are_up_to_date() {
+    let bless = std::env::var_os("SCEN_BLESS").is_some();
+    let mut stale = Vec::new();
+    for file in generated::FILES {
+        let path = root().join(file.path);
+        let committed = std::fs::read_to_string(&path).unwrap_or_default();
+        let fresh = (file.regenerate)(&committed).unwrap_or_else(|e| panic!("{}: {e}", file.path));
+        if bless {
+            // Through a new file, so that a test reading it meanwhile never
+            // sees half of it.
+            let tmp = path.with_extension("regenerated");
+            std::fs::write(&tmp, &fresh).expect("write a generated file");
+            std::fs::rename(&tmp, &path).expect("replace a generated file");
+        } else if committed != fresh {
+            stale.push(file.path);
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "stale, not what the planner registry generates: {stale:?}; run `scripts/regenerate.sh`"
+    );
+}
+
+#[test]
+fn regeneration_replaces_the_generated_regions_and_keeps_the_rest() {
+    let text = "a\n\" BEGIN GENERATED x (note)\nold\nolder\n\" END GENERATED x\nb\n\
+                \" BEGIN GENERATED y\n\" END GENERATED y\n";
+    let regions = [("x", "new\n".to_string()), ("y", "y1\ny2\n".to_string())];
+    assert_eq!(
+        generated::replace_regions(text, &regions).as_deref(),
+        Ok(
+            "a\n\" BEGIN GENERATED x (note)\nnew\n\" END GENERATED x\nb\n\
+            \" BEGIN GENERATED y\ny1\ny2\n\" END GENERATED y\n"
+        )
+    );
+    // A region the file lacks, one not closed, one the generator does not
+    // know: errors, not a file with the list left out or eaten.
+    let missing = generated::replace_regions("a\n", &regions);
+    assert!(missing.is_err_and(|e| e.contains("\"x\", \"y\"")));
+    let open = "\" BEGIN GENERATED x\nold\n\" BEGIN GENERATED y\n\" END GENERATED y\n";
+    assert!(generated::replace_regions(open, &regions).is_err_and(|e| e.contains("not closed")));
+    let unknown = "\" BEGIN GENERATED z\n\" END GENERATED z\n";
+    assert!(generated::replace_regions(unknown, &regions).is_err_and(|e| e.contains("`z`")));
+}
+
+#[test]
+fn the_generated_lists_follow_the_registry() {
+    let lists = generated::lists().expect("the registry's lists");
+    let kinds: Vec<&str> = PLANNERS.iter().map(|p| p.kind).collect();
+    assert_eq!(lists.kinds, kinds);
+    assert_eq!(
+        lists.keys.iter().copied().collect::<BTreeSet<_>>(),
+        param_keys()
+    );
+    assert_eq!(
+        lists.words.iter().copied().collect::<BTreeSet<_>>(),
+        word_values()
+    );
+    assert_eq!(
+        lists.metrics.iter().copied().collect::<BTreeSet<_>>(),
+        metrics()
+    );
+    assert_eq!(lists.limit_kinds, LIMIT_KINDS);
+    // `limit` is a key, and a value of `stop` (SPEC 3.7).
+    assert!(lists.key_words.contains(&("limit", vec!["stop"])));
+    assert_eq!(lists.bench_keys, ["vary", "runs"]);
+    // A word in one place only of each list.
+    for list in [&lists.kinds, &lists.keys, &lists.words, &lists.metrics] {
+        let unique: BTreeSet<&str> = list.iter().copied().collect();
+        assert_eq!(unique.len(), list.len(), "{list:?}");
+    }
+}
+
+#[test]
 fn the_lists_are_not_empty() {
     // A broken extraction must not make the other tests pass vacuously.
     let keywords = pest_keywords();
@@ -345,15 +427,41 @@ fn snippet_words(snippet: &Value) -> BTreeSet<String> {
     words
 }
 
+/// The snippet files the extension's manifest lists.
+fn snippet_files() -> Vec<String> {
+    let manifest = read_json("editors/vscode/package.json");
+    manifest["contributes"]["snippets"]
+        .as_array()
+        .expect("the manifest lists snippets")
+        .iter()
+        .map(|s| {
+            let path = s["path"].as_str().expect("a snippet file's path");
+            format!("editors/vscode/{}", path.trim_start_matches("./"))
+        })
+        .collect()
+}
+
 #[test]
 fn snippets_cover_each_planner_and_its_parameters() {
-    let snippets = read_json("editors/vscode/snippets/scen.json");
-    let by_prefix: BTreeMap<&str, &Value> = snippets
-        .as_object()
-        .expect("snippets are an object")
-        .values()
-        .filter_map(|s| Some((s["prefix"].as_str()?, s)))
-        .collect();
+    let files: Vec<Value> = snippet_files().iter().map(|f| read_json(f)).collect();
+    assert!(
+        files.len() >= 2,
+        "the hand-written snippets and the generated `plan-KIND` ones"
+    );
+    let mut by_prefix: BTreeMap<&str, &Value> = BTreeMap::new();
+    for snippets in &files {
+        for s in snippets
+            .as_object()
+            .expect("snippets are an object")
+            .values()
+        {
+            let prefix = s["prefix"].as_str().expect("a snippet's prefix");
+            assert!(
+                by_prefix.insert(prefix, s).is_none(),
+                "two snippets `{prefix}`"
+            );
+        }
+    }
     let mut problems = Vec::new();
     for prefix in [
         "world", "robot", "expect", "scenario", "include", "grid", "limit", "drive", "bench",
@@ -409,7 +517,6 @@ fn extension_manifest_points_at_its_files() {
     assert_eq!(language["extensions"][0], ".scen");
     for path in [
         language["configuration"].as_str(),
-        manifest["contributes"]["snippets"][0]["path"].as_str(),
         manifest["main"].as_str(),
     ] {
         let path = dir.join(path.expect("a path in the manifest"));
@@ -418,6 +525,22 @@ fn extension_manifest_points_at_its_files() {
             "{} is missing",
             path.display()
         );
+    }
+    let snippets = snippet_files();
+    assert!(
+        snippets.iter().any(|f| f == generated::SNIPPETS),
+        "the manifest does not list {}: {snippets:?}",
+        generated::SNIPPETS
+    );
+    for file in snippets {
+        read_json(&file);
+    }
+    for language in manifest["contributes"]["snippets"]
+        .as_array()
+        .into_iter()
+        .flatten()
+    {
+        assert_eq!(language["language"], "scen");
     }
     read_json("editors/vscode/language-configuration.json");
     for file in [

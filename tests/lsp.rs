@@ -5,6 +5,7 @@ mod common;
 
 use common::TempDir;
 use common::lsp_client::{Client, range, uri};
+use scen::planners::registry::PLANNERS;
 use serde_json::{Value, json};
 
 const MAIN: &str = "\
@@ -129,21 +130,8 @@ fn the_server_answers_every_request_exactly() {
             "scenario", "include", "world", "robot", "plan", "expect", "bench"
         ]
     );
-    assert_eq!(
-        c.labels(&main, 5, 7),
-        [
-            "astar",
-            "online",
-            "roadmap",
-            "potential",
-            "coverage",
-            "rrt",
-            "rrt_connect",
-            "rrt_star",
-            "prm",
-            "prm_star"
-        ]
-    );
+    let kinds: Vec<&str> = PLANNERS.iter().map(|p| p.kind).collect();
+    assert_eq!(c.labels(&main, 5, 7), kinds);
     assert_eq!(c.labels(&main, 5, 13), ["dot"]);
     let keys = c.at("textDocument/completion", &main, 8, 2);
     let cell = keys

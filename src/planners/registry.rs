@@ -5,44 +5,75 @@
 //! the limits it honours, and a `check` that reads the validated parameters
 //! into the planner's own typed [`Settings`] (reporting cross-parameter
 //! problems with spans). The settings' [`Settings::plan`] runs the plan.
-//! The analyzer, the runner, the editors' word lists, the generated
-//! planner reference (`docs/planners.md`) and the contract test
-//! (`tests/contract.rs`) read this registry; none of them names a planner.
+//! The analyzer, the runner, the language server, the generated planner
+//! reference (`docs/planners.md`), the editors' generated word lists and
+//! snippets, and the tests that cover every planner read this registry;
+//! none of them names a planner.
 //!
 //! # Adding a planner
 //! 1. Write `src/planners/KIND.rs` with `pub static PLANNER: Planner`, its
 //!    settings struct (word values as [`word_enum!`](crate::word_enum)
-//!    enums, defaults only in the schema) and `impl Settings`.
-//! 2. Add `pub mod KIND;` to `src/planners/mod.rs` and `&KIND::PLANNER` to
-//!    [`PLANNERS`] below.
-//! 3. Run `SCEN_BLESS=1 cargo test --release --test docs` to regenerate
-//!    `docs/planners.md`, and add the new words to the editors' files (the
-//!    editor test says which are missing).
-//! 4. Add scenarios under `scenarios/` and the planner's own tests; the
-//!    contract test covers it already (metrics, validator, determinism,
-//!    limits) for every robot kind it declares, `tests/start_is_goal.rs` a
-//!    start equal to the goal (found at once: [`Task::start_is_goal`],
-//!    [`PlanOutcome::at_goal`]) and `tests/limits.rs` a time limit spent
-//!    before the set-up is done ([`super::deadline`]).
+//!    enums, defaults only in the schema) and `impl Settings`. Its module
+//!    is `planners::registry::KIND`: reach other modules by `crate::` paths.
+//! 2. Add its line to [`PLANNERS`]: `#[path = "KIND.rs"] KIND::PLANNER,`
+//!    (the line declares the module too).
+//! 3. Run `scripts/regenerate.sh` (`docs/planners.md`, the editors' word
+//!    lists and `plan-KIND` snippets).
+//!
+//! The contract (`tests/contract.rs`: metrics, validator, determinism,
+//! limits), `tests/start_is_goal.rs` (found at once:
+//! [`Task::start_is_goal`], [`PlanOutcome::at_goal`]), `tests/limits.rs`
+//! (a time limit spent before the set-up is done: [`super::deadline`]) and
+//! the LSP, docs and editors tests cover it from that line;
+//! `scripts/check_new_planner.sh` adds a planner this way and runs them.
+//! Add scenarios under `scenarios/` and the planner's own tests.
 
 use super::sampling::{prm, rrt, rrt_connect};
 use super::{astar, coverage, online, potential, roadmap};
 use crate::contract::Planner;
 use crate::contract::schema::{COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec};
 
-/// Every planner kind, in the order the docs list them.
-pub static PLANNERS: &[&Planner] = &[
-    &astar::PLANNER,
-    &online::PLANNER,
-    &roadmap::PLANNER,
-    &potential::PLANNER,
-    &coverage::PLANNER,
-    &rrt::RRT,
-    &rrt_connect::PLANNER,
-    &rrt::RRT_STAR,
-    &prm::PRM,
-    &prm::PRM_STAR,
-];
+/// Declares [`PLANNERS`] from its lines, in their order. A line is
+/// `module::ITEM,` for a planner whose module `src/planners/mod.rs`
+/// declares (those that are several files, or libraries for others too),
+/// or `#[path = "KIND.rs"] KIND::ITEM,` for a one-file planner: the line
+/// declares its module, from that file of `src/planners/`.
+macro_rules! planners {
+    (@lines [$($done:expr,)*]) => {
+        /// Every planner kind, in the order the docs list them.
+        pub static PLANNERS: &[&Planner] = &[$($done,)*];
+    };
+    (@lines [$($done:expr,)*] #[path = $file:literal] $module:ident :: $item:ident, $($rest:tt)*) => {
+        #[path = $file]
+        pub(crate) mod $module;
+        planners!(@lines [$($done,)* &$module::$item,] $($rest)*);
+    };
+    (@lines [$($done:expr,)*] $module:ident :: $item:ident, $($rest:tt)*) => {
+        planners!(@lines [$($done,)* &$module::$item,] $($rest)*);
+    };
+    (@lines [$($done:expr,)*] $($bad:tt)*) => {
+        compile_error!(concat!(
+            "a registry line is `module::ITEM,` or `#[path = \"KIND.rs\"] KIND::ITEM,`, not: ",
+            stringify!($($bad)*)
+        ));
+    };
+    ($($lines:tt)*) => {
+        planners!(@lines [] $($lines)*);
+    };
+}
+
+planners! {
+    astar::PLANNER,
+    online::PLANNER,
+    roadmap::PLANNER,
+    potential::PLANNER,
+    coverage::PLANNER,
+    rrt::RRT,
+    rrt_connect::PLANNER,
+    rrt::RRT_STAR,
+    prm::PRM,
+    prm::PRM_STAR,
+}
 
 /// The planner of a kind.
 pub fn planner(kind: &str) -> Option<&'static Planner> {
@@ -57,7 +88,7 @@ pub fn reference() -> String {
     let mut md = String::from(
         "# Planners\n\n\
          Generated from the planner registry (`src/planners/registry.rs`) by\n\
-         `SCEN_BLESS=1 cargo test --release --test docs`; do not edit by hand.\n",
+         `scripts/regenerate.sh`; do not edit by hand.\n",
     );
     let params = |md: &mut String, specs: &mut dyn Iterator<Item = &ParamSpec>| {
         md.push_str("\n| key | value | default | meaning |\n|---|---|---|---|\n");

@@ -3,9 +3,12 @@
 " Filenames:  *.scen
 "
 " The same colouring classes as the VS Code grammar
-" (editors/vscode/syntaxes/scen.tmLanguage.json). tests/editors.rs checks
-" that every keyword, planner kind, parameter key, word value, metric,
-" aggregate and bench key that `scen` accepts is listed here.
+" (editors/vscode/syntaxes/scen.tmLanguage.json). The lists of planner
+" kinds, parameter keys, limit kinds, word values, metrics, aggregates and
+" bench keys between the GENERATED lines come from the planner registry and
+" the analyser (scripts/regenerate.sh writes them; tests/editors.rs fails
+" when they are stale); tests/editors.rs also checks that every keyword of
+" the grammar is here.
 
 if exists('b:current_syntax')
   finish
@@ -65,7 +68,10 @@ syn match   scenName contained /\h\w*/ nextgroup=scenShape skipwhite
 " plan NAME KIND ROBOT
 syn match   scenPlanName contained /\h\w*/ nextgroup=scenPlanner,scenBadPlanner skipwhite
 syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
-syn keyword scenPlanner contained astar online roadmap potential coverage rrt rrt_connect rrt_star prm prm_star nextgroup=scenRobotRef skipwhite
+" BEGIN GENERATED planners (scripts/regenerate.sh; do not edit)
+syn keyword scenPlanner contained astar online roadmap potential coverage rrt nextgroup=scenRobotRef skipwhite
+syn keyword scenPlanner contained rrt_connect rrt_star prm prm_star nextgroup=scenRobotRef skipwhite
+" END GENERATED planners
 syn match   scenRobotRef contained /\h\w*/
 " bench NAME { ... }: the block (after comments, other words, on later lines
 " too) is a bench's, up to the next statement. The name, on the line of
@@ -89,33 +95,31 @@ syn region  scenBlock matchgroup=scenBrace start=/{/ end=/}/ fold
 syn region  scenBenchBlock contained matchgroup=scenBrace start=/{/ end=/}/ fold
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamKey,scenLimitKind,scenWord,scenBenchKey
+" BEGIN GENERATED bench-keys (scripts/regenerate.sh; do not edit)
 syn keyword scenBenchKey contained vary runs
+" END GENERATED bench-keys
 syn keyword scenBenchKey contained plans nextgroup=scenPlanList skipwhite skipnl skipempty
 " The names in `plans [...]` are plans, not words.
 syn region  scenPlanList contained matchgroup=scenPunct start=/\[/ end=/\]/
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenPlanList,scenComment,scenString,scenUnterminated,@scenNumbers
 syn keyword scenWorldKeyword contained bounds origin
+" BEGIN GENERATED parameters (scripts/regenerate.sh; do not edit)
 " Parameter keys: the common ones, every planner's, and `drive { ... }`'s.
-syn keyword scenParamKey contained start goal seed drive
-" `limit` is a key, and a word after `stop` (`stop limit`): both matches, so
-" that the later one wins after `stop` (a keyword would win everywhere).
-syn match   scenParamKey contained /\<limit\>/
-syn keyword scenParamKey contained cell sample connect layers cost turn_cost weight heuristic rotate
-syn keyword scenParamKey contained strategy sense
-syn keyword scenParamKey contained arc_segments
-syn keyword scenParamKey contained attract repulse influence step tolerance escape jump
-syn keyword scenParamKey contained on tool weights
-syn keyword scenParamKey contained range goal_bias sampler neighbors rewire informed stop simplify
+syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic
+syn keyword scenParamKey contained rotate strategy sense arc_segments attract repulse influence step tolerance escape
+syn keyword scenParamKey contained jump on tool weights range goal_bias sampler stop simplify rewire informed neighbors
 syn keyword scenParamKey contained dt max_speed max_turn_rate gain turn_gain reach align
-" `limit expansions N | steps N | time DURATION | cells N | iterations N`
+" A key that is a word value too is two matches, not keywords (a keyword would
+" win everywhere): the word's, defined later, wins after the keys it follows.
+syn match   scenParamKey contained /\<limit\>/
+" `limit KIND N`.
 syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
-syn keyword scenWord contained center corner auto euclid l1 lattice metric zero yes no
-syn keyword scenWord contained backtrack shortcut replan dstar_lite none random_walk max sum
-syn keyword scenWord contained uniform gaussian bridge first smooth
+syn keyword scenWord contained unicycle center corner auto euclid l1 lattice metric zero yes no backtrack shortcut
+syn keyword scenWord contained replan dstar_lite none random_walk max sum uniform gaussian bridge first smooth
 syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
-syn keyword scenWord contained unicycle
+" END GENERATED parameters
 
 " --------------------------------------------------------------- expect
 " An expression runs until the next statement (not a metric: `p.plan`).
@@ -125,7 +129,9 @@ syn region  scenExpect matchgroup=scenStatement start=/\<expect\>\%(\s*\.\)\@!/
 " A bare word is not an operand: write `PLAN.METRIC`, or an aggregate
 " `mean(BENCH.PLAN.METRIC)`.
 syn match   scenBareWord contained /\<\h\w*/
+" BEGIN GENERATED aggregates (scripts/regenerate.sh; do not edit)
 syn match   scenFunction contained /\<\%(mean\|median\|min\|max\|std\|sum\|count\|quantile\|rate\)\ze(/
+" END GENERATED aggregates
 syn match   scenParen contained /[(),]/
 " PLAN.METRIC, BENCH.PLAN.METRIC and BENCH.PLAN[KEY = VALUE, ...].METRIC,
 " one part after the other: after the first `.`, a name followed by `.` or
@@ -136,14 +142,16 @@ syn match   scenPlanRef contained /\<\h\w*\ze\.\h/ nextgroup=scenAccessor
 syn match   scenAccessor contained /\./ nextgroup=scenMetric,scenOtherMetric,scenMidRef,scenSelection
 syn match   scenLastAccessor contained /\.\ze\h/ nextgroup=scenMetric,scenOtherMetric
 syn match   scenOtherMetric contained /\h\w*/
-syn match   scenMetric contained /\.\@1<=\%(found\|gave_up\|cost\|length\|turn\|nodes\|expanded\|time_ms\|collision_free\|reaches_goal\|clearance\|smoothness\)\>/
-syn match   scenMetric contained /\.\@1<=\%(cells\|free_cells\|layers\|generated\)\>/
-syn match   scenMetric contained /\.\@1<=\%(traveled\|steps\|replans\|sensed\)\>/
-syn match   scenMetric contained /\.\@1<=\%(graph_nodes\|graph_edges\)\>/
-syn match   scenMetric contained /\.\@1<=\%(minima\|escapes\)\>/
-syn match   scenMetric contained /\.\@1<=\%(coverage\|cells_total\|cells_visited\|revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
-syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\|raw_length\|raw_nodes\|simplify_ms\)\>/
-syn match   scenMetric contained /\.\@1<=\%(drive_time\|drive_max_deviation\|drive_collision_free\)\>/
+" BEGIN GENERATED metrics (scripts/regenerate.sh; do not edit)
+syn match   scenMetric contained /\.\@1<=\%(found\|gave_up\|cost\|length\|turn\|nodes\|expanded\|time_ms\)\>/
+syn match   scenMetric contained /\.\@1<=\%(collision_free\|reaches_goal\|clearance\|smoothness\|cells\|free_cells\)\>/
+syn match   scenMetric contained /\.\@1<=\%(layers\|generated\|traveled\|steps\|replans\|sensed\|graph_nodes\)\>/
+syn match   scenMetric contained /\.\@1<=\%(graph_edges\|minima\|escapes\|coverage\|cells_total\|cells_visited\)\>/
+syn match   scenMetric contained /\.\@1<=\%(revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
+syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\)\>/
+syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|drive_time\|drive_max_deviation\)\>/
+syn match   scenMetric contained /\.\@1<=\%(drive_collision_free\)\>/
+" END GENERATED metrics
 syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " BENCH.PLAN[...]: the plan's name starts the selection, so that its `[` is
 " inside and a key is matched with what precedes it (`[` or `,`) before a
