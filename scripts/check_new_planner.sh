@@ -47,12 +47,10 @@ cat > src/planners/straight.rs <<'EOF'
 
 use std::any::Any;
 
+use crate::contract::schema::RobotKind;
+use crate::contract::{PlanArgs, PlanOutcome, Planner, Settings, Task};
 use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
-use crate::planners::PlanOutcome;
 use crate::planners::deadline::Deadline;
-use crate::planners::registry::{Planner, Settings, Task};
-use crate::scenario::PlanArgs;
-use crate::scenario::schema::RobotKind;
 
 pub static PLANNER: Planner = Planner {
     kind: "straight",

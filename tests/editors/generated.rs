@@ -9,8 +9,10 @@
 //!
 //! Everything else in those files is written by hand and kept as it is.
 
-use scen::planners::registry::{PLANNERS, Planner};
-use scen::scenario::schema::{
+use scen::planners::registry::PLANNERS;
+
+use scen::contract::Planner;
+use scen::contract::schema::{
     COMMON_METRICS, COMMON_PARAMS, DRIVE_METRICS, DRIVE_PARAMS, DefaultValue, ParamSpec, ValueSpec,
 };
 use scen::scenario::{AGGREGATES, BENCH_KEYS};
