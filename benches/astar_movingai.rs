@@ -152,7 +152,7 @@ fn load_bench() -> Bench {
     let _ = std::fs::remove_dir_all(&tmp);
     let world = match loaded {
         Ok(s) => s.world,
-        Err(f) => panic!("{}", scen::cli::render_diags(&f.diags, &f.sources)),
+        Err(f) => panic!("{}", scen::diagnostics::render_diags(&f.diags, &f.sources)),
     };
     let passable = match &world.obstacles[0].shape {
         Shape::Grid(g) => g.cells.iter().map(|&w| w != 0).collect(),

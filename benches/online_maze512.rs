@@ -79,7 +79,7 @@ fn load(rows: &[usize]) -> Scenario {
     let _ = std::fs::remove_dir_all(&tmp);
     match loaded {
         Ok(s) => s,
-        Err(f) => panic!("{}", scen::cli::render_diags(&f.diags, &f.sources)),
+        Err(f) => panic!("{}", scen::diagnostics::render_diags(&f.diags, &f.sources)),
     }
 }
 

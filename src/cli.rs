@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use rayon::prelude::*;
 
-use crate::diagnostics::{Diag, SourceMap};
+use crate::diagnostics::{Diag, SourceMap, render_diags};
 use crate::report;
 use crate::run::{RunReport, run_scenario_drawing};
 use crate::scenario::loader::LoadFailure;
@@ -397,15 +397,6 @@ pub(crate) fn outputs_writable(outputs: &[(&str, Option<&PathBuf>)]) -> bool {
 /// default: the file's folder).
 pub(crate) fn load(file: &Path, root: Option<&Path>) -> Result<crate::Scenario, LoadFailure> {
     crate::scenario::load_with(file, root, &|_| None)
-}
-
-/// Renders diagnostics with their sources (miette), one after another.
-pub fn render_diags(diags: &[Diag], sources: &SourceMap) -> String {
-    let mut s = String::new();
-    for d in diags {
-        s.push_str(&format!("{:?}\n", d.to_report(sources)));
-    }
-    s
 }
 
 pub(crate) fn print_failure(f: &LoadFailure) {

@@ -354,6 +354,15 @@ pub(crate) fn edit_distance<T: PartialEq>(a: &[T], b: &[T]) -> usize {
     row[b.len()]
 }
 
+/// Renders diagnostics with their sources (miette), one after another.
+pub fn render_diags(diags: &[Diag], sources: &SourceMap) -> String {
+    let mut s = String::new();
+    for d in diags {
+        s.push_str(&format!("{:?}\n", d.to_report(sources)));
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,28 +1,54 @@
 //! `scen`: a declarative scenario language for 2D robot motion planning.
 //!
 //! The pipeline: source text ─parse→ [`syntax::ast`] ─analyze→
-//! [`scenario::Scenario`] ─plan→ [`run::RunReport`] ─check→ report sinks
-//! ([`report`] for text, JSON and SVG; [`viz`] for the Rerun viewer).
+//! [`Scenario`] ─plan→ [`RunReport`] ─check→ report sinks ([`report`]
+//! for text, JSON, CSV, SVG and PNG; the Rerun viewer behind the `viewer`
+//! feature).
+//!
+//! # The library
+//! - [`load`] / [`scenario::load_with`]: read, parse and analyse a
+//!   scenario file (every diagnostic at once, with spans into its sources;
+//!   [`diagnostics::render_diags`] prints them as `scen check` does).
+//! - [`run_scenario`] / [`run_scenario_drawing`]: run its plans, validate
+//!   every path, evaluate the checks.
+//! - [`bench`]: the runs of its `bench` statements; [`report`]: the
+//!   documents made of a run (JSON, tables, pictures).
+//! - [`format::format_text`]: the canonical layout.
+//! - [`planners::registry::PLANNERS`]: every planner, through the
+//!   [`contract`] (schemas, settings, tasks, outcomes).
+//! - [`main`]: the `scen` command line itself.
+//!
+//! The geometry, the planners' own entry points and the random numbers are
+//! public for the benchmarks and the tests that measure and check them
+//! directly; the command line, the language server, file reading, the
+//! viewer sink and the driving simulator are private to the crate.
 
 pub mod bench;
-pub mod checks;
-pub mod cli;
+mod checks;
+mod cli;
 pub mod contract;
 pub mod diagnostics;
-pub mod drive;
-pub mod files;
+mod drive;
+mod files;
 pub mod format;
 pub mod geometry;
-pub mod import;
-pub mod lsp;
+mod import;
+mod lsp;
 pub mod planners;
 pub mod report;
 pub mod rng;
 pub mod run;
 pub mod scenario;
 pub mod syntax;
-pub mod viz;
+mod viz;
 
 pub use diagnostics::{Diag, SourceMap, Span};
 pub use run::{RunReport, run_scenario, run_scenario_drawing};
 pub use scenario::{Scenario, load};
+
+/// The `scen` command line: reads the arguments, runs the command, and
+/// returns the exit code (0 all checks passed, 1 a check failed, 2 bad
+/// input or usage). The binary is this call.
+pub fn main() -> i32 {
+    cli::main()
+}

@@ -1,5 +1,5 @@
 //! `scen`: exit codes only; everything else is in the library.
 
 fn main() {
-    std::process::exit(scen::cli::main());
+    std::process::exit(scen::main());
 }

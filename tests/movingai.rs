@@ -172,7 +172,7 @@ fn load_world(map: &Path, tmp: &TempDir) -> (World, Grid) {
         Ok(s) => s,
         Err(f) => panic!(
             "the map does not load:\n{}",
-            scen::cli::render_diags(&f.diags, &f.sources)
+            scen::diagnostics::render_diags(&f.diags, &f.sources)
         ),
     };
     let world = s.world;

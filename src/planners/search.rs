@@ -270,11 +270,6 @@ impl SearchBuffers {
         (s.mark >= 2 * self.stamp && s.parent != u32::MAX).then_some(s.parent as usize)
     }
 
-    /// Whether `node` was closed in the last search.
-    pub fn is_closed(&self, node: usize) -> bool {
-        self.state(node).mark == 2 * self.stamp + 1
-    }
-
     /// Bytes held for per-node state (for benchmarks).
     pub fn state_bytes(&self) -> usize {
         let node = std::mem::size_of::<NodeState>();

@@ -117,14 +117,6 @@ impl Bench {
         }
         out
     }
-
-    /// The total runs of the bench.
-    pub fn total_runs(&self) -> u64 {
-        self.plans
-            .iter()
-            .map(|p| p.runs * p.configs.len() as u64)
-            .sum()
-    }
 }
 
 #[derive(Clone, Debug)]
