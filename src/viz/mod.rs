@@ -33,6 +33,8 @@ pub enum ViewerTarget {
 /// Why a run could not be streamed. The messages are complete sentences
 /// for a warning: they say what to do.
 #[derive(Debug, thiserror::Error)]
+// Without the viewer, only `NotBuilt` is made.
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
 pub enum ViewerError {
     #[error("cannot write the Rerun recording `{}`: {message}", path.display())]
     Save { path: PathBuf, message: String },
