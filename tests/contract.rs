@@ -27,9 +27,10 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::TempDir;
+use common::planner_cases::{required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
-use scen::contract::schema::{COMMON_METRICS, DefaultValue, MetricType, RobotKind, ValueSpec};
+use scen::contract::schema::{COMMON_METRICS, DefaultValue, MetricType, RobotKind};
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use scen::planners::registry::PLANNERS;
 use scen::report::json::to_json;
@@ -69,31 +70,6 @@ fn world(world: World) -> String {
 
 const START: (f64, f64) = (1.5, 1.5);
 const GOAL: (f64, f64) = (13.5, 14.5);
-
-fn robot(kind: RobotKind) -> &'static str {
-    match kind {
-        RobotKind::Point => "point",
-        RobotKind::Disk => "disk 0.4",
-        // Centred on its frame origin, so that it fits a unit D-cell too.
-        RobotKind::Polygon => "polygon [(-0.4, -0.3), (0.4, -0.3), (0.4, 0.3), (-0.4, 0.3)]",
-    }
-}
-
-/// The plan's required parameters, filled for this world.
-fn required(planner: &Planner) -> Vec<String> {
-    planner
-        .params
-        .iter()
-        .filter(|p| p.default == DefaultValue::None)
-        .map(|p| match p.value {
-            ValueSpec::ObstacleName => format!("{} G", p.key),
-            other => panic!(
-                "the contract test cannot fill the required `{}` of `{}` ({other:?}): teach it",
-                p.key, planner.kind
-            ),
-        })
-        .collect()
-}
 
 fn scenario_text(planner: &Planner, kind: RobotKind, place: World, extra: &str) -> String {
     let goal = if planner.needs_goal {

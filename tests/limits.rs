@@ -22,9 +22,8 @@ mod common;
 use std::process::Command;
 use std::time::Duration;
 
+use common::planner_cases::{required, robot};
 use common::{Finished, TempDir, run_or_kill, scen_bin};
-use scen::contract::Planner;
-use scen::contract::schema::{DefaultValue, RobotKind, ValueSpec};
 use scen::planners::registry::PLANNERS;
 
 /// The address space the memory tests allow the binary.
@@ -234,30 +233,6 @@ fn world() -> String {
     )
 }
 
-fn robot(kind: RobotKind) -> &'static str {
-    match kind {
-        RobotKind::Point => "point",
-        RobotKind::Disk => "disk 0.4",
-        RobotKind::Polygon => "polygon [(-0.4, -0.3), (0.4, -0.3), (0.4, 0.3), (-0.4, 0.3)]",
-    }
-}
-
-fn required(planner: &Planner) -> String {
-    planner
-        .params
-        .iter()
-        .filter(|p| p.default == DefaultValue::None)
-        .map(|p| match p.value {
-            ValueSpec::ObstacleName => format!("{} G", p.key),
-            other => panic!(
-                "this test cannot fill the required `{}` of `{}` ({other:?}): teach it",
-                p.key, planner.kind
-            ),
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
-}
-
 /// SPEC 2.5: a plan whose time is up when it starts (a limit of 0, as a
 /// plan that spent it all before its set-up was done) gives up, finds
 /// nothing, and its note names the time limit, for every planner that
@@ -281,7 +256,7 @@ fn every_planner_counts_its_set_up_against_its_time_limit() {
                 world(),
                 robot(kind),
                 planner.kind,
-                required(planner)
+                required(planner).join(" ")
             );
             let file = dir.path().join("s.scen");
             std::fs::write(&file, &text).expect("write");

@@ -14,9 +14,10 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::TempDir;
+use common::planner_cases::{required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
-use scen::contract::schema::{COMMON_METRICS, DefaultValue, RobotKind, ValueSpec};
+use scen::contract::schema::{COMMON_METRICS, RobotKind};
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use scen::planners::registry::PLANNERS;
 use scen::{Scenario, run_scenario};
@@ -44,30 +45,6 @@ const WORLD: &str = r#"world {
   }
 }
 "#;
-
-fn robot(kind: RobotKind) -> &'static str {
-    match kind {
-        RobotKind::Point => "point",
-        RobotKind::Disk => "disk 0.4",
-        RobotKind::Polygon => "polygon [(-0.4, -0.3), (0.4, -0.3), (0.4, 0.3), (-0.4, 0.3)]",
-    }
-}
-
-/// The plan's required parameters, filled for this world.
-fn required(planner: &Planner) -> Vec<String> {
-    planner
-        .params
-        .iter()
-        .filter(|p| p.default == DefaultValue::None)
-        .map(|p| match p.value {
-            ValueSpec::ObstacleName => format!("{} G", p.key),
-            other => panic!(
-                "this test cannot fill the required `{}` of `{}` ({other:?}): teach it",
-                p.key, planner.kind
-            ),
-        })
-        .collect()
-}
 
 /// A plan whose start and goal are both `pose` (written as in a file).
 fn scenario(planner: &Planner, kind: RobotKind, pose: &str, goal: bool) -> Scenario {

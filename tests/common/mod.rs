@@ -5,6 +5,7 @@
 #![allow(dead_code)]
 
 pub mod lsp_client;
+pub mod planner_cases;
 pub mod random;
 
 use std::path::{Path, PathBuf};

@@ -1,0 +1,34 @@
+//! What the tests that run every planner of the registry write into their
+//! scenarios: a robot of each kind, and the parameters a planner requires
+//! (so that a new planner is covered from its registry line).
+
+use scen::contract::Planner;
+use scen::contract::schema::{DefaultValue, RobotKind, ValueSpec};
+
+/// A robot of `kind`, written as in a file: small, and centred on its
+/// frame origin so that it fits a unit cell (a coverage D-cell) too.
+pub fn robot(kind: RobotKind) -> &'static str {
+    match kind {
+        RobotKind::Point => "point",
+        RobotKind::Disk => "disk 0.4",
+        RobotKind::Polygon => "polygon [(-0.4, -0.3), (0.4, -0.3), (0.4, 0.3), (-0.4, 0.3)]",
+    }
+}
+
+/// The planner's required parameters (no default), filled for a world
+/// whose grid obstacle is named `G`; a kind of value this cannot fill
+/// stops the test with what to teach it.
+pub fn required(planner: &Planner) -> Vec<String> {
+    planner
+        .params
+        .iter()
+        .filter(|p| p.default == DefaultValue::None)
+        .map(|p| match p.value {
+            ValueSpec::ObstacleName => format!("{} G", p.key),
+            other => panic!(
+                "the tests of every planner cannot fill the required `{}` of `{}` ({other:?}): teach tests/common/planner_cases.rs",
+                p.key, planner.kind
+            ),
+        })
+        .collect()
+}
