@@ -8,6 +8,19 @@ fn p(x: f64, y: f64) -> Point {
     Point::new(x, y)
 }
 
+/// A star of `n` vertices about the origin, counter-clockwise: every
+/// other vertex at radius `outer`, the rest at `inner` (long spikes whose
+/// boxes overlap many others', for the polygon sweeps at scale).
+pub(crate) fn star(n: usize, outer: f64, inner: f64) -> Vec<Point> {
+    (0..n)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / n as f64;
+            let r = if k % 2 == 0 { outer } else { inner };
+            Point::new(r * a.cos(), r * a.sin())
+        })
+        .collect()
+}
+
 /// A rect obstacle from two opposite corners.
 pub(crate) fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
     Shape::Rect(Aabb::from_corners(Point::new(x0, y0), Point::new(x1, y1)))

@@ -207,14 +207,7 @@ mod tests {
     #[test]
     fn a_hundred_thousand_vertices() {
         // A star: long spikes whose boxes overlap many others'.
-        let n = 100_000;
-        let star: Vec<Point> = (0..n)
-            .map(|k| {
-                let a = k as f64 * std::f64::consts::TAU / n as f64;
-                let r = if k % 2 == 0 { 4.0 } else { 0.5 };
-                Point::new(r * a.cos(), r * a.sin())
-            })
-            .collect();
+        let star = crate::geometry::fixtures::star(100_000, 4.0, 0.5);
         assert_eq!(meeting_edges(&star, tol_of(&star)), None);
         // One spike bent across its neighbour.
         let mut bent = star.clone();

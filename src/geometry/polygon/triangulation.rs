@@ -430,13 +430,7 @@ mod tests {
     #[test]
     fn a_hundred_thousand_vertices() {
         let n = 100_000;
-        let star: Vec<Point> = (0..n)
-            .map(|k| {
-                let a = k as f64 * std::f64::consts::TAU / n as f64;
-                let r = if k % 2 == 0 { 4.0 } else { 1.0 };
-                Point::new(r * a.cos(), r * a.sin())
-            })
-            .collect();
+        let star = crate::geometry::fixtures::star(n, 4.0, 1.0);
         partition_is_monotone_and_tiles(&star).unwrap();
         partition_is_monotone_and_tiles(&normalize_simple_polygon(&comb(n / 4)).unwrap()).unwrap();
     }
