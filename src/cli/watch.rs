@@ -42,14 +42,22 @@ pub(super) fn cmd_watch(args: &RunArgs) -> i32 {
         file.display()
     );
     let mut run = 1u64;
+    // The files the last run read, looked at before the next run starts:
+    // a save made while a run is going on (after the file was read) is
+    // then seen, whatever the file system's clock granularity.
+    let mut watched: Vec<PathBuf> = vec![file.clone()];
     loop {
-        let started = SystemTime::now();
+        let before_run = stamps(&watched);
         let (_, read) = run_file(file, args, target.as_ref(), &mut viewer_warned);
         // The viewer `--spawn` started keeps running: later runs go to it.
         if target == Some(ViewerTarget::Spawn) {
             target = Some(ViewerTarget::Connect(None));
         }
-        wait_for_change(&read, started);
+        watched = read;
+        watched.push(file.clone());
+        watched.sort();
+        watched.dedup();
+        wait_for_change(&watched, &before_run);
         run += 1;
         eprintln!("\n── `{}` changed: run {run} ──", file.display());
     }
@@ -64,35 +72,35 @@ fn stamp(path: &Path) -> Stamp {
     Some((meta.modified().ok()?, meta.len()))
 }
 
-/// Returns once one of `files` changed (written, replaced, removed or
-/// created; or saved since `started`, while the run was going on) and has
-/// stayed the same for one more poll, so that a save in progress is not
-/// read half-written.
-fn wait_for_change(files: &[PathBuf], started: SystemTime) {
-    let mut files: Vec<PathBuf> = files.to_vec();
-    files.sort();
-    files.dedup();
-    let before: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
-    let saved_during_run = before
+fn stamps(files: &[PathBuf]) -> Vec<(PathBuf, Stamp)> {
+    files.iter().map(|f| (f.clone(), stamp(f))).collect()
+}
+
+/// Returns once one of `files` changed and has stayed the same for one
+/// more poll, so that a save in progress is not read half-written. A file
+/// is compared with how it looked before the run that read it (from
+/// `before_run`; a file the run read for the first time, with how it looks
+/// now): written, replaced, removed or created.
+fn wait_for_change(files: &[PathBuf], before_run: &[(PathBuf, Stamp)]) {
+    let before: Vec<Stamp> = files
         .iter()
-        .flatten()
-        .any(|(modified, _)| *modified > started);
+        .map(|f| match before_run.iter().find(|(g, _)| g == f) {
+            Some((_, s)) => *s,
+            None => stamp(f),
+        })
+        .collect();
+    let mut now: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
+    while now == before {
+        std::thread::sleep(POLL);
+        now = files.iter().map(|f| stamp(f)).collect();
+    }
+    // Settle: wait until two polls agree.
     loop {
-        if !saved_during_run {
-            std::thread::sleep(POLL);
+        std::thread::sleep(POLL);
+        let again: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
+        if again == now {
+            return;
         }
-        let now: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
-        if saved_during_run || now != before {
-            // Settle: wait until two polls agree.
-            let mut last = now;
-            loop {
-                std::thread::sleep(POLL);
-                let again: Vec<Stamp> = files.iter().map(|f| stamp(f)).collect();
-                if again == last {
-                    return;
-                }
-                last = again;
-            }
-        }
+        now = again;
     }
 }

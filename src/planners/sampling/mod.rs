@@ -633,7 +633,9 @@ impl<'a> Run<'a> {
                 "the graph reached its cap of {MAX_STATES} states: the path is the best found by then"
             ));
         }
-        out.layers = self.layers(&grown, path.as_deref());
+        if self.task.draw {
+            out.layers = self.layers(&grown, path.as_deref());
+        }
         out.cost = path.as_deref().map(|p| self.cost(p));
         out.path = path;
         out

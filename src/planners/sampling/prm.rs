@@ -263,7 +263,9 @@ fn connect(
             .graph
             .add_edge(NodeIndex::new(v), NodeIndex::new(u as usize), (w, checked));
         components.union(v as u32, u);
-        keep_drawn(drawn, DrawnEdge { a, b, iteration });
+        if run.task.draw {
+            keep_drawn(drawn, DrawnEdge { a, b, iteration });
+        }
     }
 }
 

@@ -241,7 +241,12 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         }
     };
     let mut drawn = Vec::new();
-    let mut by_joining: Vec<usize> = (1..tree.states.len()).collect();
+    // The tree's edges in the order they joined, only when drawn.
+    let mut by_joining: Vec<usize> = if run.task.draw {
+        (1..tree.states.len()).collect()
+    } else {
+        Vec::new()
+    };
     by_joining.sort_by_key(|&i| (tree.joined[i], i));
     for i in by_joining {
         let p = tree.parent[i] as usize;

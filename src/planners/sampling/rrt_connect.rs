@@ -108,14 +108,16 @@ fn step(
     tree.states.push(new);
     tree.parent.push(from as u32);
     tree.index.insert(run.space.key(new));
-    keep_drawn(
-        drawn,
-        DrawnEdge {
-            a,
-            b: new,
-            iteration,
-        },
-    );
+    if run.task.draw {
+        keep_drawn(
+            drawn,
+            DrawnEdge {
+                a,
+                b: new,
+                iteration,
+            },
+        );
+    }
     if new == target {
         Step::Reached(i)
     } else {

@@ -40,6 +40,35 @@ fn run(s: &Scenario) -> PlanOutcome {
     plan.settings.plan(&plan.task(s))
 }
 
+/// A run that is not drawn (a bench, a plain `scen run`) builds no layers
+/// and records no edges, and finds the same path with the same metrics as
+/// a drawn one: drawing never changes the result.
+#[test]
+fn undrawn_runs_build_no_layers_and_find_the_same_path() {
+    for kind in ["rrt", "rrt_connect", "rrt_star", "prm", "prm_star"] {
+        for robot in ["rod", "dot"] {
+            let s = scenario(kind, robot, "limit iterations 1500 simplify shortcut");
+            let plan = &s.plans[0];
+            let drawn_task = plan.task(&s);
+            assert!(drawn_task.draw);
+            let mut task = plan.task(&s);
+            task.draw = false;
+            let (drawn, undrawn) = (plan.settings.plan(&drawn_task), plan.settings.plan(&task));
+            assert!(drawn.path.is_some(), "{kind} / {robot} found no path");
+            assert!(!drawn.layers.is_empty(), "{kind} / {robot}");
+            assert!(undrawn.layers.is_empty(), "{kind} / {robot}");
+            assert_eq!(drawn.path, undrawn.path, "{kind} / {robot}");
+            assert_eq!(drawn.cost, undrawn.cost, "{kind} / {robot}");
+            let metrics = |o: &PlanOutcome| {
+                let mut m = o.extra.clone();
+                m.remove("simplify_ms");
+                m
+            };
+            assert_eq!(metrics(&drawn), metrics(&undrawn), "{kind} / {robot}");
+        }
+    }
+}
+
 #[test]
 fn same_seed_same_tree_and_path() {
     for kind in ["rrt", "rrt_connect", "rrt_star", "prm", "prm_star"] {
