@@ -104,3 +104,31 @@ fn wait_for_change(files: &[PathBuf], before_run: &[(PathBuf, Stamp)]) {
         now = again;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A save made after the run read the file but before the poll began
+    /// (a fast run, a coarse file-system clock) is still a change: the file
+    /// is compared with how it looked before the run.
+    #[test]
+    fn a_save_during_the_run_is_seen() {
+        let dir = std::env::temp_dir().join(format!("scen-watch-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let file = dir.join("a.scen");
+        std::fs::write(&file, "robot p point\n").expect("write");
+        let before_run = stamps(std::slice::from_ref(&file));
+        // The "run" reads the file; the user saves at once.
+        std::fs::write(&file, "robot p point\nrobot q point\n").expect("save");
+        let (tx, rx) = std::sync::mpsc::channel();
+        let watched = vec![file.clone()];
+        std::thread::spawn(move || {
+            wait_for_change(&watched, &before_run);
+            let _ = tx.send(());
+        });
+        let seen = rx.recv_timeout(Duration::from_secs(20));
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(seen.is_ok(), "the save was not seen");
+    }
+}
