@@ -90,6 +90,7 @@ fn bench(c: &mut Criterion) {
             goal: None,
             limits: Limits::default(),
             seed: 0,
+            steering: None,
             draw: true,
         };
         let settings = Coverage {

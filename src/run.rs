@@ -12,6 +12,7 @@ use crate::contract::ParamValue;
 use crate::contract::Task;
 use crate::contract::{MetricValue, Metrics, PlanOutcome};
 use crate::drive::{self, DriveOutcome, Unicycle};
+use crate::geometry::car::{CarPath, swept_poses, validate_car_path};
 use crate::geometry::path::{path_length, path_turn, smoothness};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError, Validator};
 use crate::geometry::{Config, RobotShape, angle_diff};
@@ -205,22 +206,44 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     // A thinned motion was validated and measured by its planner as it
     // was made (SPEC 3.4); the list itself skips poses.
     let measured = outcome.measured.as_ref();
-    let validation = match measured {
-        Some(m) => m.validation.clone(),
-        None => motion.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err()),
+    // A car robot's path is its segments (SPEC 3.0): those are validated,
+    // and a path given only as poses is refused.
+    let car = outcome.car.as_ref().filter(|_| outcome.path.is_some());
+    let validation = match (measured, car) {
+        (Some(m), _) => m.validation.clone(),
+        (None, Some(car)) => {
+            validate_car_path(&referee, robot, car, plan.params.goal, DEFAULT_TOLERANCE).err()
+        }
+        (None, None) if task.steering.is_some() && outcome.path.is_some() => {
+            Some(ValidationError {
+                segment: 0,
+                at: task.start,
+                obstacle: None,
+                reason: "a car robot's path must be given as segments".into(),
+            })
+        }
+        (None, None) => {
+            motion.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err())
+        }
     };
     let valid = motion.is_some() && validation.is_none();
     let mut metrics = common_metrics(&outcome, robot, plan, time_ms, valid);
+    if task.steering.is_some() {
+        car_metrics(car, &mut metrics);
+    }
     let path = outcome.path.as_deref();
     // Without a path, the clearance has no value (NaN: `null` in JSON, `—`
     // in the report), never a 0 that reads as "touched a wall".
     metrics.insert(
         "clearance".into(),
-        MetricValue::Num(path.map_or(f64::NAN, |p| {
-            measured.map_or_else(
-                || referee.clearance(robot, p, DEFAULT_TOLERANCE),
-                |m| m.clearance,
-            )
+        MetricValue::Num(path.map_or(f64::NAN, |p| match (measured, car) {
+            (Some(m), _) => m.clearance,
+            (None, Some(car)) => referee.clearance(
+                robot,
+                &swept_poses(robot, car, DEFAULT_TOLERANCE),
+                DEFAULT_TOLERANCE,
+            ),
+            (None, None) => referee.clearance(robot, p, DEFAULT_TOLERANCE),
         })),
     );
     metrics.insert(
@@ -236,6 +259,27 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
         metrics,
         validation,
         drive,
+    }
+}
+
+/// A car robot's metrics (SPEC 3.8) from its segments: `length` and `turn`
+/// exactly (not from the drawn poses), `cusps`, `reverse_length` and
+/// `segments`; without a path the last three have no value.
+fn car_metrics(car: Option<&CarPath>, metrics: &mut Metrics) {
+    use MetricValue::Num;
+    match car {
+        Some(car) => {
+            metrics.insert("length".into(), Num(car.length()));
+            metrics.insert("turn".into(), Num(car.turn()));
+            metrics.insert("cusps".into(), Num(car.cusps() as f64));
+            metrics.insert("reverse_length".into(), Num(car.reverse_length()));
+            metrics.insert("segments".into(), Num(car.segments.len() as f64));
+        }
+        None => {
+            for name in ["cusps", "reverse_length", "segments"] {
+                metrics.insert(name.into(), Num(f64::NAN));
+            }
+        }
     }
 }
 

@@ -211,6 +211,42 @@ fn json_output_follows_the_spec() {
     assert_eq!(doc["failed"], 0);
 }
 
+/// A car's plan lists its segments (SPEC §5), what the validator checks,
+/// and its poses for drawing: from the start, at most 0.1 apart along the
+/// curve, ending on the goal; a plan without a path has `null` segments.
+#[test]
+fn json_lists_a_cars_segments_and_its_poses() {
+    let car = "world { bounds (0, 0) (40, 40) rect wall (18, 0) (22, 12) }\n\
+               robot cart rect 2 1 steer dubins 3\n\
+               plan uturn steer cart { start (5, 20, 0deg) goal (5, 26, 180deg) }\n\
+               plan blocked steer cart { start (5, 5, 0deg) goal (35, 5, 0deg) }\n";
+    let out = Test::new()
+        .file("car.scen", car)
+        .args(&["run", "--json", "car.scen"])
+        .run();
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON document");
+    let uturn = &doc["plans"]["uturn"];
+    let segments = uturn["segments"].as_array().expect("segments");
+    assert_eq!(segments.len(), 1, "{segments:?}");
+    assert_eq!(segments[0][0], "L");
+    let arc = segments[0][1].as_f64().expect("a length");
+    assert!((arc - 3.0 * std::f64::consts::PI).abs() < 1e-9, "{arc}");
+    let path = uturn["path"].as_array().expect("a path");
+    assert_eq!(path[0], serde_json::json!([5.0, 20.0, 0.0]));
+    let last = path.last().expect("a pose");
+    assert_eq!(last[0], 5.0);
+    assert_eq!(last[1], 26.0);
+    assert!((last[2].as_f64().expect("θ") - std::f64::consts::PI).abs() < 1e-12);
+    // At most 0.1 of arc between poses: about 3π / 0.1 of them.
+    assert_eq!(path.len(), 96);
+    assert_eq!(uturn["metrics"]["cusps"], 0.0);
+    assert_eq!(uturn["metrics"]["segments"], 1.0);
+    let blocked = &doc["plans"]["blocked"];
+    assert_eq!(blocked["segments"], serde_json::Value::Null);
+    assert_eq!(blocked["metrics"]["found"], false);
+    assert_eq!(blocked["metrics"]["cusps"], serde_json::Value::Null);
+}
+
 #[test]
 fn plan_selects_plans_and_their_checks() {
     let text = SMALL.replace(

@@ -31,7 +31,8 @@ use common::planner_cases::{required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
 use scen::contract::schema::{COMMON_METRICS, DefaultValue, MetricType, RobotKind};
-use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+use scen::geometry::car::validate_car_path;
+use scen::geometry::validator::{DEFAULT_TOLERANCE, Validator, validate_path};
 use scen::planners::registry::PLANNERS;
 use scen::report::json::to_json;
 use scen::{Scenario, run_scenario};
@@ -196,7 +197,22 @@ fn every_planner_honours_its_contract() {
                     if planner.needs_goal && last != Some(GOAL) {
                         problems.push(format!("{label}: the path ends at {last:?}"));
                     }
-                    if let Err(e) = validate_path(&scenario.world, robot, path, DEFAULT_TOLERANCE) {
+                    // A car's path is its segments (SPEC 3.0).
+                    let verdict = match &run.outcome.car {
+                        Some(car) => validate_car_path(
+                            &Validator::new(&scenario.world),
+                            robot,
+                            car,
+                            scenario.plans[0].params.goal,
+                            DEFAULT_TOLERANCE,
+                        ),
+                        None if kind == RobotKind::Car => {
+                            problems.push(format!("{label}: a car's path without segments"));
+                            Ok(())
+                        }
+                        None => validate_path(&scenario.world, robot, path, DEFAULT_TOLERANCE),
+                    };
+                    if let Err(e) = verdict {
                         problems.push(format!("{label}: the path fails the validator: {e:?}"));
                     }
                     if run.metrics.get("collision_free") != Some(&MetricValue::Bool(true)) {
@@ -332,7 +348,12 @@ fn every_planner_honours_its_limits() {
 fn robots_a_planner_does_not_declare_are_refused() {
     let mut problems = Vec::new();
     for planner in PLANNERS {
-        for kind in [RobotKind::Point, RobotKind::Disk, RobotKind::Polygon] {
+        for kind in [
+            RobotKind::Point,
+            RobotKind::Disk,
+            RobotKind::Polygon,
+            RobotKind::Car,
+        ] {
             if planner.plans_for(kind) {
                 continue;
             }

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use crate::geometry::Config;
+use crate::geometry::car::CarPath;
 use crate::geometry::validator::ValidationError;
 
 use super::layers::Layer;
@@ -52,6 +53,9 @@ pub struct PlanOutcome {
     /// and validated the whole motion as it made it, and the runner reports
     /// these measures instead of measuring the list.
     pub measured: Option<MeasuredMotion>,
+    /// A car robot's path as segments (SPEC §5 `"segments"`): what the
+    /// runner validates; `path` is then its poses for drawing.
+    pub car: Option<CarPath>,
 }
 
 /// The measures of a motion too long to return in full (SPEC 3.4: a

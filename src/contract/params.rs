@@ -4,14 +4,30 @@
 
 use std::collections::BTreeMap;
 
+use crate::contract::schema::RobotKind;
 use crate::diagnostics::Span;
+use crate::geometry::steer::Steering;
 use crate::geometry::{Config, Point, RobotShape};
 
 #[derive(Clone, Debug)]
 pub struct Robot {
     pub name: String,
     pub shape: RobotShape,
+    /// `steer MODEL RADIUS`: a car-like robot (SPEC 2.4).
+    pub steering: Option<Steering>,
     pub span: Span,
+}
+
+impl Robot {
+    /// What it is for the planners' robot tables: a car when it steers,
+    /// else its shape's kind.
+    pub fn kind(&self) -> RobotKind {
+        if self.steering.is_some() {
+            RobotKind::Car
+        } else {
+            RobotKind::of(&self.shape)
+        }
+    }
 }
 
 /// Validated parameters of a plan, as written: keys not given by the user

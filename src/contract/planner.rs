@@ -5,6 +5,7 @@
 use std::any::Any;
 use std::fmt;
 
+use crate::geometry::steer::Steering;
 use crate::geometry::{Config, RobotShape, World};
 
 use super::{Limits, PlanArgs, PlanOutcome};
@@ -84,6 +85,8 @@ pub struct Task<'a> {
     pub goal: Option<Config>,
     pub limits: Limits,
     pub seed: u64,
+    /// How a car robot steers (SPEC 2.4); `None` for other robots.
+    pub steering: Option<Steering>,
     /// Whether a sink will draw the outcome's [`layers`](super::layers)
     /// (an SVG or PNG picture, the Rerun viewer). When it will not (a plain
     /// `scen run`, `scen test`, every run of `scen bench`), a planner leaves

@@ -14,6 +14,8 @@ pub enum RobotKind {
     Point,
     Disk,
     Polygon,
+    /// A disk or polygon robot with `steer` (SPEC 2.4).
+    Car,
 }
 
 impl RobotKind {
@@ -22,9 +24,12 @@ impl RobotKind {
             RobotKind::Point => "point",
             RobotKind::Disk => "disk",
             RobotKind::Polygon => "polygon",
+            RobotKind::Car => "car",
         }
     }
 
+    /// The kind of a shape without steering (see
+    /// [`Robot::kind`](crate::contract::Robot::kind) for cars).
     pub fn of(shape: &crate::geometry::RobotShape) -> Self {
         use crate::geometry::RobotShape;
         match shape {
@@ -461,6 +466,18 @@ impl MetricSpec {
         }
     }
 }
+
+/// The metrics of a car robot's plan (SPEC 3.8), measured by the runner
+/// from its segments (no value without a path); the planners that plan for
+/// cars declare them.
+pub const CAR_METRICS: &[MetricSpec] = &[
+    MetricSpec::num(
+        "cusps",
+        "changes of direction (forward ↔ reverse) along a car's path",
+    ),
+    MetricSpec::num("reverse_length", "arc length a car drives in reverse"),
+    MetricSpec::num("segments", "arcs and straights of a car's path"),
+];
 
 /// Metrics every planner reports (SPEC 3), computed by the runner from the
 /// path the same way for every planner.

@@ -286,17 +286,26 @@ impl Writer<'_> {
                 self.space();
                 self.leaf(out, robot.name.span);
                 self.space();
-                let (keyword, values): (&str, Vec<&Value>) = match &robot.shape {
+                let shape: Option<(&str, Vec<&Value>)> = match &robot.shape {
                     RobotShape::Point(span) => {
                         self.leaf(out, *span);
-                        return;
+                        None
                     }
-                    RobotShape::Disk(r) => ("disk", vec![r]),
-                    RobotShape::Rect(w, h) => ("rect", vec![w, h]),
-                    RobotShape::Polygon(v) => ("polygon", vec![v]),
+                    RobotShape::Disk(r) => Some(("disk", vec![r])),
+                    RobotShape::Rect(w, h) => Some(("rect", vec![w, h])),
+                    RobotShape::Polygon(v) => Some(("polygon", vec![v])),
                 };
-                self.tok(out, values[0].span.start, keyword);
-                self.values(out, &values);
+                if let Some((keyword, values)) = shape {
+                    self.tok(out, values[0].span.start, keyword);
+                    self.values(out, &values);
+                }
+                if let Some(steer) = &robot.steer {
+                    self.space();
+                    self.leaf(out, steer.keyword);
+                    self.space();
+                    self.leaf(out, steer.model.span);
+                    self.values(out, &[&steer.radius]);
+                }
             }
             Stmt::Plan(plan) => {
                 self.tok(out, plan.span.start, "plan");

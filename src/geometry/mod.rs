@@ -4,6 +4,7 @@
 //! Everything is in f64 world units; angles are radians, counter-clockwise.
 
 mod buckets;
+pub mod car;
 pub mod collide;
 pub mod cspace;
 #[cfg(test)]
@@ -12,6 +13,7 @@ pub mod minkowski;
 pub mod motion;
 pub mod path;
 pub mod polygon;
+pub mod steer;
 pub mod union;
 pub mod validator;
 

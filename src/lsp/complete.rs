@@ -8,12 +8,13 @@ use super::analysis::{Analysis, NameKind};
 use crate::contract::schema::{
     DRIVE_METRICS, DRIVE_PARAMS, MetricSpec, MetricType, ParamSpec, ValueSpec,
 };
+use crate::geometry::steer::MODEL_NAMES;
 use crate::planners::registry::{self, PLANNERS};
 use crate::scenario::grouping::ParamKeys;
 use crate::scenario::{AGGREGATES, BENCH_KEYS};
 use crate::syntax::{
-    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token,
-    TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
+    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS, ROBOT_SHAPE_KEYWORDS,
+    STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
 };
 
 /// The completions at byte `offset` of `text` (the document `analysis` was
@@ -107,6 +108,15 @@ pub(crate) fn completions(text: &str, offset: usize, analysis: &Analysis) -> Vec
             _ => Vec::new(),
         },
         "robot" if open.is_empty() && head.len() == 2 => keywords(&ROBOT_SHAPE_KEYWORDS),
+        // `robot car rect 4 2 steer |`: the steering models.
+        "robot"
+            if open.is_empty()
+                && tokens
+                    .last()
+                    .is_some_and(|t| ROBOT_CLAUSE_KEYWORDS.contains(&word(t))) =>
+        {
+            keywords(MODEL_NAMES)
+        }
         "world" if open == ["{"] => {
             let line_head = text[line_start..].split_whitespace().next();
             if first_on_line {

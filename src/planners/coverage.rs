@@ -1040,6 +1040,7 @@ mod tests {
             goal: None,
             limits,
             seed: 0,
+            steering: None,
             draw: true,
         };
         let k = cells_per_tool(grid, tool);

@@ -1079,6 +1079,7 @@ mod tests {
             goal: Some(goal),
             limits,
             seed: 0,
+            steering: None,
             draw: true,
         }
     }

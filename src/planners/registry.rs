@@ -73,6 +73,8 @@ planners! {
     rrt::RRT_STAR,
     prm::PRM,
     prm::PRM_STAR,
+    #[path = "steer.rs"] steer::PLANNER,
+    #[path = "hybrid_astar.rs"] hybrid_astar::PLANNER,
 }
 
 /// The planner of a kind.

@@ -64,7 +64,8 @@ pub fn to_json(report: &RunReport) -> Value {
 
 fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     let robot = scenario.robots.get(plan.robot);
-    let rotates = robot.is_some_and(|r| r.shape.rotates());
+    // A car's heading matters whatever its shape.
+    let rotates = robot.is_some_and(|r| r.shape.rotates() || r.steering.is_some());
     let path = match &run.outcome.path {
         Some(path) => Value::Array(path.iter().map(|&c| config_json(c, rotates)).collect()),
         None => Value::Null,
@@ -74,6 +75,19 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     obj.insert("robot".into(), robot.map(|r| r.name.clone()).into());
     obj.insert("metrics".into(), metrics_json(&run.metrics));
     obj.insert("path".into(), path);
+    // A car robot's path as segments (SPEC §5), what the validator checks.
+    if robot.is_some_and(|r| r.steering.is_some()) {
+        let segments = match (&run.outcome.car, &run.outcome.path) {
+            (Some(car), Some(_)) => Value::Array(
+                car.segments
+                    .iter()
+                    .map(|s| serde_json::json!([s.turn.letter(), float_json(s.length)]))
+                    .collect(),
+            ),
+            _ => Value::Null,
+        };
+        obj.insert("segments".into(), segments);
+    }
     // A run that stopped short of the goal: the motion it executed (SPEC 3).
     let trajectory = &run.outcome.trajectory;
     if run.outcome.path.is_none() && !trajectory.is_empty() {
@@ -182,6 +196,7 @@ mod tests {
         Robot {
             name: name.into(),
             shape,
+            steering: None,
             span: Span::default(),
         }
     }

@@ -1324,6 +1324,7 @@ mod tests {
         let robot = |name: &str, shape| Robot {
             name: name.into(),
             shape,
+            steering: None,
             span: Span::default(),
         };
         let scenario = Scenario {

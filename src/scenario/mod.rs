@@ -147,6 +147,7 @@ impl Plan {
             goal: self.params.goal,
             limits: self.params.limits,
             seed: self.params.seed,
+            steering: scenario.robots[self.robot].steering,
             draw: true,
         }
     }

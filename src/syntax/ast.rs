@@ -130,6 +130,20 @@ pub struct GridSpec {
 pub struct RobotDecl {
     pub name: Ident,
     pub shape: RobotShape,
+    /// `steer MODEL RADIUS` after the shape: a car-like robot (SPEC 2.4).
+    pub steer: Option<SteerClause>,
+    pub span: Span,
+}
+
+/// `steer MODEL RADIUS`: the steering model (`dubins`, `reeds_shepp`) and
+/// the turning radius, as written.
+#[derive(Clone, Debug)]
+pub struct SteerClause {
+    /// The `steer` keyword.
+    pub keyword: Span,
+    pub model: Ident,
+    pub radius: Value,
+    /// From `steer` to the radius.
     pub span: Span,
 }
 

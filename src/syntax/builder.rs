@@ -9,7 +9,7 @@ use pest::iterators::Pair;
 
 use super::ast::{
     Angle, BenchDecl, GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamToken,
-    PlanDecl, RobotDecl, RobotShape, Stmt, Value, ValueKind, WorldBlock, WorldItem,
+    PlanDecl, RobotDecl, RobotShape, SteerClause, Stmt, Value, ValueKind, WorldBlock, WorldItem,
 };
 use super::parser::Rule;
 use super::scanner::is_ident_byte;
@@ -228,7 +228,8 @@ impl<'t, 'd> Builder<'t, 'd> {
     }
 
     fn robot(&mut self, pair: P<'_>) -> RobotDecl {
-        let span = self.span(&pair);
+        // Without `steer`, pest's span runs over the blank after the shape.
+        let span = self.trimmed_span(&pair);
         let mut inner = children(pair).skip(1);
         let name = self.ident(&inner.next().expect("grammar guarantees a robot name"));
         let shape_pair = inner.next().expect("grammar guarantees a robot shape");
@@ -247,7 +248,25 @@ impl<'t, 'd> Builder<'t, 'd> {
             Rule::polygon_shape => RobotShape::Polygon(next()),
             rule => unreachable!("grammar guarantees a robot shape, got {rule:?}"),
         };
-        RobotDecl { name, shape, span }
+        let steer = inner.next().map(|clause| {
+            let span = self.span(&clause);
+            let mut parts = children(clause);
+            let keyword = self.span(&parts.next().expect("grammar guarantees `steer`"));
+            let model = self.ident(&parts.next().expect("grammar guarantees the model"));
+            let radius = self.value(parts.next().expect("grammar guarantees the radius"));
+            SteerClause {
+                keyword,
+                model,
+                radius,
+                span,
+            }
+        });
+        RobotDecl {
+            name,
+            shape,
+            steer,
+            span,
+        }
     }
 
     fn plan(&mut self, pair: P<'_>) -> PlanDecl {

@@ -17,6 +17,6 @@ mod testing;
 pub(crate) use builder::UNIT_WORDS;
 pub use parser::parse;
 pub(crate) use scanner::{
-    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token,
-    TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
+    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS, ROBOT_SHAPE_KEYWORDS,
+    STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
 };

@@ -25,6 +25,9 @@ pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 6] =
 /// of `expect` expressions: with the two lists above, every keyword of
 /// grammar/scen.pest (a test checks it), for the language server.
 pub(crate) const ROBOT_SHAPE_KEYWORDS: [&str; 4] = ["point", "disk", "rect", "polygon"];
+
+/// The keyword of the clause that may follow a robot's shape (`steer`).
+pub(crate) const ROBOT_CLAUSE_KEYWORDS: [&str; 1] = ["steer"];
 pub(crate) const GRID_OPTION_KEYWORDS: [&str; 2] = ["cell", "origin"];
 pub(crate) const EXPRESSION_WORDS: [&str; 5] = ["and", "or", "not", "true", "false"];
 
@@ -541,6 +544,7 @@ mod tests {
             &STATEMENT_KEYWORDS[..],
             &WORLD_ITEM_KEYWORDS,
             &ROBOT_SHAPE_KEYWORDS,
+            &ROBOT_CLAUSE_KEYWORDS,
             &GRID_OPTION_KEYWORDS,
         ]
         .concat();

@@ -173,6 +173,8 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_cell | Rule::grid_cell => "`cell`",
         Rule::kw_origin | Rule::grid_origin => "`origin`",
         Rule::kw_point | Rule::point_shape => "`point`",
+        Rule::kw_steer | Rule::steer_clause => "`steer`",
+        Rule::steer_model => "a steering model (`dubins` or `reeds_shepp`)",
         Rule::kw_true => "`true`",
         Rule::kw_false => "`false`",
         Rule::tuple => "a point `(x, y)`",
@@ -254,6 +256,12 @@ pub(super) fn syntax_error(
     {
         expected.retain(|d| !value_parts.contains(d));
         expected.insert(first.min(expected.len()), "a value");
+    }
+    // A robot may end with `steer MODEL RADIUS`; after a robot's shape pest
+    // expects it, but a word that is nothing like it is the start of junk
+    // or of the next statement, and reads best as such.
+    if expected.contains(&"`steer`") && closest_keyword(token, &["steer"]).is_none() {
+        expected.retain(|d| *d != "`steer`");
     }
     let only_end = expected == ["the end of the statement"];
 
@@ -339,6 +347,12 @@ impl HelpContext<'_> {
         let expects = |what: &str| expected.contains(&what);
         let only_end = expected == ["the end of the statement"];
         let is_word = token.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+        if has(Rule::steer_model) {
+            return Some(
+                "name the steering model before the turning radius: `steer dubins RADIUS` (forward only) or `steer reeds_shepp RADIUS` (forward and reverse)"
+                    .to_string(),
+            );
+        }
         if token == "=" && has(Rule::operator) {
             return Some("compare with `==`".to_string());
         }

@@ -618,11 +618,13 @@ mod tests {
                 Robot {
                     name: "rod".into(),
                     shape: RobotShape::Polygon(rod),
+                    steering: None,
                     span: Span::default(),
                 },
                 Robot {
                     name: "dot".into(),
                     shape: RobotShape::Point,
+                    steering: None,
                     span: Span::default(),
                 },
             ],

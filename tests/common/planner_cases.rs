@@ -12,6 +12,9 @@ pub fn robot(kind: RobotKind) -> &'static str {
         RobotKind::Point => "point",
         RobotKind::Disk => "disk 0.4",
         RobotKind::Polygon => "polygon [(-0.4, -0.3), (0.4, -0.3), (0.4, 0.3), (-0.4, 0.3)]",
+        RobotKind::Car => {
+            "polygon [(-0.2, -0.3), (0.6, -0.3), (0.6, 0.3), (-0.2, 0.3)] steer reeds_shepp 1"
+        }
     }
 }
 

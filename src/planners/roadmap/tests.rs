@@ -61,6 +61,7 @@ fn task<'a>(w: &'a World, robot: &'a RobotShape, c: &Case) -> Task<'a> {
         goal: Some(c.goal),
         limits: c.limits,
         seed: 0,
+        steering: None,
         draw: true,
     }
 }

@@ -8,7 +8,7 @@
 use std::collections::{BTreeSet, HashMap};
 
 use crate::contract::Planner;
-use crate::contract::schema::{self, RobotKind, ValueSpec, did_you_mean};
+use crate::contract::schema::{self, ValueSpec, did_you_mean};
 use crate::contract::{Limits, Robot};
 use crate::diagnostics::{Diag, Span, Spanned};
 use crate::geometry::World;
@@ -292,7 +292,7 @@ impl Analyzer {
             .filter(|(t, _)| !replaced.iter().any(|r| r.contains(t)))
             .map(|(_, t)| t.clone())
             .collect();
-        let robot_ok = planner.plans_for(RobotKind::of(&robots[plan.robot].shape));
+        let robot_ok = planner.plans_for(robots[plan.robot].kind());
         let mut configs = Vec::with_capacity(configurations);
         let mut problems: Vec<Diag> = Vec::new();
         let mut reported: BTreeSet<String> = BTreeSet::new();

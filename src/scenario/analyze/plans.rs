@@ -12,7 +12,7 @@ use crate::planners::registry::{self, PLANNERS};
 
 use crate::contract::Planner;
 
-use crate::contract::schema::{self, MAX_MAGNITUDE, RobotKind, ValueSpec, did_you_mean};
+use crate::contract::schema::{self, MAX_MAGNITUDE, ValueSpec, did_you_mean};
 use crate::contract::{Limits, Param, ParamValue, Params, PlanArgs, Robot};
 use crate::scenario::Plan;
 use crate::scenario::loader::SourcedStmt;
@@ -99,10 +99,24 @@ impl Analyzer {
             return None;
         };
         let robot = &robots[robot_index];
-        let kind = RobotKind::of(&robot.shape);
+        let kind = robot.kind();
         let robot_ok = planner.plans_for(kind);
         if !robot_ok {
             let ok: Vec<&str> = planner.robots.iter().map(|k| k.name()).collect();
+            // Who plans for this kind, from the registry.
+            let others: Vec<&str> = PLANNERS
+                .iter()
+                .filter(|q| q.plans_for(kind))
+                .map(|q| q.kind)
+                .collect();
+            let mut help = format!("`{}` plans for {} robots", planner.kind, and_list(&ok));
+            if !others.is_empty() {
+                help.push_str(&format!(
+                    "; {} robots are planned by {}",
+                    kind.name(),
+                    schema::backticked(&others)
+                ));
+            }
             self.error(
                 Diag::error(
                     "scen::analyze::robot_kind",
@@ -113,11 +127,7 @@ impl Analyzer {
                     ),
                 )
                 .at(p.robot.span, format!("a {} robot", kind.name()))
-                .help(format!(
-                    "`{}` plans for {} robots",
-                    planner.kind,
-                    ok.join(" and ")
-                )),
+                .help(help),
             );
         }
         let params = self.params(p, planner)?;
@@ -858,5 +868,14 @@ impl Analyzer {
                 )),
             );
         }
+    }
+}
+
+/// "A", "A and B", "A, B and C".
+fn and_list(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => (*one).to_string(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
     }
 }

@@ -4,6 +4,7 @@ use std::collections::HashMap;
 
 use crate::diagnostics::{Diag, Span};
 use crate::geometry::polygon;
+use crate::geometry::steer::{MODEL_NAMES, Model, Steering};
 use crate::geometry::{ConvexPolygon, Point, RobotShape};
 use crate::syntax::ast::{self, Value};
 
@@ -57,18 +58,68 @@ impl Analyzer {
                 }
                 ast::RobotShape::Polygon(v) => self.robot_polygon(v),
             };
-            if shape.is_none() {
+            let steering = match (&r.steer, &shape) {
+                (None, _) => Ok(None),
+                (Some(clause), shape) => self.steering(clause, shape.as_ref()).map(Some).ok_or(()),
+            };
+            if shape.is_none() || steering.is_err() {
                 self.invalid_robots.push(r.name.value.clone());
             }
-            if let Some(shape) = shape {
+            if let (Some(shape), Ok(steering)) = (shape, steering) {
                 robots.push(Robot {
                     name: r.name.value.clone(),
                     shape,
+                    steering,
                     span: r.span,
                 });
             }
         }
         robots
+    }
+
+    /// `steer MODEL RADIUS` (SPEC 2.4): a known model, a positive radius,
+    /// and a body (a point has none to steer).
+    fn steering(
+        &mut self,
+        clause: &ast::SteerClause,
+        shape: Option<&RobotShape>,
+    ) -> Option<Steering> {
+        let model = match clause.model.value.as_str() {
+            "dubins" => Some(Model::Dubins),
+            "reeds_shepp" => Some(Model::ReedsShepp),
+            other => {
+                let mut d = Diag::error(
+                    "scen::analyze::unknown_steering",
+                    format!("unknown steering model `{other}`"),
+                )
+                .at(clause.model.span, "not a steering model");
+                d = match crate::contract::schema::did_you_mean(other, MODEL_NAMES.iter().copied()) {
+                    Some(m) => d.help(format!(
+                        "did you mean `{m}`? The models are `dubins` (forward only) and `reeds_shepp` (forward and reverse)"
+                    )),
+                    None => d.help(
+                        "the models are `dubins` (forward only) and `reeds_shepp` (forward and reverse), e.g. `steer reeds_shepp 4.5`",
+                    ),
+                };
+                self.error(d);
+                None
+            }
+        };
+        let radius = self.expect_positive(&clause.radius, "the turning radius");
+        if matches!(shape, Some(RobotShape::Point)) {
+            self.error(
+                Diag::error(
+                    "scen::analyze::car_point",
+                    "a point robot cannot steer like a car",
+                )
+                .at(clause.span, "`steer` on a point robot")
+                .help(
+                    "give the car a body: `robot car rect 4 2 steer reeds_shepp 4.5` or `robot car disk 1 steer dubins 3`",
+                ),
+            );
+            return None;
+        }
+        Some(Steering::new(model?, radius?))
     }
 
     pub(super) fn robot_polygon(&mut self, v: &Value) -> Option<RobotShape> {

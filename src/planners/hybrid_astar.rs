@@ -1,0 +1,629 @@
+//! `hybrid_astar` (SPEC 3.8; Dolgov, Thrun, Montemerlo & Diebel 2008):
+//! A* for car robots over (x, y, θ) cells of `cell` × `cell` × 2π/`layers`,
+//! each cell keeping one continuous pose (the cheapest that reached it).
+//!
+//! # Search
+//! - A node's successors are the arcs of the turning radius and the
+//!   straight (`L`, `S`, `R`) of arc length `step`, forward, and for a
+//!   Reeds–Shepp car in reverse too. Cost: the length, times `reverse_cost`
+//!   in reverse, plus `switch_cost` at each change of direction (a cusp).
+//! - A successor's motion is checked by the validator for cars (the body
+//!   swept along the arc), only when it would improve its cell.
+//! - Heuristic: the larger of the steering length to the goal ignoring
+//!   obstacles (times the cheapest direction's cost factor, 1) and the
+//!   holonomic shortest path with obstacles: 8-connected Dijkstra from the
+//!   goal over the (x, y) cells whose centre is not inside an obstacle,
+//!   less one cell diagonal for the discretisation. Hybrid A* makes no
+//!   optimality claim; the heuristic guides it.
+//! - Analytic expansion: every `analytic` expansions, and at every expansion
+//!   within 3 turning radii of the goal, the steering path from the node's
+//!   pose to the goal is tried; the search ends when one is free. It is the
+//!   only way the search reaches the goal exactly.
+//! - Limits: `expansions`, `time` (set-up included), and at most
+//!   [`MAX_NODES`] nodes (about 64 bytes each); the holonomic grid is
+//!   skipped beyond [`MAX_HOLONOMIC_CELLS`] cells (a note says so).
+//!
+//! The path is the chain of arcs from the start (consecutive arcs of the
+//! same kind and direction merged) and the last steering path, validated as
+//! a whole before it is returned.
+
+use std::any::Any;
+use std::cmp::Ordering;
+use std::collections::{BinaryHeap, HashMap};
+use std::f64::consts::TAU;
+
+use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
+use crate::contract::schema::{
+    DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, at_least, num, positive,
+};
+use crate::contract::{MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Task};
+use crate::geometry::car::{CarPath, DRAW_STEP, validate_car_path};
+use crate::geometry::steer::{Model, Segment, Steering, Turn};
+use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
+use crate::geometry::{Config, Point, RobotShape};
+use crate::planners::deadline::Deadline;
+
+/// The most search nodes (continuous poses) kept.
+pub const MAX_NODES: usize = 4_000_000;
+
+/// The most (x, y) cells of the holonomic heuristic's grid.
+pub const MAX_HOLONOMIC_CELLS: usize = 4_000_000;
+
+/// The arc length between the poses checked before a piece of path is
+/// swept (see `Search::a_pose_collides`).
+const QUICK_STEP: f64 = 0.25;
+
+/// The most search edges drawn.
+const MAX_DRAWN: usize = 20_000;
+
+pub static PLANNER: Planner = Planner {
+    kind: "hybrid_astar",
+    summary: "hybrid A* for cars: arcs of the turning radius between (x, y, θ) cells that keep one continuous pose each",
+    robots: &[RobotKind::Car],
+    params: &[
+        ParamSpec::new("cell", positive(false), num(1.0, "1"), "side of an (x, y) cell"),
+        ParamSpec::new("layers", positive(true), num(72.0, "72"), "θ cells per turn"),
+        ParamSpec::new(
+            "step",
+            positive(false),
+            DefaultValue::Derived("√2 · cell"),
+            "arc length of one successor",
+        ),
+        ParamSpec::new(
+            "reverse_cost",
+            at_least(1.0, false),
+            num(2.0, "2"),
+            "factor on the length driven in reverse (≥ 1)",
+        ),
+        ParamSpec::new(
+            "switch_cost",
+            at_least(0.0, false),
+            DefaultValue::Derived("the turning radius"),
+            "cost added at each change of direction (a cusp)",
+        ),
+        ParamSpec::new(
+            "analytic",
+            ValueSpec::Number {
+                min: 1.0,
+                min_open: false,
+                max: 1e9,
+                integer: true,
+            },
+            num(10.0, "10"),
+            "every how many expansions the steering path to the goal is tried",
+        ),
+    ],
+    metrics: &[
+        MetricSpec::num(
+            "cusps",
+            "changes of direction (forward ↔ reverse) along a car's path",
+        ),
+        MetricSpec::num("reverse_length", "arc length a car drives in reverse"),
+        MetricSpec::num("segments", "arcs and straights of a car's path"),
+        MetricSpec::num("generated", "poses put on the open list"),
+        MetricSpec::num("analytic_tries", "steering paths to the goal tried"),
+    ],
+    limits: &["expansions", "time"],
+    needs_goal: true,
+    randomized: false,
+    check,
+};
+
+/// The settings of a `hybrid_astar` plan.
+#[derive(Clone, Debug)]
+pub struct HybridAstar {
+    pub cell: f64,
+    pub layers: u32,
+    pub step: f64,
+    pub reverse_cost: f64,
+    /// `None`: the turning radius.
+    pub switch_cost: Option<f64>,
+    pub analytic: u64,
+}
+
+fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
+    let cell = args.num("cell");
+    Some(Box::new(HybridAstar {
+        cell,
+        layers: args.num("layers") as u32,
+        step: args
+            .opt_num("step")
+            .unwrap_or(std::f64::consts::SQRT_2 * cell),
+        reverse_cost: args.num("reverse_cost"),
+        switch_cost: args.opt_num("switch_cost"),
+        analytic: args.num("analytic") as u64,
+    }))
+}
+
+/// A search node: a continuous pose, how it was reached, what it cost.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    pose: Config,
+    g: f64,
+    parent: u32,
+    /// The arc from the parent (length 0 for the start).
+    arc: Segment,
+}
+
+/// An open-list entry: lowest f first, then larger g, then the older node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Open {
+    f: f64,
+    g: f64,
+    node: u32,
+}
+
+impl Eq for Open {}
+
+impl Ord for Open {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .f
+            .total_cmp(&self.f)
+            .then(self.g.total_cmp(&other.g))
+            .then(other.node.cmp(&self.node))
+    }
+}
+
+impl PartialOrd for Open {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Settings for HybridAstar {
+    fn plan(&self, task: &Task<'_>) -> PlanOutcome {
+        let (Some(steering), Some(goal)) = (task.steering, task.goal) else {
+            return PlanOutcome {
+                notes: vec!["`hybrid_astar` plans for car robots, to a goal".into()],
+                ..PlanOutcome::default()
+            };
+        };
+        if task.start_is_goal() {
+            let mut out = PlanOutcome::at_goal(task.start);
+            out.extra.insert("generated".into(), MetricValue::Num(1.0));
+            out.extra
+                .insert("analytic_tries".into(), MetricValue::Num(0.0));
+            out.car = Some(CarPath {
+                start: task.start,
+                steering,
+                segments: Vec::new(),
+            });
+            return out;
+        }
+        Search::new(self, task, steering, goal).run()
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+/// A search in progress.
+struct Search<'a> {
+    s: &'a HybridAstar,
+    task: &'a Task<'a>,
+    steering: Steering,
+    goal: Config,
+    referee: Validator<'a>,
+    deadline: Deadline,
+    holonomic: Option<Holonomic>,
+    nodes: Vec<Node>,
+    /// The node that holds each cell.
+    holder: HashMap<u64, u32>,
+    closed: std::collections::HashSet<u64>,
+    open: BinaryHeap<Open>,
+    switch_cost: f64,
+    analytic_tries: u64,
+    notes: Vec<String>,
+}
+
+impl<'a> Search<'a> {
+    fn new(s: &'a HybridAstar, task: &'a Task<'a>, steering: Steering, goal: Config) -> Self {
+        let deadline = Deadline::start(&task.limits);
+        let mut notes = Vec::new();
+        let holonomic = Holonomic::new(task, s.cell, goal, &deadline);
+        if holonomic.is_none() && !deadline.passed() {
+            notes.push(format!(
+                "the holonomic heuristic was skipped: the world has more than {MAX_HOLONOMIC_CELLS} cells of {}",
+                s.cell
+            ));
+        }
+        Search {
+            s,
+            task,
+            steering,
+            goal,
+            referee: Validator::new(task.world),
+            deadline,
+            holonomic,
+            nodes: Vec::new(),
+            holder: HashMap::new(),
+            closed: std::collections::HashSet::new(),
+            open: BinaryHeap::new(),
+            switch_cost: s.switch_cost.unwrap_or(steering.radius),
+            analytic_tries: 0,
+            notes,
+        }
+    }
+
+    /// The (x, y, θ) cell of a pose.
+    fn key(&self, c: Config) -> u64 {
+        let b = &self.task.world.bounds;
+        let ix = ((c.x - b.min.x) / self.s.cell).floor().max(0.0) as u64;
+        let iy = ((c.y - b.min.y) / self.s.cell).floor().max(0.0) as u64;
+        let layers = u64::from(self.s.layers);
+        let k = ((c.theta.rem_euclid(TAU) / TAU * layers as f64).round() as u64) % layers;
+        (ix.min(0x1f_ffff) << 42) | (iy.min(0x1f_ffff) << 21) | k.min(0x1f_ffff)
+    }
+
+    fn h(&self, c: Config) -> f64 {
+        let steer = self.steering.distance(c, self.goal);
+        let hol = self.holonomic.as_ref().map_or(0.0, |h| h.at(c));
+        steer.max(hol)
+    }
+
+    fn run(mut self) -> PlanOutcome {
+        let start = self.task.start;
+        let mut expanded = 0u64;
+        let mut out = PlanOutcome::default();
+        let mut drawn: Vec<Vec<Point>> = Vec::new();
+        self.nodes.push(Node {
+            pose: start,
+            g: 0.0,
+            parent: u32::MAX,
+            arc: Segment {
+                turn: Turn::S,
+                length: 0.0,
+            },
+        });
+        let k0 = self.key(start);
+        self.holder.insert(k0, 0);
+        self.open.push(Open {
+            f: self.h(start),
+            g: 0.0,
+            node: 0,
+        });
+        let max_expansions = self.task.limits.expansions.unwrap_or(u64::MAX);
+        let mut found: Option<(u32, CarPath)> = None;
+        let mut stopped: Option<String> = None;
+        while let Some(Open { node, .. }) = self.open.pop() {
+            let n = self.nodes[node as usize];
+            let key = self.key(n.pose);
+            if self.holder.get(&key) != Some(&node) || !self.closed.insert(key) {
+                continue; // replaced by a cheaper pose, or already expanded
+            }
+            if expanded >= max_expansions {
+                stopped = Some(format!("the expansion limit ({max_expansions}) was reached without a path"));
+                break;
+            }
+            if self.deadline.passed() {
+                stopped = Some("the time limit was reached without a path".into());
+                break;
+            }
+            expanded += 1;
+            if let Some(tail) = self.analytic(n.pose, expanded) {
+                found = Some((node, tail));
+                break;
+            }
+            if !self.expand(node, &mut drawn) {
+                stopped = Some(format!(
+                    "the search reached its cap of {MAX_NODES} poses without a path"
+                ));
+                break;
+            }
+        }
+        out.expanded = expanded;
+        out.extra.insert(
+            "generated".into(),
+            MetricValue::Num(self.nodes.len() as f64),
+        );
+        out.extra.insert(
+            "analytic_tries".into(),
+            MetricValue::Num(self.analytic_tries as f64),
+        );
+        out.notes = std::mem::take(&mut self.notes);
+        if self.task.draw && !drawn.is_empty() {
+            out.layers.push(Layer::new(
+                "search",
+                Drawing::Polylines(drawn),
+                Style::new(Colour::Faint, 0.5, 16.0).svg(Svg::line(0.3).key("search arcs")),
+            ));
+        }
+        match (found, stopped) {
+            (Some((node, tail)), _) => {
+                let car = self.path_to(node, &tail);
+                // The pieces were checked one by one; the whole, integrated
+                // from the start, is checked again before it is returned.
+                match validate_car_path(
+                    &self.referee,
+                    self.task.robot,
+                    &car,
+                    Some(self.goal),
+                    DEFAULT_TOLERANCE,
+                ) {
+                    Ok(()) => {
+                        let mut poses = car.poses(DRAW_STEP);
+                        if let Some(last) = poses.last_mut() {
+                            *last = self.goal;
+                        }
+                        out.cost = Some(self.cost_of(&car));
+                        out.path = Some(poses);
+                        out.car = Some(car);
+                    }
+                    Err(e) => out.notes.push(format!(
+                        "the path found failed the validator when checked whole ({}); no path is returned",
+                        e.reason
+                    )),
+                }
+            }
+            (None, Some(why)) => {
+                out.gave_up = true;
+                out.notes.push(why);
+            }
+            (None, None) => out.notes.push(
+                "every cell reachable from the start was expanded: no path (at this cell size and step)"
+                    .into(),
+            ),
+        }
+        out
+    }
+
+    /// The steering path from `pose` to the goal, when it is tried now and
+    /// free.
+    fn analytic(&mut self, pose: Config, expanded: u64) -> Option<CarPath> {
+        let near = (pose.x - self.goal.x).hypot(pose.y - self.goal.y) <= 3.0 * self.steering.radius;
+        if !(near || expanded % self.s.analytic == 1 || self.s.analytic == 1) {
+            return None;
+        }
+        self.analytic_tries += 1;
+        let curve = self.steering.shortest(pose, self.goal);
+        if !curve.length().is_finite() {
+            return None;
+        }
+        let tail = CarPath::from_steer(pose, self.steering, &curve);
+        if self.a_pose_collides(&tail) {
+            return None;
+        }
+        validate_car_path(
+            &self.referee,
+            self.task.robot,
+            &tail,
+            Some(self.goal),
+            DEFAULT_TOLERANCE,
+        )
+        .ok()
+        .map(|()| tail)
+    }
+
+    /// Whether the body collides at one of the path's poses every
+    /// [`QUICK_STEP`] of arc: a cheap rejection before the validator's sweep
+    /// (the sweep contains every such pose, so nothing it would accept is
+    /// rejected here).
+    fn a_pose_collides(&self, path: &CarPath) -> bool {
+        path.poses(QUICK_STEP)
+            .into_iter()
+            .skip(1)
+            .any(|c| self.referee.config_collision(self.task.robot, c).is_some())
+    }
+
+    /// Pushes the node's successors; false when the node cap is reached.
+    fn expand(&mut self, node: u32, drawn: &mut Vec<Vec<Point>>) -> bool {
+        let n = self.nodes[node as usize];
+        let directions: &[f64] = match self.steering.model {
+            Model::Dubins => &[1.0],
+            Model::ReedsShepp => &[1.0, -1.0],
+        };
+        for &dir in directions {
+            for turn in [Turn::L, Turn::S, Turn::R] {
+                let arc = Segment {
+                    turn,
+                    length: dir * self.s.step,
+                };
+                let pose = wrap(arc.end(n.pose, self.steering.radius));
+                let key = self.key(pose);
+                if self.closed.contains(&key) {
+                    continue;
+                }
+                let mut g = n.g + self.s.step * if dir < 0.0 { self.s.reverse_cost } else { 1.0 };
+                let switched = n.parent != u32::MAX && (n.arc.length < 0.0) != (dir < 0.0);
+                if switched {
+                    g += self.switch_cost;
+                }
+                if let Some(&h) = self.holder.get(&key)
+                    && self.nodes[h as usize].g <= g
+                {
+                    continue;
+                }
+                let piece = CarPath {
+                    start: n.pose,
+                    steering: self.steering,
+                    segments: vec![arc],
+                };
+                if self.a_pose_collides(&piece)
+                    || validate_car_path(&self.referee, self.task.robot, &piece, None, DEFAULT_TOLERANCE)
+                    .is_err()
+                {
+                    continue;
+                }
+                if self.nodes.len() >= MAX_NODES {
+                    return false;
+                }
+                let id = self.nodes.len() as u32;
+                self.nodes.push(Node {
+                    pose,
+                    g,
+                    parent: node,
+                    arc,
+                });
+                self.holder.insert(key, id);
+                self.open.push(Open {
+                    f: g + self.h(pose),
+                    g,
+                    node: id,
+                });
+                if self.task.draw && drawn.len() < MAX_DRAWN {
+                    drawn.push(piece.poses(DRAW_STEP).iter().map(Config::xy).collect());
+                }
+            }
+        }
+        true
+    }
+
+    /// The car path from the start through `node`, then `tail`, with
+    /// consecutive segments of the same kind and direction merged.
+    fn path_to(&self, node: u32, tail: &CarPath) -> CarPath {
+        let mut arcs = Vec::new();
+        let mut at = node;
+        while at != u32::MAX && at != 0 {
+            let n = self.nodes[at as usize];
+            arcs.push(n.arc);
+            at = n.parent;
+        }
+        arcs.reverse();
+        arcs.extend(tail.segments.iter().copied());
+        let mut merged: Vec<Segment> = Vec::with_capacity(arcs.len());
+        for a in arcs {
+            if a.length == 0.0 {
+                continue;
+            }
+            match merged.last_mut() {
+                Some(m) if m.turn == a.turn && (m.length < 0.0) == (a.length < 0.0) => {
+                    m.length += a.length;
+                }
+                _ => merged.push(a),
+            }
+        }
+        CarPath {
+            start: self.task.start,
+            steering: self.steering,
+            segments: merged,
+        }
+    }
+
+    /// The path's cost in the search's terms: reverse length weighted,
+    /// switches charged.
+    fn cost_of(&self, car: &CarPath) -> f64 {
+        let reverse = car.reverse_length();
+        let forward = car.length() - reverse;
+        forward + self.s.reverse_cost * reverse + self.switch_cost * car.cusps() as f64
+    }
+}
+
+/// θ in [0, 2π).
+fn wrap(c: Config) -> Config {
+    let t = c.theta.rem_euclid(TAU);
+    Config::new(c.x, c.y, if t >= TAU { 0.0 } else { t })
+}
+
+/// The holonomic heuristic: the 8-connected distance from each (x, y) cell
+/// to the goal's, over cells whose centre is free for a point.
+struct Holonomic {
+    min: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    dist: Vec<f64>,
+}
+
+impl Holonomic {
+    fn new(task: &Task<'_>, cell: f64, goal: Config, deadline: &Deadline) -> Option<Self> {
+        let b = task.world.bounds;
+        let nx = ((b.max.x - b.min.x) / cell).ceil().max(1.0);
+        let ny = ((b.max.y - b.min.y) / cell).ceil().max(1.0);
+        if nx * ny > MAX_HOLONOMIC_CELLS as f64 {
+            return None;
+        }
+        let (nx, ny) = (nx as usize, ny as usize);
+        let referee = Validator::new(task.world);
+        let mut free = vec![false; nx * ny];
+        for j in 0..ny {
+            if deadline.passed() {
+                return None;
+            }
+            for i in 0..nx {
+                let c = Config::new(
+                    b.min.x + (i as f64 + 0.5) * cell,
+                    b.min.y + (j as f64 + 0.5) * cell,
+                    0.0,
+                );
+                free[j * nx + i] = referee.config_collision(&RobotShape::Point, c).is_none();
+            }
+        }
+        let mut h = Holonomic {
+            min: b.min,
+            cell,
+            nx,
+            ny,
+            dist: vec![f64::INFINITY; nx * ny],
+        };
+        let g = h.index(goal);
+        h.dist[g] = 0.0;
+        free[g] = true;
+        let mut open = BinaryHeap::new();
+        open.push(Open {
+            f: 0.0,
+            g: 0.0,
+            node: g as u32,
+        });
+        while let Some(Open { f, node, .. }) = open.pop() {
+            let u = node as usize;
+            if f > h.dist[u] {
+                continue;
+            }
+            let (ux, uy) = ((u % nx) as i64, (u / nx) as i64);
+            for (dx, dy) in [
+                (1, 0),
+                (-1, 0),
+                (0, 1),
+                (0, -1),
+                (1, 1),
+                (1, -1),
+                (-1, 1),
+                (-1, -1),
+            ] {
+                let (vx, vy) = (ux + dx, uy + dy);
+                if vx < 0 || vy < 0 || vx >= nx as i64 || vy >= ny as i64 {
+                    continue;
+                }
+                let v = vy as usize * nx + vx as usize;
+                if !free[v] {
+                    continue;
+                }
+                let step = if dx != 0 && dy != 0 {
+                    std::f64::consts::SQRT_2
+                } else {
+                    1.0
+                } * cell;
+                let d = f + step;
+                if d < h.dist[v] {
+                    h.dist[v] = d;
+                    open.push(Open {
+                        f: d,
+                        g: d,
+                        node: v as u32,
+                    });
+                }
+            }
+        }
+        Some(h)
+    }
+
+    fn index(&self, c: Config) -> usize {
+        let i = (((c.x - self.min.x) / self.cell).floor().max(0.0) as usize).min(self.nx - 1);
+        let j = (((c.y - self.min.y) / self.cell).floor().max(0.0) as usize).min(self.ny - 1);
+        j * self.nx + i
+    }
+
+    /// The distance less one cell diagonal (the discretisation's slack);
+    /// 0 where the goal cannot be reached on the grid (the car may still
+    /// find a way the grid does not see).
+    fn at(&self, c: Config) -> f64 {
+        let d = self.dist[self.index(c)];
+        if d.is_finite() {
+            (d - std::f64::consts::SQRT_2 * self.cell).max(0.0)
+        } else {
+            0.0
+        }
+    }
+}
