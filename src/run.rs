@@ -10,6 +10,7 @@ use rayon::prelude::*;
 use crate::checks;
 use crate::contract::ParamValue;
 use crate::contract::Task;
+use crate::contract::schema::RobotKind;
 use crate::contract::{MetricValue, Metrics, PlanOutcome};
 use crate::drive::{self, DriveOutcome, Unicycle};
 use crate::geometry::car::{CarPath, swept_poses, validate_car_path};
@@ -228,7 +229,7 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     };
     let valid = motion.is_some() && validation.is_none();
     let mut metrics = common_metrics(&outcome, robot, plan, time_ms, valid);
-    if task.steering.is_some() {
+    if plan.planner.plans_for(RobotKind::Car) {
         car_metrics(car, &mut metrics);
     }
     let path = outcome.path.as_deref();
@@ -264,7 +265,9 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
 
 /// A car robot's metrics (SPEC 3.8) from its segments: `length` and `turn`
 /// exactly (not from the drawn poses), `cusps`, `reverse_length` and
-/// `segments`; without a path the last three have no value.
+/// `segments`; without a car's path (none found, or a robot that is not a
+/// car on a planner that plans for cars too) the last three have no
+/// value.
 fn car_metrics(car: Option<&CarPath>, metrics: &mut Metrics) {
     use MetricValue::Num;
     match car {

@@ -30,7 +30,7 @@ use common::TempDir;
 use common::planner_cases::{required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
-use scen::contract::schema::{COMMON_METRICS, DefaultValue, MetricType, RobotKind};
+use scen::contract::schema::{DefaultValue, MetricType, RobotKind};
 use scen::geometry::car::validate_car_path;
 use scen::geometry::validator::{DEFAULT_TOLERANCE, Validator, validate_path};
 use scen::planners::registry::PLANNERS;
@@ -160,11 +160,8 @@ fn every_planner_honours_its_contract() {
                 let run = &report.plans[0];
 
                 // Exactly the declared metrics, with their types.
-                let declared: BTreeMap<&str, MetricType> = COMMON_METRICS
-                    .iter()
-                    .chain(planner.metrics)
-                    .map(|m| (m.name, m.ty))
-                    .collect();
+                let declared: BTreeMap<&str, MetricType> =
+                    planner.all_metrics().map(|m| (m.name, m.ty)).collect();
                 let reported: Vec<&str> = run.metrics.keys().map(String::as_str).collect();
                 let expected: Vec<&str> = declared.keys().copied().collect();
                 if reported != expected {

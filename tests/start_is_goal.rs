@@ -17,7 +17,7 @@ use common::TempDir;
 use common::planner_cases::{required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
-use scen::contract::schema::{COMMON_METRICS, RobotKind};
+use scen::contract::schema::RobotKind;
 use scen::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use scen::planners::registry::PLANNERS;
 use scen::{Scenario, run_scenario};
@@ -103,11 +103,7 @@ fn every_planner_finds_a_start_equal_to_its_goal_at_once() {
                 let run = &report.plans[0];
                 let m = &run.metrics;
                 let declared: Vec<&str> = {
-                    let mut v: Vec<&str> = COMMON_METRICS
-                        .iter()
-                        .chain(planner.metrics)
-                        .map(|m| m.name)
-                        .collect();
+                    let mut v: Vec<&str> = planner.all_metrics().map(|m| m.name).collect();
                     v.sort_unstable();
                     v
                 };

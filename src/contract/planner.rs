@@ -10,7 +10,7 @@ use crate::geometry::{Config, RobotShape, World};
 
 use super::{Limits, PlanArgs, PlanOutcome};
 use crate::contract::schema::{
-    COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec, RobotKind,
+    CAR_METRICS, COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec, RobotKind,
 };
 
 /// What a planner is, for the analyzer, the runner and the tools.
@@ -57,10 +57,17 @@ impl Planner {
         self.all_metrics().find(|m| m.name == name).map(|m| m.ty)
     }
 
-    /// The common metrics, then the planner's own.
+    /// The common metrics, a car's (when it plans for cars: reported for
+    /// every plan, with no value for a robot that is not a car), then the
+    /// planner's own.
     pub fn all_metrics(&self) -> impl Iterator<Item = &'static MetricSpec> + use<> {
         let own: &'static [MetricSpec] = self.metrics;
-        COMMON_METRICS.iter().chain(own.iter())
+        let car: &'static [MetricSpec] = if self.plans_for(RobotKind::Car) {
+            CAR_METRICS
+        } else {
+            &[]
+        };
+        COMMON_METRICS.iter().chain(car).chain(own.iter())
     }
 
     /// Whether it plans for robots of this kind.

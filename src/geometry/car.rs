@@ -21,7 +21,7 @@
 
 use super::steer::{Model, Segment, SteerPath, Steering, Turn};
 use super::validator::{DEFAULT_TOLERANCE, ValidationError, Validator};
-use super::{Config, RobotShape, angle_diff};
+use super::{Config, RobotShape, TOUCH_EPS, angle_diff};
 
 /// How close to the goal the integrated path must end (position, in world
 /// units, and heading, in radians; SPEC 3.0).
@@ -208,31 +208,7 @@ pub fn validate_car_path(
             ));
         }
     }
-    // The sub-steps: every point of the body moves at most `tolerance`.
-    let reach = robot.radius();
-    let mut counts = Vec::with_capacity(path.segments.len());
-    let mut total = 0usize;
-    for s in &path.segments {
-        // A translating convex body sweeps exactly the hull of its two
-        // ends: a straight needs no sub-steps for soundness, only pieces of
-        // about the body's size so that a failure is located.
-        let (travel, step) = match s.turn {
-            Turn::S => (s.length.abs(), reach.max(tolerance)),
-            Turn::L | Turn::R => (s.length.abs() * (1.0 + reach / rho), tolerance),
-        };
-        let n = if travel == 0.0 {
-            1
-        } else {
-            let n = (travel / step).ceil();
-            if n > MAX_SUB_STEPS as f64 {
-                MAX_SUB_STEPS + 1
-            } else {
-                (n as usize).max(1)
-            }
-        };
-        total = total.saturating_add(n);
-        counts.push(n);
-    }
+    let (counts, total) = sub_steps(robot, path, tolerance);
     if total > MAX_SUB_STEPS {
         return Err(fail(
             0,
@@ -266,6 +242,155 @@ pub fn validate_car_path(
             e
         })
 }
+
+/// The validator's sub-steps per segment, and their total: every point of
+/// the body moves at most `tolerance` in one. A translating convex body
+/// sweeps exactly the hull of its two ends: a straight needs no sub-steps
+/// for soundness, only pieces of about the body's size so that a failure
+/// is located.
+fn sub_steps(robot: &RobotShape, path: &CarPath, tolerance: f64) -> (Vec<usize>, usize) {
+    let reach = robot.radius();
+    let rho = path.steering.radius;
+    let mut counts = Vec::with_capacity(path.segments.len());
+    let mut total = 0usize;
+    for s in &path.segments {
+        let (travel, step) = match s.turn {
+            Turn::S => (s.length.abs(), reach.max(tolerance)),
+            Turn::L | Turn::R => (s.length.abs() * (1.0 + reach / rho), tolerance),
+        };
+        let n = if travel == 0.0 {
+            1
+        } else {
+            let n = (travel / step).ceil();
+            if n > MAX_SUB_STEPS as f64 {
+                MAX_SUB_STEPS + 1
+            } else {
+                (n as usize).max(1)
+            }
+        };
+        total = total.saturating_add(n);
+        counts.push(n);
+    }
+    (counts, total)
+}
+
+/// The motion checker for curves: whether the car path is free, never
+/// accepting what [`validate_car_path`] rejects at `tolerance` (without a
+/// goal), and deciding most paths far faster.
+///
+/// The validator cuts each segment into sub-steps (at most `tolerance` of
+/// any body point's motion on an arc; pieces of the body's size on a
+/// straight, whose sweep is exact) and checks the hull of the bodies at the
+/// two ends of each. Here:
+/// 1. the body at poses every [`QUICK_STEP`] of arc: one that collides
+///    ends the check, "not free" (stricter than the validator only by the
+///    hull's rounding of a rotation);
+/// 2. conservative advancement: at a pose whose body is `d` from every
+///    obstacle, no body point moves more than `s · (1 + R/ρ)` along an arc
+///    of length `s` (R the body's reach; `s` along a straight). On an arc
+///    each validator hull lies within `tolerance` of the body at its first
+///    end, so every sub-step starting in the stretch
+///    `(d − tolerance − ε) / (1 + R/ρ)` is free; on a straight the hull is
+///    the swept body, free over `d − ε`; the reference point stays inside
+///    the bounds over its distance to their edge;
+/// 3. where a stretch would be shorter than one sub-step (the body within
+///    [`NEAR`] tolerances of an obstacle, or the reference point near the
+///    bounds), the validator's own sub-steps there, [`BATCH`] at a time,
+///    with the validator's rule: the same verdict as the whole path's.
+pub fn car_path_free(
+    referee: &Validator<'_>,
+    robot: &RobotShape,
+    path: &CarPath,
+    tolerance: f64,
+) -> bool {
+    let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
+        tolerance
+    } else {
+        DEFAULT_TOLERANCE
+    };
+    let rho = path.steering.radius;
+    if !(rho.is_finite() && rho > 0.0) || path.segments.iter().any(|s| !s.length.is_finite()) {
+        return false;
+    }
+    if path.steering.model == Model::Dubins && path.segments.iter().any(|s| s.length < 0.0) {
+        return false;
+    }
+    // Too long for the validator: rejected there, so here.
+    let (counts, total) = sub_steps(robot, path, tolerance);
+    if total > MAX_SUB_STEPS {
+        return false;
+    }
+    if path
+        .poses(QUICK_STEP)
+        .into_iter()
+        .skip(1)
+        .any(|c| referee.config_collision(robot, c).is_some())
+    {
+        return false;
+    }
+    let bounds = referee.bounds();
+    let reach = robot.radius();
+    let margin = 4.0 * TOUCH_EPS;
+    let ends = path.ends();
+    let mut from = path.start;
+    for (k, s) in path.segments.iter().enumerate() {
+        let n = counts[k];
+        let length = s.length.abs();
+        let h = length / n as f64;
+        // The validator's sub-step ends on this segment.
+        let pose = |j: usize| {
+            if j == n {
+                ends[k]
+            } else {
+                Segment::advance(from, s.turn, s.length * j as f64 / n as f64, rho)
+            }
+        };
+        let (factor, slack) = match s.turn {
+            Turn::S => (1.0, 0.0),
+            Turn::L | Turn::R => (1.0 + reach / rho, tolerance),
+        };
+        let mut at = 0.0;
+        loop {
+            let c = Segment::advance(from, s.turn, s.length.signum() * at, rho);
+            let d = referee.body_clearance(robot, c);
+            let inside = (c.x - bounds.min.x)
+                .min(bounds.max.x - c.x)
+                .min(c.y - bounds.min.y)
+                .min(bounds.max.y - c.y);
+            let advance = ((d - slack - margin) / factor).min(inside);
+            if d >= NEAR * tolerance && advance >= h && length > 0.0 {
+                at += advance;
+            } else {
+                // The validator's own sub-steps from the one holding `at`.
+                let j0 = ((at / h).floor() as usize).min(n - 1);
+                let j1 = (j0 + BATCH).min(n);
+                let window: Vec<Config> = (j0..=j1).map(pose).collect();
+                if referee.validate_path(robot, &window, tolerance).is_err() {
+                    return false;
+                }
+                at = j1 as f64 * h;
+                if j1 == n {
+                    break;
+                }
+            }
+            if at >= length {
+                break;
+            }
+        }
+        from = ends[k];
+    }
+    true
+}
+
+/// The arc length between the poses [`car_path_free`] checks first.
+pub const QUICK_STEP: f64 = 0.25;
+
+/// Below this many tolerances of clearance [`car_path_free`] checks the
+/// validator's own sub-steps.
+pub const NEAR: f64 = 2.0;
+
+/// The validator's sub-steps [`car_path_free`] checks at a time.
+pub const BATCH: usize = 16;
 
 /// The poses the validator sweeps, for measuring clearance along the same
 /// sub-steps: at most every `tolerance` of any body point's motion.
@@ -431,5 +556,136 @@ mod tests {
         .end(path.start, 2.0);
         assert!((quarter.x - 2.0).abs() < 1e-12 && (quarter.y - 2.0).abs() < 1e-12);
         assert!((quarter.theta - PI / 2.0).abs() < 1e-12);
+    }
+
+    /// A random world of rects and disks in (0, 0) (20, 20), a car body and
+    /// steering, and the steering path between two random poses.
+    fn case() -> impl proptest::strategy::Strategy<Value = (String, RobotShape, CarPath)> {
+        use proptest::prelude::*;
+        let obstacle = (
+            0.0..18.0f64,
+            0.0..18.0f64,
+            0.2..4.0f64,
+            0.2..4.0f64,
+            any::<bool>(),
+        )
+            .prop_map(|(x, y, w, h, disk)| {
+                if disk {
+                    format!("disk ({x}, {y}) {}", w / 2.0)
+                } else {
+                    format!("rect ({x}, {y}) ({}, {})", x + w, y + h)
+                }
+            });
+        let pose = (0.0..20.0f64, 0.0..20.0f64, -PI..PI).prop_map(|(x, y, t)| Config::new(x, y, t));
+        (
+            proptest::collection::vec(obstacle, 0..7),
+            (0.2..1.5f64, 0.3..3.0f64, any::<bool>()),
+            (0.5..5.0f64, any::<bool>()),
+            pose.clone(),
+            pose,
+        )
+            .prop_map(|(obstacles, (half, front, disk), (radius, rs), a, b)| {
+                let world = format!(
+                    "world {{ bounds (0, 0) (20, 20)\n{} }}",
+                    obstacles.join("\n")
+                );
+                let robot = if disk {
+                    RobotShape::Disk(half)
+                } else {
+                    RobotShape::Polygon(ConvexPolygon {
+                        vertices: vec![
+                            Point::new(-half, -half),
+                            Point::new(front, -half),
+                            Point::new(front, half),
+                            Point::new(-half, half),
+                        ],
+                    })
+                };
+                let model = if rs { Model::ReedsShepp } else { Model::Dubins };
+                let steering = Steering::new(model, radius);
+                let path = CarPath::from_steer(a, steering, &steering.shortest(a, b));
+                (world, robot, path)
+            })
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(600))]
+
+        /// The motion checker for curves never accepts a path the validator
+        /// rejects.
+        #[test]
+        fn the_motion_checker_never_accepts_what_the_validator_rejects((world, robot, path) in case()) {
+            let world = world_of_text(&world);
+            let referee = Validator::new(&world);
+            if car_path_free(&referee, &robot, &path, DEFAULT_TOLERANCE) {
+                let verdict = validate_car_path(&referee, &robot, &path, None, DEFAULT_TOLERANCE);
+                proptest::prop_assert!(verdict.is_ok(), "accepted, the validator says {verdict:?}");
+            }
+        }
+    }
+
+    /// Not vacuous, and close to the validator: over a fixed sample the two
+    /// agree on nearly every path, and both verdicts occur.
+    #[test]
+    fn the_motion_checker_agrees_with_the_validator_on_a_sample() {
+        use proptest::strategy::{Strategy, ValueTree};
+        use proptest::test_runner::{Config as RunnerConfig, RngAlgorithm, TestRng, TestRunner};
+        let mut runner = TestRunner::new_with_rng(
+            RunnerConfig::default(),
+            TestRng::from_seed(RngAlgorithm::ChaCha, &[7; 32]),
+        );
+        let (mut free, mut blocked, mut stricter) = (0, 0, 0);
+        for _ in 0..400 {
+            let (world, robot, path) = case().new_tree(&mut runner).unwrap().current();
+            let world = world_of_text(&world);
+            let referee = Validator::new(&world);
+            let ours = car_path_free(&referee, &robot, &path, DEFAULT_TOLERANCE);
+            let theirs =
+                validate_car_path(&referee, &robot, &path, None, DEFAULT_TOLERANCE).is_ok();
+            assert!(
+                !ours || theirs,
+                "accepted what the validator rejects: {path:?}"
+            );
+            match (ours, theirs) {
+                (true, _) => free += 1,
+                (false, false) => blocked += 1,
+                (false, true) => stricter += 1,
+            }
+        }
+        assert!(
+            free >= 40 && blocked >= 40,
+            "free {free}, blocked {blocked}"
+        );
+        assert!(
+            stricter <= 4,
+            "rejected {stricter} paths the validator accepts"
+        );
+    }
+
+    /// Grazing: a straight that touches a wall all along, and an arc that
+    /// touches a disk at one point, are what the validator says.
+    #[test]
+    fn grazing_paths_get_the_validators_verdict() {
+        let world = world_of_text("world { bounds (0, 0) (30, 30)\nrect w (0, 0) (30, 9.5) }");
+        let referee = Validator::new(&world);
+        // The cart's body spans y ± 0.5: at y = 10 it touches the wall.
+        for (y, free) in [(10.0, true), (10.0 - 1e-6, false), (10.0 + 1e-6, true)] {
+            let path = CarPath {
+                start: Config::new(2.0, y, 0.0),
+                steering: Steering::new(Model::ReedsShepp, 3.0),
+                segments: vec![Segment {
+                    turn: Turn::S,
+                    length: 20.0,
+                }],
+            };
+            let theirs =
+                validate_car_path(&referee, &cart(), &path, None, DEFAULT_TOLERANCE).is_ok();
+            assert_eq!(theirs, free, "validator at y = {y}");
+            assert_eq!(
+                car_path_free(&referee, &cart(), &path, DEFAULT_TOLERANCE),
+                free,
+                "checker at y = {y}"
+            );
+        }
     }
 }

@@ -566,6 +566,25 @@ impl<'w> Validator<'w> {
         if best <= TOUCH_EPS { 0.0 } else { best }
     }
 
+    /// The distance between the robot's body at `c` and the nearest
+    /// obstacle (0 or less when they meet; +∞ without obstacles). The bounds
+    /// are not obstacles.
+    pub fn body_clearance(&self, robot: &RobotShape, c: Config) -> f64 {
+        let region = body_region(robot, c, c);
+        let mut best = f64::INFINITY;
+        for o in &self.obstacles {
+            if aabb_distance(&region.aabb, &o.aabb) < best {
+                best = best.min(body_distance(&region, &o.body, best));
+            }
+        }
+        best
+    }
+
+    /// The world's bounds.
+    pub fn bounds(&self) -> Aabb {
+        self.world.bounds
+    }
+
     /// The smallest index of an obstacle that `region` collides with.
     fn first_hit(&self, region: &Region) -> Option<usize> {
         let reach = grow(region.aabb, 2.0 * TOUCH_EPS);

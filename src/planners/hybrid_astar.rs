@@ -7,8 +7,9 @@
 //!   straight (`L`, `S`, `R`) of arc length `step`, forward, and for a
 //!   Reeds–Shepp car in reverse too. Cost: the length, times `reverse_cost`
 //!   in reverse, plus `switch_cost` at each change of direction (a cusp).
-//! - A successor's motion is checked by the validator for cars (the body
-//!   swept along the arc), only when it would improve its cell.
+//! - A successor's motion is checked by the motion checker for curves
+//!   ([`car_path_free`]: never accepts what the validator for cars
+//!   rejects), only when it would improve its cell.
 //! - Heuristic: the larger of the steering length to the goal ignoring
 //!   obstacles (times the cheapest direction's cost factor, 1) and the
 //!   holonomic shortest path with obstacles: 8-connected Dijkstra from the
@@ -37,7 +38,7 @@ use crate::contract::schema::{
     DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, at_least, num, positive,
 };
 use crate::contract::{MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Task};
-use crate::geometry::car::{CarPath, DRAW_STEP, validate_car_path};
+use crate::geometry::car::{CarPath, DRAW_STEP, car_path_free, validate_car_path};
 use crate::geometry::steer::{Model, Segment, Steering, Turn};
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Config, Point, RobotShape};
@@ -48,10 +49,6 @@ pub const MAX_NODES: usize = 4_000_000;
 
 /// The most (x, y) cells of the holonomic heuristic's grid.
 pub const MAX_HOLONOMIC_CELLS: usize = 4_000_000;
-
-/// The arc length between the poses checked before a piece of path is
-/// swept (see `Search::a_pose_collides`).
-const QUICK_STEP: f64 = 0.25;
 
 /// The most search edges drawn.
 const MAX_DRAWN: usize = 20_000;
@@ -94,12 +91,6 @@ pub static PLANNER: Planner = Planner {
         ),
     ],
     metrics: &[
-        MetricSpec::num(
-            "cusps",
-            "changes of direction (forward ↔ reverse) along a car's path",
-        ),
-        MetricSpec::num("reverse_length", "arc length a car drives in reverse"),
-        MetricSpec::num("segments", "arcs and straights of a car's path"),
         MetricSpec::num("generated", "poses put on the open list"),
         MetricSpec::num("analytic_tries", "steering paths to the goal tried"),
     ],
@@ -382,29 +373,7 @@ impl<'a> Search<'a> {
             return None;
         }
         let tail = CarPath::from_steer(pose, self.steering, &curve);
-        if self.a_pose_collides(&tail) {
-            return None;
-        }
-        validate_car_path(
-            &self.referee,
-            self.task.robot,
-            &tail,
-            Some(self.goal),
-            DEFAULT_TOLERANCE,
-        )
-        .ok()
-        .map(|()| tail)
-    }
-
-    /// Whether the body collides at one of the path's poses every
-    /// [`QUICK_STEP`] of arc: a cheap rejection before the validator's sweep
-    /// (the sweep contains every such pose, so nothing it would accept is
-    /// rejected here).
-    fn a_pose_collides(&self, path: &CarPath) -> bool {
-        path.poses(QUICK_STEP)
-            .into_iter()
-            .skip(1)
-            .any(|c| self.referee.config_collision(self.task.robot, c).is_some())
+        car_path_free(&self.referee, self.task.robot, &tail, DEFAULT_TOLERANCE).then_some(tail)
     }
 
     /// Pushes the node's successors; false when the node cap is reached.
@@ -440,10 +409,7 @@ impl<'a> Search<'a> {
                     steering: self.steering,
                     segments: vec![arc],
                 };
-                if self.a_pose_collides(&piece)
-                    || validate_car_path(&self.referee, self.task.robot, &piece, None, DEFAULT_TOLERANCE)
-                    .is_err()
-                {
+                if !car_path_free(&self.referee, self.task.robot, &piece, DEFAULT_TOLERANCE) {
                     continue;
                 }
                 if self.nodes.len() >= MAX_NODES {

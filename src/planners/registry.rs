@@ -85,7 +85,7 @@ pub fn planner(kind: &str) -> Option<&'static Planner> {
 /// The planner reference (`docs/planners.md`): every planner's robots,
 /// limits, parameters and metrics, and the common ones, as Markdown.
 pub fn reference() -> String {
-    use crate::contract::schema::{DRIVE_METRICS, DRIVE_PARAMS, DefaultValue};
+    use crate::contract::schema::{CAR_METRICS, DRIVE_METRICS, DRIVE_PARAMS, DefaultValue};
     use std::fmt::Write as _;
     let mut md = String::from(
         "# Planners\n\n\
@@ -123,6 +123,11 @@ pub fn reference() -> String {
     params(&mut md, &mut COMMON_PARAMS.iter());
     md.push_str("\nMetrics every plan reports (SPEC 3):\n");
     metrics(&mut md, &mut COMMON_METRICS.iter());
+    md.push_str(
+        "\nMetrics every plan of a planner that plans for cars reports (measured from the car's \
+         segments; no value for a robot that is not a car, or without a path):\n",
+    );
+    metrics(&mut md, &mut CAR_METRICS.iter());
     md.push_str("\n`drive unicycle { ... }` (SPEC 3.6) takes:\n");
     params(&mut md, &mut DRIVE_PARAMS.iter());
     md.push_str("\nand adds the metrics:\n");

@@ -8,7 +8,7 @@
 use std::any::Any;
 
 use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
-use crate::contract::schema::{CAR_METRICS, RobotKind};
+use crate::contract::schema::RobotKind;
 use crate::contract::{PlanArgs, PlanOutcome, Planner, Settings, Task};
 use crate::geometry::car::{CarPath, DRAW_STEP, validate_car_path};
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
@@ -19,7 +19,7 @@ pub static PLANNER: Planner = Planner {
     summary: "a car's steering path (the shortest Dubins or Reeds–Shepp curve), found when it is free",
     robots: &[RobotKind::Car],
     params: &[],
-    metrics: CAR_METRICS,
+    metrics: &[],
     limits: &["time"],
     needs_goal: true,
     randomized: false,

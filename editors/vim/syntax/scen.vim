@@ -150,8 +150,8 @@ syn match   scenMetric contained /\.\@1<=\%(layers\|generated\|traveled\|steps\|
 syn match   scenMetric contained /\.\@1<=\%(graph_edges\|minima\|escapes\|coverage\|cells_total\|cells_visited\)\>/
 syn match   scenMetric contained /\.\@1<=\%(revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
 syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\)\>/
-syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|cusps\|reverse_length\|segments\)\>/
-syn match   scenMetric contained /\.\@1<=\%(analytic_tries\|drive_time\|drive_max_deviation\|drive_collision_free\)\>/
+syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|analytic_tries\|drive_time\)\>/
+syn match   scenMetric contained /\.\@1<=\%(drive_max_deviation\|drive_collision_free\)\>/
 " END GENERATED metrics
 syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " BENCH.PLAN[...]: the plan's name starts the selection, so that its `[` is

@@ -55,9 +55,12 @@ use crate::contract::schema::{
     DefaultValue, MetricSpec, ParamSpec, ValueSpec, Word, YesNo, at_least, num,
 };
 use crate::diagnostics::Diag;
+use crate::geometry::car::{CarPath, DRAW_STEP, car_path_free, validate_car_path};
 use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::motion::MotionChecker;
 use crate::geometry::path::path_length;
+use crate::geometry::steer::Steering;
+use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Config, Point, RobotShape, angle_diff};
 use crate::rng::SplitMix64;
 use crate::word_enum;
@@ -258,6 +261,9 @@ pub const MAX_DRAWN_EDGES: usize = 50_000;
 /// θ layers of the C-space drawn for a rotating robot.
 pub const CSPACE_LAYERS: usize = 24;
 
+/// The arc length between the drawn points of a car's tree or roadmap edge.
+const CAR_EDGE_STEP: f64 = 0.25;
+
 /// The time limit is looked at every this many iterations.
 const CLOCK_EVERY: u64 = 16;
 
@@ -289,12 +295,21 @@ pub fn check(args: &mut PlanArgs<'_>, algorithm: Algorithm) -> Option<Box<dyn Se
     let planner = args.planner();
     let declares = |key: &str| planner.param(key).is_some();
     let shape = &args.robot.shape;
-    let rotating = shape.rotates() && args.opt_word::<YesNo>("rotate") != Some(YesNo::No);
+    let car = args.robot.steering.is_some();
+    if car {
+        refuse_for_cars(args, algorithm);
+    }
+    // A car always has a heading: θ is sampled whatever its shape.
+    let rotating = car || (shape.rotates() && args.opt_word::<YesNo>("rotate") != Some(YesNo::No));
     let bounds = args.world.bounds;
     let range = args
         .opt_num("range")
         .unwrap_or(0.2 * bounds.width().hypot(bounds.height()));
-    let turn_cost = args.opt_num("turn_cost").unwrap_or_else(|| shape.radius());
+    let turn_cost = if car {
+        0.0
+    } else {
+        args.opt_num("turn_cost").unwrap_or_else(|| shape.radius())
+    };
     if shape.rotates()
         && !rotating
         && let Some(goal) = args.params.goal
@@ -339,6 +354,69 @@ pub fn check(args: &mut PlanArgs<'_>, algorithm: Algorithm) -> Option<Box<dyn Se
         simplify: args.word("simplify"),
     };
     Some(Box::new(settings))
+}
+
+/// The parameters and planners that have no meaning for a car (a located
+/// error each): `turn_cost` and `rotate` (its distance is the steering
+/// length, its θ always sampled), `informed yes` (the informed set is that
+/// of the Euclidean distance in (x, y, c·θ)), and a Dubins car on `prm` or
+/// `prm_star` (a roadmap's edges run both ways; a Dubins path does not).
+fn refuse_for_cars(args: &mut PlanArgs<'_>, algorithm: Algorithm) {
+    for key in ["turn_cost", "rotate"] {
+        if args.given(key) {
+            let span = args.span(key);
+            args.error(
+                Diag::error(
+                    "scen::analyze::car_param",
+                    format!("`{key}` has no meaning for a car"),
+                )
+                .at(span, "a car robot")
+                .help("a car's distance is the length of its steering path and its θ is always sampled; remove the parameter"),
+            );
+        }
+    }
+    if args.planner().param("informed").is_some()
+        && args.opt_word::<YesNo>("informed") == Some(YesNo::Yes)
+    {
+        let span = args.span("informed");
+        args.error(
+            Diag::error(
+                "scen::analyze::car_param",
+                "`informed yes` is not implemented for cars",
+            )
+            .at(span, "a car robot")
+            .help("remove `informed yes`: informed sampling needs the Euclidean distance, and a car's is its steering length"),
+        );
+    }
+    if args.opt_word::<Simplify>("simplify") == Some(Simplify::Smooth) {
+        let span = args.span("simplify");
+        args.error(
+            Diag::error(
+                "scen::analyze::car_param",
+                "`simplify smooth` is not implemented for cars",
+            )
+            .at(span, "a car robot")
+            .help("use `simplify shortcut`: corner cutting moves waypoints in straight lines, which a car's paths turn into cusps"),
+        );
+    }
+    let dubins = args
+        .robot
+        .steering
+        .is_some_and(|s| s.model == crate::geometry::steer::Model::Dubins);
+    if dubins && matches!(algorithm, Algorithm::Prm | Algorithm::PrmStar) {
+        let head = args.head;
+        args.error(
+            Diag::error(
+                "scen::analyze::car_param",
+                format!(
+                    "`{}` needs a car that drives both ways: a roadmap's edges are travelled in either direction",
+                    args.planner().kind
+                ),
+            )
+            .at(head, "a Dubins car (forward only)")
+            .help("plan a Dubins car with `rrt`, `rrt_connect`, `rrt_star`, `hybrid_astar` or `steer`, or make it `steer reeds_shepp`"),
+        );
+    }
 }
 
 impl Settings for Sampling {
@@ -441,6 +519,8 @@ pub struct Run<'a> {
     pub checks: u64,
     deadline: Deadline,
     sigma: f64,
+    /// A car's motions are checked by the validator for cars.
+    referee: Option<Validator<'a>>,
 }
 
 impl<'a> Run<'a> {
@@ -453,6 +533,7 @@ impl<'a> Run<'a> {
             rotating: settings.rotating,
             theta: task.start.theta,
             turn_cost: settings.turn_cost,
+            steering: task.steering,
         };
         let goal = task.goal.unwrap_or(task.start);
         let goal = if settings.rotating {
@@ -472,6 +553,7 @@ impl<'a> Run<'a> {
             checks: 0,
             deadline,
             sigma: SIGMA * bounds.width().hypot(bounds.height()),
+            referee: task.steering.map(|_| Validator::new(task.world)),
         }
     }
 
@@ -485,7 +567,85 @@ impl<'a> Run<'a> {
     /// (counted).
     pub fn motion_free(&mut self, a: Config, b: Config) -> bool {
         self.checks += 1;
-        self.checker.motion_free(a, b)
+        match (self.space.steering, &self.referee) {
+            (Some(steering), Some(referee)) => {
+                let curve = CarPath::from_steer(a, steering, &steering.shortest(a, b));
+                car_path_free(referee, self.task.robot, &curve, DEFAULT_TOLERANCE)
+            }
+            _ => self.checker.motion_free(a, b),
+        }
+    }
+
+    /// The `k` states nearest to `q` in the space's distance into `out`, as
+    /// (squared distance, index), nearest first, ties to the lower index.
+    /// `state(i)` is state `i` of `index`. `to_q`: the distance from each
+    /// state to `q` (a tree growing towards `q`), else from `q` to each
+    /// (they differ for a Dubins car only).
+    ///
+    /// Without steering this is the index's own query. For a car the index
+    /// holds the reference points: their Euclidean distance bounds every
+    /// steering length from below, so the m nearest by it (m growing) hold
+    /// the k nearest by steering length once the k-th length found is no
+    /// more than the m-th Euclidean distance.
+    pub fn k_nearest(
+        &self,
+        index: &mut KdTree,
+        state: impl Fn(usize) -> Config,
+        q: Config,
+        k: usize,
+        to_q: bool,
+        out: &mut Vec<(f64, u32)>,
+    ) {
+        let key = self.space.key(q);
+        if self.space.steering.is_none() {
+            index.k_nearest(&key, k, out);
+            return;
+        }
+        let n = index.len();
+        let mut m = (2 * k).max(8).min(n);
+        let mut candidates = Vec::new();
+        loop {
+            index.k_nearest(&key, m, &mut candidates);
+            out.clear();
+            out.extend(candidates.iter().map(|&(_, i)| {
+                let c = state(i as usize);
+                let d = if to_q {
+                    self.space.distance(c, q)
+                } else {
+                    self.space.distance(q, c)
+                };
+                (d * d, i)
+            }));
+            out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            out.truncate(k);
+            let reach2 = candidates.last().map_or(0.0, |&(d2, _)| d2);
+            let kth2 = if out.len() == k {
+                out[k - 1].0
+            } else {
+                f64::INFINITY
+            };
+            if m >= n || kth2 <= reach2 {
+                return;
+            }
+            m = (m * 4).min(n);
+        }
+    }
+
+    /// The state nearest to `q` (see [`Run::k_nearest`]) and its squared
+    /// distance.
+    pub fn nearest(
+        &self,
+        index: &mut KdTree,
+        state: impl Fn(usize) -> Config,
+        q: Config,
+        to_q: bool,
+    ) -> Option<(usize, f64)> {
+        if self.space.steering.is_none() {
+            return index.nearest(&self.space.key(q));
+        }
+        let mut out = Vec::with_capacity(1);
+        self.k_nearest(index, state, q, 1, to_q, &mut out);
+        out.first().map(|&(d2, i)| (i as usize, d2))
     }
 
     /// Why the run must stop before `iteration` (1-based), if it must.
@@ -576,10 +736,16 @@ impl<'a> Run<'a> {
             expanded: grown.iterations,
             ..PlanOutcome::default()
         };
-        let (raw_length, raw_nodes) = grown
-            .path
-            .as_ref()
-            .map_or((f64::INFINITY, 0.0), |p| (path_length(p), p.len() as f64));
+        let (raw_length, raw_nodes) = grown.path.as_ref().map_or((f64::INFINITY, 0.0), |p| {
+            // A car's length is its steering paths' (the reference point's
+            // arc length), not the polyline's.
+            let length = if self.space.steering.is_some() {
+                self.cost(p)
+            } else {
+                path_length(p)
+            };
+            (length, p.len() as f64)
+        });
         let began = Instant::now();
         let path = grown.path.clone().map(|raw| match self.settings.simplify {
             Simplify::None => raw,
@@ -637,8 +803,53 @@ impl<'a> Run<'a> {
             out.layers = self.layers(&grown, path.as_deref());
         }
         out.cost = path.as_deref().map(|p| self.cost(p));
-        out.path = path;
+        match (self.space.steering, path) {
+            (Some(steering), Some(states)) => self.car_path(steering, &states, &mut out),
+            (_, path) => out.path = path,
+        }
         out
+    }
+
+    /// A car's path from its states: the steering path between each two,
+    /// as segments integrated from the start (`out.car`) and the poses
+    /// drawn (`out.path`), the last the goal exactly. Each motion was
+    /// checked from the state the planner held; the whole, integrated in
+    /// closed form, is checked again: a path that fails (rounding at a
+    /// touching contact) is not returned, and a note says so.
+    fn car_path(&self, steering: Steering, states: &[Config], out: &mut PlanOutcome) {
+        let mut segments = Vec::new();
+        for w in states.windows(2) {
+            segments.extend_from_slice(steering.shortest(w[0], w[1]).segments());
+        }
+        let car = CarPath {
+            start: self.task.start,
+            steering,
+            segments,
+        };
+        let referee = self.referee.as_ref().expect("a car's run has a referee");
+        match validate_car_path(
+            referee,
+            self.task.robot,
+            &car,
+            self.task.goal,
+            DEFAULT_TOLERANCE,
+        ) {
+            Ok(()) => {
+                let mut poses = car.poses(DRAW_STEP);
+                if let (Some(last), Some(goal)) = (poses.last_mut(), self.task.goal) {
+                    *last = goal;
+                }
+                out.path = Some(poses);
+                out.car = Some(car);
+            }
+            Err(e) => {
+                out.cost = None;
+                out.notes.push(format!(
+                    "the path found failed the validator when integrated whole ({}); no path is returned",
+                    e.reason
+                ));
+            }
+        }
     }
 
     /// The picture (SPEC §6): the tree or roadmap growing on timeline
@@ -658,19 +869,30 @@ impl<'a> Run<'a> {
             let style = Style::new(Colour::Faint, 0.5, 16.0).svg(Svg::line(0.3).key(key));
             let batch = drawn.len().div_ceil(layers::BATCHES);
             for (b, chunk) in drawn.chunks(batch).enumerate() {
-                let segments = chunk.iter().map(|e| (e.a.xy(), e.b.xy())).collect();
+                let drawing = match self.space.steering {
+                    // A car's edges are its curves.
+                    Some(steering) => Drawing::Polylines(
+                        chunk
+                            .iter()
+                            .map(|e| {
+                                CarPath::from_steer(e.a, steering, &steering.shortest(e.a, e.b))
+                                    .poses(CAR_EDGE_STEP)
+                                    .iter()
+                                    .map(Config::xy)
+                                    .collect()
+                            })
+                            .collect(),
+                    ),
+                    None => Drawing::Segments(chunk.iter().map(|e| (e.a.xy(), e.b.xy())).collect()),
+                };
                 let last = chunk.last().map_or(0, |e| e.iteration);
                 out.push(
-                    Layer::new(
-                        format!("{}/{b:04}", grown.entity),
-                        Drawing::Segments(segments),
-                        style,
-                    )
-                    .at(Timeline::Iteration, last as i64),
+                    Layer::new(format!("{}/{b:04}", grown.entity), drawing, style)
+                        .at(Timeline::Iteration, last as i64),
                 );
             }
         }
-        if self.space.rotating {
+        if self.space.rotating && self.space.steering.is_none() {
             let strips = drawn.iter().flat_map(|e| cspace_edge(e.a, e.b)).collect();
             out.push(Layer::new(
                 "cspace/tree",
@@ -685,7 +907,21 @@ impl<'a> Run<'a> {
         if self.settings.simplify != Simplify::None
             && let (Some(raw), Some(_)) = (&grown.path, path)
         {
-            let xy: Vec<Point> = raw.iter().map(Config::xy).collect();
+            let xy: Vec<Point> = match self.space.steering {
+                Some(steering) => {
+                    let mut segments = Vec::new();
+                    for w in raw.windows(2) {
+                        segments.extend_from_slice(steering.shortest(w[0], w[1]).segments());
+                    }
+                    let curve = CarPath {
+                        start: raw[0],
+                        steering,
+                        segments,
+                    };
+                    curve.poses(DRAW_STEP).iter().map(Config::xy).collect()
+                }
+                None => raw.iter().map(Config::xy).collect(),
+            };
             out.push(Layer::new(
                 "raw_path",
                 Drawing::Polylines(vec![xy]),

@@ -41,7 +41,12 @@ use super::{
 pub static PRM: Planner = Planner {
     kind: "prm",
     summary: "Kavraki et al.'s probabilistic roadmap, queried with A* (default `limit iterations 200000`)",
-    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
+    robots: &[
+        RobotKind::Point,
+        RobotKind::Disk,
+        RobotKind::Polygon,
+        RobotKind::Car,
+    ],
     params: &[
         RANGE, TURN_COST, SAMPLER, NEIGHBORS, STOP_FIRST, SIMPLIFY, ROTATE,
     ],
@@ -56,7 +61,12 @@ pub static PRM: Planner = Planner {
 pub static PRM_STAR: Planner = Planner {
     kind: "prm_star",
     summary: "PRM* with k = ⌈rewire · e · (1 + 1/d) · ln n⌉ nearest, asymptotically optimal (default `limit iterations 200000`)",
-    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
+    robots: &[
+        RobotKind::Point,
+        RobotKind::Disk,
+        RobotKind::Polygon,
+        RobotKind::Car,
+    ],
     params: &[
         RANGE, TURN_COST, SAMPLER, REWIRE, STOP_LIMIT, SIMPLIFY, ROTATE,
     ],
@@ -205,7 +215,15 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         } else {
             run.settings.neighbors
         };
-        index.k_nearest(&key, k, &mut near);
+        let graph = &roadmap.graph;
+        run.k_nearest(
+            &mut index,
+            |i| graph[NodeIndex::new(i)],
+            q,
+            k,
+            true,
+            &mut near,
+        );
         let range2 = range * range;
         near.retain(|&(d2, _)| d2 <= range2);
         let v = roadmap.graph.add_node(q).index();

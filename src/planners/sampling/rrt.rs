@@ -39,7 +39,12 @@ use super::{
 pub static RRT: Planner = Planner {
     kind: "rrt",
     summary: "LaValle's rapidly-exploring random tree, goal-biased (default `limit iterations 200000`)",
-    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
+    robots: &[
+        RobotKind::Point,
+        RobotKind::Disk,
+        RobotKind::Polygon,
+        RobotKind::Car,
+    ],
     params: &[
         RANGE, TURN_COST, GOAL_BIAS, SAMPLER, STOP_FIRST, SIMPLIFY, ROTATE,
     ],
@@ -54,7 +59,12 @@ pub static RRT: Planner = Planner {
 pub static RRT_STAR: Planner = Planner {
     kind: "rrt_star",
     summary: "Karaman & Frazzoli's asymptotically optimal RRT*, optionally informed (default `limit iterations 200000`)",
-    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
+    robots: &[
+        RobotKind::Point,
+        RobotKind::Disk,
+        RobotKind::Polygon,
+        RobotKind::Car,
+    ],
     params: &[
         RANGE, TURN_COST, GOAL_BIAS, SAMPLER, REWIRE, INFORMED, STOP_LIMIT, SIMPLIFY, ROTATE,
     ],
@@ -177,8 +187,7 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         } else {
             run.sample()
         };
-        let key = run.space.key(sample);
-        let Some((nearest, d2)) = index.nearest(&key) else {
+        let Some((nearest, d2)) = run.nearest(&mut index, |i| tree.states[i], sample, true) else {
             continue;
         };
         if d2 == 0.0 {
@@ -198,7 +207,7 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         let mut cost = tree.cost[nearest] + run.space.distance(from, new);
         if star {
             let k = run.k_star(tree.states.len() + 1);
-            index.k_nearest(&run.space.key(new), k, &mut near);
+            run.k_nearest(&mut index, |i| tree.states[i], new, k, true, &mut near);
             // Choose the parent: cheapest first, the first free one.
             order.clear();
             order.extend(near.iter().map(|&(_, i)| {

@@ -28,7 +28,12 @@ use super::{
 pub static PLANNER: Planner = Planner {
     kind: "rrt_connect",
     summary: "Kuffner & LaValle's RRT-Connect: two trees, greedily connected (default `limit iterations 200000`)",
-    robots: &[RobotKind::Point, RobotKind::Disk, RobotKind::Polygon],
+    robots: &[
+        RobotKind::Point,
+        RobotKind::Disk,
+        RobotKind::Polygon,
+        RobotKind::Car,
+    ],
     params: &[RANGE, TURN_COST, SAMPLER, STOP_FIRST, SIMPLIFY, ROTATE],
     metrics: METRICS,
     limits: LIMITS,
@@ -60,6 +65,14 @@ impl Tree {
             index,
             towards_root,
         }
+    }
+
+    /// The state nearest to `q` in the direction the tree's motions run
+    /// (from the state for the start's tree, to it for the goal's) and its
+    /// squared distance.
+    fn nearest(&mut self, run: &Run<'_>, q: Config) -> Option<(usize, f64)> {
+        let states = &self.states;
+        run.nearest(&mut self.index, |i| states[i], q, !self.towards_root)
     }
 
     /// Root to `i`.
@@ -95,11 +108,13 @@ fn step(
     drawn: &mut Vec<DrawnEdge>,
 ) -> Step {
     let a = tree.states[from];
-    let new = run.space.steer(a, target, run.settings.range);
-    let free = if tree.towards_root {
-        run.motion_free(new, a)
+    let range = run.settings.range;
+    let (new, free) = if tree.towards_root {
+        let new = run.space.steer_back(target, a, range);
+        (new, run.motion_free(new, a))
     } else {
-        run.motion_free(a, new)
+        let new = run.space.steer(a, target, range);
+        (new, run.motion_free(a, new))
     };
     if !free {
         return Step::Trapped;
@@ -147,7 +162,7 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         // from the goal; tree `b` connects.
         let a = usize::from(iteration % 2 == 0);
         let b = 1 - a;
-        let Some((nearest, d2)) = trees[a].index.nearest(&run.space.key(sample)) else {
+        let Some((nearest, d2)) = trees[a].nearest(run, sample) else {
             continue;
         };
         if d2 == 0.0 {
@@ -161,7 +176,7 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         if path.is_some() {
             continue; // `stop limit` after a solution: the trees just grow
         }
-        let Some((mut from, d2)) = trees[b].index.nearest(&run.space.key(target)) else {
+        let Some((mut from, d2)) = trees[b].nearest(run, target) else {
             continue;
         };
         let meet = if d2 == 0.0 {

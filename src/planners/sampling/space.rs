@@ -3,9 +3,17 @@
 //! between two configurations (x and y linear, θ along the shorter arc, as
 //! the validator interpolates), uniform samples in `bounds` × [0, 2π), and
 //! Gammell et al.'s informed samples.
+//!
+//! For a car (a robot with a [`Steering`]) the distance is the length of
+//! the shortest steering path (not symmetric for a Dubins car), a motion is
+//! that path, θ is always sampled, and the index key is (x, y, 0): the
+//! Euclidean distance of the reference points, a lower bound of every
+//! steering length (an arc is never shorter than its chord), which
+//! [`super::Run::k_nearest`] prunes with before it measures exact lengths.
 
 use std::f64::consts::{PI, TAU};
 
+use crate::geometry::steer::Steering;
 use crate::geometry::{Aabb, Config, angle_diff};
 use crate::rng::SplitMix64;
 
@@ -25,8 +33,11 @@ pub struct Space {
     pub rotating: bool,
     /// The θ of every configuration of a robot that does not rotate.
     pub theta: f64,
-    /// c, the weight of one radian in the distance.
+    /// c, the weight of one radian in the distance (0 for a car, whose
+    /// key leaves θ out).
     pub turn_cost: f64,
+    /// A car's steering: the distance and the motions are its paths.
+    pub steering: Option<Steering>,
 }
 
 impl Space {
@@ -47,6 +58,9 @@ impl Space {
 
     /// The distance of SPEC 3.7 between `a` and `b`.
     pub fn distance(&self, a: Config, b: Config) -> f64 {
+        if let Some(s) = self.steering {
+            return s.distance(a, b);
+        }
         let (dx, dy) = (b.x - a.x, b.y - a.y);
         if self.rotating {
             let dt = self.turn_cost * angle_diff(a.theta, b.theta);
@@ -77,6 +91,11 @@ impl Space {
         if t >= 1.0 {
             return b;
         }
+        if let Some(s) = self.steering {
+            let curve = s.shortest(a, b);
+            let c = curve.config_at(a, t * curve.length());
+            return Config::new(c.x, c.y, wrap(c.theta));
+        }
         let theta = if self.rotating {
             wrap(a.theta + t * angle_diff(a.theta, b.theta))
         } else {
@@ -93,6 +112,21 @@ impl Space {
             to
         } else {
             self.interpolate(from, to, range / d)
+        }
+    }
+
+    /// `from` when it is at most `range` from `to` (in the distance from
+    /// `from` to `to`), else the configuration `range` before `to` on the
+    /// motion from `from` to it: a tree whose motions run towards its root
+    /// (RRT-Connect's goal tree) grows so, and its new motion is then the
+    /// end of that one (for a Dubins car, a forward path away from `to`
+    /// would need a loop to come back).
+    pub fn steer_back(&self, from: Config, to: Config, range: f64) -> Config {
+        let d = self.distance(from, to);
+        if d <= range {
+            from
+        } else {
+            self.interpolate(from, to, 1.0 - range / d)
         }
     }
 
@@ -115,9 +149,11 @@ impl Space {
     /// axis. May lie outside the bounds.
     pub fn gaussian_near(&self, c: Config, sigma: f64, rng: &mut SplitMix64) -> Config {
         let (gx, gy) = normal_pair(rng);
+        // A car's θ moves by the heading change of an arc of length sigma.
+        let weight = self.steering.map_or(self.turn_cost, |s| s.radius);
         let theta = if self.rotating {
-            let s = if self.turn_cost > 0.0 {
-                (sigma / self.turn_cost).min(PI)
+            let s = if weight > 0.0 {
+                (sigma / weight).min(PI)
             } else {
                 PI
             };
@@ -403,6 +439,7 @@ mod tests {
             rotating,
             theta: 0.0,
             turn_cost: 2.0,
+            steering: None,
         }
     }
 

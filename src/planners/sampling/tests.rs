@@ -175,6 +175,7 @@ fn the_roadmap_query_agrees_with_dijkstra() {
         rotating: true,
         theta: 0.0,
         turn_cost: 1.5,
+        steering: None,
     };
     for seed in 0..50 {
         let mut rng = SplitMix64::new(seed);
