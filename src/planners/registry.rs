@@ -85,7 +85,7 @@ pub fn planner(kind: &str) -> Option<&'static Planner> {
 /// The planner reference (`docs/planners.md`): every planner's robots,
 /// limits, parameters and metrics, and the common ones, as Markdown.
 pub fn reference() -> String {
-    use crate::contract::schema::{DRIVE_METRICS, DRIVE_PARAMS, DefaultValue};
+    use crate::contract::schema::{DRIVE, DRIVE_METRICS, DefaultValue};
     use std::fmt::Write as _;
     let mut md = String::from(
         "# Planners\n\n\
@@ -123,9 +123,15 @@ pub fn reference() -> String {
     params(&mut md, &mut COMMON_PARAMS.iter());
     md.push_str("\nMetrics every plan reports (SPEC 3):\n");
     metrics(&mut md, &mut COMMON_METRICS.iter());
-    md.push_str("\n`drive unicycle { ... }` (SPEC 3.6) takes:\n");
-    params(&mut md, &mut DRIVE_PARAMS.iter());
-    md.push_str("\nand adds the metrics:\n");
+    for model in DRIVE {
+        let _ = writeln!(
+            md,
+            "\n`drive {} {{ ... }}` — {}. It takes:",
+            model.name, model.help
+        );
+        params(&mut md, &mut model.params.iter());
+    }
+    md.push_str("\nA plan with `drive` adds the metrics:\n");
     metrics(&mut md, &mut DRIVE_METRICS.iter());
     for p in PLANNERS {
         let robots: Vec<&str> = p.robots.iter().map(|r| r.name()).collect();
