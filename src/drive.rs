@@ -1,9 +1,12 @@
-//! Driving a path (SPEC 3.6): a simulated differential-drive robot follows
-//! any planner's path with a go-to-orientation and a go-to-cell loop
-//! (SEEDS.md §F). Independent of the planner that made the path: it sees
-//! only the list of configurations.
+//! Driving a path (SPEC 3.6, 3.8): a simulated robot follows any planner's
+//! path. Two models ([`Model`]): `unicycle`, a differential-drive robot
+//! with a go-to-orientation and a go-to-cell loop (SEEDS.md §F), and
+//! `pure_pursuit` ([`pure_pursuit`]), which follows the path continuously
+//! (a car's with its curvature bound and its cusps). Independent of the
+//! planner that made the path: they see only its configurations (and a
+//! car's segments).
 //!
-//! For each path point after the first, the robot first turns in place
+//! `unicycle`: for each path point after the first, the robot first turns in place
 //! (ω = turn_gain · heading error, at most `max_turn_rate`) until its
 //! heading points at the target within `align`; then it drives with
 //! v = min(gain · distance, max_speed) · max(cos(heading error), 0) while
@@ -11,16 +14,65 @@
 //! target. The state (x, y, θ) is integrated with forward Euler at a fixed
 //! `dt`.
 
+pub mod pure_pursuit;
+
 use std::collections::BTreeMap;
 
-use crate::contract::schema::{DRIVE_PARAMS, DefaultValue};
+use crate::contract::schema::{DefaultValue, ParamSpec, UNICYCLE_PARAMS};
 use crate::contract::{Param, ParamValue};
+use crate::geometry::car::CarPath;
 use crate::geometry::polygon::distance_point_segment;
 use crate::geometry::{Config, angle_diff};
+
+pub use pure_pursuit::PurePursuit;
 
 /// The most simulated steps of one drive; a drive that needs more stops
 /// there, unfinished.
 pub const MAX_DRIVE_STEPS: usize = 2_000_000;
+
+/// A validated block's numeric value of `key`: as given, or its default in
+/// `specs` (the model's schema); `None` for a key without a numeric
+/// default that was not given.
+pub(crate) fn block_value(
+    specs: &[ParamSpec],
+    block: &BTreeMap<&'static str, Param>,
+    key: &str,
+) -> Option<f64> {
+    match block.get(key).map(|p| &p.value) {
+        Some(ParamValue::Num(x)) => Some(*x),
+        _ => match specs.iter().find(|p| p.key == key).map(|p| p.default) {
+            Some(DefaultValue::Num(x, _)) => Some(x),
+            _ => None,
+        },
+    }
+}
+
+/// The model of a validated `drive MODEL { ... }` and its settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Model {
+    Unicycle(Unicycle),
+    PurePursuit(PurePursuit),
+}
+
+impl Model {
+    /// The settings of `drive model { block }` (the analyzer checked the
+    /// model and the keys).
+    pub fn from_block(model: &str, block: &BTreeMap<&'static str, Param>) -> Self {
+        match model {
+            "pure_pursuit" => Model::PurePursuit(PurePursuit::from_block(block)),
+            _ => Model::Unicycle(Unicycle::from_block(block)),
+        }
+    }
+
+    /// Drives `path` (a car's given by its segments too, `car`) from its
+    /// first configuration.
+    pub fn drive(&self, path: &[Config], car: Option<&CarPath>) -> DriveOutcome {
+        match self {
+            Model::Unicycle(u) => drive(path, u),
+            Model::PurePursuit(p) => pure_pursuit::drive(path, car, p),
+        }
+    }
+}
 
 /// Settings of the simulated robot.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,18 +88,11 @@ pub struct Unicycle {
 
 impl Unicycle {
     /// The settings of a validated `drive unicycle { ... }` block: each key
-    /// as given, or its default in [`DRIVE_PARAMS`].
+    /// as given, or its default in [`UNICYCLE_PARAMS`].
     pub fn from_block(block: &BTreeMap<&'static str, Param>) -> Self {
-        let get = |key: &str| match block.get(key).map(|p| &p.value) {
-            Some(ParamValue::Num(x)) => *x,
-            _ => match DRIVE_PARAMS
-                .iter()
-                .find(|p| p.key == key)
-                .map(|p| p.default)
-            {
-                Some(DefaultValue::Num(x, _)) => x,
-                other => panic!("drive key `{key}` has no numeric default ({other:?})"),
-            },
+        let get = |key: &str| {
+            block_value(UNICYCLE_PARAMS, block, key)
+                .unwrap_or_else(|| panic!("drive key `{key}` has no numeric default"))
         };
         Unicycle {
             dt: get("dt"),
@@ -164,7 +209,7 @@ pub fn drive(path: &[Config], u: &Unicycle) -> DriveOutcome {
     }
 }
 
-fn unfinished(samples: Vec<(f64, Config)>, max_deviation: f64) -> DriveOutcome {
+pub(crate) fn unfinished(samples: Vec<(f64, Config)>, max_deviation: f64) -> DriveOutcome {
     DriveOutcome {
         samples,
         time: f64::INFINITY,
@@ -290,7 +335,7 @@ mod tests {
     #[test]
     fn the_defaults_are_the_ones_the_schema_writes() {
         // A block giving every key its documented default, as written.
-        let block: Vec<String> = crate::contract::schema::DRIVE_PARAMS
+        let block: Vec<String> = UNICYCLE_PARAMS
             .iter()
             .map(|p| format!("{} {}", p.key, p.default.text()))
             .collect();
@@ -303,7 +348,7 @@ mod tests {
         let Some(ParamValue::Block(_, given)) = scenario.plans[0].params.get("drive") else {
             panic!("no drive block");
         };
-        assert_eq!(given.len(), crate::contract::schema::DRIVE_PARAMS.len());
+        assert_eq!(given.len(), UNICYCLE_PARAMS.len());
         assert_eq!(Unicycle::from_block(given), Unicycle::default());
         // The values the simulation documents (DECISIONS.md).
         let d = Unicycle::default();

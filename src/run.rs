@@ -12,7 +12,7 @@ use crate::contract::ParamValue;
 use crate::contract::Task;
 use crate::contract::schema::RobotKind;
 use crate::contract::{MetricValue, Metrics, PlanOutcome};
-use crate::drive::{self, DriveOutcome, Unicycle};
+use crate::drive::{self, DriveOutcome};
 use crate::geometry::car::{CarPath, swept_poses, validate_car_path};
 use crate::geometry::path::{path_length, path_turn, smoothness};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError, Validator};
@@ -286,7 +286,8 @@ fn car_metrics(car: Option<&CarPath>, metrics: &mut Metrics) {
     }
 }
 
-/// For a plan with `drive unicycle`: drives its path (SPEC 3.6), validates
+/// For a plan with `drive`: drives its path with the model of the block
+/// (SPEC 3.6, 3.8; a car's along its segments), validates
 /// the driven trajectory like a path, and adds the drive metrics. Without a
 /// path there is nothing to drive: `drive_time` and `drive_max_deviation`
 /// are +∞ and `drive_collision_free` false.
@@ -297,7 +298,7 @@ fn drive_plan(
     metrics: &mut Metrics,
 ) -> Option<DriveOutcome> {
     use MetricValue::{Bool, Num};
-    let Some(ParamValue::Block(_, block)) = plan.params.get("drive") else {
+    let Some(ParamValue::Block(model, block)) = plan.params.get("drive") else {
         return None;
     };
     let Some(path) = &outcome.path else {
@@ -306,7 +307,7 @@ fn drive_plan(
         metrics.insert("drive_collision_free".into(), Bool(false));
         return None;
     };
-    let driven = drive::drive(path, &Unicycle::from_block(block));
+    let driven = drive::Model::from_block(model, block).drive(path, outcome.car.as_ref());
     let poses: Vec<Config> = driven.samples.iter().map(|(_, c)| *c).collect();
     let robot = &scenario.robots[plan.robot].shape;
     let valid = validator::validate_path(&scenario.world, robot, &poses, DEFAULT_TOLERANCE).is_ok();

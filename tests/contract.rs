@@ -369,11 +369,11 @@ fn robots_a_planner_does_not_declare_are_refused() {
 
 /// A numeric default is written once, in the schema, with the form a user
 /// would type (`10ms`, `0.5deg`): written in a plan, that form reads as the
-/// default's value, for every planner's parameters and the `drive` block's.
+/// default's value, for every planner's parameters and every `drive` model's.
 #[test]
 fn written_defaults_read_as_their_values() {
     use scen::contract::ParamValue;
-    use scen::contract::schema::DRIVE_PARAMS;
+    use scen::contract::schema::DRIVE;
     let mut problems = Vec::new();
     for planner in PLANNERS {
         let numeric: Vec<(&str, f64, &str)> = planner
@@ -385,13 +385,18 @@ fn written_defaults_read_as_their_values() {
             })
             .collect();
         let given: Vec<String> = numeric.iter().map(|(k, _, w)| format!("{k} {w}")).collect();
-        let drive: Vec<String> = DRIVE_PARAMS
+        // Each planner with one model, in turn.
+        let model = &DRIVE[planner.kind.len() % DRIVE.len()];
+        let drive: Vec<String> = model
+            .params
             .iter()
+            .filter(|p| matches!(p.default, DefaultValue::Num(..)))
             .map(|p| format!("{} {}", p.key, p.default.text()))
             .collect();
         let extra = format!(
-            "{} drive unicycle {{ {} }}",
+            "{} drive {} {{ {} }}",
             given.join(" "),
+            model.name,
             drive.join(" ")
         );
         let scenario = loaded(planner, planner.robots[0], World::Open, &extra);
@@ -409,15 +414,15 @@ fn written_defaults_read_as_their_values() {
             problems.push(format!("{}: no drive block", planner.kind));
             continue;
         };
-        for p in DRIVE_PARAMS {
+        for p in model.params {
             let DefaultValue::Num(x, written) = p.default else {
                 continue;
             };
             match block.get(p.key).map(|p| &p.value) {
                 Some(ParamValue::Num(v)) if (*v - x).abs() <= 1e-15 * x.abs() => {}
                 other => problems.push(format!(
-                    "drive.{}: `{written}` reads as {other:?}, the default is {x}",
-                    p.key
+                    "drive {}.{}: `{written}` reads as {other:?}, the default is {x}",
+                    model.name, p.key
                 )),
             }
         }

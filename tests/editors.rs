@@ -29,9 +29,10 @@ use scen::planners::registry::PLANNERS;
 use scen::scenario::{AGGREGATES, BENCH_KEYS};
 use serde_json::Value;
 
-/// The keys of `drive unicycle { ... }` (SPEC 3.6), from the drive schema.
+/// The keys of `drive MODEL { ... }` (SPEC 3.6, 3.8), every model's, from
+/// the drive schema.
 fn drive_keys() -> impl Iterator<Item = &'static str> {
-    scen::contract::schema::DRIVE_PARAMS.iter().map(|p| p.key)
+    scen::contract::schema::drive_params().map(|p| p.key)
 }
 
 fn root() -> PathBuf {

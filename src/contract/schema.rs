@@ -122,7 +122,10 @@ impl ValueSpec {
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
-            ValueSpec::Drive => "`unicycle`, optionally followed by `{ ... }`".into(),
+            ValueSpec::Drive => format!(
+                "a model ({}), optionally followed by `{{ ... }}`",
+                backticked(DRIVE_MODELS)
+            ),
             ValueSpec::Seconds { max } => {
                 format!("a positive number of seconds or a duration (`10ms`), at most {max}s")
             }
@@ -342,8 +345,49 @@ word_enum! {
 /// `time DURATION`, `cells N`, `iterations N`.
 pub const LIMIT_KINDS: &[&str] = &["expansions", "steps", "time", "cells", "iterations"];
 
-/// The models of `drive` (SPEC 3.6).
-pub const DRIVE_MODELS: &[&str] = &["unicycle"];
+/// The models of `drive` (SPEC 3.6, 3.8), in the order of [`DRIVE`].
+pub const DRIVE_MODELS: &[&str] = &["unicycle", "pure_pursuit"];
+
+/// One model of `drive`: its word, what it is, and the sub-parameters of
+/// its `{ ... }` block (the keys of one model are not the other's).
+#[derive(Clone, Copy, Debug)]
+pub struct DriveModel {
+    pub name: &'static str,
+    pub help: &'static str,
+    pub params: &'static [ParamSpec],
+}
+
+/// Every model of `drive`, in the order of [`DRIVE_MODELS`].
+pub const DRIVE: &[DriveModel] = &[
+    DriveModel {
+        name: "unicycle",
+        help: "turn in place towards each path point, then drive to it (SPEC 3.6)",
+        params: UNICYCLE_PARAMS,
+    },
+    DriveModel {
+        name: "pure_pursuit",
+        help: "follow the path continuously, steering towards a point `lookahead` ahead on it; a car keeps its curvature bound and reverses at its cusps (SPEC 3.8)",
+        params: PURE_PURSUIT_PARAMS,
+    },
+];
+
+/// The model of `drive NAME`.
+pub fn drive_model(name: &str) -> Option<&'static DriveModel> {
+    DRIVE.iter().find(|m| m.name == name)
+}
+
+/// Every key of every model's block, each once (the first model's spec of
+/// a shared key such as `dt`): how a block groups and what the editors
+/// colour, whatever its model.
+pub fn drive_params() -> impl Iterator<Item = &'static ParamSpec> {
+    DRIVE.iter().enumerate().flat_map(|(k, m)| {
+        m.params.iter().filter(move |p| {
+            !DRIVE[..k]
+                .iter()
+                .any(|earlier| earlier.params.iter().any(|q| q.key == p.key))
+        })
+    })
+}
 
 /// Parameters every planner accepts (SPEC 2.5).
 pub const COMMON_PARAMS: &[ParamSpec] = &[
@@ -381,13 +425,13 @@ pub const COMMON_PARAMS: &[ParamSpec] = &[
         "drive",
         ValueSpec::Drive,
         DefaultValue::None,
-        "simulate a differential-drive robot following the path",
+        "simulate a robot following the path: `unicycle` (turn, then go to each point) or `pure_pursuit` (continuously)",
     ),
 ];
 
 /// The sub-parameters of `drive unicycle { ... }` (SPEC 3.6), with the
 /// defaults the simulation takes for keys not given.
-pub const DRIVE_PARAMS: &[ParamSpec] = &[
+pub const UNICYCLE_PARAMS: &[ParamSpec] = &[
     ParamSpec::new(
         "dt",
         ValueSpec::Seconds { max: 1.0 },
@@ -431,6 +475,41 @@ pub const DRIVE_PARAMS: &[ParamSpec] = &[
         },
         num(0.008_726_646_259_971_648, "0.5deg"),
         "heading error under which the robot stops turning in place and drives",
+    ),
+];
+
+/// The sub-parameters of `drive pure_pursuit { ... }` (SPEC 3.8), with the
+/// defaults the simulation takes for keys not given.
+pub const PURE_PURSUIT_PARAMS: &[ParamSpec] = &[
+    ParamSpec::new(
+        "lookahead",
+        up_to(1e6),
+        num(1.0, "1"),
+        "arc length along the path from the robot's projection to the point it steers towards; the robot brakes over the last `lookahead` of each piece",
+    ),
+    ParamSpec::new(
+        "speed",
+        up_to(1e6),
+        num(1.0, "1"),
+        "cruising speed, world units per second (forward and in reverse)",
+    ),
+    ParamSpec::new(
+        "dt",
+        ValueSpec::Seconds { max: 1.0 },
+        num(0.01, "10ms"),
+        "integration step in seconds (a number or a duration such as `10ms`)",
+    ),
+    ParamSpec::new(
+        "reach",
+        up_to(1e6),
+        num(0.0009, "0.0009"),
+        "arc length short of a piece's end (the path's end, or a cusp) at which the robot stops",
+    ),
+    ParamSpec::new(
+        "max_curvature",
+        up_to(1e6),
+        DefaultValue::Derived("1/R for a car, else none"),
+        "largest curvature the robot steers with (1/world units); a car's is at most 1/R of its `steer`",
     ),
 ];
 

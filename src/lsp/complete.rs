@@ -5,9 +5,7 @@
 use lsp_types::{CompletionItem, CompletionItemKind, Documentation, MarkupContent, MarkupKind};
 
 use super::analysis::{Analysis, NameKind};
-use crate::contract::schema::{
-    DRIVE_METRICS, DRIVE_PARAMS, MetricSpec, MetricType, ParamSpec, ValueSpec,
-};
+use crate::contract::schema::{DRIVE_METRICS, MetricSpec, MetricType, ParamSpec, ValueSpec};
 use crate::geometry::steer::MODEL_NAMES;
 use crate::planners::registry::{self, PLANNERS};
 use crate::scenario::grouping::ParamKeys;
@@ -261,7 +259,7 @@ pub(crate) fn metric_doc(metric: &MetricSpec) -> String {
 
 fn param_keys(keys: ParamKeys<'_>) -> Vec<CompletionItem> {
     let specs: Vec<&'static ParamSpec> = match keys {
-        ParamKeys::Drive => DRIVE_PARAMS.iter().collect(),
+        ParamKeys::Drive => crate::contract::schema::drive_params().collect(),
         ParamKeys::Plan(kind) => match registry::planner(kind) {
             Some(planner) => planner.all_params().collect(),
             None => return Vec::new(),

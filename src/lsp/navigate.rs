@@ -146,7 +146,7 @@ fn in_body<'a>(
 ) -> Option<(Target<'a>, Span)> {
     let owner = match keys {
         ParamKeys::Plan(kind) => kind,
-        ParamKeys::Drive => "drive unicycle",
+        ParamKeys::Drive => "drive",
     };
     for group in group_params(body, keys) {
         for (k, token) in body[group.tokens.clone()].iter().enumerate() {

@@ -85,7 +85,7 @@ pub fn planner(kind: &str) -> Option<&'static Planner> {
 /// The planner reference (`docs/planners.md`): every planner's robots,
 /// limits, parameters and metrics, and the common ones, as Markdown.
 pub fn reference() -> String {
-    use crate::contract::schema::{CAR_METRICS, DRIVE_METRICS, DRIVE_PARAMS, DefaultValue};
+    use crate::contract::schema::{CAR_METRICS, DRIVE, DRIVE_METRICS, DefaultValue};
     use std::fmt::Write as _;
     let mut md = String::from(
         "# Planners\n\n\
@@ -128,9 +128,15 @@ pub fn reference() -> String {
          segments; no value for a robot that is not a car, or without a path):\n",
     );
     metrics(&mut md, &mut CAR_METRICS.iter());
-    md.push_str("\n`drive unicycle { ... }` (SPEC 3.6) takes:\n");
-    params(&mut md, &mut DRIVE_PARAMS.iter());
-    md.push_str("\nand adds the metrics:\n");
+    for model in DRIVE {
+        let _ = writeln!(
+            md,
+            "\n`drive {} {{ ... }}` — {}. It takes:",
+            model.name, model.help
+        );
+        params(&mut md, &mut model.params.iter());
+    }
+    md.push_str("\nA plan with `drive` adds the metrics:\n");
     metrics(&mut md, &mut DRIVE_METRICS.iter());
     for p in PLANNERS {
         let robots: Vec<&str> = p.robots.iter().map(|r| r.name()).collect();

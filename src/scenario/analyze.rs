@@ -211,9 +211,9 @@ struct ParamSet {
     /// After "parameters of": "`KIND`".
     name: String,
     specs: Vec<&'static schema::ParamSpec>,
-    /// The keys of the `drive` block nested in this list, for a help line
-    /// when one is written outside it.
-    nested: &'static [schema::ParamSpec],
+    /// A `drive` block may be nested in this list (a plan's): a help line
+    /// says to put a drive key written outside it there.
+    nested: bool,
     /// A plan's list: an unknown key that other planners take names them.
     plan: bool,
 }

@@ -10,7 +10,7 @@ use std::ops::Range;
 use crate::planners::registry::{self, PLANNERS};
 use crate::syntax::ast::ParamToken;
 
-use crate::contract::schema::{COMMON_PARAMS, DRIVE_PARAMS, ParamSpec, ValueSpec};
+use crate::contract::schema::{COMMON_PARAMS, ParamSpec, ValueSpec, drive_params};
 
 /// One parameter of a body: the range of its tokens, the first being its
 /// key when `spec` is known.
@@ -22,7 +22,8 @@ pub struct ParamGroup {
 
 /// The parameters a body may give: a plan's of kind `kind`, every
 /// planner's when the kind is unknown (so that a typo in the kind does not
-/// change the layout), or the `drive` block's.
+/// change the layout), or a `drive` block's (every model's keys: the
+/// analyzer says which model takes which).
 #[derive(Clone, Copy, Debug)]
 pub enum ParamKeys<'a> {
     Plan(&'a str),
@@ -33,7 +34,7 @@ impl ParamKeys<'_> {
     /// The parameter `key`, if this body accepts it.
     pub fn spec(&self, key: &str) -> Option<&'static ParamSpec> {
         match self {
-            ParamKeys::Drive => DRIVE_PARAMS.iter().find(|p| p.key == key),
+            ParamKeys::Drive => drive_params().find(|p| p.key == key),
             ParamKeys::Plan(kind) => match registry::planner(kind) {
                 Some(planner) => planner.param(key),
                 None => COMMON_PARAMS

@@ -13,7 +13,7 @@ use scen::planners::registry::PLANNERS;
 
 use scen::contract::Planner;
 use scen::contract::schema::{
-    COMMON_METRICS, COMMON_PARAMS, DRIVE_METRICS, DRIVE_PARAMS, DefaultValue, ParamSpec, ValueSpec,
+    COMMON_METRICS, COMMON_PARAMS, DRIVE_METRICS, DefaultValue, ParamSpec, ValueSpec, drive_params,
 };
 use scen::scenario::{AGGREGATES, BENCH_KEYS};
 use serde_json::{Map, Value, json};
@@ -80,7 +80,7 @@ fn all_params() -> impl Iterator<Item = &'static ParamSpec> {
     COMMON_PARAMS
         .iter()
         .chain(PLANNERS.iter().flat_map(|p| p.params.iter()))
-        .chain(DRIVE_PARAMS.iter())
+        .chain(drive_params())
 }
 
 fn is_identifier(word: &str) -> bool {

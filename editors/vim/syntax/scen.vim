@@ -110,15 +110,15 @@ syn keyword scenParamKey contained start goal seed drive cell sample connect lay
 syn keyword scenParamKey contained rotate strategy sense arc_segments attract repulse influence step tolerance escape
 syn keyword scenParamKey contained jump on tool weights range goal_bias sampler stop simplify rewire informed neighbors
 syn keyword scenParamKey contained reverse_cost switch_cost analytic dt max_speed max_turn_rate gain turn_gain reach
-syn keyword scenParamKey contained align
+syn keyword scenParamKey contained align lookahead speed max_curvature
 " A key that is a word value too is two matches, not keywords (a keyword would
 " win everywhere): the word's, defined later, wins after the keys it follows.
 syn match   scenParamKey contained /\<limit\>/
 " `limit KIND N`.
 syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
-syn keyword scenWord contained unicycle center corner auto euclid l1 lattice metric zero yes no backtrack shortcut
-syn keyword scenWord contained replan dstar_lite none random_walk max sum uniform gaussian bridge first smooth
+syn keyword scenWord contained unicycle pure_pursuit center corner auto euclid l1 lattice metric zero yes no backtrack
+syn keyword scenWord contained shortcut replan dstar_lite none random_walk max sum uniform gaussian bridge first smooth
 syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " END GENERATED parameters
 

@@ -447,7 +447,7 @@ impl Analyzer {
         let drive_metric = schema::DRIVE_METRICS.iter().any(|m| m.name == metric.value);
         d = match did_you_mean(&metric.value, names.iter().copied()) {
             _ if drive_metric => d.help(format!(
-                "`{}` is measured when the plan drives its path: add `drive unicycle` to plan `{}`",
+                "`{}` is measured when the plan drives its path: add `drive unicycle` or `drive pure_pursuit` to plan `{}`",
                 metric.value, info.name
             )),
             Some(n) => d.help(format!(

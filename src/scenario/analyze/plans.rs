@@ -199,7 +199,7 @@ impl Analyzer {
             owner: format!("planner `{}`", planner.kind),
             name: format!("`{}`", planner.kind),
             specs: planner.all_params().collect(),
-            nested: schema::DRIVE_PARAMS,
+            nested: true,
             plan: true,
         };
         let mut limits = Limits::default();
@@ -294,37 +294,57 @@ impl Analyzer {
         (Some(params), given)
     }
 
-    /// `drive unicycle { key value ... }`: the model word and the block's
-    /// sub-parameters (SPEC 3.6, [`schema::DRIVE_PARAMS`]).
+    /// `drive MODEL { key value ... }`: the model word and the block's
+    /// sub-parameters, the model's own (SPEC 3.6, 3.8,
+    /// [`schema::DRIVE`]): a key of another model is an unknown key that
+    /// says which model takes it.
     pub(super) fn drive_block(&mut self, model: &Spanned<String>, block: &[ParamToken]) -> Parsed {
-        let mut ok = true;
-        if model.value != "unicycle" {
-            self.error(
-                Diag::error(
-                    "scen::analyze::out_of_range",
-                    format!("`drive` does not accept `{}`", model.value),
-                )
-                .at(model.span, "not a drive model")
-                .help("the only drive model is `unicycle`: `drive unicycle { dt 0.01 }`"),
-            );
-            ok = false;
-        }
+        let Some(spec) = schema::drive_model(&model.value) else {
+            let mut d = Diag::error(
+                "scen::analyze::out_of_range",
+                format!("`drive` does not accept `{}`", model.value),
+            )
+            .at(model.span, "not a drive model");
+            d = match did_you_mean(&model.value, schema::DRIVE_MODELS.iter().copied()) {
+                Some(m) => d.help(format!(
+                    "did you mean `{m}`? the drive models are {}",
+                    schema::backticked(schema::DRIVE_MODELS)
+                )),
+                None => d.help(format!(
+                    "the drive models are {}: `drive unicycle {{ dt 0.01 }}`, `drive pure_pursuit {{ lookahead 1 }}`",
+                    schema::backticked(schema::DRIVE_MODELS)
+                )),
+            };
+            self.error(d);
+            // Check the block's values against every model's keys, for
+            // the other errors.
+            let set = ParamSet {
+                owner: "`drive`".into(),
+                name: "`drive`".into(),
+                specs: schema::drive_params().collect(),
+                nested: false,
+                plan: false,
+            };
+            self.param_list(block, &set, |this, spec, next, _, _| {
+                this.param_value(spec, next)
+                    .map_or(Parsed::Bad, Parsed::Value)
+            });
+            return Parsed::Bad;
+        };
+        let name = format!("`drive {}`", spec.name);
         let set = ParamSet {
-            owner: "`drive unicycle`".into(),
-            name: "`drive unicycle`".into(),
-            specs: schema::DRIVE_PARAMS.iter().collect(),
-            nested: &[],
+            owner: name.clone(),
+            name,
+            specs: spec.params.iter().collect(),
+            nested: false,
             plan: false,
         };
-        let ParamList {
-            values,
-            ok: block_ok,
-            ..
-        } = self.param_list(block, &set, |this, spec, next, _, _| {
-            this.param_value(spec, next)
-                .map_or(Parsed::Bad, Parsed::Value)
-        });
-        if ok && block_ok {
+        let ParamList { values, ok, .. } =
+            self.param_list(block, &set, |this, spec, next, _, _| {
+                this.param_value(spec, next)
+                    .map_or(Parsed::Bad, Parsed::Value)
+            });
+        if ok {
             Parsed::Value(ParamValue::Block(model.value.clone(), values))
         } else {
             Parsed::Bad
@@ -371,28 +391,43 @@ impl Analyzer {
                     format!("unknown parameter `{}` for {}", key.value, set.owner),
                 )
                 .at(key.span, "unknown key");
-                let nested = set.nested.iter().find(|p| p.key == key.value);
+                let nested = schema::DRIVE
+                    .iter()
+                    .filter(|_| set.nested)
+                    .find_map(|m| Some(m.name).zip(m.params.iter().find(|p| p.key == key.value)));
+                let other_model = schema::DRIVE
+                    .iter()
+                    .filter(|m| !set.plan && m.params.iter().any(|p| p.key == key.value))
+                    .map(|m| m.name)
+                    .next();
                 let elsewhere = set.planners_accepting(&key.value);
                 d = match (
                     nested,
+                    other_model,
                     did_you_mean(&key.value, set.specs.iter().map(|p| p.key)),
                 ) {
-                    (Some(p), _) => d.help(format!(
-                        "put it in the drive block: `drive unicycle {{ {} {} }}`",
+                    (Some((model, p)), _, _) => d.help(format!(
+                        "put it in the drive block: `drive {model} {{ {} {} }}`",
                         p.key,
                         p.default.text()
                     )),
-                    (None, _) if !elsewhere.is_empty() => d.help(format!(
+                    (None, Some(model), _) => d.help(format!(
+                        "`{}` is a key of `drive {model}`; {} accepts: {}",
+                        key.value,
+                        set.name,
+                        set.keys()
+                    )),
+                    (None, None, _) if !elsewhere.is_empty() => d.help(format!(
                         "`{}` is a parameter of {} only; {} accepts: {}",
                         key.value,
                         schema::backticked(&elsewhere),
                         set.name,
                         set.keys()
                     )),
-                    (None, Some(k)) => {
+                    (None, None, Some(k)) => {
                         d.help(format!("did you mean `{k}`? accepted: {}", set.keys()))
                     }
-                    (None, None) => d.help(format!("accepted: {}", set.keys())),
+                    (None, None, None) => d.help(format!("accepted: {}", set.keys())),
                 };
                 self.error(d);
                 ok = false;
