@@ -601,34 +601,14 @@ impl<'a> Run<'a> {
             index.k_nearest(&key, k, out);
             return;
         }
-        let n = index.len();
-        let mut m = (2 * k).max(8).min(n);
-        let mut candidates = Vec::new();
-        loop {
-            index.k_nearest(&key, m, &mut candidates);
-            out.clear();
-            out.extend(candidates.iter().map(|&(_, i)| {
-                let c = state(i as usize);
-                let d = if to_q {
-                    self.space.distance(c, q)
-                } else {
-                    self.space.distance(q, c)
-                };
-                (d * d, i)
-            }));
-            out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            out.truncate(k);
-            let reach2 = candidates.last().map_or(0.0, |&(d2, _)| d2);
-            let kth2 = if out.len() == k {
-                out[k - 1].0
+        nn::k_nearest_bounded(index, &key, k, out, |i| {
+            let c = state(i);
+            if to_q {
+                self.space.distance(c, q)
             } else {
-                f64::INFINITY
-            };
-            if m >= n || kth2 <= reach2 {
-                return;
+                self.space.distance(q, c)
             }
-            m = (m * 4).min(n);
-        }
+        });
     }
 
     /// The state nearest to `q` (see [`Run::k_nearest`]) and its squared

@@ -262,6 +262,47 @@ impl Ord for Candidate {
     }
 }
 
+/// The `k` points nearest to `q` in a distance `exact(i)` that the index's
+/// own distance never exceeds (a car's steering length over the Euclidean
+/// distance of the reference points), into `out` as (squared exact
+/// distance, index), nearest first, ties to the lower index.
+///
+/// The m nearest by the index's distance (m growing ×4) hold the k nearest
+/// by `exact` once the k-th exact distance found is no more than the m-th
+/// index distance: every point left out is at least that far by the index,
+/// so at least that far exactly.
+pub fn k_nearest_bounded(
+    index: &mut KdTree,
+    q: &[f64; 3],
+    k: usize,
+    out: &mut Vec<(f64, u32)>,
+    exact: impl Fn(usize) -> f64,
+) {
+    let n = index.len();
+    let mut m = (2 * k).max(8).min(n);
+    let mut candidates = Vec::new();
+    loop {
+        index.k_nearest(q, m, &mut candidates);
+        out.clear();
+        out.extend(candidates.iter().map(|&(_, i)| {
+            let d = exact(i as usize);
+            (d * d, i)
+        }));
+        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        out.truncate(k);
+        let reach2 = candidates.last().map_or(0.0, |&(d2, _)| d2);
+        let kth2 = if out.len() == k {
+            out[k - 1].0
+        } else {
+            f64::INFINITY
+        };
+        if m >= n || kth2 <= reach2 {
+            return;
+        }
+        m = (m * 4).min(n);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -308,6 +349,42 @@ mod tests {
                 prop_assert_eq!(&out, &expected);
                 let nearest = tree.nearest(&q);
                 prop_assert_eq!(nearest, Some((expected[0].1 as usize, expected[0].0)));
+            }
+        }
+    }
+
+    proptest! {
+        /// For a car: the k nearest by steering length (Dubins: either
+        /// way), found through the Euclidean index, are those of a scan.
+        #[test]
+        fn k_nearest_by_steering_length_agrees_with_a_scan(
+            seed in 0u64..1_000_000,
+            n in 1usize..300,
+            k in 1usize..20,
+            radius in 0.3f64..5.0,
+            dubins in any::<bool>(),
+            to_q in any::<bool>(),
+        ) {
+            use crate::geometry::Config;
+            use crate::geometry::steer::{Model, Steering};
+            let model = if dubins { Model::Dubins } else { Model::ReedsShepp };
+            let steering = Steering::new(model, radius);
+            let mut rng = SplitMix64::new(seed);
+            let mut draw = || Config::new(rng.range(0.0, 20.0), rng.range(0.0, 20.0), rng.range(0.0, std::f64::consts::TAU));
+            let states: Vec<Config> = (0..n).map(|_| draw()).collect();
+            let mut tree = KdTree::new(3, 0.0);
+            for c in &states {
+                tree.insert([c.x, c.y, 0.0]);
+            }
+            let mut out = Vec::new();
+            for _ in 0..10 {
+                let q = draw();
+                let exact = |i: usize| if to_q { steering.distance(states[i], q) } else { steering.distance(q, states[i]) };
+                k_nearest_bounded(&mut tree, &[q.x, q.y, 0.0], k, &mut out, exact);
+                let mut all: Vec<(f64, u32)> = (0..n).map(|i| (exact(i).powi(2), i as u32)).collect();
+                all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                all.truncate(k);
+                prop_assert_eq!(&out, &all);
             }
         }
     }
