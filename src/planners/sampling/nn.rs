@@ -140,10 +140,53 @@ impl KdTree {
 
     /// The nearest point to `q` and its squared distance (`None` when
     /// empty); ties to the lower index.
+    ///
+    /// The walk of [`KdTree::k_nearest`] with k = 1, keeping the best
+    /// candidate in place of a heap (the planners' most frequent query).
     pub fn nearest(&mut self, q: &[f64; 3]) -> Option<(usize, f64)> {
-        let mut best = Vec::with_capacity(1);
-        self.k_nearest(q, 1, &mut best);
-        best.first().map(|&(d2, i)| (i as usize, d2))
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let mut q = *q;
+        if self.dims == 2 {
+            q[2] = 0.0;
+        }
+        let mut stack = std::mem::take(&mut self.stack);
+        stack.clear();
+        stack.push((0, self.gap2(&q, &self.lo, &self.hi)));
+        let mut best = Candidate(f64::INFINITY, u32::MAX);
+        while let Some((node, bound)) = stack.pop() {
+            if bound > best.0 {
+                continue;
+            }
+            let n = &self.nodes[node as usize];
+            let candidate = Candidate(self.distance2(&q, &n.key), node);
+            if candidate < best {
+                best = candidate;
+            }
+            let [a, b] = n.children;
+            let gap = |side: usize| {
+                if n.children[side] == NONE {
+                    f64::INFINITY
+                } else {
+                    self.gap2(&q, &n.lo[side], &n.hi[side])
+                }
+            };
+            let (ga, gb) = (gap(0), gap(1));
+            let ((near, gn), (far, gf)) = if ga <= gb {
+                ((a, ga), (b, gb))
+            } else {
+                ((b, gb), (a, ga))
+            };
+            if far != NONE && gf <= best.0 {
+                stack.push((far, gf));
+            }
+            if near != NONE && gn <= best.0 {
+                stack.push((near, gn));
+            }
+        }
+        self.stack = stack;
+        Some((best.1 as usize, best.0))
     }
 
     /// The `k` nearest points to `q` into `out` as (squared distance,
