@@ -429,15 +429,18 @@ pub const COMMON_PARAMS: &[ParamSpec] = &[
     ),
 ];
 
+/// `dt` of every drive model: the integration step.
+const DRIVE_DT: ParamSpec = ParamSpec::new(
+    "dt",
+    ValueSpec::Seconds { max: 1.0 },
+    num(0.01, "10ms"),
+    "integration step in seconds (a number or a duration such as `10ms`)",
+);
+
 /// The sub-parameters of `drive unicycle { ... }` (SPEC 3.6), with the
 /// defaults the simulation takes for keys not given.
 pub const UNICYCLE_PARAMS: &[ParamSpec] = &[
-    ParamSpec::new(
-        "dt",
-        ValueSpec::Seconds { max: 1.0 },
-        num(0.01, "10ms"),
-        "integration step in seconds (a number or a duration such as `10ms`)",
-    ),
+    DRIVE_DT,
     ParamSpec::new(
         "max_speed",
         up_to(1e6),
@@ -493,12 +496,7 @@ pub const PURE_PURSUIT_PARAMS: &[ParamSpec] = &[
         num(1.0, "1"),
         "cruising speed, world units per second (forward and in reverse)",
     ),
-    ParamSpec::new(
-        "dt",
-        ValueSpec::Seconds { max: 1.0 },
-        num(0.01, "10ms"),
-        "integration step in seconds (a number or a duration such as `10ms`)",
-    ),
+    DRIVE_DT,
     ParamSpec::new(
         "reach",
         up_to(1e6),

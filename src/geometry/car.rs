@@ -20,7 +20,7 @@
 //! only a kind and a length.
 
 use super::steer::{Model, Segment, SteerPath, Steering, Turn};
-use super::validator::{DEFAULT_TOLERANCE, ValidationError, Validator};
+use super::validator::{ValidationError, Validator, usable_tolerance};
 use super::{Config, RobotShape, TOUCH_EPS, angle_diff};
 
 /// How close to the goal the integrated path must end (position, in world
@@ -51,6 +51,20 @@ impl CarPath {
             start,
             steering,
             segments: path.segments().to_vec(),
+        }
+    }
+
+    /// The shortest steering paths between consecutive `states`, end to
+    /// end, from `start` (a sampling planner's path as a car's).
+    pub fn through(start: Config, steering: Steering, states: &[Config]) -> Self {
+        let mut segments = Vec::new();
+        for w in states.windows(2) {
+            segments.extend_from_slice(steering.shortest(w[0], w[1]).segments());
+        }
+        CarPath {
+            start,
+            steering,
+            segments,
         }
     }
 
@@ -109,29 +123,18 @@ impl CarPath {
     /// drawn with a larger step.
     pub fn poses(&self, step: f64) -> Vec<Config> {
         let step = step.max(self.length() / MAX_SUB_STEPS as f64);
-        let mut out = vec![wrapped(self.start)];
+        let mut out = vec![self.start.wrapped()];
         let mut c = self.start;
         for s in &self.segments {
             let n = pieces(s.length.abs(), step);
             for k in 1..=n {
                 let part = s.length * k as f64 / n as f64;
-                out.push(wrapped(Segment::advance(
-                    c,
-                    s.turn,
-                    part,
-                    self.steering.radius,
-                )));
+                out.push(Segment::advance(c, s.turn, part, self.steering.radius).wrapped());
             }
             c = s.end(c, self.steering.radius);
         }
         out
     }
-}
-
-/// `theta` in [0, 2π).
-fn wrapped(c: Config) -> Config {
-    let t = c.theta.rem_euclid(std::f64::consts::TAU);
-    Config::new(c.x, c.y, if t >= std::f64::consts::TAU { 0.0 } else { t })
 }
 
 /// Pieces of at most `step` in a length (at least one).
@@ -147,7 +150,7 @@ fn pieces(length: f64, step: f64) -> usize {
 /// documentation): the model's rules, the end on `goal` (when given), and
 /// the body swept along every segment with sub-steps in which no point of
 /// the robot moves more than `tolerance` (not finite and positive:
-/// [`DEFAULT_TOLERANCE`]).
+/// [`super::validator::DEFAULT_TOLERANCE`]).
 ///
 /// # Returns
 /// `Ok(())`, or the first failure; its `segment` is the index of the car
@@ -159,11 +162,7 @@ pub fn validate_car_path(
     goal: Option<Config>,
     tolerance: f64,
 ) -> Result<(), ValidationError> {
-    let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
-        tolerance
-    } else {
-        DEFAULT_TOLERANCE
-    };
+    let tolerance = usable_tolerance(tolerance);
     let rho = path.steering.radius;
     let fail = |segment: usize, at: Config, reason: String| ValidationError {
         segment,
@@ -303,11 +302,7 @@ pub fn car_path_free(
     path: &CarPath,
     tolerance: f64,
 ) -> bool {
-    let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
-        tolerance
-    } else {
-        DEFAULT_TOLERANCE
-    };
+    let tolerance = usable_tolerance(tolerance);
     let rho = path.steering.radius;
     if !(rho.is_finite() && rho > 0.0) || path.segments.iter().any(|s| !s.length.is_finite()) {
         return false;
@@ -406,6 +401,7 @@ mod tests {
 
     use super::*;
     use crate::geometry::steer::Model;
+    use crate::geometry::validator::DEFAULT_TOLERANCE;
     use crate::geometry::validator::validate_path;
     use crate::geometry::{ConvexPolygon, Point};
     use crate::scenario::world_of_text;

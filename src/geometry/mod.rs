@@ -42,6 +42,11 @@ impl Config {
     pub fn xy(&self) -> Point {
         Point::new(self.x, self.y)
     }
+
+    /// The same configuration with θ in [0, 2π) ([`wrap_angle`]).
+    pub fn wrapped(self) -> Config {
+        Config::new(self.x, self.y, wrap_angle(self.theta))
+    }
 }
 
 /// An axis-aligned box (closed).
@@ -265,6 +270,13 @@ pub struct Obstacle {
 pub struct World {
     pub bounds: Aabb,
     pub obstacles: Vec<Obstacle>,
+}
+
+/// `theta` in [0, 2π) (`rem_euclid` of a tiny negative angle rounds up
+/// to 2π itself, which becomes 0).
+pub fn wrap_angle(theta: f64) -> f64 {
+    let t = theta.rem_euclid(std::f64::consts::TAU);
+    if t >= std::f64::consts::TAU { 0.0 } else { t }
 }
 
 /// Shortest signed angular difference `b - a`, in (-π, π].

@@ -68,6 +68,15 @@ pub struct ValidationError {
 /// Default sub-step tolerance.
 pub const DEFAULT_TOLERANCE: f64 = 0.01;
 
+/// `tolerance` when it is finite and positive, else [`DEFAULT_TOLERANCE`].
+pub fn usable_tolerance(tolerance: f64) -> f64 {
+    if tolerance.is_finite() && tolerance > 0.0 {
+        tolerance
+    } else {
+        DEFAULT_TOLERANCE
+    }
+}
+
 /// Checks a path against the world (SPEC 3.0).
 ///
 /// # Behaviour
@@ -199,11 +208,7 @@ impl<'w> Validator<'w> {
         path: &[Config],
         tolerance: f64,
     ) -> Result<(), ValidationError> {
-        let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
-            tolerance
-        } else {
-            DEFAULT_TOLERANCE
-        };
+        let tolerance = usable_tolerance(tolerance);
         match path {
             [] => Ok(()),
             [c] => {
@@ -535,11 +540,7 @@ impl<'w> Validator<'w> {
     /// obstacles or an empty path. Distances to a disk robot are measured
     /// from its boundary, to segment obstacles from the segment.
     pub fn clearance(&self, robot: &RobotShape, path: &[Config], tolerance: f64) -> f64 {
-        let tolerance = if tolerance.is_finite() && tolerance > 0.0 {
-            tolerance
-        } else {
-            DEFAULT_TOLERANCE
-        };
+        let tolerance = usable_tolerance(tolerance);
         let mut best = f64::INFINITY;
         let measure = |region: &Region, best: &mut f64| {
             for o in &self.obstacles {

@@ -29,7 +29,6 @@
 //! a whole before it is returned.
 
 use std::any::Any;
-use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 use std::f64::consts::TAU;
 
@@ -43,6 +42,7 @@ use crate::geometry::steer::{Model, Segment, Steering, Turn};
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Config, Point, RobotShape};
 use crate::planners::deadline::Deadline;
+use crate::planners::search::Open;
 
 /// The most search nodes (continuous poses) kept.
 pub const MAX_NODES: usize = 4_000_000;
@@ -134,32 +134,6 @@ struct Node {
     parent: u32,
     /// The arc from the parent (length 0 for the start).
     arc: Segment,
-}
-
-/// An open-list entry: lowest f first, then larger g, then the older node.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Open {
-    f: f64,
-    g: f64,
-    node: u32,
-}
-
-impl Eq for Open {}
-
-impl Ord for Open {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .f
-            .total_cmp(&self.f)
-            .then(self.g.total_cmp(&other.g))
-            .then(other.node.cmp(&self.node))
-    }
-}
-
-impl PartialOrd for Open {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
 }
 
 impl Settings for HybridAstar {
@@ -389,7 +363,7 @@ impl<'a> Search<'a> {
                     turn,
                     length: dir * self.s.step,
                 };
-                let pose = wrap(arc.end(n.pose, self.steering.radius));
+                let pose = arc.end(n.pose, self.steering.radius).wrapped();
                 let key = self.key(pose);
                 if self.closed.contains(&key) {
                     continue;
@@ -476,11 +450,6 @@ impl<'a> Search<'a> {
     }
 }
 
-/// θ in [0, 2π).
-fn wrap(c: Config) -> Config {
-    let t = c.theta.rem_euclid(TAU);
-    Config::new(c.x, c.y, if t >= TAU { 0.0 } else { t })
-}
 
 /// The holonomic heuristic: the 8-connected distance from each (x, y) cell
 /// to the goal's, over cells whose centre is free for a point.

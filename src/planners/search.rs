@@ -129,12 +129,13 @@ pub struct SearchResult {
     pub expansion_order: Vec<usize>,
 }
 
-/// An open-list entry: lowest f first, then highest g, then lowest index.
+/// An open-list entry: lowest f first, then highest g, then lowest index
+/// (also `hybrid_astar`'s, whose open list is its own).
 #[derive(Clone, Copy, Debug)]
-struct Open {
-    f: f64,
-    g: f64,
-    node: u32,
+pub(crate) struct Open {
+    pub(crate) f: f64,
+    pub(crate) g: f64,
+    pub(crate) node: u32,
 }
 
 impl PartialEq for Open {

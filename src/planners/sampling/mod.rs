@@ -61,7 +61,7 @@ use crate::geometry::motion::MotionChecker;
 use crate::geometry::path::path_length;
 use crate::geometry::steer::Steering;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
-use crate::geometry::{Config, Point, RobotShape, angle_diff};
+use crate::geometry::{Config, Point, RobotShape, angle_diff, wrap_angle};
 use crate::rng::SplitMix64;
 use crate::word_enum;
 
@@ -797,15 +797,7 @@ impl<'a> Run<'a> {
     /// closed form, is checked again: a path that fails (rounding at a
     /// touching contact) is not returned, and a note says so.
     fn car_path(&self, steering: Steering, states: &[Config], out: &mut PlanOutcome) {
-        let mut segments = Vec::new();
-        for w in states.windows(2) {
-            segments.extend_from_slice(steering.shortest(w[0], w[1]).segments());
-        }
-        let car = CarPath {
-            start: self.task.start,
-            steering,
-            segments,
-        };
+        let car = CarPath::through(self.task.start, steering, states);
         let referee = self.referee.as_ref().expect("a car's run has a referee");
         match validate_car_path(
             referee,
@@ -888,18 +880,11 @@ impl<'a> Run<'a> {
             && let (Some(raw), Some(_)) = (&grown.path, path)
         {
             let xy: Vec<Point> = match self.space.steering {
-                Some(steering) => {
-                    let mut segments = Vec::new();
-                    for w in raw.windows(2) {
-                        segments.extend_from_slice(steering.shortest(w[0], w[1]).segments());
-                    }
-                    let curve = CarPath {
-                        start: raw[0],
-                        steering,
-                        segments,
-                    };
-                    curve.poses(DRAW_STEP).iter().map(Config::xy).collect()
-                }
+                Some(steering) => CarPath::through(raw[0], steering, raw)
+                    .poses(DRAW_STEP)
+                    .iter()
+                    .map(Config::xy)
+                    .collect(),
                 None => raw.iter().map(Config::xy).collect(),
             };
             out.push(Layer::new(
@@ -916,7 +901,7 @@ impl<'a> Run<'a> {
 /// The motion from `a` to `b` in (x, y, θ) for the viewer: one strip, or
 /// two where θ crosses 2π (θ along the shorter arc, in [0, 2π)).
 fn cspace_edge(a: Config, b: Config) -> Vec<Vec<[f64; 3]>> {
-    let ta = space::wrap(a.theta);
+    let ta = wrap_angle(a.theta);
     let d = angle_diff(a.theta, b.theta);
     let tb = ta + d;
     let tau = std::f64::consts::TAU;

@@ -147,45 +147,13 @@ impl KdTree {
         if self.nodes.is_empty() {
             return None;
         }
-        let mut q = *q;
-        if self.dims == 2 {
-            q[2] = 0.0;
-        }
-        let mut stack = std::mem::take(&mut self.stack);
-        stack.clear();
-        stack.push((0, self.gap2(&q, &self.lo, &self.hi)));
         let mut best = Candidate(f64::INFINITY, u32::MAX);
-        while let Some((node, bound)) = stack.pop() {
-            if bound > best.0 {
-                continue;
-            }
-            let n = &self.nodes[node as usize];
-            let candidate = Candidate(self.distance2(&q, &n.key), node);
+        self.walk(q, |candidate| {
             if candidate < best {
                 best = candidate;
             }
-            let [a, b] = n.children;
-            let gap = |side: usize| {
-                if n.children[side] == NONE {
-                    f64::INFINITY
-                } else {
-                    self.gap2(&q, &n.lo[side], &n.hi[side])
-                }
-            };
-            let (ga, gb) = (gap(0), gap(1));
-            let ((near, gn), (far, gf)) = if ga <= gb {
-                ((a, ga), (b, gb))
-            } else {
-                ((b, gb), (a, ga))
-            };
-            if far != NONE && gf <= best.0 {
-                stack.push((far, gf));
-            }
-            if near != NONE && gn <= best.0 {
-                stack.push((near, gn));
-            }
-        }
-        self.stack = stack;
+            best.0
+        });
         Some((best.1 as usize, best.0))
     }
 
@@ -197,24 +165,11 @@ impl KdTree {
         if k == 0 || self.nodes.is_empty() {
             return;
         }
-        let mut q = *q;
-        if self.dims == 2 {
-            q[2] = 0.0;
-        }
-        let mut stack = std::mem::take(&mut self.stack);
         let mut heap = std::mem::take(&mut self.heap);
-        stack.clear();
         heap.clear();
-        stack.push((0, self.gap2(&q, &self.lo, &self.hi)));
         let mut worst = f64::INFINITY;
-        while let Some((node, bound)) = stack.pop() {
-            if bound > worst {
-                continue;
-            }
-            let n = &self.nodes[node as usize];
-            let d2 = self.distance2(&q, &n.key);
-            if d2 <= worst {
-                let candidate = Candidate(d2, node);
+        self.walk(q, |candidate| {
+            if candidate.0 <= worst {
                 if heap.len() < k {
                     heap.push(candidate);
                 } else if heap.peek().is_some_and(|w| candidate < *w) {
@@ -225,6 +180,32 @@ impl KdTree {
                     worst = heap.peek().map_or(f64::INFINITY, |w| w.0);
                 }
             }
+            worst
+        });
+        out.extend(heap.drain().map(|c| (c.0, c.1)));
+        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.heap = heap;
+    }
+
+    /// The walk both queries share: depth first, the nearer subtree first,
+    /// skipping every subtree whose box is farther than the bound. `visit`
+    /// sees each point reached as a candidate and returns the bound after
+    /// it (the squared distance beyond which nothing is wanted).
+    fn walk(&mut self, q: &[f64; 3], mut visit: impl FnMut(Candidate) -> f64) {
+        let mut q = *q;
+        if self.dims == 2 {
+            q[2] = 0.0;
+        }
+        let mut stack = std::mem::take(&mut self.stack);
+        stack.clear();
+        stack.push((0, self.gap2(&q, &self.lo, &self.hi)));
+        let mut limit = f64::INFINITY;
+        while let Some((node, bound)) = stack.pop() {
+            if bound > limit {
+                continue;
+            }
+            let n = &self.nodes[node as usize];
+            limit = visit(Candidate(self.distance2(&q, &n.key), node));
             let [a, b] = n.children;
             let gap = |side: usize| {
                 if n.children[side] == NONE {
@@ -240,16 +221,13 @@ impl KdTree {
             } else {
                 ((b, gb), (a, ga))
             };
-            if far != NONE && gf <= worst {
+            if far != NONE && gf <= limit {
                 stack.push((far, gf));
             }
-            if near != NONE && gn <= worst {
+            if near != NONE && gn <= limit {
                 stack.push((near, gn));
             }
         }
-        out.extend(heap.drain().map(|c| (c.0, c.1)));
-        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        self.heap = heap;
         self.stack = stack;
     }
 

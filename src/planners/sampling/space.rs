@@ -14,15 +14,8 @@
 use std::f64::consts::{PI, TAU};
 
 use crate::geometry::steer::Steering;
-use crate::geometry::{Aabb, Config, angle_diff};
+use crate::geometry::{Aabb, Config, angle_diff, wrap_angle};
 use crate::rng::SplitMix64;
-
-/// θ in [0, 2π).
-pub fn wrap(theta: f64) -> f64 {
-    let t = theta.rem_euclid(TAU);
-    // rem_euclid of a tiny negative angle rounds up to 2π itself.
-    if t >= TAU { 0.0 } else { t }
-}
 
 /// The space a plan samples: `bounds` × [0, 2π) for a rotating robot,
 /// `bounds` at the start's θ otherwise.
@@ -75,7 +68,7 @@ impl Space {
     /// [`Space::distance`].
     pub fn key(&self, c: Config) -> [f64; 3] {
         if self.rotating {
-            [c.x, c.y, self.turn_cost * wrap(c.theta)]
+            [c.x, c.y, self.turn_cost * wrap_angle(c.theta)]
         } else {
             [c.x, c.y, 0.0]
         }
@@ -94,10 +87,10 @@ impl Space {
         if let Some(s) = self.steering {
             let curve = s.shortest(a, b);
             let c = curve.config_at(a, t * curve.length());
-            return Config::new(c.x, c.y, wrap(c.theta));
+            return c.wrapped();
         }
         let theta = if self.rotating {
-            wrap(a.theta + t * angle_diff(a.theta, b.theta))
+            wrap_angle(a.theta + t * angle_diff(a.theta, b.theta))
         } else {
             self.theta
         };
@@ -157,7 +150,7 @@ impl Space {
             } else {
                 PI
             };
-            wrap(c.theta + s * normal_pair(rng).0)
+            wrap_angle(c.theta + s * normal_pair(rng).0)
         } else {
             self.theta
         };
@@ -242,7 +235,7 @@ impl Informed {
     pub fn new(space: &Space, start: Config, goal: Config, cost: f64) -> Self {
         let dims = space.dims();
         let c = space.turn_cost;
-        let s = [start.x, start.y, c * wrap(start.theta)];
+        let s = [start.x, start.y, c * wrap_angle(start.theta)];
         // The goal's image nearest to the start, then the others outwards.
         let g0 = [
             goal.x,
@@ -322,7 +315,7 @@ impl Informed {
             let p = chosen.sample(rng, self.dims);
             let q = if self.dims == 3 {
                 let c = space.turn_cost;
-                Config::new(p[0], p[1], if c > 0.0 { wrap(p[2] / c) } else { 0.0 })
+                Config::new(p[0], p[1], if c > 0.0 { wrap_angle(p[2] / c) } else { 0.0 })
             } else {
                 Config::new(p[0], p[1], space.theta)
             };
