@@ -53,6 +53,8 @@ pub fn eval(expr: &Expr, values: &dyn Values, used: &mut Used) -> MetricValue {
     match &expr.kind {
         ExprKind::Number(x) | ExprKind::Percent(x) => Num(*x),
         ExprKind::Bool(b) => Bool(*b),
+        // A sample replaces every param's name by its value before analysis.
+        ExprKind::Name(_) => Num(f64::NAN),
         ExprKind::Metric { plan, metric } => {
             let v = values
                 .metrics(&plan.value)
@@ -280,6 +282,8 @@ pub fn value_text(v: &Value) -> String {
             "[{}]",
             xs.iter().map(value_text).collect::<Vec<_>>().join(", ")
         ),
+        // A sample computes every expression before analysis.
+        ValueKind::Calc { .. } => "…".to_string(),
     }
 }
 

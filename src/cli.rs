@@ -131,9 +131,23 @@ pub struct RunArgs {
     /// Print timings too.
     #[arg(short, long)]
     pub verbose: bool,
+    /// For a family of scenarios (`param`, `scatter`): run sample K.
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    pub sample: u64,
+    /// For a family of scenarios: the seed its samples are drawn from.
+    #[arg(long, value_name = "S", default_value_t = 0)]
+    pub family_seed: u64,
 }
 
 impl RunArgs {
+    /// The sample of a family to run (`--sample`, `--family-seed`).
+    fn sample_choice(&self) -> crate::scenario::SampleChoice {
+        crate::scenario::SampleChoice {
+            sample: self.sample,
+            family_seed: self.family_seed,
+        }
+    }
+
     /// Where `--save`, `--spawn` or `--connect` send the run, if anywhere.
     fn viewer_target(&self) -> Option<ViewerTarget> {
         if let Some(path) = &self.save {
@@ -429,7 +443,13 @@ fn run_file(
     viewer_warned: &mut bool,
 ) -> (i32, Vec<PathBuf>) {
     let mut read = vec![file.to_path_buf()];
-    let scenario = match load(file, args.root.as_deref()) {
+    let loaded = crate::scenario::load_sample(
+        file,
+        args.root.as_deref(),
+        &|_| None,
+        args.sample_choice(),
+    );
+    let scenario = match loaded {
         Ok(s) => s,
         Err(f) => {
             read.extend(f.sources.files.iter().map(|s| s.path.clone()));

@@ -26,7 +26,8 @@ use crate::contract::schema::ValueSpec;
 use crate::diagnostics::{Diag, Span};
 use crate::scenario::grouping::{ParamKeys, group_bench, group_params};
 use crate::syntax::ast::{
-    self, Expr, ExprKind, ObstacleShape, ParamToken, RobotShape, Stmt, Value, ValueKind, WorldItem,
+    self, Expr, ExprKind, ObstacleShape, ParamSource, ParamToken, RobotShape, ScatterShape, Stmt,
+    Value, ValueKind, WorldItem,
 };
 use crate::syntax::{Lexer, TokenKind, UNIT_WORDS};
 
@@ -353,6 +354,27 @@ impl Writer<'_> {
                 self.space();
                 self.expr(out, expr);
             }
+            Stmt::Require { condition, span } => {
+                self.tok(out, span.start, "require");
+                self.space();
+                self.expr(out, condition);
+            }
+            Stmt::Param(param) => {
+                self.tok(out, param.span.start, "param");
+                self.space();
+                self.leaf(out, param.name.span);
+                self.space();
+                let equals = self.find_token(param.name.span.end, |t| t == "=");
+                self.tok(out, equals, "=");
+                match &param.value {
+                    ParamSource::Choice { keyword, values } => {
+                        self.space();
+                        self.leaf(out, *keyword);
+                        self.values(out, &[values]);
+                    }
+                    ParamSource::Value(v) => self.values(out, &[v]),
+                }
+            }
         }
     }
 
@@ -388,6 +410,38 @@ impl Writer<'_> {
                 return;
             }
             WorldItem::Obstacle(o) => o,
+            WorldItem::Scatter(s) => {
+                self.tok(out, s.span.start, "scatter");
+                self.space();
+                self.leaf(out, s.name.span);
+                self.values(out, &[&s.count]);
+                self.space();
+                match &s.shape {
+                    ScatterShape::Disk { keyword, radius } => {
+                        self.leaf(out, *keyword);
+                        self.values(out, &[radius]);
+                    }
+                    ScatterShape::Rect {
+                        keyword,
+                        width,
+                        height,
+                    } => {
+                        self.leaf(out, *keyword);
+                        self.values(out, &[width, height]);
+                    }
+                }
+                self.space();
+                let at = self.find_token(self.last_end, |t| t == "in");
+                self.tok(out, at, "in");
+                self.values(out, &[&s.min, &s.max]);
+                if let Some(gap) = &s.gap {
+                    self.space();
+                    let at = self.find_token(s.max.span.end, |t| t == "gap");
+                    self.tok(out, at, "gap");
+                    self.values(out, &[gap]);
+                }
+                return;
+            }
         };
         self.leaf(out, o.kind.span);
         if let Some(name) = &o.name {
@@ -486,6 +540,21 @@ impl Writer<'_> {
         match &value.kind {
             ValueKind::Tuple(items) => self.list(out, value.span, "(", items, ")", false),
             ValueKind::List(items) => self.list(out, value.span, "[", items, "]", true),
+            ValueKind::Calc { expr, unit: None } => self.expr(out, expr),
+            ValueKind::Calc {
+                expr,
+                unit: Some(_),
+            } => {
+                // `(EXPR)deg`: the unit is glued to the `)`.
+                let close = value.span.end - "deg".len() - 1;
+                self.tok(out, value.span.start, "(");
+                let mut group = Vec::new();
+                self.expr_inside(&mut group, expr);
+                self.tok(&mut group, close, ")");
+                out.push(Doc::Group(group));
+                let unit = Span::new(value.span.file, close + 1, value.span.end);
+                self.leaf(out, unit);
+            }
             _ => self.leaf(out, value.span),
         }
     }
@@ -557,7 +626,7 @@ impl Writer<'_> {
     /// An expression without its own parentheses.
     fn expr_inside(&mut self, out: &mut Vec<Doc>, e: &Expr) {
         match &e.kind {
-            ExprKind::Number(_) | ExprKind::Percent(_) | ExprKind::Bool(_) => {
+            ExprKind::Number(_) | ExprKind::Percent(_) | ExprKind::Bool(_) | ExprKind::Name(_) => {
                 let span = self.token_in(e.span);
                 self.leaf(out, span);
             }

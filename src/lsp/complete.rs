@@ -11,7 +11,7 @@ use crate::planners::registry::{self, PLANNERS};
 use crate::scenario::grouping::ParamKeys;
 use crate::scenario::{AGGREGATES, BENCH_KEYS};
 use crate::syntax::{
-    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS, ROBOT_SHAPE_KEYWORDS,
+    EXPRESSION_WORDS, FAMILY_VALUE_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS, ROBOT_SHAPE_KEYWORDS,
     STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
 };
 
@@ -106,6 +106,10 @@ pub(crate) fn completions(text: &str, offset: usize, analysis: &Analysis) -> Vec
             _ => Vec::new(),
         },
         "robot" if open.is_empty() && head.len() == 2 => keywords(&ROBOT_SHAPE_KEYWORDS),
+        // `param gap = |`: the distributions and `choice`.
+        "param" if open.is_empty() && tokens.last().is_some_and(|t| word(t) == "=") => {
+            keywords(&FAMILY_VALUE_WORDS)
+        }
         // `robot car rect 4 2 steer |`: the steering models.
         "robot"
             if open.is_empty()
@@ -121,6 +125,9 @@ pub(crate) fn completions(text: &str, offset: usize, analysis: &Analysis) -> Vec
                 keywords(&WORLD_ITEM_KEYWORDS)
             } else if line_head == Some("grid") {
                 keywords(&GRID_OPTION_KEYWORDS)
+            } else if line_head == Some("scatter") {
+                // `scatter rocks 30 disk 0.3 in (0, 0) (20, 8) gap 0.1`
+                keywords(&["disk", "rect", "in", "gap"])
             } else {
                 Vec::new()
             }

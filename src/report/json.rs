@@ -43,6 +43,17 @@ pub fn to_json(report: &RunReport) -> Value {
     let mut doc = Map::new();
     doc.insert("file".into(), scenario.file.display().to_string().into());
     doc.insert("scenario".into(), scenario.title.clone().into());
+    // A family's sample (SPEC 2.8): its number and drawn values.
+    if let Some(drawn) = &scenario.family {
+        doc.insert("sample".into(), drawn.sample.into());
+        doc.insert("family_seed".into(), drawn.family_seed.into());
+        let params: Map<String, Value> = drawn
+            .params
+            .iter()
+            .map(|(name, x)| (name.clone(), float_json(*x)))
+            .collect();
+        doc.insert("params".into(), Value::Object(params));
+    }
     doc.insert("plans".into(), Value::Object(plans));
     doc.insert("checks".into(), Value::Array(checks));
     doc.insert("passed".into(), report.passed().into());
@@ -232,6 +243,7 @@ mod tests {
                 obstacles: Vec::new(),
             },
             obstacle_spans: Vec::new(),
+            family: None,
             robots: vec![
                 robot("rod", RobotShape::Polygon(rod)),
                 robot("disk", RobotShape::Disk(0.5)),

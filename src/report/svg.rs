@@ -1333,6 +1333,7 @@ mod tests {
             title: title.map(String::from),
             world,
             obstacle_spans: Vec::new(),
+            family: None,
             robots: vec![
                 robot("rod", RobotShape::Polygon(rod)),
                 robot("disk", RobotShape::Disk(0.5)),

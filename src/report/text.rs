@@ -19,6 +19,28 @@ const HIDDEN: &[&str] = &[
     "time_ms",
 ];
 
+/// A family's sample and what it drew (SPEC 2.8): `sample 7 (family seed
+/// 0): gap_x = 3.25, gap_w = 1.5`.
+pub fn sample_line(sc: &crate::Scenario) -> Option<String> {
+    let drawn = sc.family.as_ref()?;
+    let values: Vec<String> = drawn
+        .params
+        .iter()
+        .map(|(name, x)| format!("{name} = {}", crate::checks::format_num(*x)))
+        .collect();
+    let rejected = match drawn.rejected {
+        0 => String::new(),
+        1 => ", 1 draw rejected".to_string(),
+        n => format!(", {n} draws rejected"),
+    };
+    Some(format!(
+        "sample {} (family seed {}{rejected}): {}",
+        drawn.sample,
+        drawn.family_seed,
+        values.join(", ")
+    ))
+}
+
 /// The report as text. `diagnostics` renders a failed check as a miette
 /// diagnostic (pointing at the expression) under its FAIL line.
 pub fn render(report: &RunReport, verbose: bool) -> String {
@@ -31,6 +53,9 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
         None => {
             let _ = writeln!(s, "{}", sc.file.display());
         }
+    }
+    if let Some(line) = sample_line(sc) {
+        let _ = writeln!(s, "{line}");
     }
     for run in &report.plans {
         let plan = report.plan(run);

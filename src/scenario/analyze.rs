@@ -95,6 +95,7 @@ pub(crate) fn analyze(
             benches,
             checks,
             sources,
+            family: None,
         }),
         _ => {
             crate::diagnostics::sort_diags(&mut diags);
@@ -289,5 +290,7 @@ fn stmt_span(s: &ast::Stmt) -> Span {
         ast::Stmt::Plan(p) => p.span,
         ast::Stmt::Expect(e) => e.span,
         ast::Stmt::Bench(b) => b.span,
+        ast::Stmt::Param(p) => p.span,
+        ast::Stmt::Require { span, .. } => *span,
     }
 }

@@ -25,6 +25,7 @@ use crate::files::{ReadError, human_bytes, invalid_utf8_at, read_regular_file};
 use crate::syntax::{self, ast};
 
 use super::Scenario;
+use super::family::{Family, SampleChoice};
 
 /// The largest scenario text accepted: every file, includes expanded.
 pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
@@ -82,6 +83,17 @@ pub fn load_with(
     root: Option<&Path>,
     overlay: Overlay<'_>,
 ) -> Result<Scenario, LoadFailure> {
+    load_sample(path, root, overlay, SampleChoice::default())
+}
+
+/// [`load_with`] for one sample of a family (SPEC 2.8); a scenario without
+/// params is its own only sample.
+pub fn load_sample(
+    path: &Path,
+    root: Option<&Path>,
+    overlay: Overlay<'_>,
+    choice: SampleChoice,
+) -> Result<Scenario, LoadFailure> {
     let mut parsed = parse_scenario(path, root, overlay);
     if parsed.diags.iter().any(Diag::is_error) {
         crate::diagnostics::sort_diags(&mut parsed.diags);
@@ -90,7 +102,41 @@ pub fn load_with(
             diags: parsed.diags,
         });
     }
-    super::analyze(path, parsed.statements, parsed.sources, parsed.maps)
+    analyze_sample(path, parsed.statements, parsed.sources, parsed.maps, choice)
+}
+
+/// Analyses sample `choice` of the parsed statements: a plain scenario
+/// directly, a family's sample drawn (and drawn again when rejected) first.
+pub(crate) fn analyze_sample(
+    path: &Path,
+    statements: Vec<SourcedStmt>,
+    sources: SourceMap,
+    maps: HashMap<Span, Result<FileId, Diag>>,
+    choice: SampleChoice,
+) -> Result<Scenario, LoadFailure> {
+    let family = match Family::of(&statements) {
+        Ok(f) => f,
+        Err(mut diags) => {
+            crate::diagnostics::sort_diags(&mut diags);
+            return Err(LoadFailure { sources, diags });
+        }
+    };
+    if !family.is_active() {
+        return super::analyze(path, statements, sources, maps);
+    }
+    let drawn = family.sample(&statements, choice, |instance| {
+        super::analyze(path, instance, sources.clone(), maps.clone()).map_err(|f| f.diags)
+    });
+    match drawn {
+        Ok((mut scenario, drawn)) => {
+            scenario.family = family.has_params().then_some(drawn);
+            Ok(scenario)
+        }
+        Err(mut diags) => {
+            crate::diagnostics::sort_diags(&mut diags);
+            Err(LoadFailure { sources, diags })
+        }
+    }
 }
 
 /// Reads and parses a scenario file, its includes and its maps (the first

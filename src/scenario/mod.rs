@@ -3,6 +3,7 @@
 //! against their planner's schema, expressions typed.
 
 mod analyze;
+pub mod family;
 pub mod grouping;
 pub mod loader;
 pub mod movingai;
@@ -17,7 +18,8 @@ use crate::syntax::ast::Expr;
 
 pub(crate) use analyze::analyze;
 pub use analyze::{AGGREGATES, BENCH_KEYS};
-pub use loader::{load, load_with};
+pub use family::SampleChoice;
+pub use loader::{load, load_sample, load_with};
 
 /// A fully analysed scenario, ready to run.
 #[derive(Clone, Debug)]
@@ -33,6 +35,9 @@ pub struct Scenario {
     pub benches: Vec<Bench>,
     pub checks: Vec<Check>,
     pub sources: SourceMap,
+    /// For a family (SPEC 2.8): the sample this scenario is and what it
+    /// drew; `None` for a scenario without params.
+    pub family: Option<family::Drawn>,
 }
 
 impl Scenario {

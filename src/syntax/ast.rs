@@ -33,6 +33,29 @@ pub enum Stmt {
     Plan(PlanDecl),
     Expect(Expr),
     Bench(BenchDecl),
+    /// `param NAME = ...` (SPEC 2.8).
+    Param(ParamDecl),
+    /// `require CONDITION` (SPEC 2.8): a constraint on a family's draws.
+    Require { condition: Expr, span: Span },
+}
+
+/// `param NAME = DISTRIBUTION | choice [v, ...] | EXPR`.
+#[derive(Clone, Debug)]
+pub struct ParamDecl {
+    pub name: Ident,
+    pub value: ParamSource,
+    pub span: Span,
+}
+
+/// What a param is drawn from, as written; whether a call is a
+/// distribution (`uniform`, `normal`, `int`) is the analyzer's call.
+#[derive(Clone, Debug)]
+pub enum ParamSource {
+    /// `choice [v, ...]`: the `choice` keyword and the list.
+    Choice { keyword: Span, values: Value },
+    /// A distribution call or an expression of other params (a plain
+    /// number is a `Value` of kind `Number`).
+    Value(Value),
 }
 
 /// `bench NAME { tokens }` (SPEC 2.7): like a plan's body, a flat token
@@ -62,6 +85,34 @@ pub enum WorldItem {
         span: Span,
     },
     Obstacle(ObstacleDecl),
+    /// `scatter NAME N SHAPE in (x0, y0) (x1, y1) [gap G]` (SPEC 2.8).
+    Scatter(ScatterDecl),
+}
+
+/// `scatter NAME N SHAPE in (x0, y0) (x1, y1) [gap G]`: N obstacles at
+/// uniformly drawn positions in the box, named `NAME_1` … `NAME_N`.
+#[derive(Clone, Debug)]
+pub struct ScatterDecl {
+    pub name: Ident,
+    pub count: Value,
+    pub shape: ScatterShape,
+    pub min: Value,
+    pub max: Value,
+    pub gap: Option<Value>,
+    pub span: Span,
+}
+
+/// The shape of each scattered obstacle; sizes may be distributions.
+#[derive(Clone, Debug)]
+pub enum ScatterShape {
+    /// `disk R`
+    Disk { keyword: Span, radius: Value },
+    /// `rect W H`, centred on the drawn position.
+    Rect {
+        keyword: Span,
+        width: Value,
+        height: Value,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -279,6 +330,13 @@ pub enum ValueKind {
     Tuple(Vec<Value>),
     /// `[a, b, c]`.
     List(Vec<Value>),
+    /// An arithmetic expression of numbers and params (SPEC 2.8), with the
+    /// angle unit written after it (`(a + 10)deg`); a family's sample
+    /// replaces it by its number before analysis.
+    Calc {
+        expr: Box<Expr>,
+        unit: Option<AngleUnit>,
+    },
 }
 
 impl ValueKind {
@@ -293,6 +351,8 @@ impl ValueKind {
             ValueKind::Word(_) => "a word",
             ValueKind::Tuple(_) => "a point",
             ValueKind::List(_) => "a list",
+            ValueKind::Calc { unit: Some(_), .. } => "an angle expression",
+            ValueKind::Calc { unit: None, .. } => "an expression",
         }
     }
 }
@@ -312,6 +372,7 @@ impl Expr {
             | ExprKind::Percent(_)
             | ExprKind::Bool(_)
             | ExprKind::Metric { .. }
+            | ExprKind::Name(_)
             | ExprKind::Series { .. } => Vec::new(),
             ExprKind::Call { args, .. } => args.iter().collect(),
             ExprKind::Neg(x) | ExprKind::Not(x) => vec![x],
@@ -339,6 +400,9 @@ pub enum ExprKind {
     /// `100%`, as a fraction.
     Percent(f64),
     Bool(bool),
+    /// A param's name (SPEC 2.8): in `require`, in `expect`, and in the
+    /// expressions of number positions.
+    Name(Ident),
     /// `PLAN.METRIC`
     Metric {
         plan: Ident,

@@ -8,8 +8,9 @@
 use pest::iterators::Pair;
 
 use super::ast::{
-    Angle, BenchDecl, GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamToken,
-    PlanDecl, RobotDecl, RobotShape, SteerClause, Stmt, Value, ValueKind, WorldBlock, WorldItem,
+    Angle, BenchDecl, GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamDecl,
+    ParamSource, ParamToken, PlanDecl, RobotDecl, RobotShape, ScatterDecl, ScatterShape,
+    SteerClause, Stmt, Value, ValueKind, WorldBlock, WorldItem,
 };
 use super::parser::Rule;
 use super::scanner::is_ident_byte;
@@ -119,6 +120,31 @@ impl<'t, 'd> Builder<'t, 'd> {
                     .expect("grammar guarantees an expression");
                 Stmt::Expect(self.expect_expr(expr)?)
             }
+            Rule::require => {
+                let expr = children(pair)
+                    .nth(1)
+                    .expect("grammar guarantees a condition");
+                Stmt::Require {
+                    condition: self.expect_expr(expr)?,
+                    span,
+                }
+            }
+            Rule::param => {
+                let mut inner = children(pair).skip(1);
+                let name = self.ident(&inner.next().expect("grammar guarantees a param name"));
+                let source = inner
+                    .find(|p| p.as_rule() != Rule::equals)
+                    .expect("grammar guarantees the param's value");
+                let value = if source.as_rule() == Rule::param_choice {
+                    let mut parts = children(source);
+                    let keyword = self.span(&parts.next().expect("grammar guarantees `choice`"));
+                    let values = self.value(parts.next().expect("grammar guarantees a list"));
+                    ParamSource::Choice { keyword, values }
+                } else {
+                    ParamSource::Value(self.value(source))
+                };
+                Stmt::Param(ParamDecl { name, value, span })
+            }
             rule => unreachable!("grammar guarantees a statement, got {rule:?}"),
         })
     }
@@ -140,6 +166,9 @@ impl<'t, 'd> Builder<'t, 'd> {
         let rule = pair.as_rule();
         let mut inner = children(pair).peekable();
         let keyword = inner.next().expect("grammar guarantees a keyword");
+        if rule == Rule::scatter {
+            return WorldItem::Scatter(self.scatter(inner, span));
+        }
         if rule == Rule::bounds {
             let min = self.value(inner.next().expect("grammar guarantees a min corner"));
             let max = self.value(inner.next().expect("grammar guarantees a max corner"));
@@ -176,6 +205,50 @@ impl<'t, 'd> Builder<'t, 'd> {
             shape,
             span,
         })
+    }
+
+    /// The rest of a `scatter` item after its keyword.
+    fn scatter<'i>(&mut self, mut inner: impl Iterator<Item = P<'i>>, span: Span) -> ScatterDecl {
+        let mut next = || inner.next().expect("grammar guarantees the scatter's parts");
+        let name = self.ident(&next());
+        let count = self.value(next());
+        let shape_pair = next();
+        let shape_rule = shape_pair.as_rule();
+        let mut parts = children(shape_pair);
+        let keyword = self.span(&parts.next().expect("grammar guarantees the shape's keyword"));
+        let mut size = || self.value(parts.next().expect("grammar guarantees the shape's sizes"));
+        let shape = if shape_rule == Rule::scatter_disk {
+            ScatterShape::Disk {
+                keyword,
+                radius: size(),
+            }
+        } else {
+            let width = size();
+            ScatterShape::Rect {
+                keyword,
+                width,
+                height: size(),
+            }
+        };
+        let _in = next();
+        let min = self.value(next());
+        let max = self.value(next());
+        let gap = inner.next().map(|g| {
+            self.value(
+                children(g)
+                    .nth(1)
+                    .expect("grammar guarantees the gap's value"),
+            )
+        });
+        ScatterDecl {
+            name,
+            count,
+            shape,
+            min,
+            max,
+            gap,
+            span,
+        }
     }
 
     /// The rest of a `grid` item after its name. A repeated `cell` or
@@ -303,7 +376,11 @@ impl<'t, 'd> Builder<'t, 'd> {
                     }
                 }
                 Rule::word => ParamToken::Word(self.ident(&pair)),
-                Rule::number | Rule::string | Rule::tuple | Rule::list => {
+                Rule::plain_number
+                | Rule::string
+                | Rule::tuple
+                | Rule::list
+                | Rule::body_calc => {
                     ParamToken::Value(self.value(pair))
                 }
                 rule => unreachable!("grammar guarantees a parameter token, got {rule:?}"),
@@ -345,11 +422,13 @@ impl<'t, 'd> Builder<'t, 'd> {
     pub(super) fn value(&mut self, pair: P<'_>) -> Value {
         let span = self.span(&pair);
         let kind = match pair.as_rule() {
-            Rule::number => self.quantity(pair),
+            Rule::number | Rule::plain_number => self.quantity(pair),
             Rule::string => ValueKind::Str(self.string(&pair).value),
             Rule::word => ValueKind::Word(pair.as_str().to_string()),
             Rule::tuple => ValueKind::Tuple(children(pair).map(|p| self.value(p)).collect()),
             Rule::list => ValueKind::List(children(pair).map(|p| self.value(p)).collect()),
+            // An expression in error (reported) leaves a placeholder.
+            Rule::calc | Rule::body_calc => self.calc_value(pair).unwrap_or(ValueKind::Number(0.0)),
             rule => unreachable!("grammar guarantees a value, got {rule:?}"),
         };
         Value { kind, span }

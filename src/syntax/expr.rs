@@ -255,6 +255,7 @@ impl Builder<'_, '_> {
                     other => unreachable!("a number token is a quantity, got {other:?}"),
                 }
             }
+            Rule::name_ref => ExprKind::Name(self.ident(&inner)),
             Rule::kw_true => ExprKind::Bool(true),
             Rule::kw_false => ExprKind::Bool(false),
             Rule::metric => {
@@ -326,7 +327,7 @@ impl Builder<'_, '_> {
             .collect()
     }
 
-    fn check_height(&mut self, height: usize, span: Span) -> Option<usize> {
+    pub(super) fn check_height(&mut self, height: usize, span: Span) -> Option<usize> {
         if height <= MAX_EXPR_HEIGHT {
             return Some(height);
         }
@@ -478,8 +479,9 @@ mod tests {
             d.help.as_deref(),
             Some("approximate equality needs a tolerance: `A ~ B +- TOL`")
         );
-        let d = &errors("expect offline")[0];
-        assert!(d.help.as_deref().unwrap().contains("PLAN.METRIC"));
+        // A bare word is a param's name (SPEC 2.8); one that is not a
+        // param is the analyzer's error (`scen::analyze::unknown_name`).
+        assert_eq!(sexp(&expr("offline + 1")), "(+ offline 1)");
         let d = &errors("expect a.x and")[0];
         assert_eq!(
             d.message,

@@ -7,6 +7,7 @@
 
 pub mod ast;
 mod builder;
+mod calc;
 mod expr;
 mod parser;
 mod scanner;
@@ -17,6 +18,6 @@ mod testing;
 pub(crate) use builder::UNIT_WORDS;
 pub use parser::parse;
 pub(crate) use scanner::{
-    EXPRESSION_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS, ROBOT_SHAPE_KEYWORDS,
+    EXPRESSION_WORDS, FAMILY_VALUE_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS, ROBOT_SHAPE_KEYWORDS,
     STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
 };

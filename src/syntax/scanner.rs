@@ -13,13 +13,20 @@ use crate::diagnostics::{Diag, FileId, Span};
 const MAX_NESTING: usize = 64;
 
 /// The keywords that start a statement, as the grammar names them.
-pub(crate) const STATEMENT_KEYWORDS: [&str; 7] = [
-    "scenario", "include", "world", "robot", "plan", "expect", "bench",
+pub(crate) const STATEMENT_KEYWORDS: [&str; 9] = [
+    "scenario", "include", "world", "robot", "plan", "expect", "bench", "param", "require",
 ];
 
 /// The keywords that start an item of a `world` block.
-pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 6] =
-    ["bounds", "rect", "polygon", "segment", "disk", "grid"];
+pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 7] =
+    ["bounds", "rect", "polygon", "segment", "disk", "grid", "scatter"];
+
+/// The words of a `scatter` item and of a `param`'s `choice` (SPEC 2.8).
+#[cfg(test)]
+pub(crate) const FAMILY_KEYWORDS: [&str; 3] = ["in", "gap", "choice"];
+
+/// What may follow `param NAME =`: the distributions and `choice`.
+pub(crate) const FAMILY_VALUE_WORDS: [&str; 4] = ["uniform", "normal", "int", "choice"];
 
 /// A robot's shapes (`robot NAME SHAPE`), a grid's options, and the words
 /// of `expect` expressions: with the two lists above, every keyword of
@@ -131,6 +138,8 @@ fn chunk_rule(keyword: &str) -> Rule {
         "robot" => Rule::robot_chunk,
         "plan" => Rule::plan_chunk,
         "bench" => Rule::bench_chunk,
+        "param" => Rule::param_chunk,
+        "require" => Rule::require_chunk,
         _ => Rule::expect_chunk,
     }
 }
@@ -546,6 +555,7 @@ mod tests {
             &ROBOT_SHAPE_KEYWORDS,
             &ROBOT_CLAUSE_KEYWORDS,
             &GRID_OPTION_KEYWORDS,
+            &FAMILY_KEYWORDS,
         ]
         .concat();
         ours.sort();

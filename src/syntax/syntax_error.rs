@@ -126,7 +126,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::ident => "a name",
         Rule::plan_kind => "a planner kind (such as `astar`)",
         Rule::word => "a word",
-        Rule::number | Rule::expr_number => "a number",
+        Rule::number | Rule::plain_number | Rule::expr_number => "a number",
         // Silent and atomic helper rules never reach an error message.
         Rule::WHITESPACE
         | Rule::COMMENT_TEXT
@@ -138,7 +138,19 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | Rule::plan_chunk
         | Rule::expect_chunk
         | Rule::bench_chunk
+        | Rule::param_chunk
+        | Rule::require_chunk
         | Rule::statement_chunks
+        // Expressions in number positions are extensions of a value: a
+        // missing value is still "expected a value".
+        | Rule::calc
+        | Rule::body_calc
+        | Rule::calc_neg
+        | Rule::calc_term
+        | Rule::calc_function
+        | Rule::calc_name
+        | Rule::calc_unit
+        | Rule::name_ref
         | Rule::IDENT_START
         | Rule::IDENT_CHAR
         | Rule::IDENT
@@ -164,6 +176,18 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_plan | Rule::plan => "`plan`",
         Rule::kw_expect | Rule::expect => "`expect`",
         Rule::kw_bench | Rule::bench => "`bench`",
+        Rule::kw_param | Rule::param => "`param`",
+        Rule::kw_require | Rule::require => "`require`",
+        Rule::kw_scatter | Rule::scatter => "`scatter`",
+        Rule::kw_in => "`in`",
+        Rule::kw_gap | Rule::scatter_gap => "`gap`",
+        Rule::kw_choice | Rule::param_choice => "`choice`",
+        Rule::scatter_disk => "`disk`",
+        Rule::scatter_rect => "`rect`",
+        Rule::calc_paren => "`(`",
+        Rule::calc_call => "a call such as `min(a, b)`",
+        // After a number, an operator is always possible: not worth saying.
+        Rule::calc_op => return None,
         Rule::kw_bounds | Rule::bounds => "`bounds`",
         Rule::kw_rect | Rule::rect_obstacle | Rule::rect_shape => "`rect`",
         Rule::kw_polygon | Rule::polygon_obstacle | Rule::polygon_shape => "`polygon`",
@@ -663,8 +687,9 @@ mod tests {
         assert_eq!(d.message, "expected a value, found the end of the file");
         let d = &errors("world { rect A (0, 0) }")[0];
         assert_eq!(d.message, "expected a value, found `}`");
+        // `(0 0)` could also be a parenthesised expression `(0)`.
         let d = &errors("plan p k r { start (0 0) }")[0];
-        assert_eq!(d.message, "expected `,`, found `0`");
+        assert_eq!(d.message, "expected `,` or `)`, found `0`");
         let d = &errors("robot r polygon [(0, 0) (1, 0)]")[0];
         assert_eq!(d.message, "expected `,` or `]`, found `(`");
     }

@@ -36,6 +36,7 @@ pub(super) fn sexp(e: &Expr) -> String {
         ExprKind::Number(x) => format!("{x}"),
         ExprKind::Percent(x) => format!("{x}%"),
         ExprKind::Bool(b) => format!("{b}"),
+        ExprKind::Name(n) => n.value.clone(),
         ExprKind::Metric { plan, metric } => format!("{}.{}", plan.value, metric.value),
         ExprKind::Neg(a) => format!("(neg {})", sexp(a)),
         ExprKind::Not(a) => format!("(not {})", sexp(a)),

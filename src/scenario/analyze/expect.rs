@@ -177,7 +177,7 @@ impl Analyzer {
             Some(t)
         };
         Some(match &e.kind {
-            ExprKind::Number(_) | ExprKind::Percent(_) => Ty::Scalar(Num),
+            ExprKind::Number(_) | ExprKind::Percent(_) | ExprKind::Name(_) => Ty::Scalar(Num),
             ExprKind::Bool(_) => Ty::Scalar(Bool),
             ExprKind::Metric { plan, metric } => {
                 let info = self.plan_info(plan, names)?;

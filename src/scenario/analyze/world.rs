@@ -77,6 +77,9 @@ impl Analyzer {
                             }
                         }
                     }
+                    // A family's sample places its scattered items before
+                    // analysis (`super::super::family`).
+                    ast::WorldItem::Scatter(_) => {}
                     ast::WorldItem::Obstacle(o) => {
                         index += 1;
                         let name = match &o.name {
