@@ -443,12 +443,8 @@ fn run_file(
     viewer_warned: &mut bool,
 ) -> (i32, Vec<PathBuf>) {
     let mut read = vec![file.to_path_buf()];
-    let loaded = crate::scenario::load_sample(
-        file,
-        args.root.as_deref(),
-        &|_| None,
-        args.sample_choice(),
-    );
+    let loaded =
+        crate::scenario::load_sample(file, args.root.as_deref(), &|_| None, args.sample_choice());
     let scenario = match loaded {
         Ok(s) => s,
         Err(f) => {

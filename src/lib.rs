@@ -8,7 +8,10 @@
 //! # The library
 //! - [`load`] / [`scenario::load_with`]: read, parse and analyse a
 //!   scenario file (every diagnostic at once, with spans into its sources;
-//!   [`diagnostics::render_diags`] prints them as `scen check` does).
+//!   [`diagnostics::render_diags`] prints them as `scen check` does);
+//!   [`scenario::load_sample`]: one sample of a family of scenarios
+//!   (`param`, `scatter`, `require`), with what it drew in
+//!   [`Scenario::family`].
 //! - [`run_scenario`] / [`run_scenario_drawing`]: run its plans, validate
 //!   every path, evaluate the checks.
 //! - [`bench`]: the runs of its `bench` statements; [`report`]: the

@@ -11,8 +11,8 @@ use crate::planners::registry::{self, PLANNERS};
 use crate::scenario::grouping::ParamKeys;
 use crate::scenario::{AGGREGATES, BENCH_KEYS};
 use crate::syntax::{
-    EXPRESSION_WORDS, FAMILY_VALUE_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS, ROBOT_SHAPE_KEYWORDS,
-    STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
+    EXPRESSION_WORDS, FAMILY_VALUE_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS,
+    ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
 };
 
 /// The completions at byte `offset` of `text` (the document `analysis` was

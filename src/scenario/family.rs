@@ -75,7 +75,6 @@ enum Source {
 struct ParamDef {
     name: Spanned<String>,
     source: Source,
-    span: Span,
 }
 
 /// A family's params and constraints, checked.
@@ -150,6 +149,9 @@ impl Family {
         let mut family = Family::default();
         let mut diags = Vec::new();
         let reserved = reserved_words();
+        // First every param's name, so that a use before the declaration
+        // is reported as such.
+        let mut decls = Vec::new();
         for s in statements {
             match &s.stmt {
                 Stmt::Param(p) => {
@@ -180,34 +182,28 @@ impl Family {
                         );
                         continue;
                     }
-                    match family.source(p, &mut diags) {
-                        Some(source) => {
-                            family.index.insert(name.clone(), family.params.len());
-                            family.params.push(ParamDef {
-                                name: p.name.clone(),
-                                source,
-                                span: p.span,
-                            });
-                        }
-                        None => {
-                            // Known, so that its uses are not reported too.
-                            family.index.insert(name.clone(), family.params.len());
-                            family.params.push(ParamDef {
-                                name: p.name.clone(),
-                                source: Source::Value(Value {
-                                    kind: ValueKind::Number(0.0),
-                                    span: p.span,
-                                }),
-                                span: p.span,
-                            });
-                        }
-                    }
+                    family.index.insert(name.clone(), family.params.len());
+                    // A placeholder until its source is read below.
+                    family.params.push(ParamDef {
+                        name: p.name.clone(),
+                        source: Source::Value(Value {
+                            kind: ValueKind::Number(0.0),
+                            span: p.span,
+                        }),
+                    });
+                    decls.push(p);
                 }
                 Stmt::Require { condition, span } => {
                     family.active.set(true);
                     family.requires.push((condition.clone(), *span));
                 }
                 _ => {}
+            }
+        }
+        for p in decls {
+            if let Some(source) = family.source(p, &mut diags) {
+                let k = family.index[&p.name.value];
+                family.params[k].source = source;
             }
         }
         // Every other expression: names are params, calls are functions
@@ -441,7 +437,10 @@ impl Family {
         diags: &mut Vec<Diag>,
     ) {
         let declared = param.map_or(self.params.len(), |p| {
-            self.index.get(&p.value).copied().unwrap_or(self.params.len())
+            self.index
+                .get(&p.value)
+                .copied()
+                .unwrap_or(self.params.len())
         });
         e.walk(&mut |n| match &n.kind {
             ExprKind::Name(name) => match self.index.get(&name.value) {
@@ -552,7 +551,6 @@ impl Family {
                 }
                 Source::Value(v) => self.number(v, &values)?,
             };
-            let _ = p.span;
             values.push(x);
         }
         Ok(Draw { values, rng })
@@ -578,7 +576,8 @@ impl Family {
     /// The first `require` a draw violates (its index).
     fn violated(&self, values: &[f64]) -> Result<Option<usize>, Diag> {
         for (k, (cond, _)) in self.requires.iter().enumerate() {
-            let holds = eval_condition(cond, values, &self.index).map_err(|e| e.diag(self, values))?;
+            let holds =
+                eval_condition(cond, values, &self.index).map_err(|e| e.diag(self, values))?;
             if !holds {
                 return Ok(Some(k));
             }
@@ -588,7 +587,11 @@ impl Family {
 
     /// The statements of one draw: expressions computed, params' names in
     /// bodies replaced, scatters placed.
-    fn instantiate(&self, statements: &[SourcedStmt], draw: &mut Draw) -> Result<Vec<SourcedStmt>, Vec<Diag>> {
+    fn instantiate(
+        &self,
+        statements: &[SourcedStmt],
+        draw: &mut Draw,
+    ) -> Result<Vec<SourcedStmt>, Vec<Diag>> {
         let mut out = Vec::with_capacity(statements.len());
         let mut diags = Vec::new();
         let mut placed: Vec<Placed> = Vec::new();
@@ -947,7 +950,9 @@ impl Ctx<'_> {
 
     /// Places the items of a scatter, appending them as obstacles.
     fn scatter(&mut self, sc: &ScatterDecl, placed: &mut Vec<Placed>, items: &mut Vec<WorldItem>) {
-        let Some(count) = self.scatter_number(&sc.count, "count", sc) else { return };
+        let Some(count) = self.scatter_number(&sc.count, "count", sc) else {
+            return;
+        };
         if !(count >= 0.0 && count.fract() == 0.0 && count <= MAX_SCATTER_ITEMS) {
             self.bad_scatter(
                 sc.count.span,
@@ -957,8 +962,12 @@ impl Ctx<'_> {
             );
             return;
         }
-        let Some((x0, y0)) = self.scatter_point(&sc.min, "box corner", sc) else { return };
-        let Some((x1, y1)) = self.scatter_point(&sc.max, "box corner", sc) else { return };
+        let Some((x0, y0)) = self.scatter_point(&sc.min, "box corner", sc) else {
+            return;
+        };
+        let Some((x1, y1)) = self.scatter_point(&sc.max, "box corner", sc) else {
+            return;
+        };
         if !(x0 < x1 && y0 < y1) {
             self.bad_scatter(
                 sc.min.span.to(sc.max.span),
@@ -970,9 +979,16 @@ impl Ctx<'_> {
         }
         let gap = match &sc.gap {
             Some(g) => {
-                let Some(gap) = self.scatter_number(g, "gap", sc) else { return };
+                let Some(gap) = self.scatter_number(g, "gap", sc) else {
+                    return;
+                };
                 if gap < 0.0 {
-                    self.bad_scatter(g.span, sc, format!("a negative gap ({gap})"), "the gap is the least distance between two items: 0 or more");
+                    self.bad_scatter(
+                        g.span,
+                        sc,
+                        format!("a negative gap ({gap})"),
+                        "the gap is the least distance between two items: 0 or more",
+                    );
                     return;
                 }
                 gap
@@ -985,7 +1001,12 @@ impl Ctx<'_> {
             if x > 0.0 {
                 Some(x)
             } else {
-                this.bad_scatter(v.span, sc, format!("a scattered item's size must be positive, drew {x}"), "use sizes (or distributions of sizes) above 0");
+                this.bad_scatter(
+                    v.span,
+                    sc,
+                    format!("a scattered item's size must be positive, drew {x}"),
+                    "use sizes (or distributions of sizes) above 0",
+                );
                 None
             }
         };
@@ -998,19 +1019,38 @@ impl Ctx<'_> {
                         let x = self.draw.rng.range(x0, x1);
                         let y = self.draw.rng.range(y0, y1);
                         (
-                            ObstacleShape::Disk(point_value(x, y, radius.span), number_value(r, radius.span)),
+                            ObstacleShape::Disk(
+                                point_value(x, y, radius.span),
+                                number_value(r, radius.span),
+                            ),
                             (Placed::Disk { x, y, r }, ObstacleKind::Disk, *keyword),
                         )
                     }
-                    ScatterShape::Rect { keyword, width, height } => {
+                    ScatterShape::Rect {
+                        keyword,
+                        width,
+                        height,
+                    } => {
                         let Some(w) = size(self, width) else { return };
                         let Some(h) = size(self, height) else { return };
                         let x = self.draw.rng.range(x0, x1);
                         let y = self.draw.rng.range(y0, y1);
                         let (ax, ay, bx, by) = (x - w / 2.0, y - h / 2.0, x + w / 2.0, y + h / 2.0);
                         (
-                            ObstacleShape::Rect(point_value(ax, ay, width.span), point_value(bx, by, height.span)),
-                            (Placed::Rect { x0: ax, y0: ay, x1: bx, y1: by }, ObstacleKind::Rect, *keyword),
+                            ObstacleShape::Rect(
+                                point_value(ax, ay, width.span),
+                                point_value(bx, by, height.span),
+                            ),
+                            (
+                                Placed::Rect {
+                                    x0: ax,
+                                    y0: ay,
+                                    x1: bx,
+                                    y1: by,
+                                },
+                                ObstacleKind::Rect,
+                                *keyword,
+                            ),
                         )
                     }
                 };
@@ -1078,7 +1118,9 @@ fn unknown_function(function: &Spanned<String>, distributions: bool) -> Diag {
 fn distribution_help(f: &str) -> &'static str {
     match f {
         "uniform" => "`uniform(a, b)`: a number drawn uniformly in [a, b), a < b",
-        "normal" => "`normal(m, s)`: a number drawn from the normal distribution of mean m and standard deviation s ≥ 0",
+        "normal" => {
+            "`normal(m, s)`: a number drawn from the normal distribution of mean m and standard deviation s ≥ 0"
+        }
         _ => "`int(a, b)`: a whole number drawn uniformly from a to b inclusive, a ≤ b",
     }
 }
@@ -1086,10 +1128,14 @@ fn distribution_help(f: &str) -> &'static str {
 /// The bounds of a distribution, checked.
 fn check_distribution(f: &str, a: f64, b: f64, span: Span) -> Result<(), Diag> {
     let problem = match f {
-        "uniform" if a >= b => Some(format!("`uniform({a}, {b})` has its bounds inverted or equal")),
+        "uniform" if a >= b => Some(format!(
+            "`uniform({a}, {b})` has its bounds inverted or equal"
+        )),
         "int" if a.ceil() > b.floor() => Some(format!("`int({a}, {b})` contains no whole number")),
         "int" if (b - a).abs() > 1e15 => Some(format!("`int({a}, {b})` spans too many numbers")),
-        "normal" if b < 0.0 => Some(format!("`normal({a}, {b})` has a negative standard deviation")),
+        "normal" if b < 0.0 => Some(format!(
+            "`normal({a}, {b})` has a negative standard deviation"
+        )),
         _ => None,
     };
     match problem {
@@ -1137,17 +1183,29 @@ impl EvalError {
                     .zip(values)
                     .map(|(p, x)| format!("{} = {x}", p.name.value))
                     .collect();
-                Diag::error("scen::family::not_finite", "this expression has no finite value in a draw")
-                    .at(span, "not finite (a division by zero, or the root of a negative number)")
-                    .help(if drawn.is_empty() {
-                        "keep divisors away from zero and roots of non-negative numbers".to_string()
-                    } else {
-                        format!("with {}: keep divisors away from zero and roots of non-negative numbers", drawn.join(", "))
-                    })
+                Diag::error(
+                    "scen::family::not_finite",
+                    "this expression has no finite value in a draw",
+                )
+                .at(
+                    span,
+                    "not finite (a division by zero, or the root of a negative number)",
+                )
+                .help(if drawn.is_empty() {
+                    "keep divisors away from zero and roots of non-negative numbers".to_string()
+                } else {
+                    format!(
+                        "with {}: keep divisors away from zero and roots of non-negative numbers",
+                        drawn.join(", ")
+                    )
+                })
             }
             EvalError::Distribution(d) => d,
-            EvalError::Static(span) => Diag::error("scen::family::bad_expression", "this expression cannot be computed")
-                .at(span, "here"),
+            EvalError::Static(span) => Diag::error(
+                "scen::family::bad_expression",
+                "this expression cannot be computed",
+            )
+            .at(span, "here"),
         }
     }
 }
@@ -1182,7 +1240,10 @@ fn eval_with(
         },
         ExprKind::Neg(x) => -eval_with(x, values, index, rng)?,
         ExprKind::Arith { op, lhs, rhs } => {
-            let (a, b) = (eval_with(lhs, values, index, rng)?, eval_with(rhs, values, index, rng)?);
+            let (a, b) = (
+                eval_with(lhs, values, index, rng)?,
+                eval_with(rhs, values, index, rng)?,
+            );
             match op {
                 ArithOp::Add => a + b,
                 ArithOp::Sub => a - b,
@@ -1221,12 +1282,20 @@ fn eval_with(
 }
 
 /// Whether a `require` holds.
-fn eval_condition(e: &Expr, values: &[f64], index: &HashMap<String, usize>) -> Result<bool, EvalError> {
+fn eval_condition(
+    e: &Expr,
+    values: &[f64],
+    index: &HashMap<String, usize>,
+) -> Result<bool, EvalError> {
     Ok(match &e.kind {
         ExprKind::Bool(b) => *b,
         ExprKind::Not(x) => !eval_condition(x, values, index)?,
-        ExprKind::And(a, b) => eval_condition(a, values, index)? && eval_condition(b, values, index)?,
-        ExprKind::Or(a, b) => eval_condition(a, values, index)? || eval_condition(b, values, index)?,
+        ExprKind::And(a, b) => {
+            eval_condition(a, values, index)? && eval_condition(b, values, index)?
+        }
+        ExprKind::Or(a, b) => {
+            eval_condition(a, values, index)? || eval_condition(b, values, index)?
+        }
         ExprKind::Compare { op, lhs, rhs } => {
             let (a, b) = (eval(lhs, values, index)?, eval(rhs, values, index)?);
             match op {
@@ -1239,7 +1308,11 @@ fn eval_condition(e: &Expr, values: &[f64], index: &HashMap<String, usize>) -> R
             }
         }
         ExprKind::Approx { lhs, rhs, tol } => {
-            let (a, b, t) = (eval(lhs, values, index)?, eval(rhs, values, index)?, eval(tol, values, index)?);
+            let (a, b, t) = (
+                eval(lhs, values, index)?,
+                eval(rhs, values, index)?,
+                eval(tol, values, index)?,
+            );
             (a - b).abs() <= t
         }
         _ => return Err(EvalError::Static(e.span)),

@@ -36,7 +36,10 @@ pub enum Stmt {
     /// `param NAME = ...` (SPEC 2.8).
     Param(ParamDecl),
     /// `require CONDITION` (SPEC 2.8): a constraint on a family's draws.
-    Require { condition: Expr, span: Span },
+    Require {
+        condition: Expr,
+        span: Span,
+    },
 }
 
 /// `param NAME = DISTRIBUTION | choice [v, ...] | EXPR`.

@@ -88,6 +88,13 @@ impl<'t, 'd> Builder<'t, 'd> {
         Span::new(self.file, self.base + start, self.base + content_end(pair))
     }
 
+    /// The byte of the file right before `offset`.
+    pub(super) fn byte_before(&self, offset: usize) -> Option<u8> {
+        offset
+            .checked_sub(1)
+            .and_then(|k| self.text.as_bytes().get(k).copied())
+    }
+
     pub(super) fn ident(&self, pair: &P<'_>) -> Ident {
         Spanned::new(pair.as_str().to_string(), self.span(pair))
     }
@@ -209,13 +216,21 @@ impl<'t, 'd> Builder<'t, 'd> {
 
     /// The rest of a `scatter` item after its keyword.
     fn scatter<'i>(&mut self, mut inner: impl Iterator<Item = P<'i>>, span: Span) -> ScatterDecl {
-        let mut next = || inner.next().expect("grammar guarantees the scatter's parts");
+        let mut next = || {
+            inner
+                .next()
+                .expect("grammar guarantees the scatter's parts")
+        };
         let name = self.ident(&next());
         let count = self.value(next());
         let shape_pair = next();
         let shape_rule = shape_pair.as_rule();
         let mut parts = children(shape_pair);
-        let keyword = self.span(&parts.next().expect("grammar guarantees the shape's keyword"));
+        let keyword = self.span(
+            &parts
+                .next()
+                .expect("grammar guarantees the shape's keyword"),
+        );
         let mut size = || self.value(parts.next().expect("grammar guarantees the shape's sizes"));
         let shape = if shape_rule == Rule::scatter_disk {
             ScatterShape::Disk {
@@ -367,6 +382,11 @@ impl<'t, 'd> Builder<'t, 'd> {
     fn param_tokens(&mut self, block: P<'_>) -> Vec<ParamToken> {
         let mut tokens = Vec::new();
         for pair in children(block) {
+            if pair.as_rule() == Rule::body_calc {
+                let more = self.body_calc_tokens(pair);
+                tokens.extend(more);
+                continue;
+            }
             tokens.push(match pair.as_rule() {
                 Rule::param_block => {
                     let span = self.span(&pair);
@@ -376,11 +396,7 @@ impl<'t, 'd> Builder<'t, 'd> {
                     }
                 }
                 Rule::word => ParamToken::Word(self.ident(&pair)),
-                Rule::plain_number
-                | Rule::string
-                | Rule::tuple
-                | Rule::list
-                | Rule::body_calc => {
+                Rule::plain_number | Rule::string | Rule::tuple | Rule::list => {
                     ParamToken::Value(self.value(pair))
                 }
                 rule => unreachable!("grammar guarantees a parameter token, got {rule:?}"),

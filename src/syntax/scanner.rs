@@ -18,8 +18,9 @@ pub(crate) const STATEMENT_KEYWORDS: [&str; 9] = [
 ];
 
 /// The keywords that start an item of a `world` block.
-pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 7] =
-    ["bounds", "rect", "polygon", "segment", "disk", "grid", "scatter"];
+pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 7] = [
+    "bounds", "rect", "polygon", "segment", "disk", "grid", "scatter",
+];
 
 /// The words of a `scatter` item and of a `param`'s `choice` (SPEC 2.8).
 #[cfg(test)]
