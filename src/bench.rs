@@ -4,8 +4,10 @@
 //! over machines (`--shard K/N`).
 //!
 //! Runs are numbered in one order for the whole file — bench, then plan,
-//! then configuration, then run — and run `i` of a configuration uses seed
-//! = the plan's `seed` + `i`. Shard K of N takes the runs whose number is
+//! then configuration, then world, then run — and run `i` of a
+//! configuration uses seed = the plan's `seed` + `i`, on every world. A
+//! bench with `worlds N` runs each configuration on samples 0 … N − 1 of
+//! the family ([`Worlds`]). Shard K of N takes the runs whose number is
 //! K − 1 modulo N, so N shards do every run exactly once, and each shard's
 //! share of a bench is spread over its configurations.
 
@@ -26,7 +28,49 @@ pub struct RunId {
     pub bench: usize,
     pub plan: usize,
     pub config: usize,
+    /// The sample of the family it runs on (0 without `worlds`).
+    pub world: u64,
     pub run: u64,
+}
+
+/// The scenarios a file's benches run on: the one loaded, and for a bench
+/// with `worlds N` the samples 0 … N − 1 of its family.
+pub struct Worlds {
+    samples: Vec<Scenario>,
+}
+
+impl Worlds {
+    /// Draws the samples the benches in `only` (all when empty) need, in
+    /// parallel. A sample that cannot be drawn is an error with its
+    /// diagnostics.
+    pub fn draw(
+        scenario: &Scenario,
+        only: &[String],
+    ) -> Result<Worlds, crate::scenario::loader::LoadFailure> {
+        let n = scenario
+            .benches
+            .iter()
+            .filter(|b| only.is_empty() || only.contains(&b.name))
+            .map(|b| b.worlds)
+            .max()
+            .unwrap_or(1);
+        if n <= 1 {
+            return Ok(Worlds {
+                samples: Vec::new(),
+            });
+        }
+        let samples: Result<Vec<Scenario>, _> =
+            (0..n).into_par_iter().map(|k| scenario.sample(k)).collect();
+        Ok(Worlds { samples: samples? })
+    }
+
+    /// The scenario of `world` (the loaded one for a bench without `worlds`).
+    pub fn get<'a>(&'a self, scenario: &'a Scenario, id: &RunId) -> &'a Scenario {
+        if scenario.benches[id.bench].worlds <= 1 {
+            return scenario;
+        }
+        &self.samples[id.world as usize]
+    }
 }
 
 /// `--shard K/N`: the K-th of N parts (1 ≤ K ≤ N).
@@ -66,17 +110,20 @@ pub fn run_ids(scenario: &Scenario, only: &[String]) -> Vec<RunId> {
     for (b, bench) in scenario.benches.iter().enumerate() {
         for (p, plan) in bench.plans.iter().enumerate() {
             for config in 0..plan.configs.len() {
-                for run in 0..plan.runs {
-                    if only.is_empty() || only.contains(&bench.name) {
-                        ids.push(RunId {
-                            index,
-                            bench: b,
-                            plan: p,
-                            config,
-                            run,
-                        });
+                for world in 0..bench.worlds {
+                    for run in 0..plan.runs {
+                        if only.is_empty() || only.contains(&bench.name) {
+                            ids.push(RunId {
+                                index,
+                                bench: b,
+                                plan: p,
+                                config,
+                                world,
+                                run,
+                            });
+                        }
+                        index += 1;
                     }
-                    index += 1;
                 }
             }
         }
@@ -84,8 +131,9 @@ pub fn run_ids(scenario: &Scenario, only: &[String]) -> Vec<RunId> {
     ids
 }
 
-/// Runs one run.
-pub fn execute(scenario: &Scenario, id: &RunId) -> BenchRun {
+/// Runs one run, on its world.
+pub fn execute(scenario: &Scenario, worlds: &Worlds, id: &RunId) -> BenchRun {
+    let scenario = worlds.get(scenario, id);
     let bench_plan = &scenario.benches[id.bench].plans[id.plan];
     let task = task_of(scenario, id);
     let ran = run::run_task(
@@ -98,6 +146,7 @@ pub fn execute(scenario: &Scenario, id: &RunId) -> BenchRun {
         bench: id.bench,
         plan: id.plan,
         config: id.config,
+        world: id.world,
         run: id.run,
         seed: task.seed,
         metrics: ran.metrics,
@@ -121,10 +170,15 @@ fn task_of<'s>(scenario: &'s Scenario, id: &RunId) -> Task<'s> {
 
 /// Runs `ids` in parallel; `tick` is called after each run (a progress
 /// bar). The results are in the order of `ids`.
-pub fn run_all(scenario: &Scenario, ids: &[RunId], tick: &(dyn Fn() + Sync)) -> Vec<BenchRun> {
+pub fn run_all(
+    scenario: &Scenario,
+    worlds: &Worlds,
+    ids: &[RunId],
+    tick: &(dyn Fn() + Sync),
+) -> Vec<BenchRun> {
     ids.par_iter()
         .map(|id| {
-            let r = execute(scenario, id);
+            let r = execute(scenario, worlds, id);
             tick();
             r
         })

@@ -815,8 +815,21 @@ fn test_file(f: &Path, root: Option<&Path>) -> report::junit::FileResult {
                 run_scenario_drawing(s, &[], false)
             } else {
                 let ids = crate::bench::run_ids(&s, &[]);
-                let runs = crate::bench::run_all(&s, &ids, &|| {});
-                crate::bench::report(s, runs)
+                match crate::bench::Worlds::draw(&s, &[]) {
+                    Ok(worlds) => {
+                        let runs = crate::bench::run_all(&s, &worlds, &ids, &|| {});
+                        crate::bench::report(s, runs)
+                    }
+                    Err(fail) => {
+                        let text = render_diags(&fail.diags, &fail.sources);
+                        return FileResult {
+                            file: name.clone(),
+                            line: format!("FAILED  {name}  (a world of its bench does not load)"),
+                            cases: vec![case("loads".into(), 1, Some(text.clone()))],
+                            diagnostics: text,
+                        };
+                    }
+                }
             };
             let mut cases: Vec<Case> = report
                 .checks

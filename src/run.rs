@@ -57,6 +57,8 @@ pub struct BenchRun {
     pub plan: usize,
     /// The configuration ([`Bench::config_values`]).
     pub config: usize,
+    /// The sample of the family it ran on (`worlds N`; 0 without).
+    pub world: u64,
     /// The run's index in its configuration.
     pub run: u64,
     pub seed: u64,

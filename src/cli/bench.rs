@@ -95,7 +95,15 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
             }
             ids.retain(|id| s.takes(id.index));
         }
-        let runs = run_with_progress(&scenario, &ids, args);
+        let worlds = match bench::Worlds::draw(&scenario, &args.benches) {
+            Ok(w) => w,
+            Err(f) => {
+                print_failure(&f);
+                code = code.max(EXIT_BAD_INPUT);
+                continue;
+            }
+        };
+        let runs = run_with_progress(&scenario, &worlds, &ids, args);
         if let (Some(s), Some(out)) = (shard, &args.out) {
             code = code.max(write_part(&scenario, s, args, &runs, out));
             continue;
@@ -149,7 +157,12 @@ fn known_benches(scenario: &Scenario, names: &[String]) -> Result<(), String> {
 
 /// Runs `ids`, with a progress bar and an estimate of the time left on a
 /// terminal.
-fn run_with_progress(scenario: &Scenario, ids: &[RunId], args: &BenchArgs) -> Vec<BenchRun> {
+fn run_with_progress(
+    scenario: &Scenario,
+    worlds: &bench::Worlds,
+    ids: &[RunId],
+    args: &BenchArgs,
+) -> Vec<BenchRun> {
     let bar = (!args.quiet && !args.json && std::io::stderr().is_terminal()).then(|| {
         let bar = indicatif::ProgressBar::new(ids.len() as u64);
         if let Ok(style) = indicatif::ProgressStyle::with_template(
@@ -165,7 +178,7 @@ fn run_with_progress(scenario: &Scenario, ids: &[RunId], args: &BenchArgs) -> Ve
             b.inc(1);
         }
     };
-    let runs = bench::run_all(scenario, ids, &tick);
+    let runs = bench::run_all(scenario, worlds, ids, &tick);
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -448,10 +461,10 @@ fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
             first.n
         ));
     }
-    let at: HashMap<(usize, usize, usize, u64), usize> = ids
+    let at: HashMap<RunKey, usize> = ids
         .iter()
         .enumerate()
-        .map(|(i, id)| ((id.bench, id.plan, id.config, id.run), i))
+        .map(|(i, id)| ((id.bench, id.plan, id.config, id.world, id.run), i))
         .collect();
     let mut runs: Vec<Option<BenchRun>> = vec![None; ids.len()];
     for p in &parts {
@@ -485,9 +498,12 @@ fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
 /// A part's run, checked against what the scenario gives for its place
 /// (its seed, its configuration, the metrics of its planner, its checksum)
 /// and placed among the runs; or what is wrong with it.
+/// A run's place: bench, plan, configuration, world and run.
+type RunKey = (usize, usize, usize, u64, u64);
+
 fn decode_run(
     scenario: &Scenario,
-    at: &HashMap<(usize, usize, usize, u64), usize>,
+    at: &HashMap<RunKey, usize>,
     v: &Value,
 ) -> Result<(usize, BenchRun), &'static str> {
     let o = v.as_object().ok_or("is not a JSON object")?;
@@ -517,8 +533,15 @@ fn decode_run(
         .position(|x| scenario.plans[x.plan].name == plan_name)
         .ok_or("names a plan this bench does not run")?;
     let config = usize::try_from(config).map_err(|_| "has no such configuration")?;
+    // Written only by a bench with `worlds`.
+    let world = match o.get("world") {
+        None => 0,
+        Some(w) => w
+            .as_u64()
+            .ok_or("has a world that is not a sample number")?,
+    };
     let id_at = *at
-        .get(&(b, p, config, run))
+        .get(&(b, p, config, world, run))
         .ok_or("has a configuration or run number this bench does not have")?;
     let plan = &bench.plans[p].configs[config];
     if seed != plan.params.seed.wrapping_add(run) {
@@ -543,6 +566,7 @@ fn decode_run(
             bench: b,
             plan: p,
             config,
+            world,
             run,
             seed,
             metrics,

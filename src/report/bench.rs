@@ -132,15 +132,16 @@ pub fn table(sc: &Scenario, b: usize, runs: &[BenchRun], metrics: &[&str]) -> St
             .trim_end()
             .to_string()
     };
+    let count = runs.iter().filter(|r| r.bench == b).count();
+    let worlds = if bench.worlds > 1 {
+        format!(" on {} worlds", bench.worlds)
+    } else {
+        String::new()
+    };
     let mut s = format!(
-        "bench {} ({} run{})\n",
+        "bench {} ({count} run{}{worlds})\n",
         bench.name,
-        runs.iter().filter(|r| r.bench == b).count(),
-        if runs.iter().filter(|r| r.bench == b).count() == 1 {
-            ""
-        } else {
-            "s"
-        }
+        if count == 1 { "" } else { "s" }
     );
     let _ = writeln!(s, "  {}", line(&header));
     for l in &cells {
@@ -208,6 +209,9 @@ fn run_json(sc: &Scenario, r: &BenchRun) -> Value {
         sc.plans[bench.plans[r.plan].plan].name.clone().into(),
     );
     o.insert("config".into(), config_json(bench, r.config));
+    if bench.worlds > 1 {
+        o.insert("world".into(), r.world.into());
+    }
     o.insert("run".into(), r.run.into());
     o.insert("seed".into(), r.seed.into());
     o.insert("metrics".into(), metrics_json(&r.metrics));
@@ -237,6 +241,9 @@ pub fn to_json(report: &RunReport) -> Value {
                 .collect();
             o.insert("vary".into(), Value::Object(vary));
             o.insert("runs".into(), bench.runs.into());
+            if bench.worlds > 1 {
+                o.insert("worlds".into(), bench.worlds.into());
+            }
             let results: Vec<Value> = report
                 .bench_runs
                 .iter()
@@ -287,6 +294,10 @@ pub fn to_csv(report: &RunReport) -> String {
     let mut s = String::new();
     let mut header: Vec<String> = vec!["bench".into(), "plan".into()];
     header.extend(keys.iter().map(|k| (*k).to_string()));
+    let worlds = sc.benches.iter().any(|b| b.worlds > 1);
+    if worlds {
+        header.push("world".to_string());
+    }
     header.extend(["run".to_string(), "seed".to_string()]);
     header.extend(metrics.iter().map(|m| (*m).to_string()));
     let _ = writeln!(
@@ -314,6 +325,9 @@ pub fn to_csv(report: &RunReport) -> String {
                     .map(|i| value_text(&bench.vary[i].values[picks[i]].value))
                     .unwrap_or_default(),
             );
+        }
+        if worlds {
+            row.push(r.world.to_string());
         }
         row.push(r.run.to_string());
         row.push(r.seed.to_string());

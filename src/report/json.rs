@@ -244,6 +244,7 @@ mod tests {
             },
             obstacle_spans: Vec::new(),
             family: None,
+            template: None,
             robots: vec![
                 robot("rod", RobotShape::Polygon(rod)),
                 robot("disk", RobotShape::Disk(0.5)),

@@ -1334,6 +1334,7 @@ mod tests {
             world,
             obstacle_spans: Vec::new(),
             family: None,
+            template: None,
             robots: vec![
                 robot("rod", RobotShape::Polygon(rod)),
                 robot("disk", RobotShape::Disk(0.5)),

@@ -96,6 +96,7 @@ pub(crate) fn analyze(
             checks,
             sources,
             family: None,
+            template: None,
         }),
         _ => {
             crate::diagnostics::sort_diags(&mut diags);

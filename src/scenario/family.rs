@@ -86,6 +86,8 @@ pub(crate) struct Family {
     /// Whether the statements have anything to draw or compute (a param,
     /// a scatter, an expression); when not, a sample is the file itself.
     active: std::cell::Cell<bool>,
+    /// Whether a `scatter` draws obstacles.
+    scatters: std::cell::Cell<bool>,
 }
 
 /// One draw: the params' values and the rng, positioned after them.
@@ -225,8 +227,8 @@ impl Family {
 
     /// Whether the family draws anything (a param or a scatter): a plain
     /// scenario with constant expressions has one sample only.
-    pub fn has_params(&self) -> bool {
-        !self.params.is_empty()
+    pub fn draws(&self) -> bool {
+        !self.params.is_empty() || self.scatters.get()
     }
 
     /// A param's source from its declaration; the names it reads must be
@@ -304,6 +306,7 @@ impl Family {
                         WorldItem::Obstacle(o) => self.check_obstacle(o, diags),
                         WorldItem::Scatter(s) => {
                             self.active.set(true);
+                            self.scatters.set(true);
                             for v in [&s.count, &s.min, &s.max].into_iter().chain(&s.gap) {
                                 self.check_value(v, None, false, diags);
                             }
@@ -703,7 +706,7 @@ impl Family {
                 }
                 Err(diags) => {
                     let rejection = !diags.is_empty()
-                        && self.has_params()
+                        && self.draws()
                         && diags.iter().filter(|d| d.is_error()).all(|d| {
                             matches!(
                                 d.code,

@@ -121,21 +121,82 @@ pub(crate) fn analyze_sample(
             return Err(LoadFailure { sources, diags });
         }
     };
-    if !family.is_active() {
-        return super::analyze(path, statements, sources, maps);
-    }
-    let drawn = family.sample(&statements, choice, |instance| {
-        super::analyze(path, instance, sources.clone(), maps.clone()).map_err(|f| f.diags)
-    });
-    match drawn {
-        Ok((mut scenario, drawn)) => {
-            scenario.family = family.has_params().then_some(drawn);
+    let result = if family.is_active() {
+        family
+            .sample(&statements, choice, |instance| {
+                super::analyze(path, instance, sources.clone(), maps.clone()).map_err(|f| f.diags)
+            })
+            .map(|(mut scenario, drawn)| {
+                scenario.family = family.draws().then_some(drawn);
+                scenario
+            })
+    } else {
+        super::analyze(path, statements.clone(), sources.clone(), maps.clone()).map_err(|f| f.diags)
+    };
+    match result {
+        Ok(mut scenario) => {
+            // `worlds N` runs samples 0 … N − 1: only a family has them.
+            if !family.draws()
+                && let Some(span) = scenario.benches.iter().find_map(|b| b.worlds_span)
+            {
+                return Err(LoadFailure {
+                    sources,
+                    diags: vec![
+                        Diag::error(
+                            "scen::analyze::worlds_without_family",
+                            "`worlds` runs the samples of a family, and this scenario draws nothing",
+                        )
+                        .at(span, "every world would be the same")
+                        .help("draw something with `param NAME = uniform(a, b)` or a `scatter`, or use `runs` for more seeds"),
+                    ],
+                });
+            }
+            if family.draws() {
+                scenario.template = Some(Arc::new(Template {
+                    path: path.to_path_buf(),
+                    statements,
+                    sources: scenario.sources.clone(),
+                    maps,
+                    family_seed: choice.family_seed,
+                }));
+            }
             Ok(scenario)
         }
         Err(mut diags) => {
             crate::diagnostics::sort_diags(&mut diags);
             Err(LoadFailure { sources, diags })
         }
+    }
+}
+
+/// What it takes to draw another sample of a family: its statements
+/// before analysis, as read.
+#[derive(Debug)]
+pub struct Template {
+    path: PathBuf,
+    statements: Vec<SourcedStmt>,
+    sources: SourceMap,
+    maps: HashMap<Span, Result<FileId, Diag>>,
+    family_seed: u64,
+}
+
+impl Scenario {
+    /// Sample `k` of the family this scenario was drawn from (same family
+    /// seed); a scenario that draws nothing is its own only sample.
+    pub fn sample(&self, k: u64) -> Result<Scenario, LoadFailure> {
+        let Some(t) = &self.template else {
+            return Ok(self.clone());
+        };
+        analyze_sample(
+            &t.path,
+            t.statements.clone(),
+            t.sources.clone(),
+            t.maps.clone(),
+            SampleChoice {
+                sample: k,
+                family_seed: t.family_seed,
+            },
+        )
     }
 }
 

@@ -38,6 +38,8 @@ pub struct Scenario {
     /// For a family (SPEC 2.8): the sample this scenario is and what it
     /// drew; `None` for a scenario without params.
     pub family: Option<family::Drawn>,
+    /// For a family: how to draw its other samples ([`Scenario::sample`]).
+    pub template: Option<Arc<loader::Template>>,
 }
 
 impl Scenario {
@@ -72,6 +74,12 @@ pub struct Bench {
     pub vary: Vec<Vary>,
     /// Runs per configuration of a randomized planner (`runs`, default 1).
     pub runs: u64,
+    /// The samples of the family each configuration runs on (`worlds N`:
+    /// samples 0 … N − 1, SPEC 2.8); 1 without `worlds`: the scenario as
+    /// loaded.
+    pub worlds: u64,
+    /// Where `worlds N` was written.
+    pub worlds_span: Option<Span>,
     /// Limits added to every run's own (the smaller one holds).
     pub limits: Limits,
 }

@@ -27,7 +27,10 @@ pub(crate) const MAX_BENCH_CONFIGS: usize = 100_000;
 const MAX_RUNS: f64 = 1e7;
 
 /// The keys of a bench's body (also listed by the editors, `tests/editors.rs`).
-pub const BENCH_KEYS: &[&str] = &["plans", "vary", "runs", "limit"];
+pub const BENCH_KEYS: &[&str] = &["plans", "vary", "runs", "worlds", "limit"];
+
+/// The most samples of a family one bench runs on (`worlds N`).
+const MAX_WORLDS: f64 = 1e5;
 
 impl Analyzer {
     pub(super) fn benches(
@@ -256,6 +259,8 @@ impl Analyzer {
             plans: bench_plans,
             vary,
             runs: body.runs,
+            worlds: body.worlds.map_or(1, |(n, _)| n),
+            worlds_span: body.worlds.map(|(_, span)| span),
             limits,
         })
     }
@@ -343,10 +348,12 @@ impl Analyzer {
             plans: None,
             vary: Vec::new(),
             runs: 1,
+            worlds: None,
             limits: Vec::new(),
         };
         let mut ok = true;
         let mut runs_given: Option<Span> = None;
+        let mut worlds_given: Option<Span> = None;
         let tokens = &b.body;
         let mut i = 0;
         while i < tokens.len() {
@@ -465,38 +472,46 @@ impl Analyzer {
                         }
                     }
                 }
-                "runs" => match tokens.get(i) {
-                    Some(ParamToken::Value(v)) => {
-                        i += 1;
-                        if runs_given.is_some() {
-                            self.twice(key);
-                            ok = false;
-                        }
-                        runs_given = Some(v.span);
-                        match v.kind {
-                            ValueKind::Number(n)
-                                if n >= 1.0 && n.fract() == 0.0 && n <= MAX_RUNS =>
-                            {
-                                out.runs = n as u64
-                            }
-                            _ => {
-                                self.error(
-                                    Diag::error(
-                                        "scen::analyze::out_of_range",
-                                        format!("`runs` must be an integer from 1 to {MAX_RUNS}"),
-                                    )
-                                    .at(v.span, "not a number of runs")
-                                    .help("write e.g. `runs 20`"),
-                                );
-                                ok = false;
-                            }
-                        }
-                    }
-                    other => {
-                        self.bench_value_error(key, other, "a number of runs, e.g. `runs 20`");
+                "runs" | "worlds" => {
+                    let worlds = key.value == "worlds";
+                    let (given, max, example) = if worlds {
+                        (&mut worlds_given, MAX_WORLDS, "worlds 50")
+                    } else {
+                        (&mut runs_given, MAX_RUNS, "runs 20")
+                    };
+                    let Some(ParamToken::Value(v)) = tokens.get(i) else {
+                        let wanted = format!("a whole number, e.g. `{example}`");
+                        self.bench_value_error(key, tokens.get(i), &wanted);
+                        ok = false;
+                        continue;
+                    };
+                    i += 1;
+                    if given.is_some() {
+                        self.twice(key);
                         ok = false;
                     }
-                },
+                    *given = Some(v.span);
+                    match v.kind {
+                        ValueKind::Number(n) if n >= 1.0 && n.fract() == 0.0 && n <= max => {
+                            if worlds {
+                                out.worlds = Some((n as u64, v.span));
+                            } else {
+                                out.runs = n as u64;
+                            }
+                        }
+                        _ => {
+                            self.error(
+                                Diag::error(
+                                    "scen::analyze::out_of_range",
+                                    format!("`{}` must be an integer from 1 to {max}", key.value),
+                                )
+                                .at(v.span, format!("not a number of {}", key.value))
+                                .help(format!("write e.g. `{example}`")),
+                            );
+                            ok = false;
+                        }
+                    }
+                }
                 _ => {
                     // `limit KIND AMOUNT`: the three tokens, parsed later.
                     let end = (i + 2).min(tokens.len());
@@ -551,6 +566,8 @@ struct BenchBody {
     plans: Option<Vec<Ident>>,
     vary: Vec<(Ident, Vec<Value>)>,
     runs: u64,
+    /// `worlds N` and the span of N.
+    worlds: Option<(u64, Span)>,
     /// The tokens after each `limit` (kind and amount).
     limits: Vec<Vec<ParamToken>>,
 }
