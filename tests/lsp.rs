@@ -62,7 +62,10 @@ fn benches_are_completed_navigated_and_outlined() {
     c.open(&file, BENCHES);
     assert_eq!(c.diagnostics(&file), json!([]));
     // A bench's keys, the plans of `plans [`, the keys `vary` takes.
-    assert_eq!(c.labels(&file, 10, 2), ["plans", "vary", "runs", "limit"]);
+    assert_eq!(
+        c.labels(&file, 10, 2),
+        ["plans", "vary", "runs", "worlds", "limit"]
+    );
     assert_eq!(c.labels(&file, 10, 9), ["p", "q"]);
     let vary = c.labels(&file, 11, 7);
     assert!(
@@ -127,7 +130,7 @@ fn the_server_answers_every_request_exactly() {
     assert_eq!(
         c.labels(&main, 12, 0),
         [
-            "scenario", "include", "world", "robot", "plan", "expect", "bench"
+            "scenario", "include", "world", "robot", "plan", "expect", "bench", "param", "require"
         ]
     );
     let kinds: Vec<&str> = PLANNERS.iter().map(|p| p.kind).collect();

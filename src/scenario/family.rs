@@ -360,6 +360,16 @@ impl Family {
                 }
             }
             Stmt::Require { condition, .. } => {
+                if !is_condition(condition) {
+                    diags.push(
+                        Diag::error(
+                            "scen::family::bad_expression",
+                            "a `require` is a condition",
+                        )
+                        .at(condition.span, "a number, not a condition")
+                        .help("compare: `require gap > 0.6`; join conditions with `and`, `or`, `not`"),
+                    );
+                }
                 condition.walk(&mut |n| match &n.kind {
                     ExprKind::Metric { .. } | ExprKind::Series { .. } => diags.push(
                         Diag::error(
@@ -1281,6 +1291,18 @@ fn eval_with(
         Ok(x)
     } else {
         Err(EvalError::NotFinite(e.span))
+    }
+}
+
+/// Whether an expression is true or false (not a number).
+fn is_condition(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Bool(_) | ExprKind::Compare { .. } | ExprKind::Approx { .. } => true,
+        // Reported as `require_reads_metric`.
+        ExprKind::Metric { .. } | ExprKind::Series { .. } => true,
+        ExprKind::Not(x) => is_condition(x),
+        ExprKind::And(a, b) | ExprKind::Or(a, b) => is_condition(a) && is_condition(b),
+        _ => false,
     }
 }
 
