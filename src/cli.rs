@@ -259,6 +259,10 @@ pub struct BenchArgs {
     /// `runs`).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
     pub runs: Option<u64>,
+    /// Samples of the family per configuration, for every bench (overrides
+    /// each bench's `worlds`; the scenario must draw something).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    pub worlds: Option<u64>,
     /// Run only the K-th of N parts of the runs (1 ≤ K ≤ N); needs `--out`.
     #[arg(long, value_name = "K/N", requires = "out")]
     pub shard: Option<String>,

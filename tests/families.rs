@@ -194,3 +194,129 @@ fn a_scenario_without_params_is_not_a_family() {
     let goal = s.plans[0].params.goal.expect("a goal");
     assert_eq!((goal.x, goal.y), (6.0, 9.0));
 }
+
+/// Runs `scen` in `dir`.
+fn scen(dir: &Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(common::scen_bin())
+        .args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("run scen")
+}
+
+const FAMILY_BENCH: &str = "param w = uniform(0.4, 2)\n\
+    world {\n  bounds (0, 0) (10, 10)\n  rect (0, 4.5) (5 - w / 2, 5.5)\n  rect (5 + w / 2, 4.5) (10, 5.5)\n}\n\
+    robot r disk 0.4\n\
+    plan p astar r { start (5, 1) goal (5, 9) cell 0.1 }\n\
+    bench b { worlds 12 }\n\
+    expect rate(b.p.found) > 0\n";
+
+#[test]
+fn a_bench_runs_every_world_and_shards_merge_to_the_same_report() {
+    let dir = TempDir::new("families-bench");
+    write(&dir, "f.scen", FAMILY_BENCH);
+    let whole = scen(dir.path(), &["bench", "f.scen", "--json"]);
+    assert!(
+        whole.status.success(),
+        "{}",
+        String::from_utf8_lossy(&whole.stderr)
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&whole.stdout).expect("JSON");
+    let runs = doc["benches"][0]["results"].as_array().expect("runs").clone();
+    assert_eq!(runs.len(), 12);
+    let worlds: Vec<u64> = runs
+        .iter()
+        .map(|r| r["world"].as_u64().expect("a world"))
+        .collect();
+    assert_eq!(worlds, (0..12).collect::<Vec<u64>>());
+    // Each world is the sample `scen run --sample K` shows.
+    for k in [0u64, 7] {
+        let one = scen(
+            dir.path(),
+            &["run", "f.scen", "--json", "--sample", &k.to_string()],
+        );
+        let one: serde_json::Value = serde_json::from_slice(&one.stdout).expect("JSON");
+        assert_eq!(
+            one["plans"]["p"]["metrics"]["found"], runs[k as usize]["metrics"]["found"],
+            "world {k}"
+        );
+    }
+    // Some worlds are too narrow for the robot, others not.
+    let found: Vec<bool> = runs.iter().map(|r| r["metrics"]["found"] == true).collect();
+    assert!(found.contains(&true) && found.contains(&false), "{found:?}");
+
+    // Three shards, merged: the same runs.
+    for k in 1..=3 {
+        let out = scen(
+            dir.path(),
+            &[
+                "bench",
+                "f.scen",
+                "--shard",
+                &format!("{k}/3"),
+                "--out",
+                &format!("part{k}.jsonl"),
+            ],
+        );
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let merged = scen(
+        dir.path(),
+        &[
+            "bench",
+            "merge",
+            "part1.jsonl",
+            "part2.jsonl",
+            "part3.jsonl",
+            "--json",
+        ],
+    );
+    assert!(
+        merged.status.success(),
+        "{}",
+        String::from_utf8_lossy(&merged.stderr)
+    );
+    let merged: serde_json::Value = serde_json::from_slice(&merged.stdout).expect("JSON");
+    let strip = |runs: &serde_json::Value| -> Vec<serde_json::Value> {
+        runs.as_array()
+            .expect("runs")
+            .iter()
+            .map(|r| {
+                let mut r = r.clone();
+                r["metrics"]["time_ms"] = serde_json::Value::Null;
+                r
+            })
+            .collect()
+    };
+    assert_eq!(
+        strip(&merged["benches"][0]["results"]),
+        strip(&doc["benches"][0]["results"])
+    );
+
+    // `--worlds 3` overrides the bench's 12.
+    let three = scen(dir.path(), &["bench", "f.scen", "--json", "--worlds", "3"]);
+    let three: serde_json::Value = serde_json::from_slice(&three.stdout).expect("JSON");
+    assert_eq!(
+        three["benches"][0]["results"].as_array().map(Vec::len),
+        Some(3)
+    );
+}
+
+#[test]
+fn worlds_need_a_family() {
+    let dir = TempDir::new("families-worlds");
+    write(
+        &dir,
+        "plain.scen",
+        "world { bounds (0, 0) (10, 10) }\nrobot r point\n\
+         plan p astar r { start (1, 1) goal (9, 9) }\nbench b { runs 2 }\n",
+    );
+    let out = scen(dir.path(), &["bench", "plain.scen", "--worlds", "4"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("draws nothing"));
+}

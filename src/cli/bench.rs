@@ -79,6 +79,13 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
         if let Some(n) = args.runs {
             scenario.override_runs(n);
         }
+        if let Some(n) = args.worlds
+            && let Err(e) = scenario.override_worlds(n)
+        {
+            eprintln!("error: {e}");
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         let mut ids = bench::run_ids(&scenario, &args.benches);
         if let Some(s) = shard {
             if s.n > ids.len() as u64 {
@@ -257,7 +264,14 @@ fn write_part(
     out: &Path,
 ) -> i32 {
     let hash = scenario.sources.content_hash();
-    let header = report::bench::part_header(scenario, &hash, shard, &args.benches, args.runs);
+    let header = report::bench::part_header(
+        scenario,
+        &hash,
+        shard,
+        &args.benches,
+        args.runs,
+        args.worlds,
+    );
     let mut text = serde_json::to_string(&header).unwrap_or_default();
     text.push('\n');
     for r in runs {
@@ -293,8 +307,9 @@ struct Part {
     benches: Vec<String>,
     k: u64,
     n: u64,
-    /// `--runs N`, when the parts were made with it.
+    /// `--runs N` and `--worlds N`, when the parts were made with them.
     runs_override: Option<u64>,
+    worlds_override: Option<u64>,
     runs: Vec<Value>,
 }
 
@@ -339,6 +354,10 @@ fn read_part(path: &Path) -> Result<Part, String> {
             None => None,
             Some(v) => Some(v.as_u64().filter(|&n| n >= 1).ok_or_else(not_a_part)?),
         },
+        worlds_override: match header.get("worlds") {
+            None => None,
+            Some(v) => Some(v.as_u64().filter(|&n| n >= 1).ok_or_else(not_a_part)?),
+        },
         runs,
     })
 }
@@ -370,17 +389,28 @@ fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
         .collect::<Result<Vec<_>, _>>()?;
     let first = &parts[0];
     for p in &parts[1..] {
-        if (&p.file, &p.hash, p.n, &p.benches, p.runs_override)
-            != (
-                &first.file,
-                &first.hash,
-                first.n,
-                &first.benches,
-                first.runs_override,
-            )
-        {
-            let runs =
-                |r: Option<u64>| r.map_or("as written".to_string(), |n| format!("--runs {n}"));
+        if (
+            &p.file,
+            &p.hash,
+            p.n,
+            &p.benches,
+            p.runs_override,
+            p.worlds_override,
+        ) != (
+            &first.file,
+            &first.hash,
+            first.n,
+            &first.benches,
+            first.runs_override,
+            first.worlds_override,
+        ) {
+            let runs = |r: Option<u64>, w: Option<u64>| {
+                let r = r.map_or("as written".to_string(), |n| format!("--runs {n}"));
+                match w {
+                    Some(w) => format!("{r}, --worlds {w}"),
+                    None => r,
+                }
+            };
             return Err(format!(
                 "`{}` does not belong with `{}`: it was made from {} (hash {}), shards of {}, benches {:?}, runs {}; the other from {} (hash {}), shards of {}, benches {:?}, runs {}",
                 p.path.display(),
@@ -389,12 +419,12 @@ fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
                 p.hash,
                 p.n,
                 p.benches,
-                runs(p.runs_override),
+                runs(p.runs_override, p.worlds_override),
                 first.file,
                 first.hash,
                 first.n,
                 first.benches,
-                runs(first.runs_override)
+                runs(first.runs_override, first.worlds_override)
             ));
         }
     }
@@ -415,6 +445,9 @@ fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
     known_benches(&scenario, &first.benches)?;
     if let Some(n) = first.runs_override {
         scenario.override_runs(n);
+    }
+    if let Some(n) = first.worlds_override {
+        scenario.override_worlds(n)?;
     }
     let ids = bench::run_ids(&scenario, &first.benches);
     if first.n > ids.len() as u64 {

@@ -369,6 +369,7 @@ pub fn part_header(
     shard: bench::Shard,
     only: &[String],
     runs: Option<u64>,
+    worlds: Option<u64>,
 ) -> Value {
     let mut o = Map::new();
     o.insert("scen_part".into(), 1.into());
@@ -388,6 +389,9 @@ pub fn part_header(
     o.insert("n".into(), shard.n.into());
     if let Some(runs) = runs {
         o.insert("runs".into(), runs.into());
+    }
+    if let Some(worlds) = worlds {
+        o.insert("worlds".into(), worlds.into());
     }
     Value::Object(o)
 }

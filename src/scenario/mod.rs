@@ -61,6 +61,23 @@ impl Scenario {
     }
 }
 
+impl Scenario {
+    /// `scen bench --worlds N` (SPEC §4): every bench runs on samples
+    /// 0 … N − 1 of the family. An error for a scenario that draws nothing.
+    pub fn override_worlds(&mut self, worlds: u64) -> Result<(), String> {
+        if self.template.is_none() {
+            return Err(format!(
+                "`--worlds {worlds}`: `{}` draws nothing (no `param`, no `scatter`), so every world would be the same; use `--runs` for more seeds",
+                self.file.display()
+            ));
+        }
+        for bench in &mut self.benches {
+            bench.worlds = worlds;
+        }
+        Ok(())
+    }
+}
+
 /// A `bench` statement (SPEC 2.7): plans × configurations × runs.
 #[derive(Clone, Debug)]
 pub struct Bench {
