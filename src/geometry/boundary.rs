@@ -838,6 +838,31 @@ impl FreeBoundary {
         }
     }
 
+    /// Whether a ray arriving at `pos` in direction `d` goes on into the
+    /// open free space, not along the boundary: `pos` is then a
+    /// discontinuity of a range sensor's readings (a silhouette point).
+    pub fn ray_passes(&self, pos: Pos, d: Vector) -> bool {
+        let c = &self.cycles[pos.cycle];
+        let k = c.index_at(pos.sigma);
+        let s = pos.sigma - c.offsets[k];
+        let here = c.pieces[k];
+        let eps = self.eps();
+        let n = c.pieces.len();
+        let (a, b) = if s <= eps {
+            (c.pieces[(k + n - 1) % n], here)
+        } else if s >= self.pieces[here].len - eps {
+            (here, c.pieces[(k + 1) % n])
+        } else {
+            let normal = right(self.pieces[here].curve.tangent_at(s));
+            return unit(d).dot(&normal) > 1e-9;
+        };
+        let chord = 1e-4 * self.scale;
+        let out = direction_out(&self.pieces[b], chord);
+        let back = direction_back(&self.pieces[a], chord);
+        let (wedge, turn) = (cw_angle(out, back), cw_angle(out, d));
+        turn > 1e-7 && turn < wedge - 1e-7
+    }
+
     /// Whether direction `d` from the joint where piece `a` ends and `b`
     /// starts lies in the free wedge between them.
     fn wedge_free(&self, a: usize, b: usize, d: Vector) -> bool {

@@ -718,7 +718,7 @@ impl Run<'_> {
                 continue;
             }
             let Some(pos) = pos else { continue };
-            if joint && !b.departs_freely(pos, p - x) {
+            if joint && !b.ray_passes(pos, p - x) {
                 continue;
             }
             if b.first_entry(x, at, p).is_some() {
