@@ -19,7 +19,9 @@
 //!   closest point the way to the goal enters the obstacle.
 //! - Bug2: follow the boundary until the m-line (the segment from the start
 //!   to the goal) is met at a point closer to the goal than the hit point
-//!   from which the robot can move towards the goal; leave there. Back at
+//!   from which the robot can move towards the goal; leave there. (A wall
+//!   of no thickness meets the m-line in one point, the hit point: its
+//!   far side there counts as a leave point.) Back at
 //!   the hit point first: the goal is unreachable.
 //! - TangentBug: move towards the goal while the sensor shows the way free;
 //!   when an obstacle blocks it, towards the endpoint O of a blocking
@@ -562,15 +564,31 @@ impl Run<'_> {
             };
             let d_hit = (self.b.point(h) - self.goal).norm();
             let len = self.cycle_len(h);
-            // The first point of the circuit closest to the goal.
-            let mut best = (0.0, d_hit);
+            // The first point of the circuit closest to the goal; of points
+            // as close (the two sides of a wall), the first the robot can
+            // leave towards the goal from.
+            let eps = self.b.eps();
+            let mut closest: Vec<(f64, f64)> = vec![(0.0, d_hit)];
             for st in self.stretches(h, len, 1.0) {
                 let curve = &self.b.pieces[st.piece].curve;
                 let (s, d) = curve.closest_within(self.goal, st.s0.min(st.s1), st.s0.max(st.s1));
-                if d < best.1 - self.b.eps() {
-                    best = (st.walked + (s - st.s0).abs(), d);
-                }
+                closest.push((st.walked + (s - st.s0).abs(), d));
             }
+            let least = closest.iter().map(|c| c.1).fold(f64::INFINITY, f64::min);
+            let free = |&(w, _): &(f64, f64)| {
+                let q = self.b.moved(h, self.dir * w);
+                self.b.departs_freely(q, self.goal - self.b.point(q))
+            };
+            let tied: Vec<(f64, f64)> = closest
+                .into_iter()
+                .filter(|c| c.1 <= least + eps)
+                .collect();
+            let best = tied
+                .iter()
+                .find(|c| free(c))
+                .or(tied.first())
+                .copied()
+                .unwrap_or((0.0, d_hit));
             if let Err(s) = self.follow(h, len, 1.0) {
                 return s.into();
             }
@@ -632,7 +650,9 @@ impl Run<'_> {
                 }
                 let q = self.b.moved(h, self.dir * w);
                 let p = self.b.point(q);
-                (p - self.goal).norm() < d_hit - min_move
+                // As close as the hit point (not closer) only on the far
+                // side of a wall of no thickness, at the hit point itself.
+                (p - self.goal).norm() < d_hit + min_move
                     && self.b.departs_freely(q, self.goal - p)
             });
             match leave_at {
@@ -718,7 +738,9 @@ impl Run<'_> {
                 continue;
             }
             let Some(pos) = pos else { continue };
-            if joint && !b.ray_passes(pos, p - x) {
+            // The side of the boundary facing the robot (a wall of no
+            // thickness has both sides at each of its points).
+            if !b.departs_freely(pos, x - p) || (joint && !b.ray_passes(pos, p - x)) {
                 continue;
             }
             if b.first_entry(x, at, p).is_some() {
@@ -876,3 +898,159 @@ impl Run<'_> {
     }
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contract::Limits;
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+    use crate::geometry::{Aabb, Obstacle, Shape, World};
+
+    fn world(shapes: Vec<Shape>) -> World {
+        World {
+            bounds: Aabb::from_corners(Point::new(-10.0, -10.0), Point::new(20.0, 10.0)),
+            obstacles: shapes
+                .into_iter()
+                .enumerate()
+                .map(|(i, shape)| Obstacle {
+                    name: format!("o{i}"),
+                    shape,
+                })
+                .collect(),
+        }
+    }
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+        Shape::Rect(Aabb::from_corners(Point::new(x0, y0), Point::new(x1, y1)))
+    }
+
+    /// The worlds of the boundary follower's tests, each across the line
+    /// from (-5, 0.3) to (15, 0.3).
+    fn worlds() -> Vec<(&'static str, World)> {
+        vec![
+            ("square", world(vec![rect(2.0, -2.0, 6.0, 2.0)])),
+            (
+                "disk",
+                world(vec![Shape::Disk {
+                    center: Point::new(4.0, 0.0),
+                    radius: 2.0,
+                }]),
+            ),
+            (
+                "touching",
+                world(vec![
+                    rect(2.0, -2.0, 4.0, 2.0),
+                    Shape::Disk {
+                        center: Point::new(5.0, 0.0),
+                        radius: 1.0,
+                    },
+                    rect(3.0, 1.0, 8.0, 3.0),
+                ]),
+            ),
+            (
+                "wall",
+                world(vec![Shape::Segment(
+                    Point::new(4.0, -3.0),
+                    Point::new(5.0, 4.0),
+                )]),
+            ),
+            (
+                "non-convex",
+                world(vec![Shape::Polygon {
+                    // A U opening towards the start: the robot walks in.
+                    outline: vec![
+                        Point::new(2.0, -3.0),
+                        Point::new(7.0, -3.0),
+                        Point::new(7.0, 3.0),
+                        Point::new(2.0, 3.0),
+                        Point::new(2.0, 2.0),
+                        Point::new(6.0, 2.0),
+                        Point::new(6.0, -2.0),
+                        Point::new(2.0, -2.0),
+                    ],
+                    pieces: Vec::new(),
+                }]),
+            ),
+        ]
+    }
+
+    fn run(w: &World, robot: &RobotShape, bug: &Bug) -> PlanOutcome {
+        let task = Task {
+            world: w,
+            robot,
+            start: Config::new(-5.0, 0.3, 0.0),
+            goal: Some(Config::new(15.0, 0.3, 0.0)),
+            limits: Limits::default(),
+            seed: 0,
+            steering: None,
+            draw: true,
+        };
+        plan(bug, &task)
+    }
+
+    #[test]
+    fn every_variant_goes_round_every_kind_of_obstacle_and_its_motion_is_valid() {
+        for (name, w) in worlds() {
+            for robot in [RobotShape::Point, RobotShape::Disk(0.3)] {
+                for variant in [Variant::Bug1, Variant::Bug2, Variant::Tangent] {
+                    for follow in [Follow::Left, Follow::Right] {
+                        for sense in [f64::INFINITY, 1.5] {
+                            let bug = Bug {
+                                variant,
+                                follow,
+                                sense,
+                            };
+                            let label = format!("{name} / {robot:?} / {bug:?}");
+                            let out = run(&w, &robot, &bug);
+                            let path = out.path.as_ref().unwrap_or_else(|| {
+                                panic!("{label}: not found: {:?}", out.notes)
+                            });
+                            if let Err(e) = validate_path(&w, &robot, path, DEFAULT_TOLERANCE) {
+                                panic!("{label}: {e:?}");
+                            }
+                            let hits = out.extra["hits"].as_f64();
+                            assert!(hits >= 1.0 || variant == Variant::Tangent, "{label}");
+                            // The exact length is at most the polyline's.
+                            let polyline: f64 = path
+                                .windows(2)
+                                .map(|p| (p[1].xy() - p[0].xy()).norm())
+                                .sum();
+                            let traveled = out.extra["traveled"].as_f64();
+                            assert!(traveled <= polyline + 1e-9, "{label}");
+                            assert!(traveled >= 20.0 - 1e-9, "{label}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_same_input_gives_the_same_motion() {
+        for (name, w) in worlds() {
+            let bug = Bug {
+                variant: Variant::Tangent,
+                follow: Follow::Right,
+                sense: 2.0,
+            };
+            let a = run(&w, &RobotShape::Disk(0.3), &bug);
+            let b = run(&w, &RobotShape::Disk(0.3), &bug);
+            assert_eq!(a.path, b.path, "{name}");
+            assert_eq!(a.layers, b.layers, "{name}");
+        }
+    }
+
+    #[test]
+    fn the_drawing_shows_the_m_line_hits_leaves_and_the_boundary_followed() {
+        let (_, w) = &worlds()[0];
+        let bug = Bug {
+            variant: Variant::Bug2,
+            follow: Follow::Left,
+            sense: f64::INFINITY,
+        };
+        let out = run(w, &RobotShape::Point, &bug);
+        for entity in ["boundary", "m_line", "hits/0000", "leaves/0000", "followed/0000"] {
+            assert!(out.layer(entity).is_some(), "no {entity}");
+        }
+    }
+}
