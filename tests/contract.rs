@@ -1,6 +1,7 @@
 //! The planner contract, driven by the registry: every planner, for every
 //! robot kind it declares, on two small worlds (16 × 16 cells of a grid, so
-//! that `on`-style planners have a grid to work on): [`World::Open`], with
+//! that `on`-style planners have a grid to work on; the same cells as rects
+//! for a planner that does not plan among grids): [`World::Open`], with
 //! nothing in the way, and [`World::Detour`], with a block across the
 //! straight line from the start to the goal:
 //! - the metrics it reports are exactly the common ones of SPEC 3 and the
@@ -27,7 +28,7 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::TempDir;
-use common::planner_cases::{required, robot};
+use common::planner_cases::{cell_world, required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
 use scen::contract::schema::{DefaultValue, MetricType, RobotKind};
@@ -49,24 +50,22 @@ enum World {
 
 const WORLDS: [World; 2] = [World::Open, World::Detour];
 
-fn world(world: World) -> String {
-    let mut rows = String::new();
-    for row in 0..16 {
-        let line: String = (0..16)
-            .map(|col| {
-                let blocked = (3..6).contains(&row) && (9..12).contains(&col);
-                if blocked && world == World::Detour {
-                    '#'
-                } else {
-                    '.'
-                }
-            })
-            .collect();
-        rows.push_str(&format!("    \"{line}\"\n"));
-    }
-    format!(
-        "world {{\n  bounds (0, 0) (16, 16)\n  grid G cell 1 origin (0, 0) {{\n{rows}  }}\n}}\n"
-    )
+fn world(planner: &Planner, world: World) -> String {
+    let rows: Vec<String> = (0..16)
+        .map(|row| {
+            (0..16)
+                .map(|col| {
+                    let blocked = (3..6).contains(&row) && (9..12).contains(&col);
+                    if blocked && world == World::Detour {
+                        '#'
+                    } else {
+                        '.'
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    cell_world(planner, &rows)
 }
 
 const START: (f64, f64) = (1.5, 1.5);
@@ -84,7 +83,7 @@ fn scenario_text(planner: &Planner, kind: RobotKind, place: World, extra: &str) 
         START.1,
         required(planner).join(" "),
         kind = planner.kind,
-        world = world(place),
+        world = world(planner, place),
         robot = robot(kind),
     )
 }

@@ -196,7 +196,7 @@ fn param_keys() -> BTreeSet<&'static str> {
 fn word_values() -> BTreeSet<&'static str> {
     let mut words: BTreeSet<&str> = DRIVE_MODELS.iter().copied().collect();
     for p in all_params() {
-        if let ValueSpec::Word(ws) | ValueSpec::IntOrWord(ws) = p.value {
+        if let ValueSpec::Word(ws) | ValueSpec::IntOrWord(ws) | ValueSpec::NumOrWord(ws) = p.value {
             words.extend(ws.iter().copied());
         }
     }

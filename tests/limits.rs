@@ -22,8 +22,9 @@ mod common;
 use std::process::Command;
 use std::time::Duration;
 
-use common::planner_cases::{required, robot};
+use common::planner_cases::{cell_world, required, robot};
 use common::{Finished, TempDir, run_or_kill, scen_bin};
+use scen::contract::Planner;
 use scen::planners::registry::PLANNERS;
 
 /// The address space the memory tests allow the binary.
@@ -214,23 +215,21 @@ fn a_200_million_cell_lattice_gives_up_at_its_time_limit() {
 
 /// 64 × 64 unit cells with a block: set-up enough that every planner looks
 /// at its clock before it is done.
-fn world() -> String {
-    let mut rows = String::new();
-    for j in 0..64 {
-        let row: String = (0..64)
-            .map(|i| {
-                if (30..34).contains(&i) && (20..40).contains(&j) {
-                    '#'
-                } else {
-                    '.'
-                }
-            })
-            .collect();
-        rows.push_str(&format!("    \"{row}\"\n"));
-    }
-    format!(
-        "world {{\n  bounds (0, 0) (64, 64)\n  grid G cell 1 origin (0, 0) {{\n{rows}  }}\n}}\n"
-    )
+fn world(planner: &Planner) -> String {
+    let rows: Vec<String> = (0..64)
+        .map(|j| {
+            (0..64)
+                .map(|i| {
+                    if (30..34).contains(&i) && (20..40).contains(&j) {
+                        '#'
+                    } else {
+                        '.'
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    cell_world(planner, &rows)
 }
 
 /// SPEC 2.5: a plan whose time is up when it starts (a limit of 0, as a
@@ -253,7 +252,7 @@ fn every_planner_counts_its_set_up_against_its_time_limit() {
             };
             let text = format!(
                 "scenario \"set-up\"\n{}robot r {}\nplan p {} r {{\n  start (1.5, 1.5) {goal} seed 1\n  {}\n}}\n",
-                world(),
+                world(planner),
                 robot(kind),
                 planner.kind,
                 required(planner).join(" ")

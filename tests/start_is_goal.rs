@@ -14,7 +14,7 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::TempDir;
-use common::planner_cases::{required, robot};
+use common::planner_cases::{cell_world, required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
 use scen::contract::schema::RobotKind;
@@ -23,28 +23,22 @@ use scen::planners::registry::PLANNERS;
 use scen::{Scenario, run_scenario};
 
 /// 16 × 16 unit cells with a block, as in the contract test.
-const WORLD: &str = r#"world {
-  bounds (0, 0) (16, 16)
-  grid G cell 1 origin (0, 0) {
-    "................"
-    "................"
-    "................"
-    ".........###...."
-    ".........###...."
-    ".........###...."
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-    "................"
-  }
+fn world(planner: &Planner) -> String {
+    let rows: Vec<String> = (0..16)
+        .map(|row| {
+            (0..16)
+                .map(|col| {
+                    if (3..6).contains(&row) && (9..12).contains(&col) {
+                        '#'
+                    } else {
+                        '.'
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    cell_world(planner, &rows)
 }
-"#;
 
 /// A plan whose start and goal are both `pose` (written as in a file).
 fn scenario(planner: &Planner, kind: RobotKind, pose: &str, goal: bool) -> Scenario {
@@ -54,8 +48,9 @@ fn scenario(planner: &Planner, kind: RobotKind, pose: &str, goal: bool) -> Scena
         String::new()
     };
     let text = format!(
-        "scenario \"start is goal\"\n{WORLD}robot r {robot}\nplan p {kind} r {{\n  start {pose} {goal} seed 3\n  {req}\n  {budget}\n}}\n",
+        "scenario \"start is goal\"\n{world}robot r {robot}\nplan p {kind} r {{\n  start {pose} {goal} seed 3\n  {req}\n  {budget}\n}}\n",
         kind = planner.kind,
+        world = world(planner),
         robot = robot(kind),
         req = required(planner).join(" "),
         // A planner that runs to its iteration limit by default must not

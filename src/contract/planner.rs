@@ -32,6 +32,9 @@ pub struct Planner {
     /// Whether it draws random numbers (from the plan's `seed`): a bench
     /// runs such a planner `runs` times per configuration, others once.
     pub randomized: bool,
+    /// Whether it plans in worlds with `grid` obstacles; the analyzer
+    /// refuses a plan of a planner that does not in such a world.
+    pub grids: bool,
     /// Reads the validated parameters into the planner's settings. Problems
     /// that involve several parameters, the world or the robot are reported
     /// through [`PlanArgs::error`] with spans; `None` (or any error

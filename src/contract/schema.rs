@@ -63,6 +63,9 @@ pub enum ValueSpec {
     Word(&'static [&'static str]),
     /// A positive integer or one of a few words (`layers 51|auto`).
     IntOrWord(&'static [&'static str]),
+    /// A number > 0 (at most [`MAX_MAGNITUDE`]) or one of a few words
+    /// (`sense 2.5|inf`).
+    NumOrWord(&'static [&'static str]),
     /// The name of a world obstacle (`on G`).
     ObstacleName,
     /// `expansions N | steps N | time DURATION | cells N | iterations N`.
@@ -109,6 +112,7 @@ impl ValueSpec {
             ),
             ValueSpec::Word(w) => format!("one of {}", backticked(w)),
             ValueSpec::IntOrWord(w) => format!("a positive integer or {}", backticked(w)),
+            ValueSpec::NumOrWord(w) => format!("a number > 0 and <= 1e9, or {}", backticked(w)),
             ValueSpec::ObstacleName => "the name of a `grid` obstacle of the world".into(),
             ValueSpec::Limit => format!(
                 "{} (e.g. `time 2s`, `expansions 10000`)",
@@ -151,6 +155,7 @@ impl ValueSpec {
             self,
             ValueSpec::Word(_)
                 | ValueSpec::IntOrWord(_)
+                | ValueSpec::NumOrWord(_)
                 | ValueSpec::ObstacleName
                 | ValueSpec::Limit
                 | ValueSpec::Drive
@@ -160,7 +165,7 @@ impl ValueSpec {
     /// The words this value may be, for completion and the editors.
     pub fn words(&self) -> &'static [&'static str] {
         match self {
-            ValueSpec::Word(w) | ValueSpec::IntOrWord(w) => w,
+            ValueSpec::Word(w) | ValueSpec::IntOrWord(w) | ValueSpec::NumOrWord(w) => w,
             ValueSpec::Limit => LIMIT_KINDS,
             ValueSpec::Drive => DRIVE_MODELS,
             _ => &[],

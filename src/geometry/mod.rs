@@ -3,6 +3,7 @@
 //!
 //! Everything is in f64 world units; angles are radians, counter-clockwise.
 
+pub mod boundary;
 mod buckets;
 pub mod car;
 pub mod collide;

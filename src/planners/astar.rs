@@ -83,6 +83,7 @@ pub static PLANNER: Planner = Planner {
     limits: &["expansions", "time", "cells"],
     needs_goal: true,
     randomized: false,
+    grids: true,
     check,
 };
 

@@ -81,6 +81,7 @@ pub static PLANNER: Planner = Planner {
     limits: &["expansions", "time"],
     needs_goal: false,
     randomized: false,
+    grids: true,
     check,
 };
 

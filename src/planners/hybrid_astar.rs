@@ -97,6 +97,7 @@ pub static PLANNER: Planner = Planner {
     limits: &["expansions", "time"],
     needs_goal: true,
     randomized: false,
+    grids: true,
     check,
 };
 

@@ -89,6 +89,7 @@ pub static PLANNER: Planner = Planner {
     limits: &["expansions", "steps", "time", "cells"],
     needs_goal: true,
     randomized: false,
+    grids: true,
     check,
 };
 

@@ -113,6 +113,7 @@ pub static PLANNER: Planner = Planner {
     limits: &["steps", "expansions", "time"],
     needs_goal: true,
     randomized: true,
+    grids: true,
     check,
 };
 

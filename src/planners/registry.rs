@@ -75,6 +75,7 @@ planners! {
     prm::PRM_STAR,
     #[path = "steer.rs"] steer::PLANNER,
     #[path = "hybrid_astar.rs"] hybrid_astar::PLANNER,
+    #[path = "bug.rs"] bug::PLANNER,
 }
 
 /// The planner of a kind.

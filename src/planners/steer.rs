@@ -23,6 +23,7 @@ pub static PLANNER: Planner = Planner {
     limits: &["time"],
     needs_goal: true,
     randomized: false,
+    grids: true,
     check,
 };
 

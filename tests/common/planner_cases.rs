@@ -35,3 +35,38 @@ pub fn required(planner: &Planner) -> Vec<String> {
         })
         .collect()
 }
+
+/// A world of unit cells, `rows` top row first (`#` blocked), from (0, 0):
+/// a `grid G` for a planner that plans among grids, else the same blocked
+/// cells as `rect`s (one per run of `#` in a row), so that the tests of
+/// every planner give each the same obstacles.
+pub fn cell_world(planner: &Planner, rows: &[String]) -> String {
+    let (w, h) = (rows.first().map_or(0, String::len), rows.len());
+    let mut text = format!("world {{\n  bounds (0, 0) ({w}, {h})\n");
+    if planner.grids {
+        text.push_str("  grid G cell 1 origin (0, 0) {\n");
+        for row in rows {
+            text.push_str(&format!("    \"{row}\"\n"));
+        }
+        text.push_str("  }\n");
+    } else {
+        for (r, row) in rows.iter().enumerate() {
+            let y = h - 1 - r;
+            let cells: Vec<char> = row.chars().collect();
+            let mut c = 0;
+            while c < cells.len() {
+                if cells[c] != '#' {
+                    c += 1;
+                    continue;
+                }
+                let first = c;
+                while c < cells.len() && cells[c] == '#' {
+                    c += 1;
+                }
+                text.push_str(&format!("  rect ({first}, {y}) ({c}, {})\n", y + 1));
+            }
+        }
+    }
+    text.push_str("}\n");
+    text
+}

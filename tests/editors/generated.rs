@@ -445,7 +445,10 @@ fn choice(n: usize, options: &[String]) -> String {
 /// The placeholder of a required parameter's value.
 fn required_value(n: usize, value: ValueSpec) -> String {
     let example = match value {
-        ValueSpec::Word(_) | ValueSpec::IntOrWord(_) | ValueSpec::Drive => {
+        ValueSpec::Word(_)
+        | ValueSpec::IntOrWord(_)
+        | ValueSpec::NumOrWord(_)
+        | ValueSpec::Drive => {
             let options: Vec<String> = value.words().iter().map(|w| w.to_string()).collect();
             return choice(n, &options);
         }

@@ -71,6 +71,7 @@ syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
 " BEGIN GENERATED planners (scripts/regenerate.sh; do not edit)
 syn keyword scenPlanner contained astar online roadmap potential coverage rrt nextgroup=scenRobotRef skipwhite
 syn keyword scenPlanner contained rrt_connect rrt_star prm prm_star steer hybrid_astar nextgroup=scenRobotRef skipwhite
+syn keyword scenPlanner contained bug nextgroup=scenRobotRef skipwhite
 " END GENERATED planners
 syn match   scenRobotRef contained /\h\w*/
 " bench NAME { ... }: the block (after comments, other words, on later lines
@@ -109,8 +110,8 @@ syn keyword scenWorldKeyword contained bounds origin
 syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic
 syn keyword scenParamKey contained rotate strategy sense arc_segments attract repulse influence step tolerance escape
 syn keyword scenParamKey contained jump on tool weights range goal_bias sampler stop simplify rewire informed neighbors
-syn keyword scenParamKey contained reverse_cost switch_cost analytic dt max_speed max_turn_rate gain turn_gain reach
-syn keyword scenParamKey contained align lookahead speed max_curvature
+syn keyword scenParamKey contained reverse_cost switch_cost analytic variant follow dt max_speed max_turn_rate gain
+syn keyword scenParamKey contained turn_gain reach align lookahead speed max_curvature
 " A key that is a word value too is two matches, not keywords (a keyword would
 " win everywhere): the word's, defined later, wins after the keys it follows.
 syn match   scenParamKey contained /\<limit\>/
@@ -119,6 +120,7 @@ syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
 syn keyword scenWord contained unicycle pure_pursuit center corner auto euclid l1 lattice metric zero yes no backtrack
 syn keyword scenWord contained shortcut replan dstar_lite none random_walk max sum uniform gaussian bridge first smooth
+syn keyword scenWord contained bug1 bug2 tangent left right inf
 syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " END GENERATED parameters
 
@@ -150,7 +152,7 @@ syn match   scenMetric contained /\.\@1<=\%(layers\|generated\|traveled\|steps\|
 syn match   scenMetric contained /\.\@1<=\%(graph_edges\|minima\|escapes\|coverage\|cells_total\|cells_visited\)\>/
 syn match   scenMetric contained /\.\@1<=\%(revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
 syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\)\>/
-syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|analytic_tries\|drive_time\)\>/
+syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|analytic_tries\|hits\|drive_time\)\>/
 syn match   scenMetric contained /\.\@1<=\%(drive_max_deviation\|drive_collision_free\)\>/
 " END GENERATED metrics
 syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor

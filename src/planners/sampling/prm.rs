@@ -54,6 +54,7 @@ pub static PRM: Planner = Planner {
     limits: LIMITS,
     needs_goal: true,
     randomized: true,
+    grids: true,
     check: check_prm,
 };
 
@@ -74,6 +75,7 @@ pub static PRM_STAR: Planner = Planner {
     limits: LIMITS,
     needs_goal: true,
     randomized: true,
+    grids: true,
     check: check_prm_star,
 };
 

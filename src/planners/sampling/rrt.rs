@@ -52,6 +52,7 @@ pub static RRT: Planner = Planner {
     limits: LIMITS,
     needs_goal: true,
     randomized: true,
+    grids: true,
     check: check_rrt,
 };
 
@@ -72,6 +73,7 @@ pub static RRT_STAR: Planner = Planner {
     limits: LIMITS,
     needs_goal: true,
     randomized: true,
+    grids: true,
     check: check_rrt_star,
 };
 

@@ -39,6 +39,7 @@ pub static PLANNER: Planner = Planner {
     limits: LIMITS,
     needs_goal: true,
     randomized: true,
+    grids: true,
     check,
 };
 

@@ -159,6 +159,33 @@ impl Analyzer {
         if !robot_ok {
             return None;
         }
+        if !planner.grids
+            && let Some(grid) = world
+                .obstacles
+                .iter()
+                .find(|o| matches!(o.shape, crate::geometry::Shape::Grid(_)))
+        {
+            let others: Vec<&str> = PLANNERS
+                .iter()
+                .filter(|q| q.grids)
+                .map(|q| q.kind)
+                .collect();
+            self.error(
+                Diag::error(
+                    "scen::analyze::grid_world",
+                    format!(
+                        "planner `{}` does not plan in a world with `grid` obstacles",
+                        planner.kind
+                    ),
+                )
+                .at(p.kind.span, format!("the world has the grid `{}`", grid.name))
+                .help(format!(
+                    "draw the obstacles as `rect`, `polygon`, `segment` or `disk`; grids are planned by {}",
+                    schema::backticked(&others)
+                )),
+            );
+            return None;
+        }
         let head = p.name.span.to(p.robot.span);
         let mut args = PlanArgs::new(planner, &p.name.value, head, world, robot, &params);
         args.start_valid = start_ok;
@@ -709,7 +736,7 @@ impl Analyzer {
                     None
                 }
             }
-            (ValueSpec::IntOrWord(words), ParamToken::Word(w)) => {
+            (ValueSpec::IntOrWord(words) | ValueSpec::NumOrWord(words), ParamToken::Word(w)) => {
                 if words.contains(&w.value.as_str()) {
                     Some(ParamValue::Word(w.value.clone()))
                 } else {
@@ -720,6 +747,16 @@ impl Analyzer {
             (ValueSpec::IntOrWord(_), ParamToken::Value(v)) => match v.kind {
                 ValueKind::Number(x) => {
                     let ok = x >= 1.0 && x.fract() == 0.0 && x <= 1e9;
+                    self.in_range(spec, v, x, ok, &format!("{x}"))
+                }
+                _ => {
+                    self.wrong_value(spec, tok);
+                    None
+                }
+            },
+            (ValueSpec::NumOrWord(_), ParamToken::Value(v)) => match v.kind {
+                ValueKind::Number(x) => {
+                    let ok = x > 0.0 && x <= MAX_MAGNITUDE;
                     self.in_range(spec, v, x, ok, &format!("{x}"))
                 }
                 _ => {
