@@ -126,6 +126,42 @@ pub fn eval(expr: &Expr, values: &dyn Values, used: &mut Used) -> MetricValue {
     }
 }
 
+/// How far a check is from failing (SPEC §4 `falsify`): for `a < b`,
+/// b − a; for `a ~ b +- t`, t − |a − b|; `and` the smallest of its sides,
+/// `or` the largest, `not` the opposite; `==` −|a − b|, `!=` |a − b|; any
+/// other condition +1 when it holds, −1 when not. A negative margin is a
+/// failed check (and a margin of 0 on a strict comparison); a margin that
+/// is not a number (a metric with no value) counts as ±1 by the truth of
+/// the check.
+pub fn margin(expr: &Expr, values: &dyn Values) -> f64 {
+    let num = |e: &Expr| eval(e, values, &mut Used::default()).as_f64();
+    let m = match &expr.kind {
+        ExprKind::Compare { op, lhs, rhs } => {
+            let (a, b) = (num(lhs), num(rhs));
+            match op {
+                CompareOp::Lt | CompareOp::Le => b - a,
+                CompareOp::Gt | CompareOp::Ge => a - b,
+                CompareOp::Eq => -(a - b).abs(),
+                CompareOp::Ne => (a - b).abs(),
+            }
+        }
+        ExprKind::Approx { lhs, rhs, tol } => num(tol) - (num(lhs) - num(rhs)).abs(),
+        ExprKind::And(a, b) => margin(a, values).min(margin(b, values)),
+        ExprKind::Or(a, b) => margin(a, values).max(margin(b, values)),
+        ExprKind::Not(x) => -margin(x, values),
+        _ => f64::NAN,
+    };
+    if m.is_nan() {
+        match eval(expr, values, &mut Used::default()) {
+            MetricValue::Bool(true) => 1.0,
+            MetricValue::Num(x) if x != 0.0 && !x.is_nan() => 1.0,
+            _ => -1.0,
+        }
+    } else {
+        m
+    }
+}
+
 /// The runs' values of a series expression (`b.p.m`, `S where T`),
 /// recording its statistics when it is `aggregated`.
 fn eval_series(

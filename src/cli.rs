@@ -13,6 +13,7 @@ use crate::scenario::loader::LoadFailure;
 use crate::viz::{self, ViewerTarget};
 
 mod bench;
+mod falsify;
 mod fmt;
 mod watch;
 
@@ -79,6 +80,9 @@ pub enum Command {
     /// Run the benches of scenarios: tables, statistics, checks
     /// (`scen bench merge PART.jsonl...` combines the parts of `--shard`).
     Bench(BenchArgs),
+    /// Search a family of scenarios (`param`, `scatter`) for a sample where
+    /// an `expect` fails; shrink it into a standalone scenario.
+    Falsify(falsify::FalsifyArgs),
     /// Rewrite files in the canonical layout, keeping every comment.
     Fmt(FmtArgs),
     /// Run a scenario again on every save of it or of a file it reads.
@@ -313,6 +317,7 @@ pub fn main() -> i32 {
         Command::Check(args) => cmd_check(&args),
         Command::Test(args) => cmd_test(&args),
         Command::Bench(args) => bench::cmd_bench(&args),
+        Command::Falsify(args) => falsify::cmd_falsify(&args),
         Command::Fmt(args) => fmt::run(&args.files, args.check),
         Command::Watch(args) => watch::cmd_watch(&args),
         // The server writes its own messages and ends on `exit`.

@@ -32,6 +32,7 @@ mod cli;
 pub mod contract;
 pub mod diagnostics;
 mod drive;
+mod falsify;
 mod files;
 pub mod format;
 pub mod geometry;

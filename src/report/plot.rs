@@ -558,6 +558,7 @@ mod tests {
                         bench: 0,
                         plan,
                         config,
+                        world: 0,
                         run: u64::from(run),
                         seed: u64::from(run),
                         metrics: [("length".to_string(), MetricValue::Num(length))].into(),

@@ -19,6 +19,7 @@
 //! collision, is drawn again (attempt + 1), at most [`MAX_ATTEMPTS`] times.
 
 use std::collections::{HashMap, HashSet};
+use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 
 use crate::contract::schema;
 use crate::diagnostics::{Diag, Span, Spanned};
@@ -78,16 +79,16 @@ struct ParamDef {
 }
 
 /// A family's params and constraints, checked.
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 pub(crate) struct Family {
     params: Vec<ParamDef>,
     index: HashMap<String, usize>,
     requires: Vec<(Expr, Span)>,
     /// Whether the statements have anything to draw or compute (a param,
     /// a scatter, an expression); when not, a sample is the file itself.
-    active: std::cell::Cell<bool>,
+    active: AtomicBool,
     /// Whether a `scatter` draws obstacles.
-    scatters: std::cell::Cell<bool>,
+    scatters: AtomicBool,
 }
 
 /// One draw: the params' values and the rng, positioned after them.
@@ -157,7 +158,7 @@ impl Family {
         for s in statements {
             match &s.stmt {
                 Stmt::Param(p) => {
-                    family.active.set(true);
+                    family.active.store(true, Relaxed);
                     let name = &p.name.value;
                     if let Some(&k) = family.index.get(name) {
                         diags.push(
@@ -196,7 +197,7 @@ impl Family {
                     decls.push(p);
                 }
                 Stmt::Require { condition, span } => {
-                    family.active.set(true);
+                    family.active.store(true, Relaxed);
                     family.requires.push((condition.clone(), *span));
                 }
                 _ => {}
@@ -220,15 +221,20 @@ impl Family {
         }
     }
 
+    /// The params' indices by name.
+    pub(crate) fn index(&self) -> &HashMap<String, usize> {
+        &self.index
+    }
+
     /// Whether there is anything to draw or compute.
     pub fn is_active(&self) -> bool {
-        self.active.get()
+        self.active.load(Relaxed)
     }
 
     /// Whether the family draws anything (a param or a scatter): a plain
     /// scenario with constant expressions has one sample only.
     pub fn draws(&self) -> bool {
-        !self.params.is_empty() || self.scatters.get()
+        !self.params.is_empty() || self.scatters.load(Relaxed)
     }
 
     /// A param's source from its declaration; the names it reads must be
@@ -305,8 +311,8 @@ impl Family {
                         }
                         WorldItem::Obstacle(o) => self.check_obstacle(o, diags),
                         WorldItem::Scatter(s) => {
-                            self.active.set(true);
-                            self.scatters.set(true);
+                            self.active.store(true, Relaxed);
+                            self.scatters.store(true, Relaxed);
                             for v in [&s.count, &s.min, &s.max].into_iter().chain(&s.gap) {
                                 self.check_value(v, None, false, diags);
                             }
@@ -430,7 +436,7 @@ impl Family {
     ) {
         match &v.kind {
             ValueKind::Calc { expr, .. } => {
-                self.active.set(true);
+                self.active.store(true, Relaxed);
                 self.check_expr(expr, param, distributions, diags);
             }
             ValueKind::Tuple(items) | ValueKind::List(items) => {
@@ -543,8 +549,52 @@ impl Family {
 
     /// Draws the params of one attempt at one sample.
     fn draw_params(&self, choice: SampleChoice, attempt: u32) -> Result<Draw, Diag> {
-        let mut rng = SplitMix64::new(stream_seed(choice, attempt));
+        self.draw_params_with(SplitMix64::new(stream_seed(choice, attempt)), None)
+    }
+
+    /// How many params are drawn (from a distribution or a `choice`): the
+    /// dimension of the unit cube a search walks ([`Family::candidate`]).
+    pub fn dims(&self) -> usize {
+        self.params
+            .iter()
+            .filter(|p| !matches!(p.source, Source::Value(_)))
+            .count()
+    }
+
+    /// One candidate of a search: the drawn params at `unit` (one
+    /// coordinate in [0, 1) per drawn param, through each distribution's
+    /// inverse distribution function), the scattered items from the stream
+    /// of `seed`. Its statements and params; `None` when a `require`
+    /// rejects it.
+    pub(crate) fn candidate(
+        &self,
+        statements: &[SourcedStmt],
+        seed: u64,
+        unit: &[f64],
+    ) -> Result<Option<(Vec<SourcedStmt>, Vec<(String, f64)>)>, Vec<Diag>> {
+        let mut draw = self
+            .draw_params_with(SplitMix64::new(mix(seed)), Some(unit))
+            .map_err(|d| vec![d])?;
+        if self.violated(&draw.values).map_err(|d| vec![d])?.is_some() {
+            return Ok(None);
+        }
+        let params = self
+            .params
+            .iter()
+            .zip(&draw.values)
+            .map(|(p, &x)| (p.name.value.clone(), x))
+            .collect();
+        Ok(Some((self.instantiate(statements, &mut draw)?, params)))
+    }
+
+    /// Draws the params from `rng`, or at `unit` for the drawn ones.
+    fn draw_params_with(&self, mut rng: SplitMix64, unit: Option<&[f64]>) -> Result<Draw, Diag> {
         let mut values: Vec<f64> = Vec::with_capacity(self.params.len());
+        let mut coordinates = unit.map(|u| u.iter().copied());
+        let mut next_u = |rng: &mut SplitMix64| match &mut coordinates {
+            Some(it) => it.next().unwrap_or(0.5).clamp(0.0, 1.0 - f64::EPSILON),
+            None => rng.next_f64(),
+        };
         for p in &self.params {
             let x = match &p.source {
                 Source::Uniform(a, b) | Source::Normal(a, b) | Source::Int(a, b) => {
@@ -556,10 +606,18 @@ impl Family {
                         _ => "int",
                     };
                     check_distribution(f, x, y, a.span.to(b.span))?;
-                    sample(f, x, y, &mut rng)
+                    if unit.is_some() {
+                        inverse(f, x, y, next_u(&mut rng))
+                    } else {
+                        sample(f, x, y, &mut rng)
+                    }
                 }
                 Source::Choice(items) => {
-                    let k = (rng.next_u64() % items.len() as u64) as usize;
+                    let k = if unit.is_some() {
+                        ((next_u(&mut rng) * items.len() as f64) as usize).min(items.len() - 1)
+                    } else {
+                        (rng.next_u64() % items.len() as u64) as usize
+                    };
                     self.number(&items[k], &values)?
                 }
                 Source::Value(v) => self.number(v, &values)?,
@@ -1174,6 +1232,154 @@ fn sample(f: &str, a: f64, b: f64, rng: &mut SplitMix64) -> f64 {
             lo + (rng.next_u64() % n) as f64
         }
     }
+}
+
+/// The value of a distribution at `u` in [0, 1) (its inverse distribution
+/// function): what a search's point of the unit cube stands for.
+fn inverse(f: &str, a: f64, b: f64, u: f64) -> f64 {
+    match f {
+        "uniform" => a + (b - a) * u,
+        "normal" => a + b * normal_quantile(u.clamp(1e-12, 1.0 - 1e-12)),
+        _ => {
+            let (lo, hi) = (a.ceil(), b.floor());
+            (lo + (u * (hi - lo + 1.0)).floor()).min(hi)
+        }
+    }
+}
+
+/// The standard normal distribution's quantile (Acklam's rational
+/// approximation, relative error below 1.2e-9).
+fn normal_quantile(p: f64) -> f64 {
+    const A: [f64; 6] = [
+        -3.969_683_028_665_376e1,
+        2.209_460_984_245_205e2,
+        -2.759_285_104_469_687e2,
+        1.383_577_518_672_69e2,
+        -3.066_479_806_614_716e1,
+        2.506_628_277_459_239,
+    ];
+    const B: [f64; 5] = [
+        -5.447_609_879_822_406e1,
+        1.615_858_368_580_409e2,
+        -1.556_989_798_598_866e2,
+        6.680_131_188_771_972e1,
+        -1.328_068_155_288_572e1,
+    ];
+    const C: [f64; 6] = [
+        -7.784_894_002_430_293e-3,
+        -3.223_964_580_411_365e-1,
+        -2.400_758_277_161_838,
+        -2.549_732_539_343_734,
+        4.374_664_141_464_968,
+        2.938_163_982_698_783,
+    ];
+    const D: [f64; 4] = [
+        7.784_695_709_041_462e-3,
+        3.224_671_290_700_398e-1,
+        2.445_134_137_142_996,
+        3.754_408_661_907_416,
+    ];
+    let tail = |q: f64| {
+        (((((C[0] * q + C[1]) * q + C[2]) * q + C[3]) * q + C[4]) * q + C[5])
+            / ((((D[0] * q + D[1]) * q + D[2]) * q + D[3]) * q + 1.0)
+    };
+    if p < 0.02425 {
+        tail((-2.0 * p.ln()).sqrt())
+    } else if p > 1.0 - 0.02425 {
+        -tail((-2.0 * (1.0 - p).ln()).sqrt())
+    } else {
+        let q = p - 0.5;
+        let r = q * q;
+        (((((A[0] * r + A[1]) * r + A[2]) * r + A[3]) * r + A[4]) * r + A[5]) * q
+            / (((((B[0] * r + B[1]) * r + B[2]) * r + B[3]) * r + B[4]) * r + 1.0)
+    }
+}
+
+/// The spans of everything a sample computes: expressions, params' names
+/// in bodies, lists and expectations. A standalone file of a sample writes
+/// each one's number in its place.
+pub(crate) fn computed_spans(statements: &[SourcedStmt], params: &HashMap<String, usize>) -> HashSet<Span> {
+    fn value(v: &Value, params: &HashMap<String, usize>, out: &mut HashSet<Span>) {
+        match &v.kind {
+            ValueKind::Calc { .. } => {
+                out.insert(v.span);
+            }
+            ValueKind::Word(w) if params.contains_key(w) => {
+                out.insert(v.span);
+            }
+            ValueKind::Tuple(items) | ValueKind::List(items) => {
+                items.iter().for_each(|i| value(i, params, out));
+            }
+            _ => {}
+        }
+    }
+    fn tokens(ts: &[ParamToken], params: &HashMap<String, usize>, out: &mut HashSet<Span>) {
+        for t in ts {
+            match t {
+                ParamToken::Word(w) if params.contains_key(&w.value) => {
+                    out.insert(w.span);
+                }
+                ParamToken::Word(_) => {}
+                ParamToken::Value(v) => value(v, params, out),
+                ParamToken::Block { tokens: inner, .. } => tokens(inner, params, out),
+            }
+        }
+    }
+    let mut out = HashSet::new();
+    for s in statements {
+        match &s.stmt {
+            Stmt::World(w) => {
+                for item in &w.items {
+                    match item {
+                        WorldItem::Bounds { min, max, .. } => {
+                            value(min, params, &mut out);
+                            value(max, params, &mut out);
+                        }
+                        WorldItem::Obstacle(o) => match &o.shape {
+                            ObstacleShape::Rect(a, b)
+                            | ObstacleShape::Segment(a, b)
+                            | ObstacleShape::Disk(a, b) => {
+                                value(a, params, &mut out);
+                                value(b, params, &mut out);
+                            }
+                            ObstacleShape::Polygon(v) => value(v, params, &mut out),
+                            ObstacleShape::Grid(g) => {
+                                for v in g.cell.iter().chain(&g.origin) {
+                                    value(v, params, &mut out);
+                                }
+                            }
+                        },
+                        WorldItem::Scatter(_) => {}
+                    }
+                }
+            }
+            Stmt::Robot(r) => {
+                use crate::syntax::ast::RobotShape;
+                match &r.shape {
+                    RobotShape::Point(_) => {}
+                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, params, &mut out),
+                    RobotShape::Rect(a, b) => {
+                        value(a, params, &mut out);
+                        value(b, params, &mut out);
+                    }
+                }
+                if let Some(steer) = &r.steer {
+                    value(&steer.radius, params, &mut out);
+                }
+            }
+            Stmt::Plan(p) => tokens(&p.body, params, &mut out),
+            Stmt::Bench(b) => tokens(&b.body, params, &mut out),
+            Stmt::Expect(e) => e.walk(&mut |n| {
+                if let ExprKind::Name(name) = &n.kind
+                    && params.contains_key(&name.value)
+                {
+                    out.insert(n.span);
+                }
+            }),
+            _ => {}
+        }
+    }
+    out
 }
 
 /// Why an expression has no number.

@@ -105,6 +105,16 @@ pub fn load_sample(
     analyze_sample(path, parsed.statements, parsed.sources, parsed.maps, choice)
 }
 
+/// Analyses statements with nothing left to draw (a family's sample).
+pub(crate) fn analyze_statements(
+    path: &Path,
+    statements: Vec<SourcedStmt>,
+    sources: SourceMap,
+    maps: HashMap<Span, Result<FileId, Diag>>,
+) -> Result<Scenario, LoadFailure> {
+    super::analyze(path, statements, sources, maps)
+}
+
 /// Analyses sample `choice` of the parsed statements: a plain scenario
 /// directly, a family's sample drawn (and drawn again when rejected) first.
 pub(crate) fn analyze_sample(

@@ -1,0 +1,1060 @@
+//! `scen falsify` (SPEC 2.8, §4): search a family of scenarios for a sample
+//! where a plain `expect` fails, shrink it, and write it as a standalone
+//! scenario.
+//!
+//! The search proposes candidates in batches of [`BATCH`], evaluated in
+//! parallel and read in order, so the result does not depend on the number
+//! of threads. A candidate is either sample k of the family (`uniform`:
+//! exactly what `scen run --sample k --family-seed SEED` runs) or a point
+//! of the unit cube, one coordinate per drawn param, mapped through each
+//! distribution's inverse distribution function (`halton`,
+//! `cross_entropy`, `auto`; scattered items then come from the candidate's
+//! own stream). Each check has a margin ([`crate::checks::margin`]); the
+//! model-guided searches walk towards smaller margins.
+//!
+//! Shrinking works on the failing sample's statements (params computed,
+//! scatters placed): it removes obstacles while the same check still fails
+//! (halving chunks, then one at a time until removing any one makes it
+//! pass: 1-minimal), then rounds each computed number to the fewest
+//! decimals that still fail. Every candidate is analysed and run for real.
+
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+
+use crate::checks::{self, Values};
+use crate::contract::Metrics;
+use crate::diagnostics::{Diag, FileId, SourceMap, Span};
+use crate::contract::schema::Word;
+use crate::rng::SplitMix64;
+use crate::scenario::family::{Family, SampleChoice, computed_spans};
+use crate::scenario::loader::{SourcedStmt, analyze_statements};
+use crate::syntax::ast::{
+    AngleUnit, ExprKind, ObstacleDecl, ObstacleShape, Selection, Stmt, Value, ValueKind,
+    WorldItem,
+};
+
+/// Candidates evaluated together (in parallel), whatever the thread count.
+pub const BATCH: usize = 16;
+/// The most runs shrinking may spend.
+pub const SHRINK_RUNS: usize = 2_000;
+
+crate::word_enum! {
+    /// How candidates are proposed (`--search`).
+    pub enum Search {
+        Auto = "auto",
+        Uniform = "uniform",
+        Halton = "halton",
+        CrossEntropy = "cross_entropy",
+    }
+}
+
+/// The options of one search.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    pub budget: u64,
+    pub search: Search,
+    pub seed: u64,
+}
+
+/// The scenario's statements as read, before any draw.
+pub struct Source {
+    pub path: PathBuf,
+    pub statements: Vec<SourcedStmt>,
+    pub sources: SourceMap,
+    pub maps: HashMap<Span, Result<FileId, Diag>>,
+    family: Family,
+    /// The plain checks' spans, in order (what "the same check" means).
+    checks: Vec<Span>,
+}
+
+/// What a candidate did.
+#[derive(Clone, Debug)]
+enum Outcome {
+    /// Rejected by a `require`, or a start or goal out of bounds or in
+    /// collision.
+    Rejected,
+    /// Every plain check held; the smallest margin.
+    Passed { margin: f64 },
+    /// The first plain check that failed (its index among the plain
+    /// checks) and its margin.
+    Failed { check: usize, margin: f64 },
+}
+
+impl Outcome {
+    fn margin(&self) -> Option<f64> {
+        match self {
+            Outcome::Rejected => None,
+            Outcome::Passed { margin } | Outcome::Failed { margin, .. } => Some(*margin),
+        }
+    }
+}
+
+/// A candidate evaluated.
+struct Tried {
+    index: u64,
+    unit: Option<Vec<f64>>,
+    params: Vec<(String, f64)>,
+    outcome: Outcome,
+    statements: Option<Vec<SourcedStmt>>,
+}
+
+/// The failing sample and its shrunk scenario.
+#[derive(Debug)]
+pub struct Failure {
+    /// The candidate's number (for `uniform`, the family's sample).
+    pub sample: u64,
+    pub params: Vec<(String, f64)>,
+    /// The check's source text and line.
+    pub check: String,
+    pub line: usize,
+    pub margin: f64,
+    /// Obstacles before and after shrinking.
+    pub obstacles: (usize, usize),
+    /// Runs spent shrinking.
+    pub shrink_runs: usize,
+    /// The standalone scenario's text.
+    pub text: String,
+}
+
+/// The result of a search.
+#[derive(Debug)]
+pub struct Falsified {
+    pub tried: u64,
+    pub rejected: u64,
+    pub search: Search,
+    /// The smallest margin seen, and the candidate that had it.
+    pub smallest: Option<(f64, u64, Vec<(String, f64)>)>,
+    pub failure: Option<Failure>,
+}
+
+impl Source {
+    /// The family of a parsed scenario, ready to search; an error (exit 2)
+    /// when it has no param or no plain `expect`.
+    pub fn new(
+        path: &Path,
+        statements: Vec<SourcedStmt>,
+        sources: SourceMap,
+        maps: HashMap<Span, Result<FileId, Diag>>,
+    ) -> Result<Source, (SourceMap, Vec<Diag>)> {
+        let family = match Family::of(&statements) {
+            Ok(f) => f,
+            Err(diags) => return Err((sources, diags)),
+        };
+        let checks: Vec<Span> = statements
+            .iter()
+            .filter_map(|s| match &s.stmt {
+                Stmt::Expect(e) if !reads_bench(e) => Some(e.span),
+                _ => None,
+            })
+            .collect();
+        let mut problems = Vec::new();
+        if !family.draws() {
+            problems.push(
+                Diag::error(
+                    "scen::falsify::not_a_family",
+                    "`scen falsify` searches a family, and this scenario draws nothing",
+                )
+                .at(Span::new(0, 0, 0), "no `param` or `scatter` here")
+                .help("declare what varies: `param gap = uniform(0.5, 3)`, or a `scatter`"),
+            );
+        }
+        if checks.is_empty() {
+            problems.push(
+                Diag::error(
+                    "scen::falsify::no_check",
+                    "`scen falsify` looks for a failing `expect`, and this scenario has none that `scen run` evaluates",
+                )
+                .at(Span::new(0, 0, 0), "no plain `expect`")
+                .help("state what must hold in every world: `expect p.found`; checks of benches are not searched"),
+            );
+        }
+        if !problems.is_empty() {
+            return Err((sources, problems));
+        }
+        Ok(Source {
+            path: path.to_path_buf(),
+            statements,
+            sources,
+            maps,
+            family,
+            checks,
+        })
+    }
+
+    /// Analyses and runs a sample's statements: its plain checks' outcome.
+    fn evaluate(&self, statements: Vec<SourcedStmt>) -> Result<Outcome, Vec<Diag>> {
+        let scenario = match analyze_statements(
+            &self.path,
+            statements,
+            self.sources.clone(),
+            self.maps.clone(),
+        ) {
+            Ok(s) => s,
+            Err(f) => {
+                let pose = f.diags.iter().filter(|d| d.is_error()).all(|d| {
+                    matches!(
+                        d.code,
+                        "scen::analyze::pose_outside" | "scen::analyze::pose_in_collision"
+                    )
+                });
+                return if pose { Ok(Outcome::Rejected) } else { Err(f.diags) };
+            }
+        };
+        // Only the plans the plain checks read.
+        let mut plans = Vec::new();
+        for c in scenario.checks.iter().filter(|c| !c.bench) {
+            checks::plans_used(&c.expr, &mut plans);
+        }
+        let report = crate::run::run_scenario_drawing(scenario, &plans, false);
+        let values = PlanValues {
+            plans: report
+                .plans
+                .iter()
+                .map(|r| (report.scenario.plans[r.plan].name.clone(), r.metrics.clone()))
+                .collect(),
+        };
+        let mut smallest = f64::INFINITY;
+        for (k, c) in report
+            .scenario
+            .checks
+            .iter()
+            .filter(|c| !c.bench)
+            .enumerate()
+        {
+            let passed = report
+                .checks
+                .iter()
+                .find(|o| std::ptr::eq(&report.scenario.checks[o.check], c))
+                .is_none_or(|o| o.passed);
+            let margin = checks::margin(&c.expr, &values);
+            if !passed {
+                // A failed check's margin is never positive.
+                return Ok(Outcome::Failed {
+                    check: k,
+                    margin: margin.min(0.0),
+                });
+            }
+            smallest = smallest.min(margin);
+        }
+        Ok(Outcome::Passed { margin: smallest })
+    }
+
+    /// Candidate `index`: its statements and params (`None`: rejected).
+    fn draw(
+        &self,
+        opts: &Options,
+        index: u64,
+        unit: Option<&[f64]>,
+    ) -> Result<Tried, Vec<Diag>> {
+        let (statements, params, outcome) = match unit {
+            // Sample `index` of the family, drawn again while rejected.
+            None => {
+                let choice = SampleChoice {
+                    sample: index,
+                    family_seed: opts.seed,
+                };
+                let mut kept = None;
+                let sampled = self.family.sample(&self.statements, choice, |instance| {
+                    match self.evaluate(instance.clone())? {
+                        Outcome::Rejected => Err(vec![Diag::error(
+                            "scen::analyze::pose_in_collision",
+                            "rejected",
+                        )]),
+                        outcome => {
+                            kept = Some(instance);
+                            Ok(outcome)
+                        }
+                    }
+                });
+                match sampled {
+                    Ok((outcome, drawn)) => (kept, drawn.params, outcome),
+                    Err(diags)
+                        if diags
+                            .iter()
+                            .all(|d| d.code == "scen::family::rejects_every_draw") =>
+                    {
+                        (None, Vec::new(), Outcome::Rejected)
+                    }
+                    Err(diags) => return Err(diags),
+                }
+            }
+            Some(u) => match self.family.candidate(&self.statements, opts.seed ^ index, u)? {
+                None => (None, Vec::new(), Outcome::Rejected),
+                Some((statements, params)) => {
+                    let outcome = self.evaluate(statements.clone())?;
+                    (Some(statements), params, outcome)
+                }
+            },
+        };
+        Ok(Tried {
+            index,
+            unit: unit.map(<[f64]>::to_vec),
+            params,
+            outcome,
+            statements,
+        })
+    }
+}
+
+/// The metrics of the plans that ran, for the checks.
+struct PlanValues {
+    plans: HashMap<String, Metrics>,
+}
+
+impl Values for PlanValues {
+    fn metrics(&self, plan: &str) -> Option<&Metrics> {
+        self.plans.get(plan)
+    }
+
+    fn series(&self, _: &str, _: &str, _: &[Selection], _: &str) -> Option<Vec<crate::contract::MetricValue>> {
+        None
+    }
+}
+
+/// Whether an expression reads a bench's series.
+fn reads_bench(e: &crate::syntax::ast::Expr) -> bool {
+    let mut found = false;
+    e.walk(&mut |n| found |= matches!(n.kind, ExprKind::Series { .. }));
+    found
+}
+
+/// The Halton sequence's point `i` (from 1) in `d` dimensions, shifted by
+/// `shift` modulo 1 (a Cranley–Patterson rotation, so each seed covers the
+/// cube differently).
+fn halton(i: u64, shift: &[f64]) -> Vec<f64> {
+    const PRIMES: [u64; 24] = [
+        2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89,
+    ];
+    shift
+        .iter()
+        .enumerate()
+        .map(|(j, s)| {
+            let base = PRIMES[j % PRIMES.len()] + 2 * (j / PRIMES.len()) as u64 * 97;
+            let (mut f, mut r, mut n) = (1.0, 0.0, i);
+            while n > 0 {
+                f /= base as f64;
+                r += f * (n % base) as f64;
+                n /= base;
+            }
+            (r + s).fract()
+        })
+        .collect()
+}
+
+/// A standard normal number (Box–Muller).
+fn gaussian(rng: &mut SplitMix64) -> f64 {
+    let u = 1.0 - rng.next_f64();
+    let v = rng.next_f64();
+    (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+}
+
+/// Reflects `x` into [0, 1).
+fn reflect(x: f64) -> f64 {
+    let y = x.rem_euclid(2.0);
+    let y = if y > 1.0 { 2.0 - y } else { y };
+    y.min(1.0 - f64::EPSILON)
+}
+
+/// Proposes the unit-cube points of the model-guided searches.
+struct Proposer {
+    search: Search,
+    dims: usize,
+    shift: Vec<f64>,
+    halton_next: u64,
+    /// The model's mean and spread (cross-entropy), after its first fit.
+    model: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+/// Points drawn from Halton before the model is fitted.
+const COVER: usize = 2 * BATCH;
+/// The fraction of all points kept as elites.
+const ELITE: f64 = 0.1;
+
+impl Proposer {
+    fn new(search: Search, dims: usize, seed: u64) -> Self {
+        let mut rng = SplitMix64::new(seed ^ 0x5EED_F00D);
+        Proposer {
+            search,
+            dims,
+            shift: (0..dims).map(|_| rng.next_f64()).collect(),
+            halton_next: 1,
+            model: None,
+        }
+    }
+
+    fn cover(&mut self) -> Vec<f64> {
+        let p = halton(self.halton_next, &self.shift);
+        self.halton_next += 1;
+        p
+    }
+
+    /// The next batch's points, given every point tried so far and its
+    /// margin.
+    fn batch(&mut self, batch: u64, history: &[(Vec<f64>, f64)]) -> Vec<Vec<f64>> {
+        if self.search == Search::Halton || history.len() < COVER {
+            return (0..BATCH).map(|_| self.cover()).collect();
+        }
+        // Fit the model to the elites: the points of smallest margin.
+        let mut sorted: Vec<&(Vec<f64>, f64)> = history.iter().collect();
+        sorted.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let n = ((history.len() as f64 * ELITE).ceil() as usize).clamp(4, history.len());
+        let elites = &sorted[..n];
+        let (auto, floor, smoothing) = match self.search {
+            // Classic cross-entropy: the last fit smoothed, a tiny floor.
+            Search::CrossEntropy => (false, 1e-3, 0.7),
+            _ => (true, 0.02, 1.0),
+        };
+        let mut mean = vec![0.0; self.dims];
+        let mut spread = vec![0.0; self.dims];
+        for j in 0..self.dims {
+            let m = elites.iter().map(|e| e.0[j]).sum::<f64>() / n as f64;
+            let v = elites.iter().map(|e| (e.0[j] - m).powi(2)).sum::<f64>() / n as f64;
+            mean[j] = m;
+            spread[j] = v.sqrt();
+        }
+        if let Some((old_mean, old_spread)) = &self.model {
+            for j in 0..self.dims {
+                mean[j] = smoothing * mean[j] + (1.0 - smoothing) * old_mean[j];
+                spread[j] = smoothing * spread[j] + (1.0 - smoothing) * old_spread[j];
+            }
+        }
+        for s in &mut spread {
+            *s = s.max(floor);
+        }
+        self.model = Some((mean.clone(), spread.clone()));
+        let mut rng = SplitMix64::new(self.shift.len() as u64 ^ batch.wrapping_mul(0x9E37_79B9));
+        let best = &sorted[0].0;
+        (0..BATCH)
+            .map(|k| {
+                // `auto`: a quarter of every batch keeps covering the cube,
+                // a quarter searches around the best point so far, the rest
+                // follows the model; it never collapses onto one region.
+                if auto && k % 4 == 0 {
+                    return self.cover();
+                }
+                let centre = if auto && k % 4 == 1 { best } else { &mean };
+                (0..self.dims)
+                    .map(|j| {
+                        let s = if auto && k % 4 == 1 { spread[j] * 0.5 } else { spread[j] };
+                        reflect(centre[j] + s * gaussian(&mut rng))
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+/// Searches the family for a failing sample within the budget; shrinks
+/// and writes the first one found.
+pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
+    let dims = source.family.dims();
+    // Without drawn params (only scatters) every search is sample by sample.
+    let search = if dims == 0 { Search::Uniform } else { opts.search };
+    let mut proposer = Proposer::new(search, dims, opts.seed);
+    let mut history: Vec<(Vec<f64>, f64)> = Vec::new();
+    let mut out = Falsified {
+        tried: 0,
+        rejected: 0,
+        search,
+        smallest: None,
+        failure: None,
+    };
+    let mut batch = 0u64;
+    while out.tried < opts.budget {
+        let n = (opts.budget - out.tried).min(BATCH as u64) as usize;
+        let points: Vec<Option<Vec<f64>>> = if search == Search::Uniform {
+            vec![None; n]
+        } else {
+            proposer.batch(batch, &history).into_iter().take(n).map(Some).collect()
+        };
+        let first = out.tried;
+        let tried: Vec<Result<Tried, Vec<Diag>>> = points
+            .par_iter()
+            .enumerate()
+            .map(|(k, p)| source.draw(&opts, first + k as u64, p.as_deref()))
+            .collect();
+        batch += 1;
+        for t in tried {
+            let t = t?;
+            out.tried += 1;
+            let Some(margin) = t.outcome.margin() else {
+                out.rejected += 1;
+                continue;
+            };
+            if out.smallest.as_ref().is_none_or(|(m, _, _)| margin < *m) {
+                out.smallest = Some((margin, t.index, t.params.clone()));
+            }
+            if let Some(u) = &t.unit {
+                history.push((u.clone(), margin));
+            }
+            if let Outcome::Failed { check, margin } = t.outcome {
+                let statements = t.statements.expect("an evaluated candidate has statements");
+                out.failure = Some(shrink(source, &opts, t.index, t.params, check, margin, statements)?);
+                return Ok(out);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Whether plain check `check` (its index among the plain checks) fails
+/// on `statements`, running only the plans it reads.
+fn fails(source: &Source, statements: &[SourcedStmt], check: usize) -> bool {
+    let Ok(scenario) = analyze_statements(
+        &source.path,
+        statements.to_vec(),
+        source.sources.clone(),
+        source.maps.clone(),
+    ) else {
+        return false;
+    };
+    let Some(target) = scenario
+        .checks
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| !c.bench)
+        .nth(check)
+        .map(|(k, _)| k)
+    else {
+        return false;
+    };
+    let mut plans = Vec::new();
+    checks::plans_used(&scenario.checks[target].expr, &mut plans);
+    let report = crate::run::run_scenario_drawing(scenario, &plans, false);
+    report.checks.iter().any(|o| o.check == target && !o.passed)
+}
+
+/// The world items of the main file that shrinking may remove: (statement,
+/// item) of every obstacle.
+fn removable(statements: &[SourcedStmt]) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for (s, stmt) in statements.iter().enumerate() {
+        if let (true, Stmt::World(w)) = (stmt.in_main_file, &stmt.stmt) {
+            for (i, item) in w.items.iter().enumerate() {
+                if matches!(item, WorldItem::Obstacle(_)) {
+                    out.push((s, i));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `statements` without the obstacles `gone`.
+fn without(statements: &[SourcedStmt], gone: &HashSet<(usize, usize)>) -> Vec<SourcedStmt> {
+    statements
+        .iter()
+        .enumerate()
+        .map(|(s, stmt)| match &stmt.stmt {
+            Stmt::World(w) => {
+                let mut w = w.clone();
+                w.items = w
+                    .items
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, _)| !gone.contains(&(s, *i)))
+                    .map(|(_, item)| item.clone())
+                    .collect();
+                SourcedStmt {
+                    stmt: Stmt::World(w),
+                    in_main_file: stmt.in_main_file,
+                }
+            }
+            _ => stmt.clone(),
+        })
+        .collect()
+}
+
+fn count_obstacles(statements: &[SourcedStmt]) -> usize {
+    removable(statements).len()
+}
+
+/// Shrinks the failing statements and writes the standalone scenario.
+fn shrink(
+    source: &Source,
+    opts: &Options,
+    sample: u64,
+    params: Vec<(String, f64)>,
+    check: usize,
+    margin: f64,
+    statements: Vec<SourcedStmt>,
+) -> Result<Failure, Vec<Diag>> {
+    let before = count_obstacles(&statements);
+    let mut runs = 0usize;
+    let mut current = statements;
+    // 1. Obstacles: chunks of halving size, then one at a time until no
+    //    single removal keeps the failure (1-minimal).
+    let all = removable(&current);
+    let mut gone: HashSet<(usize, usize)> = HashSet::new();
+    let mut chunk = all.len() / 2;
+    while chunk >= 1 && runs < SHRINK_RUNS {
+        let alive: Vec<(usize, usize)> = all.iter().copied().filter(|x| !gone.contains(x)).collect();
+        for part in alive.chunks(chunk) {
+            if runs >= SHRINK_RUNS {
+                break;
+            }
+            let mut trial = gone.clone();
+            trial.extend(part.iter().copied());
+            runs += 1;
+            if fails(source, &without(&current, &trial), check) {
+                gone = trial;
+            }
+        }
+        if chunk == 1 {
+            break;
+        }
+        chunk /= 2;
+    }
+    // One at a time, in parallel, the first (in order) that keeps the
+    // failure is removed; until none does.
+    loop {
+        let alive: Vec<(usize, usize)> = all.iter().copied().filter(|x| !gone.contains(x)).collect();
+        if alive.is_empty() || runs + alive.len() > SHRINK_RUNS {
+            break;
+        }
+        runs += alive.len();
+        let keeps: Vec<bool> = alive
+            .par_iter()
+            .map(|x| {
+                let mut trial = gone.clone();
+                trial.insert(*x);
+                fails(source, &without(&current, &trial), check)
+            })
+            .collect();
+        match keeps.iter().position(|&k| k) {
+            Some(k) => {
+                gone.insert(alive[k]);
+            }
+            None => break,
+        }
+    }
+    current = without(&current, &gone);
+    // 2. Numbers: each computed number rounded to the fewest decimals that
+    //    still fail.
+    let computed = computed_spans(&source.statements, source.family.index());
+    let scattered = scatter_spans(&source.statements);
+    let slots = numbers(&mut current, &computed, &scattered, &mut |_| {});
+    for slot in 0..slots {
+        let mut original = 0.0;
+        numbers(&mut current, &computed, &scattered, &mut |(k, x)| {
+            if k == slot {
+                original = *x;
+            }
+        });
+        for decimals in 0..=6 {
+            if runs >= SHRINK_RUNS {
+                break;
+            }
+            let scale = 10f64.powi(decimals);
+            let rounded = (original * scale).round() / scale;
+            if rounded == original {
+                break;
+            }
+            let mut trial = current.clone();
+            numbers(&mut trial, &computed, &scattered, &mut |(k, x)| {
+                if k == slot {
+                    *x = rounded;
+                }
+            });
+            runs += 1;
+            if fails(source, &trial, check) {
+                current = trial;
+                break;
+            }
+        }
+    }
+    let after = count_obstacles(&current);
+    let check_span = source.checks[check];
+    let (check_text, line) = match source.sources.get(check_span.file) {
+        Some(f) => (
+            f.text[check_span.start..check_span.end].to_string(),
+            f.text[..check_span.start].matches('\n').count() + 1,
+        ),
+        None => (String::new(), 0),
+    };
+    let header = format!(
+        "# Falsified by `scen falsify` (search {}, seed {}): `expect {check_text}` (line {line} of {})\n\
+         # fails on candidate {sample} of the search ({}), shrunk from {before} to {after} obstacle(s).\n",
+        opts.search.word(),
+        opts.seed,
+        source.path.display(),
+        params
+            .iter()
+            .map(|(n, x)| format!("{n} = {}", checks::format_num(*x)))
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
+    let text = write_standalone(source, &current, &computed, &header)?;
+    Ok(Failure {
+        sample,
+        params,
+        check: check_text,
+        line,
+        margin,
+        obstacles: (before, after),
+        shrink_runs: runs,
+        text,
+    })
+}
+
+/// The spans of the scatters (their items' declarations carry them).
+fn scatter_spans(statements: &[SourcedStmt]) -> HashSet<Span> {
+    let mut out = HashSet::new();
+    for s in statements {
+        if let Stmt::World(w) = &s.stmt {
+            for item in &w.items {
+                if let WorldItem::Scatter(sc) = item {
+                    out.insert(sc.span);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Visits every computed number of a sample's statements in a fixed order
+/// (values at `computed` spans, the numbers of scattered obstacles), with
+/// its index; returns how many there are.
+fn numbers(
+    statements: &mut [SourcedStmt],
+    computed: &HashSet<Span>,
+    scattered: &HashSet<Span>,
+    f: &mut dyn FnMut((usize, &mut f64)),
+) -> usize {
+    fn value(v: &mut Value, all: bool, computed: &HashSet<Span>, k: &mut usize, f: &mut dyn FnMut((usize, &mut f64))) {
+        let here = all || computed.contains(&v.span);
+        match &mut v.kind {
+            ValueKind::Number(x) if here => {
+                f((*k, x));
+                *k += 1;
+            }
+            ValueKind::Angle(a) if here => {
+                f((*k, &mut a.written));
+                *k += 1;
+            }
+            ValueKind::Tuple(items) | ValueKind::List(items) => {
+                for item in items {
+                    value(item, all, computed, k, f);
+                }
+            }
+            _ => {}
+        }
+    }
+    fn tokens(ts: &mut [crate::syntax::ast::ParamToken], computed: &HashSet<Span>, k: &mut usize, f: &mut dyn FnMut((usize, &mut f64))) {
+        for t in ts {
+            match t {
+                crate::syntax::ast::ParamToken::Value(v) => value(v, false, computed, k, f),
+                crate::syntax::ast::ParamToken::Block { tokens: inner, .. } => tokens(inner, computed, k, f),
+                crate::syntax::ast::ParamToken::Word(_) => {}
+            }
+        }
+    }
+    let mut k = 0;
+    for s in statements {
+        match &mut s.stmt {
+            Stmt::World(w) => {
+                for item in &mut w.items {
+                    match item {
+                        WorldItem::Bounds { min, max, .. } => {
+                            value(min, false, computed, &mut k, f);
+                            value(max, false, computed, &mut k, f);
+                        }
+                        WorldItem::Obstacle(o) => {
+                            let all = scattered.contains(&o.span);
+                            match &mut o.shape {
+                                ObstacleShape::Rect(a, b)
+                                | ObstacleShape::Segment(a, b)
+                                | ObstacleShape::Disk(a, b) => {
+                                    value(a, all, computed, &mut k, f);
+                                    value(b, all, computed, &mut k, f);
+                                }
+                                ObstacleShape::Polygon(v) => value(v, all, computed, &mut k, f),
+                                ObstacleShape::Grid(_) => {}
+                            }
+                        }
+                        WorldItem::Scatter(_) => {}
+                    }
+                }
+            }
+            Stmt::Robot(r) => {
+                use crate::syntax::ast::RobotShape;
+                match &mut r.shape {
+                    RobotShape::Point(_) => {}
+                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, false, computed, &mut k, f),
+                    RobotShape::Rect(a, b) => {
+                        value(a, false, computed, &mut k, f);
+                        value(b, false, computed, &mut k, f);
+                    }
+                }
+                if let Some(steer) = &mut r.steer {
+                    value(&mut steer.radius, false, computed, &mut k, f);
+                }
+            }
+            Stmt::Plan(p) => tokens(&mut p.body, computed, &mut k, f),
+            Stmt::Expect(e) => walk_numbers(e, computed, &mut k, f),
+            _ => {}
+        }
+    }
+    k
+}
+
+fn walk_numbers(
+    e: &mut crate::syntax::ast::Expr,
+    computed: &HashSet<Span>,
+    k: &mut usize,
+    f: &mut dyn FnMut((usize, &mut f64)),
+) {
+    if let ExprKind::Number(x) = &mut e.kind {
+        if computed.contains(&e.span) {
+            f((*k, x));
+            *k += 1;
+        }
+        return;
+    }
+    match &mut e.kind {
+        ExprKind::Neg(x) | ExprKind::Not(x) => walk_numbers(x, computed, k, f),
+        ExprKind::Where(a, b)
+        | ExprKind::And(a, b)
+        | ExprKind::Or(a, b)
+        | ExprKind::Arith { lhs: a, rhs: b, .. }
+        | ExprKind::Compare { lhs: a, rhs: b, .. } => {
+            walk_numbers(a, computed, k, f);
+            walk_numbers(b, computed, k, f);
+        }
+        ExprKind::Approx { lhs, rhs, tol } => {
+            walk_numbers(lhs, computed, k, f);
+            walk_numbers(rhs, computed, k, f);
+            walk_numbers(tol, computed, k, f);
+        }
+        ExprKind::Call { args, .. } => {
+            for a in args {
+                walk_numbers(a, computed, k, f);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// A number as a literal: its shortest exact form.
+fn literal(kind: &ValueKind) -> Option<String> {
+    Some(match kind {
+        ValueKind::Number(x) => format!("{x}"),
+        ValueKind::Angle(a) => format!(
+            "{}{}",
+            a.written,
+            if a.unit == AngleUnit::Deg { "deg" } else { "rad" }
+        ),
+        _ => return None,
+    })
+}
+
+/// One obstacle as a line of a `world` block.
+fn obstacle_line(o: &ObstacleDecl) -> String {
+    let v = |v: &Value| value_text(v);
+    let name = o.name.as_ref().map_or(String::new(), |n| format!(" {}", n.value));
+    match &o.shape {
+        ObstacleShape::Rect(a, b) => format!("rect{name} {} {}", v(a), v(b)),
+        ObstacleShape::Disk(a, b) => format!("disk{name} {} {}", v(a), v(b)),
+        ObstacleShape::Segment(a, b) => format!("segment{name} {} {}", v(a), v(b)),
+        ObstacleShape::Polygon(p) => format!("polygon{name} {}", v(p)),
+        ObstacleShape::Grid(_) => String::new(),
+    }
+}
+
+fn value_text(v: &Value) -> String {
+    match &v.kind {
+        ValueKind::Tuple(items) => format!(
+            "({})",
+            items.iter().map(value_text).collect::<Vec<_>>().join(", ")
+        ),
+        ValueKind::List(items) => format!(
+            "[{}]",
+            items.iter().map(value_text).collect::<Vec<_>>().join(", ")
+        ),
+        kind => literal(kind).unwrap_or_default(),
+    }
+}
+
+/// The standalone scenario: the main file with its params and requires
+/// removed, every computed value written as its number, each scatter as the
+/// obstacles it placed that shrinking kept, the removed obstacles and the
+/// benches left out; then laid out by the formatter.
+fn write_standalone(
+    source: &Source,
+    sample: &[SourcedStmt],
+    computed: &HashSet<Span>,
+    header: &str,
+) -> Result<String, Vec<Diag>> {
+    let text = source
+        .sources
+        .get(0)
+        .map(|f| f.text.clone())
+        .unwrap_or_default();
+    // The sample's computed numbers, by span.
+    let mut numbers: HashMap<Span, String> = HashMap::new();
+    collect_literals(sample, computed, &mut numbers);
+    // The sample's obstacles, by declaration span (scattered ones by their
+    // scatter's span, in order).
+    let mut kept: HashMap<Span, Vec<&ObstacleDecl>> = HashMap::new();
+    for s in sample {
+        if let Stmt::World(w) = &s.stmt {
+            for item in &w.items {
+                if let WorldItem::Obstacle(o) = item {
+                    kept.entry(o.span).or_default().push(o);
+                }
+            }
+        }
+    }
+    let mut edits: Vec<(Span, String)> = Vec::new();
+    let mut outside = Vec::new();
+    for s in &source.statements {
+        let span = stmt_span(&s.stmt);
+        if span.file != 0 {
+            // Statements of included files stay as they are, unless they
+            // hold something computed.
+            if computed.iter().any(|c| c.file == span.file && span.start <= c.start && c.end <= span.end) {
+                outside.push(span);
+            }
+            continue;
+        }
+        match &s.stmt {
+            Stmt::Param(_) | Stmt::Require { .. } | Stmt::Bench(_) => edits.push((span, String::new())),
+            Stmt::Expect(e) if reads_bench(e) => {
+                // The statement starts at its keyword.
+                let start = text[..span.start].rfind("expect").unwrap_or(span.start);
+                edits.push((Span::new(0, start, span.end), String::new()));
+            }
+            Stmt::World(w) => {
+                for item in &w.items {
+                    match item {
+                        WorldItem::Obstacle(o) if !kept.contains_key(&o.span) => {
+                            edits.push((o.span, String::new()));
+                        }
+                        WorldItem::Scatter(sc) => {
+                            let lines: Vec<String> = kept
+                                .get(&sc.span)
+                                .map(|os| os.iter().map(|o| obstacle_line(o)).collect())
+                                .unwrap_or_default();
+                            edits.push((sc.span, lines.join("\n")));
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    if let Some(span) = outside.first() {
+        return Err(vec![Diag::error(
+            "scen::falsify::family_in_include",
+            "`scen falsify` writes its scenario from the main file, and an included file uses the family's params",
+        )
+        .at(*span, "computed from params, in an included file")
+        .help("declare what varies in the main file (or copy the included part into it)")]);
+    }
+    let deleted: Vec<Span> = edits.iter().map(|(s, _)| *s).collect();
+    for (span, lit) in &numbers {
+        if span.file == 0 && !deleted.iter().any(|d| d.start <= span.start && span.end <= d.end) {
+            edits.push((*span, lit.clone()));
+        }
+    }
+    edits.sort_by_key(|(s, _)| std::cmp::Reverse(s.start));
+    let mut out = text.to_string();
+    for (span, replacement) in edits {
+        out.replace_range(span.start..span.end, &replacement);
+    }
+    let out = format!("{header}{out}");
+    Ok(crate::format::format_text(&out).unwrap_or(out))
+}
+
+/// The literal of every number at a computed span.
+fn collect_literals(sample: &[SourcedStmt], computed: &HashSet<Span>, out: &mut HashMap<Span, String>) {
+    fn value(v: &Value, computed: &HashSet<Span>, out: &mut HashMap<Span, String>) {
+        if computed.contains(&v.span)
+            && let Some(l) = literal(&v.kind)
+        {
+            out.insert(v.span, l);
+            return;
+        }
+        if let ValueKind::Tuple(items) | ValueKind::List(items) = &v.kind {
+            for i in items {
+                value(i, computed, out);
+            }
+        }
+    }
+    fn tokens(ts: &[crate::syntax::ast::ParamToken], computed: &HashSet<Span>, out: &mut HashMap<Span, String>) {
+        for t in ts {
+            match t {
+                crate::syntax::ast::ParamToken::Value(v) => value(v, computed, out),
+                crate::syntax::ast::ParamToken::Block { tokens: inner, .. } => tokens(inner, computed, out),
+                crate::syntax::ast::ParamToken::Word(_) => {}
+            }
+        }
+    }
+    for s in sample {
+        match &s.stmt {
+            Stmt::World(w) => {
+                for item in &w.items {
+                    match item {
+                        WorldItem::Bounds { min, max, .. } => {
+                            value(min, computed, out);
+                            value(max, computed, out);
+                        }
+                        WorldItem::Obstacle(o) => match &o.shape {
+                            ObstacleShape::Rect(a, b)
+                            | ObstacleShape::Segment(a, b)
+                            | ObstacleShape::Disk(a, b) => {
+                                value(a, computed, out);
+                                value(b, computed, out);
+                            }
+                            ObstacleShape::Polygon(v) => value(v, computed, out),
+                            ObstacleShape::Grid(g) => {
+                                for v in g.cell.iter().chain(&g.origin) {
+                                    value(v, computed, out);
+                                }
+                            }
+                        },
+                        WorldItem::Scatter(_) => {}
+                    }
+                }
+            }
+            Stmt::Robot(r) => {
+                use crate::syntax::ast::RobotShape;
+                match &r.shape {
+                    RobotShape::Point(_) => {}
+                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, computed, out),
+                    RobotShape::Rect(a, b) => {
+                        value(a, computed, out);
+                        value(b, computed, out);
+                    }
+                }
+                if let Some(steer) = &r.steer {
+                    value(&steer.radius, computed, out);
+                }
+            }
+            Stmt::Plan(p) => tokens(&p.body, computed, out),
+            Stmt::Expect(e) => e.walk(&mut |n| {
+                if let ExprKind::Number(x) = &n.kind
+                    && computed.contains(&n.span)
+                {
+                    out.insert(n.span, format!("{x}"));
+                }
+            }),
+            _ => {}
+        }
+    }
+}
+
+fn stmt_span(s: &Stmt) -> Span {
+    match s {
+        Stmt::Scenario { span, .. } | Stmt::Include { span, .. } | Stmt::Require { span, .. } => *span,
+        Stmt::World(w) => w.span,
+        Stmt::Robot(r) => r.span,
+        Stmt::Plan(p) => p.span,
+        Stmt::Expect(e) => e.span,
+        Stmt::Bench(b) => b.span,
+        Stmt::Param(p) => p.span,
+    }
+}
