@@ -25,14 +25,13 @@ use rayon::prelude::*;
 
 use crate::checks::{self, Values};
 use crate::contract::Metrics;
-use crate::diagnostics::{Diag, FileId, SourceMap, Span};
 use crate::contract::schema::Word;
+use crate::diagnostics::{Diag, FileId, SourceMap, Span};
 use crate::rng::SplitMix64;
 use crate::scenario::family::{Family, SampleChoice, computed_spans};
 use crate::scenario::loader::{SourcedStmt, analyze_statements};
 use crate::syntax::ast::{
-    AngleUnit, ExprKind, ObstacleDecl, ObstacleShape, Selection, Stmt, Value, ValueKind,
-    WorldItem,
+    AngleUnit, ExprKind, ObstacleDecl, ObstacleShape, Selection, Stmt, Value, ValueKind, WorldItem,
 };
 
 /// Candidates evaluated together (in parallel), whatever the thread count.
@@ -199,7 +198,11 @@ impl Source {
                         "scen::analyze::pose_outside" | "scen::analyze::pose_in_collision"
                     )
                 });
-                return if pose { Ok(Outcome::Rejected) } else { Err(f.diags) };
+                return if pose {
+                    Ok(Outcome::Rejected)
+                } else {
+                    Err(f.diags)
+                };
             }
         };
         // Only the plans the plain checks read.
@@ -212,7 +215,12 @@ impl Source {
             plans: report
                 .plans
                 .iter()
-                .map(|r| (report.scenario.plans[r.plan].name.clone(), r.metrics.clone()))
+                .map(|r| {
+                    (
+                        report.scenario.plans[r.plan].name.clone(),
+                        r.metrics.clone(),
+                    )
+                })
                 .collect(),
         };
         let mut smallest = f64::INFINITY;
@@ -242,12 +250,7 @@ impl Source {
     }
 
     /// Candidate `index`: its statements and params (`None`: rejected).
-    fn draw(
-        &self,
-        opts: &Options,
-        index: u64,
-        unit: Option<&[f64]>,
-    ) -> Result<Tried, Vec<Diag>> {
+    fn draw(&self, opts: &Options, index: u64, unit: Option<&[f64]>) -> Result<Tried, Vec<Diag>> {
         let (statements, params, outcome) = match unit {
             // Sample `index` of the family, drawn again while rejected.
             None => {
@@ -280,7 +283,10 @@ impl Source {
                     Err(diags) => return Err(diags),
                 }
             }
-            Some(u) => match self.family.candidate(&self.statements, opts.seed ^ index, u)? {
+            Some(u) => match self
+                .family
+                .candidate(&self.statements, opts.seed ^ index, u)?
+            {
                 None => (None, Vec::new(), Outcome::Rejected),
                 Some((statements, params)) => {
                     let outcome = self.evaluate(statements.clone())?;
@@ -308,7 +314,13 @@ impl Values for PlanValues {
         self.plans.get(plan)
     }
 
-    fn series(&self, _: &str, _: &str, _: &[Selection], _: &str) -> Option<Vec<crate::contract::MetricValue>> {
+    fn series(
+        &self,
+        _: &str,
+        _: &str,
+        _: &[Selection],
+        _: &str,
+    ) -> Option<Vec<crate::contract::MetricValue>> {
         None
     }
 }
@@ -437,7 +449,11 @@ impl Proposer {
                 let centre = if auto && k % 4 == 1 { best } else { &mean };
                 (0..self.dims)
                     .map(|j| {
-                        let s = if auto && k % 4 == 1 { spread[j] * 0.5 } else { spread[j] };
+                        let s = if auto && k % 4 == 1 {
+                            spread[j] * 0.5
+                        } else {
+                            spread[j]
+                        };
                         reflect(centre[j] + s * gaussian(&mut rng))
                     })
                     .collect()
@@ -451,7 +467,11 @@ impl Proposer {
 pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
     let dims = source.family.dims();
     // Without drawn params (only scatters) every search is sample by sample.
-    let search = if dims == 0 { Search::Uniform } else { opts.search };
+    let search = if dims == 0 {
+        Search::Uniform
+    } else {
+        opts.search
+    };
     let mut proposer = Proposer::new(search, dims, opts.seed);
     let mut history: Vec<(Vec<f64>, f64)> = Vec::new();
     let mut out = Falsified {
@@ -467,7 +487,12 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
         let points: Vec<Option<Vec<f64>>> = if search == Search::Uniform {
             vec![None; n]
         } else {
-            proposer.batch(batch, &history).into_iter().take(n).map(Some).collect()
+            proposer
+                .batch(batch, &history)
+                .into_iter()
+                .take(n)
+                .map(Some)
+                .collect()
         };
         let first = out.tried;
         let tried: Vec<Result<Tried, Vec<Diag>>> = points
@@ -491,7 +516,9 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
             }
             if let Outcome::Failed { check, margin } = t.outcome {
                 let statements = t.statements.expect("an evaluated candidate has statements");
-                out.failure = Some(shrink(source, &opts, t.index, t.params, check, margin, statements)?);
+                out.failure = Some(shrink(
+                    source, &opts, t.index, t.params, check, margin, statements,
+                )?);
                 return Ok(out);
             }
         }
@@ -526,15 +553,22 @@ fn fails(source: &Source, statements: &[SourcedStmt], check: usize) -> bool {
     report.checks.iter().any(|o| o.check == target && !o.passed)
 }
 
-/// The world items of the main file that shrinking may remove: (statement,
-/// item) of every obstacle.
-fn removable(statements: &[SourcedStmt]) -> Vec<(usize, usize)> {
+/// An obstacle of a sample, across re-instantiations: its declaration's
+/// span and its name (scattered items share their scatter's span).
+type Key = (Span, Option<String>);
+
+fn key(o: &ObstacleDecl) -> Key {
+    (o.span, o.name.as_ref().map(|n| n.value.clone()))
+}
+
+/// The obstacles of the main file's world, in order.
+fn obstacle_keys(statements: &[SourcedStmt]) -> Vec<Key> {
     let mut out = Vec::new();
-    for (s, stmt) in statements.iter().enumerate() {
-        if let (true, Stmt::World(w)) = (stmt.in_main_file, &stmt.stmt) {
-            for (i, item) in w.items.iter().enumerate() {
-                if matches!(item, WorldItem::Obstacle(_)) {
-                    out.push((s, i));
+    for s in statements {
+        if let (true, Stmt::World(w)) = (s.in_main_file, &s.stmt) {
+            for item in &w.items {
+                if let WorldItem::Obstacle(o) = item {
+                    out.push(key(o));
                 }
             }
         }
@@ -543,20 +577,15 @@ fn removable(statements: &[SourcedStmt]) -> Vec<(usize, usize)> {
 }
 
 /// `statements` without the obstacles `gone`.
-fn without(statements: &[SourcedStmt], gone: &HashSet<(usize, usize)>) -> Vec<SourcedStmt> {
+fn without(statements: &[SourcedStmt], gone: &HashSet<Key>) -> Vec<SourcedStmt> {
     statements
         .iter()
-        .enumerate()
-        .map(|(s, stmt)| match &stmt.stmt {
-            Stmt::World(w) => {
+        .map(|stmt| match &stmt.stmt {
+            Stmt::World(w) if stmt.in_main_file => {
                 let mut w = w.clone();
-                w.items = w
-                    .items
-                    .iter()
-                    .enumerate()
-                    .filter(|(i, _)| !gone.contains(&(s, *i)))
-                    .map(|(_, item)| item.clone())
-                    .collect();
+                w.items.retain(
+                    |item| !matches!(item, WorldItem::Obstacle(o) if gone.contains(&key(o))),
+                );
                 SourcedStmt {
                     stmt: Stmt::World(w),
                     in_main_file: stmt.in_main_file,
@@ -567,11 +596,117 @@ fn without(statements: &[SourcedStmt], gone: &HashSet<(usize, usize)>) -> Vec<So
         .collect()
 }
 
-fn count_obstacles(statements: &[SourcedStmt]) -> usize {
-    removable(statements).len()
+/// The scattered obstacles of a sample, by their scatter's span.
+fn scatter_items(
+    statements: &[SourcedStmt],
+    spans: &HashSet<Span>,
+) -> HashMap<Span, Vec<WorldItem>> {
+    let mut out: HashMap<Span, Vec<WorldItem>> = HashMap::new();
+    for s in statements {
+        if let Stmt::World(w) = &s.stmt {
+            for item in &w.items {
+                if let WorldItem::Obstacle(o) = item
+                    && spans.contains(&o.span)
+                {
+                    out.entry(o.span).or_default().push(item.clone());
+                }
+            }
+        }
+    }
+    out
 }
 
-/// Shrinks the failing statements and writes the standalone scenario.
+/// `x` rounded to `decimals` decimals.
+fn rounded(x: f64, decimals: i32) -> f64 {
+    let scale = 10f64.powi(decimals);
+    (x * scale).round() / scale
+}
+
+/// What shrinking varies: the drawn params, the scattered items, the
+/// obstacles removed.
+#[derive(Clone)]
+struct Shrinking {
+    drawn: Vec<f64>,
+    scatters: HashMap<Span, Vec<WorldItem>>,
+    gone: HashSet<Key>,
+}
+
+impl Shrinking {
+    /// The sample's statements, or `None` when a `require` rejects them.
+    fn build(&self, source: &Source) -> Option<Vec<SourcedStmt>> {
+        let (statements, _) = source
+            .family
+            .instantiate_fixed(&source.statements, &self.drawn, &self.scatters)
+            .ok()??;
+        Some(without(&statements, &self.gone))
+    }
+
+    fn fails(&self, source: &Source, check: usize) -> bool {
+        self.build(source).is_some_and(|s| fails(source, &s, check))
+    }
+}
+
+/// Removes obstacles while the check still fails: chunks of halving size,
+/// then one at a time until removing any one makes it pass (1-minimal).
+fn remove_obstacles(source: &Source, state: &mut Shrinking, check: usize, runs: &mut usize) {
+    let Some(statements) = state.build(source) else {
+        return;
+    };
+    let all = obstacle_keys(&statements);
+    let mut chunk = all.len() / 2;
+    while chunk > 1 && *runs < SHRINK_RUNS {
+        let alive: Vec<Key> = all
+            .iter()
+            .filter(|k| !state.gone.contains(k))
+            .cloned()
+            .collect();
+        for part in alive.chunks(chunk) {
+            if *runs >= SHRINK_RUNS {
+                break;
+            }
+            let mut trial = state.clone();
+            trial.gone.extend(part.iter().cloned());
+            *runs += 1;
+            if trial.fails(source, check) {
+                *state = trial;
+            }
+        }
+        chunk /= 2;
+    }
+    // One at a time, in parallel: the first (in order) whose removal keeps
+    // the failure goes, until none does.
+    loop {
+        let alive: Vec<Key> = all
+            .iter()
+            .filter(|k| !state.gone.contains(k))
+            .cloned()
+            .collect();
+        if alive.is_empty() || *runs + alive.len() > SHRINK_RUNS {
+            break;
+        }
+        *runs += alive.len();
+        let keeps: Vec<bool> = alive
+            .par_iter()
+            .map(|k| {
+                let mut trial = state.clone();
+                trial.gone.insert(k.clone());
+                trial.fails(source, check)
+            })
+            .collect();
+        match keeps.iter().position(|&k| k) {
+            Some(k) => {
+                state.gone.insert(alive[k].clone());
+            }
+            None => break,
+        }
+    }
+}
+
+/// Shrinks the failing sample and writes the standalone scenario: first
+/// the drawn params to the fewest decimals that still fail (the computed
+/// values follow them, so the world keeps its shape), then the obstacles
+/// to a 1-minimal set, then the scattered items' numbers, and a last
+/// check that no obstacle became removable.
 fn shrink(
     source: &Source,
     opts: &Options,
@@ -581,91 +716,82 @@ fn shrink(
     margin: f64,
     statements: Vec<SourcedStmt>,
 ) -> Result<Failure, Vec<Diag>> {
-    let before = count_obstacles(&statements);
-    let mut runs = 0usize;
-    let mut current = statements;
-    // 1. Obstacles: chunks of halving size, then one at a time until no
-    //    single removal keeps the failure (1-minimal).
-    let all = removable(&current);
-    let mut gone: HashSet<(usize, usize)> = HashSet::new();
-    let mut chunk = all.len() / 2;
-    while chunk >= 1 && runs < SHRINK_RUNS {
-        let alive: Vec<(usize, usize)> = all.iter().copied().filter(|x| !gone.contains(x)).collect();
-        for part in alive.chunks(chunk) {
-            if runs >= SHRINK_RUNS {
-                break;
-            }
-            let mut trial = gone.clone();
-            trial.extend(part.iter().copied());
-            runs += 1;
-            if fails(source, &without(&current, &trial), check) {
-                gone = trial;
-            }
-        }
-        if chunk == 1 {
-            break;
-        }
-        chunk /= 2;
-    }
-    // One at a time, in parallel, the first (in order) that keeps the
-    // failure is removed; until none does.
-    loop {
-        let alive: Vec<(usize, usize)> = all.iter().copied().filter(|x| !gone.contains(x)).collect();
-        if alive.is_empty() || runs + alive.len() > SHRINK_RUNS {
-            break;
-        }
-        runs += alive.len();
-        let keeps: Vec<bool> = alive
-            .par_iter()
-            .map(|x| {
-                let mut trial = gone.clone();
-                trial.insert(*x);
-                fails(source, &without(&current, &trial), check)
-            })
-            .collect();
-        match keeps.iter().position(|&k| k) {
-            Some(k) => {
-                gone.insert(alive[k]);
-            }
-            None => break,
-        }
-    }
-    current = without(&current, &gone);
-    // 2. Numbers: each computed number rounded to the fewest decimals that
-    //    still fail.
-    let computed = computed_spans(&source.statements, source.family.index());
+    let before = obstacle_keys(&statements).len();
     let scattered = scatter_spans(&source.statements);
-    let slots = numbers(&mut current, &computed, &scattered, &mut |_| {});
-    for slot in 0..slots {
-        let mut original = 0.0;
-        numbers(&mut current, &computed, &scattered, &mut |(k, x)| {
-            if k == slot {
-                original = *x;
-            }
-        });
+    let mut state = Shrinking {
+        drawn: source.family.drawn_values(&params),
+        scatters: scatter_items(&statements, &scattered),
+        gone: HashSet::new(),
+    };
+    let mut runs = 0usize;
+    // 1. The drawn params.
+    for k in 0..state.drawn.len() {
         for decimals in 0..=6 {
-            if runs >= SHRINK_RUNS {
+            let x = rounded(state.drawn[k], decimals);
+            if x == state.drawn[k] || runs >= SHRINK_RUNS {
                 break;
             }
-            let scale = 10f64.powi(decimals);
-            let rounded = (original * scale).round() / scale;
-            if rounded == original {
-                break;
-            }
-            let mut trial = current.clone();
-            numbers(&mut trial, &computed, &scattered, &mut |(k, x)| {
-                if k == slot {
-                    *x = rounded;
-                }
-            });
+            let mut trial = state.clone();
+            trial.drawn[k] = x;
             runs += 1;
-            if fails(source, &trial, check) {
-                current = trial;
+            if trial.fails(source, check) {
+                state = trial;
                 break;
             }
         }
     }
-    let after = count_obstacles(&current);
+    // 2. The obstacles.
+    remove_obstacles(source, &mut state, check, &mut runs);
+    // 3. The numbers of the scattered items that remain.
+    let spans: Vec<Span> = {
+        let mut v: Vec<Span> = state.scatters.keys().copied().collect();
+        v.sort_by_key(|s| s.start);
+        v
+    };
+    for span in spans {
+        let n = state.scatters[&span].len();
+        for i in 0..n {
+            let gone = match &state.scatters[&span][i] {
+                WorldItem::Obstacle(o) => state.gone.contains(&key(o)),
+                _ => true,
+            };
+            if gone {
+                continue;
+            }
+            let mut slot = 0;
+            loop {
+                let mut item = state.scatters[&span][i].clone();
+                let Some(original) = nth_number(&mut item, slot).map(|x| *x) else {
+                    break;
+                };
+                for decimals in 0..=6 {
+                    let x = rounded(original, decimals);
+                    if x == original || runs >= SHRINK_RUNS {
+                        break;
+                    }
+                    let mut trial = state.clone();
+                    let mut changed = item.clone();
+                    if let Some(v) = nth_number(&mut changed, slot) {
+                        *v = x;
+                    }
+                    if let Some(items) = trial.scatters.get_mut(&span) {
+                        items[i] = changed;
+                    }
+                    runs += 1;
+                    if trial.fails(source, check) {
+                        state = trial;
+                        break;
+                    }
+                }
+                slot += 1;
+            }
+        }
+    }
+    // 4. Rounding may have made another obstacle removable.
+    remove_obstacles(source, &mut state, check, &mut runs);
+    let current = state.build(source).unwrap_or(statements);
+    let after = obstacle_keys(&current).len();
+    let computed = computed_spans(&source.statements, source.family.index());
     let check_span = source.checks[check];
     let (check_text, line) = match source.sources.get(check_span.file) {
         Some(f) => (
@@ -686,7 +812,14 @@ fn shrink(
             .collect::<Vec<_>>()
             .join(", "),
     );
-    let text = write_standalone(source, &current, &computed, &header)?;
+    // Numbers to 12 significant digits when the file still fails with
+    // them, else exact.
+    let pretty = write_standalone(source, &current, &computed, &header, true)?;
+    let text = if still_failing(source, &pretty) {
+        pretty
+    } else {
+        write_standalone(source, &current, &computed, &header, false)?
+    };
     Ok(Failure {
         sample,
         params,
@@ -714,146 +847,87 @@ fn scatter_spans(statements: &[SourcedStmt]) -> HashSet<Span> {
     out
 }
 
-/// Visits every computed number of a sample's statements in a fixed order
-/// (values at `computed` spans, the numbers of scattered obstacles), with
-/// its index; returns how many there are.
-fn numbers(
-    statements: &mut [SourcedStmt],
-    computed: &HashSet<Span>,
-    scattered: &HashSet<Span>,
-    f: &mut dyn FnMut((usize, &mut f64)),
-) -> usize {
-    fn value(v: &mut Value, all: bool, computed: &HashSet<Span>, k: &mut usize, f: &mut dyn FnMut((usize, &mut f64))) {
-        let here = all || computed.contains(&v.span);
+/// The `slot`-th number of a scattered obstacle (its centre or corners,
+/// then its size).
+fn nth_number(item: &mut WorldItem, slot: usize) -> Option<&mut f64> {
+    fn walk<'v>(v: &'v mut Value, all: &mut Vec<&'v mut f64>) {
         match &mut v.kind {
-            ValueKind::Number(x) if here => {
-                f((*k, x));
-                *k += 1;
-            }
-            ValueKind::Angle(a) if here => {
-                f((*k, &mut a.written));
-                *k += 1;
-            }
-            ValueKind::Tuple(items) | ValueKind::List(items) => {
-                for item in items {
-                    value(item, all, computed, k, f);
-                }
-            }
+            ValueKind::Number(x) => all.push(x),
+            ValueKind::Tuple(items) => items.iter_mut().for_each(|i| walk(i, all)),
             _ => {}
         }
     }
-    fn tokens(ts: &mut [crate::syntax::ast::ParamToken], computed: &HashSet<Span>, k: &mut usize, f: &mut dyn FnMut((usize, &mut f64))) {
-        for t in ts {
-            match t {
-                crate::syntax::ast::ParamToken::Value(v) => value(v, false, computed, k, f),
-                crate::syntax::ast::ParamToken::Block { tokens: inner, .. } => tokens(inner, computed, k, f),
-                crate::syntax::ast::ParamToken::Word(_) => {}
-            }
-        }
-    }
-    let mut k = 0;
-    for s in statements {
-        match &mut s.stmt {
-            Stmt::World(w) => {
-                for item in &mut w.items {
-                    match item {
-                        WorldItem::Bounds { min, max, .. } => {
-                            value(min, false, computed, &mut k, f);
-                            value(max, false, computed, &mut k, f);
-                        }
-                        WorldItem::Obstacle(o) => {
-                            let all = scattered.contains(&o.span);
-                            match &mut o.shape {
-                                ObstacleShape::Rect(a, b)
-                                | ObstacleShape::Segment(a, b)
-                                | ObstacleShape::Disk(a, b) => {
-                                    value(a, all, computed, &mut k, f);
-                                    value(b, all, computed, &mut k, f);
-                                }
-                                ObstacleShape::Polygon(v) => value(v, all, computed, &mut k, f),
-                                ObstacleShape::Grid(_) => {}
-                            }
-                        }
-                        WorldItem::Scatter(_) => {}
-                    }
-                }
-            }
-            Stmt::Robot(r) => {
-                use crate::syntax::ast::RobotShape;
-                match &mut r.shape {
-                    RobotShape::Point(_) => {}
-                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, false, computed, &mut k, f),
-                    RobotShape::Rect(a, b) => {
-                        value(a, false, computed, &mut k, f);
-                        value(b, false, computed, &mut k, f);
-                    }
-                }
-                if let Some(steer) = &mut r.steer {
-                    value(&mut steer.radius, false, computed, &mut k, f);
-                }
-            }
-            Stmt::Plan(p) => tokens(&mut p.body, computed, &mut k, f),
-            Stmt::Expect(e) => walk_numbers(e, computed, &mut k, f),
-            _ => {}
-        }
-    }
-    k
-}
-
-fn walk_numbers(
-    e: &mut crate::syntax::ast::Expr,
-    computed: &HashSet<Span>,
-    k: &mut usize,
-    f: &mut dyn FnMut((usize, &mut f64)),
-) {
-    if let ExprKind::Number(x) = &mut e.kind {
-        if computed.contains(&e.span) {
-            f((*k, x));
-            *k += 1;
-        }
-        return;
-    }
-    match &mut e.kind {
-        ExprKind::Neg(x) | ExprKind::Not(x) => walk_numbers(x, computed, k, f),
-        ExprKind::Where(a, b)
-        | ExprKind::And(a, b)
-        | ExprKind::Or(a, b)
-        | ExprKind::Arith { lhs: a, rhs: b, .. }
-        | ExprKind::Compare { lhs: a, rhs: b, .. } => {
-            walk_numbers(a, computed, k, f);
-            walk_numbers(b, computed, k, f);
-        }
-        ExprKind::Approx { lhs, rhs, tol } => {
-            walk_numbers(lhs, computed, k, f);
-            walk_numbers(rhs, computed, k, f);
-            walk_numbers(tol, computed, k, f);
-        }
-        ExprKind::Call { args, .. } => {
-            for a in args {
-                walk_numbers(a, computed, k, f);
-            }
+    let WorldItem::Obstacle(o) = item else {
+        return None;
+    };
+    let mut all: Vec<&mut f64> = Vec::new();
+    match &mut o.shape {
+        ObstacleShape::Rect(a, b) | ObstacleShape::Disk(a, b) | ObstacleShape::Segment(a, b) => {
+            walk(a, &mut all);
+            walk(b, &mut all);
         }
         _ => {}
     }
+    all.into_iter().nth(slot)
 }
 
-/// A number as a literal: its shortest exact form.
-fn literal(kind: &ValueKind) -> Option<String> {
+/// Whether `text`, read as the scenario file itself (its includes and
+/// maps where they were), has a plain check that fails.
+fn still_failing(source: &Source, text: &str) -> bool {
+    let canon = crate::scenario::loader::canonical(&source.path);
+    let overlay = |p: &Path| (p == canon).then(|| std::sync::Arc::<str>::from(text));
+    let Ok(scenario) = crate::scenario::load_with(&source.path, None, &overlay) else {
+        return false;
+    };
+    let report = crate::run::run_scenario_drawing(scenario, &[], false);
+    report
+        .checks
+        .iter()
+        .any(|c| !c.passed && !report.scenario.checks[c.check].bench)
+}
+
+/// A number as written: to 12 significant digits (`pretty`), or its
+/// shortest exact form.
+fn number_text(x: f64, pretty: bool) -> String {
+    if pretty && x != 0.0 && x.is_finite() {
+        let digits = 11 - x.abs().log10().floor() as i32;
+        if (0..=15).contains(&digits) {
+            let s = format!("{:.*}", digits as usize, x);
+            let s = if s.contains('.') {
+                s.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                s
+            };
+            return if s == "-0" { "0".to_string() } else { s };
+        }
+    }
+    format!("{x}")
+}
+
+/// A number as a literal.
+fn literal(kind: &ValueKind, pretty: bool) -> Option<String> {
     Some(match kind {
-        ValueKind::Number(x) => format!("{x}"),
+        ValueKind::Number(x) => number_text(*x, pretty),
         ValueKind::Angle(a) => format!(
             "{}{}",
-            a.written,
-            if a.unit == AngleUnit::Deg { "deg" } else { "rad" }
+            number_text(a.written, pretty),
+            if a.unit == AngleUnit::Deg {
+                "deg"
+            } else {
+                "rad"
+            }
         ),
         _ => return None,
     })
 }
 
 /// One obstacle as a line of a `world` block.
-fn obstacle_line(o: &ObstacleDecl) -> String {
-    let v = |v: &Value| value_text(v);
-    let name = o.name.as_ref().map_or(String::new(), |n| format!(" {}", n.value));
+fn obstacle_line(o: &ObstacleDecl, pretty: bool) -> String {
+    let v = |v: &Value| value_text(v, pretty);
+    let name = o
+        .name
+        .as_ref()
+        .map_or(String::new(), |n| format!(" {}", n.value));
     match &o.shape {
         ObstacleShape::Rect(a, b) => format!("rect{name} {} {}", v(a), v(b)),
         ObstacleShape::Disk(a, b) => format!("disk{name} {} {}", v(a), v(b)),
@@ -863,17 +937,18 @@ fn obstacle_line(o: &ObstacleDecl) -> String {
     }
 }
 
-fn value_text(v: &Value) -> String {
+fn value_text(v: &Value, pretty: bool) -> String {
+    let all = |items: &[Value]| {
+        items
+            .iter()
+            .map(|i| value_text(i, pretty))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     match &v.kind {
-        ValueKind::Tuple(items) => format!(
-            "({})",
-            items.iter().map(value_text).collect::<Vec<_>>().join(", ")
-        ),
-        ValueKind::List(items) => format!(
-            "[{}]",
-            items.iter().map(value_text).collect::<Vec<_>>().join(", ")
-        ),
-        kind => literal(kind).unwrap_or_default(),
+        ValueKind::Tuple(items) => format!("({})", all(items)),
+        ValueKind::List(items) => format!("[{}]", all(items)),
+        kind => literal(kind, pretty).unwrap_or_default(),
     }
 }
 
@@ -886,6 +961,7 @@ fn write_standalone(
     sample: &[SourcedStmt],
     computed: &HashSet<Span>,
     header: &str,
+    pretty: bool,
 ) -> Result<String, Vec<Diag>> {
     let text = source
         .sources
@@ -894,7 +970,7 @@ fn write_standalone(
         .unwrap_or_default();
     // The sample's computed numbers, by span.
     let mut numbers: HashMap<Span, String> = HashMap::new();
-    collect_literals(sample, computed, &mut numbers);
+    collect_literals(sample, computed, pretty, &mut numbers);
     // The sample's obstacles, by declaration span (scattered ones by their
     // scatter's span, in order).
     let mut kept: HashMap<Span, Vec<&ObstacleDecl>> = HashMap::new();
@@ -914,13 +990,18 @@ fn write_standalone(
         if span.file != 0 {
             // Statements of included files stay as they are, unless they
             // hold something computed.
-            if computed.iter().any(|c| c.file == span.file && span.start <= c.start && c.end <= span.end) {
+            if computed
+                .iter()
+                .any(|c| c.file == span.file && span.start <= c.start && c.end <= span.end)
+            {
                 outside.push(span);
             }
             continue;
         }
         match &s.stmt {
-            Stmt::Param(_) | Stmt::Require { .. } | Stmt::Bench(_) => edits.push((span, String::new())),
+            Stmt::Param(_) | Stmt::Require { .. } | Stmt::Bench(_) => {
+                edits.push((span, String::new()))
+            }
             Stmt::Expect(e) if reads_bench(e) => {
                 // The statement starts at its keyword.
                 let start = text[..span.start].rfind("expect").unwrap_or(span.start);
@@ -935,7 +1016,7 @@ fn write_standalone(
                         WorldItem::Scatter(sc) => {
                             let lines: Vec<String> = kept
                                 .get(&sc.span)
-                                .map(|os| os.iter().map(|o| obstacle_line(o)).collect())
+                                .map(|os| os.iter().map(|o| obstacle_line(o, pretty)).collect())
                                 .unwrap_or_default();
                             edits.push((sc.span, lines.join("\n")));
                         }
@@ -956,7 +1037,11 @@ fn write_standalone(
     }
     let deleted: Vec<Span> = edits.iter().map(|(s, _)| *s).collect();
     for (span, lit) in &numbers {
-        if span.file == 0 && !deleted.iter().any(|d| d.start <= span.start && span.end <= d.end) {
+        if span.file == 0
+            && !deleted
+                .iter()
+                .any(|d| d.start <= span.start && span.end <= d.end)
+        {
             edits.push((*span, lit.clone()));
         }
     }
@@ -970,25 +1055,44 @@ fn write_standalone(
 }
 
 /// The literal of every number at a computed span.
-fn collect_literals(sample: &[SourcedStmt], computed: &HashSet<Span>, out: &mut HashMap<Span, String>) {
-    fn value(v: &Value, computed: &HashSet<Span>, out: &mut HashMap<Span, String>) {
+fn collect_literals(
+    sample: &[SourcedStmt],
+    computed: &HashSet<Span>,
+    pretty: bool,
+    out: &mut HashMap<Span, String>,
+) {
+    let value =
+        |v: &Value, out: &mut HashMap<Span, String>| literal_value(v, computed, pretty, out);
+    fn literal_value(
+        v: &Value,
+        computed: &HashSet<Span>,
+        pretty: bool,
+        out: &mut HashMap<Span, String>,
+    ) {
         if computed.contains(&v.span)
-            && let Some(l) = literal(&v.kind)
+            && let Some(l) = literal(&v.kind, pretty)
         {
             out.insert(v.span, l);
             return;
         }
         if let ValueKind::Tuple(items) | ValueKind::List(items) = &v.kind {
             for i in items {
-                value(i, computed, out);
+                literal_value(i, computed, pretty, out);
             }
         }
     }
-    fn tokens(ts: &[crate::syntax::ast::ParamToken], computed: &HashSet<Span>, out: &mut HashMap<Span, String>) {
+    fn tokens(
+        ts: &[crate::syntax::ast::ParamToken],
+        computed: &HashSet<Span>,
+        pretty: bool,
+        out: &mut HashMap<Span, String>,
+    ) {
         for t in ts {
             match t {
-                crate::syntax::ast::ParamToken::Value(v) => value(v, computed, out),
-                crate::syntax::ast::ParamToken::Block { tokens: inner, .. } => tokens(inner, computed, out),
+                crate::syntax::ast::ParamToken::Value(v) => literal_value(v, computed, pretty, out),
+                crate::syntax::ast::ParamToken::Block { tokens: inner, .. } => {
+                    tokens(inner, computed, pretty, out)
+                }
                 crate::syntax::ast::ParamToken::Word(_) => {}
             }
         }
@@ -999,20 +1103,20 @@ fn collect_literals(sample: &[SourcedStmt], computed: &HashSet<Span>, out: &mut 
                 for item in &w.items {
                     match item {
                         WorldItem::Bounds { min, max, .. } => {
-                            value(min, computed, out);
-                            value(max, computed, out);
+                            value(min, out);
+                            value(max, out);
                         }
                         WorldItem::Obstacle(o) => match &o.shape {
                             ObstacleShape::Rect(a, b)
                             | ObstacleShape::Segment(a, b)
                             | ObstacleShape::Disk(a, b) => {
-                                value(a, computed, out);
-                                value(b, computed, out);
+                                value(a, out);
+                                value(b, out);
                             }
-                            ObstacleShape::Polygon(v) => value(v, computed, out),
+                            ObstacleShape::Polygon(v) => value(v, out),
                             ObstacleShape::Grid(g) => {
                                 for v in g.cell.iter().chain(&g.origin) {
-                                    value(v, computed, out);
+                                    value(v, out);
                                 }
                             }
                         },
@@ -1024,22 +1128,22 @@ fn collect_literals(sample: &[SourcedStmt], computed: &HashSet<Span>, out: &mut 
                 use crate::syntax::ast::RobotShape;
                 match &r.shape {
                     RobotShape::Point(_) => {}
-                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, computed, out),
+                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, out),
                     RobotShape::Rect(a, b) => {
-                        value(a, computed, out);
-                        value(b, computed, out);
+                        value(a, out);
+                        value(b, out);
                     }
                 }
                 if let Some(steer) = &r.steer {
-                    value(&steer.radius, computed, out);
+                    value(&steer.radius, out);
                 }
             }
-            Stmt::Plan(p) => tokens(&p.body, computed, out),
+            Stmt::Plan(p) => tokens(&p.body, computed, pretty, out),
             Stmt::Expect(e) => e.walk(&mut |n| {
                 if let ExprKind::Number(x) = &n.kind
                     && computed.contains(&n.span)
                 {
-                    out.insert(n.span, format!("{x}"));
+                    out.insert(n.span, number_text(*x, pretty));
                 }
             }),
             _ => {}
@@ -1049,7 +1153,9 @@ fn collect_literals(sample: &[SourcedStmt], computed: &HashSet<Span>, out: &mut 
 
 fn stmt_span(s: &Stmt) -> Span {
     match s {
-        Stmt::Scenario { span, .. } | Stmt::Include { span, .. } | Stmt::Require { span, .. } => *span,
+        Stmt::Scenario { span, .. } | Stmt::Include { span, .. } | Stmt::Require { span, .. } => {
+            *span
+        }
         Stmt::World(w) => w.span,
         Stmt::Robot(r) => r.span,
         Stmt::Plan(p) => p.span,

@@ -223,7 +223,10 @@ fn a_bench_runs_every_world_and_shards_merge_to_the_same_report() {
         String::from_utf8_lossy(&whole.stderr)
     );
     let doc: serde_json::Value = serde_json::from_slice(&whole.stdout).expect("JSON");
-    let runs = doc["benches"][0]["results"].as_array().expect("runs").clone();
+    let runs = doc["benches"][0]["results"]
+        .as_array()
+        .expect("runs")
+        .clone();
     assert_eq!(runs.len(), 12);
     let worlds: Vec<u64> = runs
         .iter()

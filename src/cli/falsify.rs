@@ -70,13 +70,14 @@ pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
         });
         return EXIT_BAD_INPUT;
     }
-    let source = match falsify::Source::new(&args.file, parsed.statements, parsed.sources, parsed.maps) {
-        Ok(s) => s,
-        Err((sources, diags)) => {
-            print_failure(&LoadFailure { sources, diags });
-            return EXIT_BAD_INPUT;
-        }
-    };
+    let source =
+        match falsify::Source::new(&args.file, parsed.statements, parsed.sources, parsed.maps) {
+            Ok(s) => s,
+            Err((sources, diags)) => {
+                print_failure(&LoadFailure { sources, diags });
+                return EXIT_BAD_INPUT;
+            }
+        };
     let opts = Options {
         budget: args.budget,
         search,
@@ -99,7 +100,10 @@ pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
         return EXIT_BAD_INPUT;
     }
     if args.json {
-        outln!("{}", serde_json::to_string(&json(&args.file, &result, &out)).unwrap_or_default());
+        outln!(
+            "{}",
+            serde_json::to_string(&json(&args.file, &result, &out)).unwrap_or_default()
+        );
     } else {
         print_text(&args.file, &result, &out);
     }
@@ -125,7 +129,10 @@ fn print_text(file: &Path, r: &Falsified, out: &Path) {
         r.tried,
         r.search.word(),
         if r.rejected > 0 {
-            format!(", {} rejected by a `require` or a start or goal", r.rejected)
+            format!(
+                ", {} rejected by a `require` or a start or goal",
+                r.rejected
+            )
         } else {
             String::new()
         }
@@ -133,7 +140,12 @@ fn print_text(file: &Path, r: &Falsified, out: &Path) {
     match &r.failure {
         Some(f) => {
             outln!("FAIL  sample {}: {}", f.sample, params_text(&f.params));
-            outln!("      line {}: expect {}   (margin {})", f.line, f.check, crate::checks::format_num(f.margin));
+            outln!(
+                "      line {}: expect {}   (margin {})",
+                f.line,
+                f.check,
+                crate::checks::format_num(f.margin)
+            );
             outln!(
                 "      shrunk to {} of {} obstacle(s) in {} run(s), written to {}",
                 f.obstacles.1,

@@ -95,6 +95,9 @@ pub(crate) struct Family {
 struct Draw {
     values: Vec<f64>,
     rng: SplitMix64,
+    /// The items of each scatter (by its span), when they are given rather
+    /// than drawn (a shrinking sample).
+    fixed: Option<HashMap<Span, Vec<WorldItem>>>,
 }
 
 /// SplitMix64's finaliser, to derive independent stream seeds.
@@ -587,6 +590,75 @@ impl Family {
         Ok(Some((self.instantiate(statements, &mut draw)?, params)))
     }
 
+    /// The values of the drawn params (those of a distribution or a
+    /// `choice`) among all params' values, in order.
+    pub(crate) fn drawn_values(&self, params: &[(String, f64)]) -> Vec<f64> {
+        self.params
+            .iter()
+            .zip(params)
+            .filter(|(p, _)| !matches!(p.source, Source::Value(_)))
+            .map(|(_, (_, x))| *x)
+            .collect()
+    }
+
+    /// A sample with its drawn params and scattered items given (a
+    /// shrinking one): the computed params follow from the drawn ones.
+    /// `None` when a `require` rejects it.
+    pub(crate) fn instantiate_fixed(
+        &self,
+        statements: &[SourcedStmt],
+        drawn: &[f64],
+        scatters: &HashMap<Span, Vec<WorldItem>>,
+    ) -> Result<Option<(Vec<SourcedStmt>, Vec<(String, f64)>)>, Vec<Diag>> {
+        let mut values: Vec<f64> = Vec::with_capacity(self.params.len());
+        let mut given = drawn.iter().copied();
+        for p in &self.params {
+            let x = match &p.source {
+                Source::Value(v) => self.number(v, &values).map_err(|d| vec![d])?,
+                _ => given.next().unwrap_or(0.0),
+            };
+            // A value the distribution cannot draw is not a sample.
+            let inside = match &p.source {
+                Source::Uniform(a, b) | Source::Int(a, b) => {
+                    let lo =
+                        eval(a, &values, &self.index).map_err(|e| vec![e.diag(self, &values)])?;
+                    let hi =
+                        eval(b, &values, &self.index).map_err(|e| vec![e.diag(self, &values)])?;
+                    lo <= x
+                        && x <= hi
+                        && (matches!(p.source, Source::Uniform(..)) || x.fract() == 0.0)
+                }
+                Source::Choice(items) => {
+                    let mut any = false;
+                    for item in items {
+                        any |= self.number(item, &values).map_err(|d| vec![d])? == x;
+                    }
+                    any
+                }
+                Source::Normal(..) | Source::Value(_) => true,
+            };
+            if !inside {
+                return Ok(None);
+            }
+            values.push(x);
+        }
+        if self.violated(&values).map_err(|d| vec![d])?.is_some() {
+            return Ok(None);
+        }
+        let params = self
+            .params
+            .iter()
+            .zip(&values)
+            .map(|(p, &x)| (p.name.value.clone(), x))
+            .collect();
+        let mut draw = Draw {
+            values,
+            rng: SplitMix64::new(0),
+            fixed: Some(scatters.clone()),
+        };
+        Ok(Some((self.instantiate(statements, &mut draw)?, params)))
+    }
+
     /// Draws the params from `rng`, or at `unit` for the drawn ones.
     fn draw_params_with(&self, mut rng: SplitMix64, unit: Option<&[f64]>) -> Result<Draw, Diag> {
         let mut values: Vec<f64> = Vec::with_capacity(self.params.len());
@@ -624,7 +696,11 @@ impl Family {
             };
             values.push(x);
         }
-        Ok(Draw { values, rng })
+        Ok(Draw {
+            values,
+            rng,
+            fixed: None,
+        })
     }
 
     /// The number of a value that must be one (a choice's item, a
@@ -1021,6 +1097,10 @@ impl Ctx<'_> {
 
     /// Places the items of a scatter, appending them as obstacles.
     fn scatter(&mut self, sc: &ScatterDecl, placed: &mut Vec<Placed>, items: &mut Vec<WorldItem>) {
+        if let Some(fixed) = &self.draw.fixed {
+            items.extend(fixed.get(&sc.span).cloned().unwrap_or_default());
+            return;
+        }
         let Some(count) = self.scatter_number(&sc.count, "count", sc) else {
             return;
         };
@@ -1298,7 +1378,10 @@ fn normal_quantile(p: f64) -> f64 {
 /// The spans of everything a sample computes: expressions, params' names
 /// in bodies, lists and expectations. A standalone file of a sample writes
 /// each one's number in its place.
-pub(crate) fn computed_spans(statements: &[SourcedStmt], params: &HashMap<String, usize>) -> HashSet<Span> {
+pub(crate) fn computed_spans(
+    statements: &[SourcedStmt],
+    params: &HashMap<String, usize>,
+) -> HashSet<Span> {
     fn value(v: &Value, params: &HashMap<String, usize>, out: &mut HashSet<Span>) {
         match &v.kind {
             ValueKind::Calc { .. } => {

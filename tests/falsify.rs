@@ -1,0 +1,236 @@
+//! `scen falsify` (SPEC 2.8, §4): the search finds a failing sample of a
+//! family, the same one on any thread count, and writes a shrunk standalone
+//! scenario that fails the same way, 1-minimal in obstacles.
+
+mod common;
+
+use std::path::Path;
+
+use common::{TempDir, repo, scen_bin};
+
+fn scen(dir: &Path, args: &[&str], threads: Option<&str>) -> std::process::Output {
+    let mut c = std::process::Command::new(scen_bin());
+    c.args(args).current_dir(dir).env("NO_COLOR", "1");
+    if let Some(t) = threads {
+        c.env("RAYON_NUM_THREADS", t);
+    }
+    c.output().expect("run scen")
+}
+
+fn json(out: &std::process::Output) -> serde_json::Value {
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "not JSON ({e}): {}\n{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    })
+}
+
+/// A family whose failure region is 0.1 % of its draws, with a continuous
+/// margin (the goal within 0.1784 of the start).
+const NEEDLE: &str = "param x = uniform(0, 10)\nparam y = uniform(0, 10)\n\
+    world {\n  bounds (-1, -1) (11, 11)\n}\nrobot r point\n\
+    plan p roadmap r { start (3.7, 6.2) goal (x, y) }\nexpect p.length > 0.1784\n";
+
+/// Rocks scattered across a straight corridor; the check fails when one
+/// blocks the straight line.
+const ROCKS: &str = "param n = int(20, 30)\n\
+    world {\n  bounds (0, 0) (12, 10)\n  \
+    scatter rocks 25 disk uniform(0.3, 0.6) in (2, 1) (10, 9) gap 0.1\n}\n\
+    robot r disk 0.2\n\
+    plan p astar r { start (0.5, 5) goal (11.5, 5) cell 0.1 connect 8 }\n\
+    expect p.length < 11.6\n";
+
+#[test]
+fn the_model_guided_search_finds_a_needle_that_uniform_draws_miss() {
+    let dir = TempDir::new("falsify-needle");
+    std::fs::write(dir.path().join("needle.scen"), NEEDLE).expect("write");
+    for seed in ["0", "1", "2"] {
+        let out = scen(
+            dir.path(),
+            &[
+                "falsify",
+                "needle.scen",
+                "--seed",
+                seed,
+                "--budget",
+                "300",
+                "--json",
+            ],
+            None,
+        );
+        assert_eq!(out.status.code(), Some(1), "a failure is exit 1");
+        let doc = json(&out);
+        assert_eq!(doc["found"], true, "seed {seed}: {doc}");
+        assert!(doc["samples_tried"].as_u64().unwrap() <= 300);
+        assert!(doc["margin"].as_f64().unwrap() <= 0.0);
+        assert_eq!(doc["check"], "p.length > 0.1784");
+        for key in ["sample", "params", "out", "line"] {
+            assert!(doc.get(key).is_some(), "no {key}: {doc}");
+        }
+        // The goal it found is within the needle.
+        let (x, y) = (
+            doc["params"]["x"].as_f64().unwrap(),
+            doc["params"]["y"].as_f64().unwrap(),
+        );
+        assert!((x - 3.7).hypot(y - 6.2) <= 0.1784, "({x}, {y})");
+    }
+    // 100 uniform draws do not find it (with seed 0): the search is what
+    // finds it, not luck.
+    let out = scen(
+        dir.path(),
+        &[
+            "falsify",
+            "needle.scen",
+            "--search",
+            "uniform",
+            "--budget",
+            "100",
+            "--json",
+        ],
+        None,
+    );
+    assert_eq!(out.status.code(), Some(0), "no failure is exit 0");
+    let doc = json(&out);
+    assert_eq!(doc["found"], false);
+    assert!(
+        doc["margin"].as_f64().unwrap() > 0.0,
+        "the smallest margin: {doc}"
+    );
+}
+
+#[test]
+fn the_result_does_not_depend_on_the_thread_count() {
+    let dir = TempDir::new("falsify-threads");
+    std::fs::write(dir.path().join("rocks.scen"), ROCKS).expect("write");
+    let mut runs = Vec::new();
+    for threads in ["1", "3"] {
+        let out = scen(
+            dir.path(),
+            &[
+                "falsify",
+                "rocks.scen",
+                "--json",
+                "--out",
+                &format!("fail{threads}.scen"),
+            ],
+            Some(threads),
+        );
+        let mut doc = json(&out);
+        doc["out"] = serde_json::Value::Null;
+        let text = std::fs::read_to_string(dir.path().join(format!("fail{threads}.scen")))
+            .expect("the shrunk file");
+        runs.push((doc, text));
+    }
+    assert_eq!(runs[0], runs[1]);
+}
+
+/// The obstacle lines of a scenario's `world` block.
+fn obstacle_lines(text: &str) -> Vec<usize> {
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| {
+            let l = l.trim_start();
+            ["rect ", "disk ", "polygon ", "segment "]
+                .iter()
+                .any(|k| l.starts_with(k))
+        })
+        .map(|(k, _)| k)
+        .collect()
+}
+
+/// `scen test` on a text: its exit code.
+fn test_exit(dir: &Path, name: &str, text: &str) -> Option<i32> {
+    std::fs::write(dir.join(name), text).expect("write");
+    scen(dir, &["test", name], None).status.code()
+}
+
+/// The shrunk file fails under `scen test`, and removing any one of its
+/// obstacles makes it pass.
+fn assert_shrunk_and_one_minimal(dir: &Path, text: &str) {
+    assert!(
+        !text.contains("param ") && !text.contains("scatter "),
+        "{text}"
+    );
+    assert_eq!(test_exit(dir, "shrunk.scen", text), Some(1), "{text}");
+    let lines = obstacle_lines(text);
+    assert!(!lines.is_empty(), "{text}");
+    for &k in &lines {
+        let without: String = text
+            .lines()
+            .enumerate()
+            .filter(|(i, _)| *i != k)
+            .map(|(_, l)| format!("{l}\n"))
+            .collect();
+        assert_eq!(
+            test_exit(dir, "without.scen", &without),
+            Some(0),
+            "removing line {} keeps the failure:\n{text}",
+            k + 1
+        );
+    }
+}
+
+#[test]
+fn shrunk_files_are_standalone_failing_and_one_minimal() {
+    let dir = TempDir::new("falsify-shrink");
+    std::fs::write(dir.path().join("rocks.scen"), ROCKS).expect("write");
+    let out = scen(dir.path(), &["falsify", "rocks.scen", "--json"], None);
+    let doc = json(&out);
+    assert_eq!(doc["found"], true, "{doc}");
+    assert!(doc["obstacles_shrunk"].as_u64().unwrap() < doc["obstacles"].as_u64().unwrap());
+    let text = std::fs::read_to_string(dir.path().join("rocks_fail.scen")).expect("FILE_fail.scen");
+    assert!(text.starts_with("# Falsified by `scen falsify`"), "{text}");
+    assert_shrunk_and_one_minimal(dir.path(), &text);
+
+    // The committed example: regenerated identically, and still failing.
+    let family = repo().join("scenarios/family_narrow_rrt.scen");
+    let committed = repo().join("tests/falsified/family_narrow_rrt_fail.scen");
+    let out_path = dir.path().join("narrow_fail.scen");
+    let out = scen(
+        &repo(),
+        &[
+            "falsify",
+            family.to_str().unwrap(),
+            "--out",
+            out_path.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let fresh = std::fs::read_to_string(&out_path).expect("written");
+    let kept = std::fs::read_to_string(&committed).expect("committed");
+    // The header names the family's path as given; the rest is the same.
+    let body = |t: &str| t.lines().skip(2).collect::<Vec<_>>().join("\n");
+    assert_eq!(
+        body(&fresh),
+        body(&kept),
+        "regenerate it: scen falsify scenarios/family_narrow_rrt.scen --out tests/falsified/family_narrow_rrt_fail.scen"
+    );
+    assert_shrunk_and_one_minimal(dir.path(), &kept);
+}
+
+#[test]
+fn falsify_needs_a_family_and_a_plain_check() {
+    let dir = TempDir::new("falsify-bad");
+    let plain = "world {\n  bounds (0, 0) (10, 10)\n}\nrobot r point\n\
+                 plan p astar r { start (1, 1) goal (9, 9) }\nexpect p.found\n";
+    std::fs::write(dir.path().join("plain.scen"), plain).expect("write");
+    let out = scen(dir.path(), &["falsify", "plain.scen"], None);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("scen::falsify::not_a_family"));
+
+    let unchecked = "param a = uniform(2, 8)\nworld {\n  bounds (0, 0) (10, 10)\n}\nrobot r point\n\
+                     plan p astar r { start (1, 1) goal (a, 9) }\n";
+    std::fs::write(dir.path().join("unchecked.scen"), unchecked).expect("write");
+    let out = scen(dir.path(), &["falsify", "unchecked.scen"], None);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("scen::falsify::no_check"));
+    assert!(!dir.path().join("unchecked_fail.scen").exists());
+}
