@@ -117,6 +117,9 @@ pub struct Failure {
     pub text: String,
 }
 
+/// The smallest margin seen, the candidate that had it and its params.
+pub type Smallest = (f64, u64, Vec<(String, f64)>);
+
 /// The result of a search.
 #[derive(Debug)]
 pub struct Falsified {
@@ -124,7 +127,7 @@ pub struct Falsified {
     pub rejected: u64,
     pub search: Search,
     /// The smallest margin seen, and the candidate that had it.
-    pub smallest: Option<(f64, u64, Vec<(String, f64)>)>,
+    pub smallest: Option<Smallest>,
     pub failure: Option<Failure>,
 }
 

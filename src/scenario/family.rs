@@ -18,6 +18,10 @@
 //! rejects only because a start or goal is outside `bounds` or in
 //! collision, is drawn again (attempt + 1), at most [`MAX_ATTEMPTS`] times.
 
+// A `Diag` is the error of every fallible step here, as in the loader: a
+// cold path, returned once per failure.
+#![allow(clippy::result_large_err)]
+
 use std::collections::{HashMap, HashSet};
 use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 
@@ -90,6 +94,9 @@ pub(crate) struct Family {
     /// Whether a `scatter` draws obstacles.
     scatters: AtomicBool,
 }
+
+/// A sample's statements and its params' values, by name.
+pub(crate) type Instance = (Vec<SourcedStmt>, Vec<(String, f64)>);
 
 /// One draw: the params' values and the rng, positioned after them.
 struct Draw {
@@ -574,7 +581,7 @@ impl Family {
         statements: &[SourcedStmt],
         seed: u64,
         unit: &[f64],
-    ) -> Result<Option<(Vec<SourcedStmt>, Vec<(String, f64)>)>, Vec<Diag>> {
+    ) -> Result<Option<Instance>, Vec<Diag>> {
         let mut draw = self
             .draw_params_with(SplitMix64::new(mix(seed)), Some(unit))
             .map_err(|d| vec![d])?;
@@ -609,7 +616,7 @@ impl Family {
         statements: &[SourcedStmt],
         drawn: &[f64],
         scatters: &HashMap<Span, Vec<WorldItem>>,
-    ) -> Result<Option<(Vec<SourcedStmt>, Vec<(String, f64)>)>, Vec<Diag>> {
+    ) -> Result<Option<Instance>, Vec<Diag>> {
         let mut values: Vec<f64> = Vec::with_capacity(self.params.len());
         let mut given = drawn.iter().copied();
         for p in &self.params {
