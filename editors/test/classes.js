@@ -13,7 +13,7 @@ function textmateClass(scopes) {
     [/^entity\.name\./, 'name'],
     [/^support\.type\.planner\./, 'planner'],
     [/^variable\.other\.robot\./, 'ref'],
-    [/^(variable\.parameter\.|keyword\.other\.(bounds|grid-option)\.)/, 'key'],
+    [/^(variable\.parameter\.|keyword\.other\.(bounds|grid-option|scatter)\.)/, 'key'],
     [/^constant\.language\.word\./, 'word'],
     [/^constant\.language\.boolean\./, 'boolean'],
     [/^(constant\.numeric\.|keyword\.other\.unit\.)/, 'number'],
@@ -49,7 +49,8 @@ function vimClass(group, linked) {
     scenExprNumber: 'number', scenExprAngle: 'number', scenExprPercent: 'number',
     scenMetric: 'metric',
     scenOperator: 'operator', scenLogical: 'operator', scenEquals: 'operator',
-    scenFunction: 'function',
+    scenCalcOp: 'operator', scenAssign: 'operator',
+    scenFunction: 'function', scenCalcFunction: 'function', scenCalcCall: 'function',
   };
   return map[group] || 'plain';
 }

@@ -36,6 +36,10 @@ syn region  scenString start=/"/ skip=/\\./ end=/"/ oneline contains=scenEscape,
 syn match   scenBadEscape contained /\\./
 syn match   scenEscape contained /\\["\\]/
 
+" The operators of expressions in number positions (families of scenarios),
+" defined before the numbers so that `-1` stays a number.
+syn match   scenCalcOp /[-+*\/]/
+
 " -------------------------------------------------------------- numbers
 " `12`, `-3.5`, `1e-3`, `.5`, and with a unit: `90deg`, `1.5rad`, `100%`,
 " `500ms`, `2s`. Anything else glued to a number is a malformed number
@@ -62,6 +66,11 @@ syn match   scenStatement /\<\%(scenario\|include\|world\)\>\%(\s*\.\)\@!/
 syn match   scenStatement /\<robot\>\%(\s*\.\)\@!/ nextgroup=scenName skipwhite
 syn match   scenStatement /\<plan\>\%(\s*\.\)\@!/ nextgroup=scenPlanName skipwhite
 syn match   scenStatement /\<bench\>\%(\s*\.\)\@!/ nextgroup=scenBenchWord,scenBenchName,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
+" param NAME = ... (families of scenarios); `choice [...]`.
+syn match   scenStatement /\<param\>\%(\s*\.\)\@!/ nextgroup=scenParamName skipwhite
+syn match   scenParamName contained /\h\w*/ nextgroup=scenAssign skipwhite
+syn match   scenAssign contained /=/ nextgroup=scenChoice skipwhite
+syn keyword scenChoice contained choice
 
 " robot NAME SHAPE
 syn match   scenName contained /\h\w*/ nextgroup=scenShape skipwhite
@@ -77,34 +86,41 @@ syn match   scenRobotRef contained /\h\w*/
 " bench NAME { ... }: the block (after comments, other words, on later lines
 " too) is a bench's, up to the next statement. The name, on the line of
 " `bench`, is defined last: it wins over a word.
-syn match   scenBenchWord contained /\%(\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!\)\@!\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
+syn match   scenBenchWord contained /\%(\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!\)\@!\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 syn match   scenBenchName contained /\%(\<bench\s\+\)\@<=\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 syn match   scenBenchComment contained /#.*$/ contains=scenTodo,@Spell nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 
 " Obstacles and robot shapes; an obstacle's name follows its kind
 " (`grid cell 1` has none: `cell` is then the grid's option).
-syn keyword scenShape rect polygon segment disk grid point nextgroup=scenObstacleName skipwhite
-syn match   scenObstacleName contained /\%(\%(cell\|origin\)\s*[-.0-9(\["]\)\@!\h\w*/
+syn keyword scenShape rect polygon segment disk grid point scatter nextgroup=scenObstacleName,scenCalcCall skipwhite
+syn match   scenObstacleName contained /\%(\%(cell\|origin\)\s*[-.0-9(\["]\)\@!\h\w*\>(\@!/
+" Expressions in number positions (families of scenarios): the functions
+" and distributions (the operators are defined before the numbers).
+" A distribution's name is a word value too (`sampler uniform`), and a
+" keyword wins over a match that starts where it does, but not over the
+" group that follows a shape's keyword (`disk uniform(...)`).
+syn match   scenCalcFunction /\%([^[:alnum:]_]\)\@1<=\%(min\|max\|abs\|sqrt\|uniform\|normal\|int\)\ze(/
+syn match   scenCalcCall contained /\%(uniform\|normal\|int\)\ze(/
 
 " ------------------------------------------------- world and plan blocks
 " A statement keyword at the start of a line ends an unclosed block.
 syn region  scenBlock matchgroup=scenBrace start=/{/ end=/}/ fold
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord,scenCalcOp,scenCalcFunction,scenCalcCall
 " A bench's block: a plan's parameters (the varied keys, `limit`), and
 " `plans [NAME, ...]`, `vary KEY [VALUE, ...]`, `runs N`.
 syn region  scenBenchBlock contained matchgroup=scenBrace start=/{/ end=/}/ fold
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamKey,scenLimitKind,scenWord,scenBenchKey
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamKey,scenLimitKind,scenWord,scenBenchKey,scenCalcOp,scenCalcFunction,scenCalcCall
 " BEGIN GENERATED bench-keys (scripts/regenerate.sh; do not edit)
-syn keyword scenBenchKey contained vary runs
+syn keyword scenBenchKey contained vary runs worlds
 " END GENERATED bench-keys
 syn keyword scenBenchKey contained plans nextgroup=scenPlanList skipwhite skipnl skipempty
 " The names in `plans [...]` are plans, not words.
 syn region  scenPlanList contained matchgroup=scenPunct start=/\[/ end=/\]/
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenPlanList,scenComment,scenString,scenUnterminated,@scenNumbers
-syn keyword scenWorldKeyword contained bounds origin
+syn keyword scenWorldKeyword contained bounds origin in gap
 " BEGIN GENERATED parameters (scripts/regenerate.sh; do not edit)
 " Parameter keys: the common ones, every planner's, and `drive { ... }`'s.
 syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic
@@ -127,11 +143,16 @@ syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " --------------------------------------------------------------- expect
 " An expression runs until the next statement (not a metric: `p.plan`).
 syn region  scenExpect matchgroup=scenStatement start=/\<expect\>\%(\s*\.\)\@!/
-      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenBareWord,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
-" A bare word is not an operand: write `PLAN.METRIC`, or an aggregate
-" `mean(BENCH.PLAN.METRIC)`.
+      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenBareWord,scenParamRef,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
+" `require CONDITION` (families of scenarios): an expression of params.
+syn region  scenRequire matchgroup=scenStatement start=/\<require\>\%(\s*\.\)\@!/
+      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenBareWord,scenParamRef,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
+" A bare word followed by `(` or `[` is not an operand (write an aggregate
+" `mean(BENCH.PLAN.METRIC)`); any other is a param's name.
 syn match   scenBareWord contained /\<\h\w*/
+syn match   scenParamRef contained /\<\h\w*\>\%(\s*[(\[]\)\@!/
 " BEGIN GENERATED aggregates (scripts/regenerate.sh; do not edit)
 syn match   scenFunction contained /\<\%(mean\|median\|min\|max\|std\|sum\|count\|quantile\|rate\)\ze(/
 " END GENERATED aggregates
@@ -161,11 +182,11 @@ syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " keyword of the same name could claim it (`[max = 1]`: an unknown key,
 " coloured as a key).
 syn region  scenSelection contained matchgroup=scenSelectedPlan start=/\h\w*\[\@=/ matchgroup=scenPunct end=/\]/
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList,scenSelectOpen,scenSelectPair,scenSelectKey,scenEquals
       \ nextgroup=scenLastAccessor
 syn region  scenValueList contained matchgroup=scenPunct start=/\[/ end=/\]/
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList
 syn match   scenSelectOpen contained /\w\@1<=\[/
 syn match   scenSelectPair contained /\%(\w\@1<=\[\|,\)\_s*\h\w*\ze\s*=/ contains=scenPunct,scenSelectKey
@@ -197,6 +218,13 @@ hi def link scenExprBadNumber Error
 hi def link scenExprDuration  Error
 hi def link scenStray         Error
 hi def link scenBareWord      Error
+hi def link scenParamRef      Identifier
+hi def link scenParamName     Identifier
+hi def link scenAssign        Operator
+hi def link scenChoice        Keyword
+hi def link scenCalcOp        Operator
+hi def link scenCalcFunction  Function
+hi def link scenCalcCall      Function
 hi def link scenStatement     Statement
 hi def link scenShape         Type
 hi def link scenWorldKeyword  Keyword
