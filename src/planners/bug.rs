@@ -230,6 +230,26 @@ pub fn plan(settings: &Bug, task: &Task<'_>) -> PlanOutcome {
         .map(|p| Config::new(p.x, p.y, task.start.theta))
         .collect();
     poses.dedup_by(|a, b| a.x == b.x && a.y == b.y);
+    // The boundary is traced with tolerances relative to the world's size
+    // (1e-9 to 1e-6 of it), the validator is exact: where two obstacles
+    // nearly touch (closer than the tracer can tell), a motion along one of
+    // them may overlap the other by less than that. The run then stops
+    // before that motion and says why, rather than claim a path.
+    let mut end = end;
+    if let Err(e) = crate::geometry::validator::validate_path(
+        task.world,
+        task.robot,
+        &poses,
+        crate::geometry::validator::DEFAULT_TOLERANCE,
+    ) {
+        poses.truncate(e.segment + 1);
+        // What was executed: the motions before the cut.
+        run.traveled = poses
+            .windows(2)
+            .map(|w| (w[1].xy() - w[0].xy()).norm())
+            .sum();
+        end = End::TooClose(e.at.xy(), e.obstacle);
+    }
     match end {
         End::Reached => {
             out.path = Some(poses);
@@ -249,6 +269,17 @@ pub fn plan(settings: &Bug, task: &Task<'_>) -> PlanOutcome {
             } else {
                 "a limit was reached before the goal".into()
             });
+        }
+        End::TooClose(p, obstacle) => {
+            out.trajectory = poses;
+            out.gave_up = true;
+            out.notes.push(format!(
+                "stopped at ({:.6}, {:.6}): obstacles there{} nearly touch, closer than the boundary is traced (1e-7 of the world's size), and the motion along them would overlap {}",
+                p.x,
+                p.y,
+                obstacle.as_ref().map_or(String::new(), |o| format!(" (`{o}` and another)")),
+                obstacle.map_or("the bounds".to_string(), |o| format!("`{o}`")),
+            ));
         }
         End::Untraced(p) => {
             out.trajectory = poses;
@@ -287,6 +318,9 @@ enum End {
     Stopped(Stop),
     /// A hit on a piece of boundary that is not on a closed cycle.
     Untraced(Point),
+    /// The executed motion would overlap an obstacle (by less than the
+    /// tracer's tolerance, where obstacles nearly touch): cut there.
+    TooClose(Point, Option<String>),
 }
 
 impl From<Stop> for End {
@@ -986,6 +1020,54 @@ mod tests {
             draw: true,
         };
         plan(bug, &task)
+    }
+
+    /// Found by the fuzzer: two rects whose left edges are 3e-9 apart,
+    /// closer than the boundary is traced. The run never claims a path the
+    /// validator rejects: it stops before the motion that would overlap,
+    /// with a note, and its trajectory is valid.
+    #[test]
+    fn obstacles_closer_than_the_tracer_can_tell_never_give_an_invalid_path() {
+        let w = World {
+            bounds: Aabb::from_corners(Point::new(-10.0, -8.0), Point::new(10.0, 8.0)),
+            ..world(vec![
+                rect(-4.0, -4.0, -3.0, 3.0),
+                rect(-4.000000003, -4.0, 5.0, -3.0),
+            ])
+        };
+        for variant in [Variant::Bug1, Variant::Bug2, Variant::Tangent] {
+            let bug = Bug {
+                variant,
+                follow: Follow::Left,
+                sense: f64::INFINITY,
+            };
+            let task = Task {
+                world: &w,
+                robot: &RobotShape::Point,
+                start: Config::new(-7.5, -5.5, 0.0),
+                goal: Some(Config::new(0.5, 0.5, 0.0)),
+                limits: Limits::default(),
+                seed: 0,
+                steering: None,
+                draw: false,
+            };
+            let out = plan(&bug, &task);
+            let motion = out.path.as_ref().unwrap_or(&out.trajectory);
+            assert!(
+                crate::geometry::validator::validate_path(
+                    &w,
+                    &RobotShape::Point,
+                    motion,
+                    crate::geometry::validator::DEFAULT_TOLERANCE
+                )
+                .is_ok(),
+                "{variant:?}: {:?}",
+                out.notes
+            );
+            if out.path.is_none() {
+                assert!(out.gave_up && out.notes.iter().any(|n| n.contains("nearly touch")));
+            }
+        }
     }
 
     #[test]
