@@ -165,6 +165,14 @@ fn aggregates() -> impl Iterator<Item = &'static str> {
     AGGREGATES.iter().map(|(name, _)| *name)
 }
 
+/// The functions and distributions of number expressions (SPEC 2.8).
+fn functions() -> impl Iterator<Item = &'static str> {
+    scen::scenario::family::FUNCTIONS
+        .iter()
+        .chain(scen::scenario::family::DISTRIBUTIONS)
+        .copied()
+}
+
 /// Checks that every word is in `rule` of `words`; returns what is missing.
 fn missing<'a>(
     what: &str,
@@ -299,6 +307,11 @@ fn the_generated_lists_follow_the_registry() {
     // `limit` is a key, and a value of `stop` (SPEC 3.7).
     assert!(lists.key_words.contains(&("limit", vec!["stop"])));
     assert_eq!(lists.bench_keys, ["vary", "runs", "worlds"]);
+    let functions: BTreeSet<&str> = functions().collect();
+    assert_eq!(
+        lists.functions.iter().copied().collect::<BTreeSet<_>>(),
+        functions
+    );
     // A word in one place only of each list.
     for list in [&lists.kinds, &lists.keys, &lists.words, &lists.metrics] {
         let unique: BTreeSet<&str> = list.iter().copied().collect();
@@ -327,6 +340,8 @@ fn the_lists_are_not_empty() {
     assert!(aggregates().count() >= 9 && BENCH_KEYS.contains(&"vary"));
     assert!(textmate()["aggregates"].contains("quantile"));
     assert!(vim()["scenFunction"].contains("quantile"));
+    assert!(functions().count() >= 7);
+    assert!(textmate()["calc-functions"].contains("uniform"));
     assert!(vim()["scenBenchKey"].contains("plans"));
 }
 
@@ -355,6 +370,13 @@ fn textmate_grammar_knows_the_language() {
     ));
     problems.extend(missing("metric", metrics(), &tm, "metrics", file));
     problems.extend(missing("aggregate", aggregates(), &tm, "aggregates", file));
+    problems.extend(missing(
+        "function",
+        functions(),
+        &tm,
+        "calc-functions",
+        file,
+    ));
     problems.extend(missing(
         "bench key",
         BENCH_KEYS.iter().copied(),
@@ -396,6 +418,13 @@ fn vim_syntax_knows_the_language() {
         aggregates(),
         &vim,
         "scenFunction",
+        file,
+    ));
+    problems.extend(missing(
+        "function",
+        functions(),
+        &vim,
+        "scenCalcFunction",
         file,
     ));
     problems.extend(missing(

@@ -36,8 +36,9 @@ function vimClass(group, linked) {
     scenComment: 'comment', scenTodo: 'comment', scenBenchComment: 'comment',
     scenString: 'string', scenEscape: 'string',
     scenStatement: 'statement',
-    scenShape: 'shape',
+    scenShape: 'shape', scenRobotShape: 'shape', scenScatterShape: 'shape',
     scenName: 'name', scenPlanName: 'name', scenObstacleName: 'name', scenBenchName: 'name',
+    scenScatterName: 'name', scenParamName: 'name',
     scenPlanner: 'planner',
     scenRobotRef: 'ref',
     scenParamKey: 'key', scenLimitKind: 'key', scenWorldKeyword: 'key',
@@ -49,8 +50,8 @@ function vimClass(group, linked) {
     scenExprNumber: 'number', scenExprAngle: 'number', scenExprPercent: 'number',
     scenMetric: 'metric',
     scenOperator: 'operator', scenLogical: 'operator', scenEquals: 'operator',
-    scenCalcOp: 'operator', scenAssign: 'operator',
-    scenFunction: 'function', scenCalcFunction: 'function', scenCalcCall: 'function',
+    scenFunction: 'function', scenCalcFunction: 'function', scenChoice: 'function',
+    scenCalcOperator: 'operator', scenCalcUnit: 'number',
   };
   return map[group] || 'plain';
 }

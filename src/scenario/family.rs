@@ -61,9 +61,9 @@ pub struct Drawn {
 }
 
 /// The functions of number expressions.
-const FUNCTIONS: &[&str] = &["min", "max", "abs", "sqrt"];
+pub const FUNCTIONS: &[&str] = &["min", "max", "abs", "sqrt"];
 /// The distributions of `param` and scatter sizes.
-const DISTRIBUTIONS: &[&str] = &["uniform", "normal", "int"];
+pub const DISTRIBUTIONS: &[&str] = &["uniform", "normal", "int"];
 
 /// What a param is drawn from.
 #[derive(Clone, Debug)]

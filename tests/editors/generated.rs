@@ -15,6 +15,7 @@ use scen::contract::Planner;
 use scen::contract::schema::{
     COMMON_METRICS, COMMON_PARAMS, DRIVE_METRICS, DefaultValue, ParamSpec, ValueSpec, drive_params,
 };
+use scen::scenario::family::{DISTRIBUTIONS, FUNCTIONS};
 use scen::scenario::{AGGREGATES, BENCH_KEYS};
 use serde_json::{Map, Value, json};
 
@@ -65,6 +66,9 @@ pub(crate) struct Lists {
     pub(crate) key_words: Vec<(&'static str, Vec<&'static str>)>,
     pub(crate) metrics: Vec<&'static str>,
     pub(crate) aggregates: Vec<&'static str>,
+    /// The functions and distributions of number expressions (`min`,
+    /// `uniform`, ...: SPEC 2.8).
+    pub(crate) functions: Vec<&'static str>,
     /// The bench's own keys but [`PLAN_LIST_KEY`] (a plan's keys, such as
     /// `limit`, are parameter keys already).
     pub(crate) bench_keys: Vec<&'static str>,
@@ -135,6 +139,10 @@ pub(crate) fn lists() -> Result<Lists, String> {
         push_new(&mut metrics, m.name);
     }
     let aggregates: Vec<&str> = AGGREGATES.iter().map(|(name, _)| *name).collect();
+    let mut functions = Vec::new();
+    for f in FUNCTIONS.iter().chain(DISTRIBUTIONS) {
+        push_new(&mut functions, f);
+    }
     let bench_keys: Vec<&str> = BENCH_KEYS
         .iter()
         .copied()
@@ -148,6 +156,7 @@ pub(crate) fn lists() -> Result<Lists, String> {
         key_words,
         metrics,
         aggregates,
+        functions,
         bench_keys,
     };
     // The words go into regular expressions unescaped.
@@ -158,6 +167,7 @@ pub(crate) fn lists() -> Result<Lists, String> {
         &lists.words,
         &lists.metrics,
         &lists.aggregates,
+        &lists.functions,
         &lists.bench_keys,
     ] {
         if let Some(bad) = list.iter().find(|w| !is_identifier(w)) {
@@ -204,11 +214,20 @@ fn vim_regions(l: &Lists) -> Vec<(&'static str, String)> {
         .copied()
         .filter(|k| !l.key_words.iter().any(|(w, _)| w == k))
         .collect();
+    // A word value that is a function too (`max`, `uniform`) is a match
+    // that stops before `(`, so that the function's match wins there (a
+    // keyword would win everywhere).
+    let function_words: Vec<&str> = l
+        .words
+        .iter()
+        .copied()
+        .filter(|w| l.functions.contains(w) && !l.key_words.iter().any(|(kw, _)| kw == w))
+        .collect();
     let keyword_words: Vec<&str> = l
         .words
         .iter()
         .copied()
-        .filter(|w| !l.key_words.iter().any(|(kw, _)| kw == w))
+        .filter(|w| !l.key_words.iter().any(|(kw, _)| kw == w) && !function_words.contains(w))
         .collect();
     let mut parameters = String::from(
         "\" Parameter keys: the common ones, every planner's, and `drive { ... }`'s.\n",
@@ -242,6 +261,14 @@ fn vim_regions(l: &Lists) -> Vec<(&'static str, String)> {
         " ",
         "",
     ));
+    if !function_words.is_empty() {
+        parameters.push_str(&wrapped(
+            "syn match   scenWord contained /\\<\\%(",
+            &function_words,
+            "\\|",
+            "\\)\\>(\\@!/",
+        ));
+    }
     for (w, takers) in &l.key_words {
         let after = match takers.as_slice() {
             [one] => one.to_string(),
@@ -276,6 +303,15 @@ fn vim_regions(l: &Lists) -> Vec<(&'static str, String)> {
             wrapped(
                 "syn match   scenFunction contained /\\<\\%(",
                 &l.aggregates,
+                "\\|",
+                "\\)\\ze(/",
+            ),
+        ),
+        (
+            "functions",
+            wrapped(
+                "syn match   scenCalcFunction /\\<\\%(",
+                &l.functions,
                 "\\|",
                 "\\)\\ze(/",
             ),
@@ -388,6 +424,11 @@ fn textmate_grammar(committed: &str) -> Result<String, String> {
             "aggregates",
             alternatives(&l.aggregates, "(?=\\()"),
             "support.function.aggregate.scen",
+        ),
+        (
+            "calc-functions",
+            alternatives(&l.functions, "(?=\\()"),
+            "support.function.calc.scen",
         ),
         (
             "metrics",

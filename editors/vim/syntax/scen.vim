@@ -9,6 +9,18 @@
 " the analyser (scripts/regenerate.sh writes them; tests/editors.rs fails
 " when they are stale); tests/editors.rs also checks that every keyword of
 " the grammar is here.
+"
+" Families (SPEC 2.8): `param` and `require` are statements; the name that
+" `param NAME` declares is a name (scenParamName, as an obstacle's or a
+" plan's); a param used in an expression is left uncoloured, like a plan
+" reference (scenParamRef in `param`, `require` and `expect`; in world,
+" robot and plan positions, where a word may also be a key, a word value or
+" a name, a plain word). VS Code scopes them `entity.name.param.scen` and
+" `variable.other.param.scen` (`variable.other.word.scen` where a plain
+" word). Distributions and functions (`uniform`, `normal`, `int`, `choice`,
+" `min`, `sqrt`, ...) are functions like the aggregates; `scatter`, `in`
+" and `gap` are world keywords like `bounds`; `+ - * /` are operators, and
+" the unit after `(EXPR)` a unit.
 
 if exists('b:current_syntax')
   finish
@@ -24,6 +36,9 @@ syn iskeyword @,48-57,_
 syn match   scenStray /\S/
 syn match   scenPunct /[()[\],]/
 syn match   scenOtherWord /\<\h\w*/
+" Arithmetic in number positions (`gap_x - gap_w / 2`); a number's own sign
+" (`-1`), defined later, wins.
+syn match   scenCalcOperator /[-+*\/]/
 
 " ------------------------------------------------------------- comments
 syn keyword scenTodo contained TODO FIXME XXX NOTE
@@ -35,10 +50,6 @@ syn match   scenUnterminated /"\%([^"\\]\|\\.\)*\\\=$/
 syn region  scenString start=/"/ skip=/\\./ end=/"/ oneline contains=scenEscape,scenBadEscape
 syn match   scenBadEscape contained /\\./
 syn match   scenEscape contained /\\["\\]/
-
-" The operators of expressions in number positions (families of scenarios),
-" defined before the numbers so that `-1` stays a number.
-syn match   scenCalcOp /[-+*\/]/
 
 " -------------------------------------------------------------- numbers
 " `12`, `-3.5`, `1e-3`, `.5`, and with a unit: `90deg`, `1.5rad`, `100%`,
@@ -66,14 +77,10 @@ syn match   scenStatement /\<\%(scenario\|include\|world\)\>\%(\s*\.\)\@!/
 syn match   scenStatement /\<robot\>\%(\s*\.\)\@!/ nextgroup=scenName skipwhite
 syn match   scenStatement /\<plan\>\%(\s*\.\)\@!/ nextgroup=scenPlanName skipwhite
 syn match   scenStatement /\<bench\>\%(\s*\.\)\@!/ nextgroup=scenBenchWord,scenBenchName,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
-" param NAME = ... (families of scenarios); `choice [...]`.
-syn match   scenStatement /\<param\>\%(\s*\.\)\@!/ nextgroup=scenParamName skipwhite
-syn match   scenParamName contained /\h\w*/ nextgroup=scenAssign skipwhite
-syn match   scenAssign contained /=/ nextgroup=scenChoice skipwhite
-syn keyword scenChoice contained choice
 
 " robot NAME SHAPE
-syn match   scenName contained /\h\w*/ nextgroup=scenShape skipwhite
+syn match   scenName contained /\h\w*/ nextgroup=scenRobotShape skipwhite
+syn keyword scenRobotShape contained point disk rect polygon
 " plan NAME KIND ROBOT
 syn match   scenPlanName contained /\h\w*/ nextgroup=scenPlanner,scenBadPlanner skipwhite
 syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
@@ -92,26 +99,26 @@ syn match   scenBenchComment contained /#.*$/ contains=scenTodo,@Spell nextgroup
 
 " Obstacles and robot shapes; an obstacle's name follows its kind
 " (`grid cell 1` has none: `cell` is then the grid's option).
-syn keyword scenShape rect polygon segment disk grid point scatter nextgroup=scenObstacleName,scenCalcCall skipwhite
-syn match   scenObstacleName contained /\%(\%(cell\|origin\)\s*[-.0-9(\["]\)\@!\h\w*\>(\@!/
-" Expressions in number positions (families of scenarios): the functions
-" and distributions (the operators are defined before the numbers).
-" A distribution's name is a word value too (`sampler uniform`), and a
-" keyword wins over a match that starts where it does, but not over the
-" group that follows a shape's keyword (`disk uniform(...)`).
-syn match   scenCalcFunction /\%([^[:alnum:]_]\)\@1<=\%(min\|max\|abs\|sqrt\|uniform\|normal\|int\)\ze(/
-syn match   scenCalcCall contained /\%(uniform\|normal\|int\)\ze(/
+syn keyword scenShape rect polygon segment disk grid point nextgroup=scenObstacleName skipwhite
+syn match   scenObstacleName contained /\%(\%(cell\|origin\)\s*[-.0-9(\["]\)\@!\h\w*/
+" `scatter NAME N disk R | rect W H` up to `in`, which (with `gap`) is a
+" world keyword: after `disk` or `rect` come sizes, not a name.
+syn region  scenScatter contained matchgroup=scenWorldKeyword start=/\<scatter\>/ end=/\ze\<in\>/ end=/\ze}/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenCalcOperator,scenComment,@scenNumbers,scenCalcFunction,scenCalcUnit,scenScatterShape,scenScatterName
+syn keyword scenScatterShape contained disk rect
+syn match   scenScatterName contained /\%(\<scatter\s\+\)\@<=\h\w*/
 
 " ------------------------------------------------- world and plan blocks
 " A statement keyword at the start of a line ends an unclosed block.
 syn region  scenBlock matchgroup=scenBrace start=/{/ end=/}/ fold
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord,scenCalcOp,scenCalcFunction,scenCalcCall
+      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord,scenCalcOperator,scenCalcFunction,scenCalcUnit,scenScatter
 " A bench's block: a plan's parameters (the varied keys, `limit`), and
 " `plans [NAME, ...]`, `vary KEY [VALUE, ...]`, `runs N`.
 syn region  scenBenchBlock contained matchgroup=scenBrace start=/{/ end=/}/ fold
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamKey,scenLimitKind,scenWord,scenBenchKey,scenCalcOp,scenCalcFunction,scenCalcCall
+      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamKey,scenLimitKind,scenWord,scenBenchKey,scenCalcOperator,scenCalcFunction,scenCalcUnit
 " BEGIN GENERATED bench-keys (scripts/regenerate.sh; do not edit)
 syn keyword scenBenchKey contained vary runs worlds
 " END GENERATED bench-keys
@@ -135,8 +142,9 @@ syn match   scenParamKey contained /\<limit\>/
 syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
 syn keyword scenWord contained unicycle pure_pursuit center corner auto euclid l1 lattice metric zero yes no backtrack
-syn keyword scenWord contained shortcut replan dstar_lite none random_walk max sum uniform gaussian bridge first smooth
-syn keyword scenWord contained bug1 bug2 tangent left right inf
+syn keyword scenWord contained shortcut replan dstar_lite none random_walk sum gaussian bridge first smooth bug1 bug2
+syn keyword scenWord contained tangent left right inf
+syn match   scenWord contained /\<\%(max\|uniform\)\>(\@!/
 syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " END GENERATED parameters
 
@@ -144,18 +152,22 @@ syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " An expression runs until the next statement (not a metric: `p.plan`).
 syn region  scenExpect matchgroup=scenStatement start=/\<expect\>\%(\s*\.\)\@!/
       \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenBareWord,scenParamRef,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
-" `require CONDITION` (families of scenarios): an expression of params.
+      \ contains=@scenExpression
+" `require CONDITION` (over params): an expression like expect's.
 syn region  scenRequire matchgroup=scenStatement start=/\<require\>\%(\s*\.\)\@!/
       \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenBareWord,scenParamRef,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
-" A bare word followed by `(` or `[` is not an operand (write an aggregate
-" `mean(BENCH.PLAN.METRIC)`); any other is a param's name.
-syn match   scenBareWord contained /\<\h\w*/
-syn match   scenParamRef contained /\<\h\w*\>\%(\s*[(\[]\)\@!/
+      \ contains=@scenExpression
+syn cluster scenExpression contains=scenStray,scenParamRef,scenBadFunction,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
+" A bare word is a param (`gap_w >= 1`); a call is an aggregate
+" `mean(BENCH.PLAN.METRIC)` or a function `sqrt(x)`, any other is an error.
+syn match   scenParamRef contained /\<\h\w*/
+syn match   scenBadFunction contained /\<\h\w*\ze(/
 " BEGIN GENERATED aggregates (scripts/regenerate.sh; do not edit)
 syn match   scenFunction contained /\<\%(mean\|median\|min\|max\|std\|sum\|count\|quantile\|rate\)\ze(/
 " END GENERATED aggregates
+" BEGIN GENERATED functions (scripts/regenerate.sh; do not edit)
+syn match   scenCalcFunction /\<\%(min\|max\|abs\|sqrt\|uniform\|normal\|int\)\ze(/
+" END GENERATED functions
 syn match   scenParen contained /[(),]/
 " PLAN.METRIC, BENCH.PLAN.METRIC and BENCH.PLAN[KEY = VALUE, ...].METRIC,
 " one part after the other: after the first `.`, a name followed by `.` or
@@ -196,6 +208,17 @@ syn match   scenOperator contained /<=\|>=\|==\|!=\|<\|>\|\~\|+-\|±\|[-+*\/]/
 " Word operators and booleans followed by `.` are plan names (`not.found`).
 syn match   scenLogical contained /\<\%(and\|or\|not\|where\)\>\.\@!/
 syn match   scenBoolean contained /\<\%(true\|false\)\>\.\@!/
+
+" --------------------------------------------------------------- param
+" `param NAME = uniform(a, b) | normal(m, s) | int(a, b) | choice [...] | EXPR`:
+" the value runs until the next statement.
+syn region  scenParam matchgroup=scenStatement start=/\<param\>\%(\s*\.\)\@!/
+      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamRef,scenBadFunction,scenCalcFunction,scenChoice,scenCalcOperator,scenCalcUnit,scenEquals,scenParamName
+syn match   scenParamName contained /\%(\<param\s\+\)\@<=\h\w*/
+syn match   scenChoice contained /\<choice\>/
+" The unit of a parenthesised expression: `(a + 10)deg`.
+syn match   scenCalcUnit /)\@1<=\%(deg\|rad\)\%([[:alnum:]_.%]\)\@!/
 syn sync minlines=200
 
 " ---------------------------------------------------------------- links
@@ -217,22 +240,22 @@ hi def link scenExprPercent   Number
 hi def link scenExprBadNumber Error
 hi def link scenExprDuration  Error
 hi def link scenStray         Error
-hi def link scenBareWord      Error
-hi def link scenParamRef      Identifier
-hi def link scenParamName     Identifier
-hi def link scenAssign        Operator
-hi def link scenChoice        Keyword
-hi def link scenCalcOp        Operator
-hi def link scenCalcFunction  Function
-hi def link scenCalcCall      Function
+hi def link scenBadFunction   Error
 hi def link scenStatement     Statement
 hi def link scenShape         Type
+hi def link scenRobotShape    Type
+hi def link scenScatterShape  Type
 hi def link scenWorldKeyword  Keyword
 hi def link scenName          Function
 hi def link scenPlanName      Function
 hi def link scenBenchName     Function
 hi def link scenBenchComment  Comment
 hi def link scenObstacleName  Function
+hi def link scenScatterName   Function
+hi def link scenParamName     Function
+hi def link scenChoice        Function
+hi def link scenCalcOperator  Operator
+hi def link scenCalcUnit      Special
 hi def link scenPlanner       Structure
 hi def link scenBadPlanner    Error
 hi def link scenParamKey      Identifier
@@ -244,6 +267,7 @@ hi def link scenMetric        PreProc
 hi def link scenOperator      Operator
 hi def link scenEquals        Operator
 hi def link scenFunction      Function
+hi def link scenCalcFunction  Function
 hi def link scenLogical       Operator
 hi def link scenBoolean       Boolean
 hi def link scenBrace         Delimiter
