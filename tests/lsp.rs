@@ -117,6 +117,49 @@ fn benches_are_completed_navigated_and_outlined() {
     c.shutdown();
 }
 
+const FAMILY: &str = "param gap = uniform(0.5, 2)
+param half = gap / 2
+world {
+  bounds (0, 0) (10, 10)
+  rect (0, 4) (5 - half, 5)
+}
+robot r disk 0.2
+plan p astar r { start (1, 1) goal (5, 9) weight 1 + gap }
+expect p.length < 20 + gap
+";
+
+#[test]
+fn params_are_hovered_navigated_and_referenced() {
+    let dir = TempDir::new("lsp-family");
+    std::fs::write(dir.path().join("f.scen"), FAMILY).unwrap();
+    let file = uri(&dir.path().join("f.scen"));
+    let mut c = Client::start();
+    c.open(&file, FAMILY);
+    assert_eq!(c.diagnostics(&file), json!([]));
+    // Hover on `half` in the world shows its declaration.
+    let hover = c.at("textDocument/hover", &file, 4, 20);
+    assert!(
+        hover["contents"]["value"]
+            .as_str()
+            .is_some_and(|t| t.contains("param half = gap / 2")),
+        "{hover}"
+    );
+    // `gap` in a plan body and in an expectation goes to its declaration.
+    for (line, col) in [(7, 54), (8, 24)] {
+        let def = c.at("textDocument/definition", &file, line, col);
+        assert_eq!(def["range"], range(0, 6, 0, 9), "{line}:{col}: {def}");
+    }
+    // Its references: the declaration, `half`'s value, the plan, the check.
+    let refs = c.at("textDocument/references", &file, 0, 7);
+    let lines: Vec<u64> = refs
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["range"]["start"]["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [0, 1, 7, 8], "{refs}");
+}
+
 #[test]
 fn the_server_answers_every_request_exactly() {
     let (_dir, main, robots) = setup();

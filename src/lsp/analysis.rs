@@ -9,7 +9,9 @@ use crate::contract::schema::ValueSpec;
 use crate::diagnostics::{Diag, FileId, SourceMap, Span};
 use crate::scenario::grouping::{ParamKeys, group_params};
 use crate::scenario::loader::{Overlay, Parsed, SourcedStmt, parse_scenario};
-use crate::syntax::ast::{Expr, ExprKind, ParamToken, Stmt, ValueKind, WorldItem};
+use crate::syntax::ast::{
+    Expr, ExprKind, ObstacleShape, ParamToken, RobotShape, ScatterShape, Stmt, ValueKind, WorldItem,
+};
 
 /// What a name names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,6 +20,8 @@ pub(crate) enum NameKind {
     Robot,
     Plan,
     Bench,
+    /// A family's `param` (SPEC 2.8).
+    Param,
 }
 
 impl NameKind {
@@ -27,6 +31,7 @@ impl NameKind {
             NameKind::Robot => "robot",
             NameKind::Plan => "plan",
             NameKind::Bench => "bench",
+            NameKind::Param => "param",
         }
     }
 }
@@ -64,8 +69,14 @@ impl Analysis {
             mut diags,
         } = parse_scenario(path, None, overlay);
         if !diags.iter().any(Diag::is_error) {
-            let analysed =
-                crate::scenario::analyze(path, statements.clone(), sources.clone(), maps);
+            // A family is analysed as `scen check` does: its sample 0.
+            let analysed = crate::scenario::loader::analyze_sample(
+                path,
+                statements.clone(),
+                sources.clone(),
+                maps,
+                crate::scenario::SampleChoice::default(),
+            );
             if let Err(failure) = analysed {
                 diags = failure.diags;
             }
@@ -156,10 +167,16 @@ fn symbols(statements: &[SourcedStmt]) -> Vec<Symbol> {
             Stmt::Robot(r) => declare(NameKind::Robot, &r.name.value, r.name.span, r.span),
             Stmt::Plan(p) => declare(NameKind::Plan, &p.name.value, p.name.span, p.span),
             Stmt::Bench(b) => declare(NameKind::Bench, &b.name.value, b.name.span, b.span),
+            Stmt::Param(p) => declare(NameKind::Param, &p.name.value, p.name.span, p.span),
             _ => {}
         }
     }
     let mut uses: Vec<(NameKind, &str, Span)> = Vec::new();
+    // A param's name wherever a number may be computed: in expressions, as
+    // a lone word of a body or a list (only declared params get the uses).
+    for s in statements {
+        param_uses(&s.stmt, &mut uses);
+    }
     for s in statements {
         match &s.stmt {
             Stmt::Plan(p) => {
@@ -204,6 +221,91 @@ fn symbols(statements: &[SourcedStmt]) -> Vec<Symbol> {
         }
     }
     symbols
+}
+
+/// The names a statement may use as params.
+fn param_uses<'s>(stmt: &'s Stmt, out: &mut Vec<(NameKind, &'s str, Span)>) {
+    fn value<'v>(v: &'v crate::syntax::ast::Value, out: &mut Vec<(NameKind, &'v str, Span)>) {
+        match &v.kind {
+            ValueKind::Calc { expr, .. } => names(expr, out),
+            ValueKind::Word(w) => out.push((NameKind::Param, w, v.span)),
+            ValueKind::Tuple(items) | ValueKind::List(items) => {
+                items.iter().for_each(|i| value(i, out));
+            }
+            _ => {}
+        }
+    }
+    fn names<'e>(e: &'e Expr, out: &mut Vec<(NameKind, &'e str, Span)>) {
+        e.walk(&mut |n| {
+            if let ExprKind::Name(name) = &n.kind {
+                out.push((NameKind::Param, &name.value, name.span));
+            }
+        });
+    }
+    fn tokens<'t>(ts: &'t [ParamToken], out: &mut Vec<(NameKind, &'t str, Span)>) {
+        for t in ts {
+            match t {
+                ParamToken::Word(w) => out.push((NameKind::Param, &w.value, w.span)),
+                ParamToken::Value(v) => value(v, out),
+                ParamToken::Block { tokens: inner, .. } => tokens(inner, out),
+            }
+        }
+    }
+    match stmt {
+        Stmt::World(w) => {
+            for item in &w.items {
+                match item {
+                    WorldItem::Bounds { min, max, .. } => {
+                        value(min, out);
+                        value(max, out);
+                    }
+                    WorldItem::Obstacle(o) => match &o.shape {
+                        ObstacleShape::Rect(a, b)
+                        | ObstacleShape::Segment(a, b)
+                        | ObstacleShape::Disk(a, b) => {
+                            value(a, out);
+                            value(b, out);
+                        }
+                        ObstacleShape::Polygon(v) => value(v, out),
+                        ObstacleShape::Grid(_) => {}
+                    },
+                    WorldItem::Scatter(sc) => {
+                        for v in [&sc.count, &sc.min, &sc.max].into_iter().chain(&sc.gap) {
+                            value(v, out);
+                        }
+                        match &sc.shape {
+                            ScatterShape::Disk { radius, .. } => value(radius, out),
+                            ScatterShape::Rect { width, height, .. } => {
+                                value(width, out);
+                                value(height, out);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Stmt::Robot(r) => {
+            match &r.shape {
+                RobotShape::Point(_) => {}
+                RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, out),
+                RobotShape::Rect(a, b) => {
+                    value(a, out);
+                    value(b, out);
+                }
+            }
+            if let Some(steer) = &r.steer {
+                value(&steer.radius, out);
+            }
+        }
+        Stmt::Plan(p) => tokens(&p.body, out),
+        Stmt::Bench(b) => tokens(&b.body, out),
+        Stmt::Expect(e) | Stmt::Require { condition: e, .. } => names(e, out),
+        Stmt::Param(p) => match &p.value {
+            crate::syntax::ast::ParamSource::Value(v)
+            | crate::syntax::ast::ParamSource::Choice { values: v, .. } => value(v, out),
+        },
+        Stmt::Scenario { .. } | Stmt::Include { .. } => {}
+    }
 }
 
 fn expr_uses<'e>(e: &'e Expr, out: &mut Vec<(NameKind, &'e str, Span)>) {
