@@ -380,7 +380,17 @@ struct Proposer {
     halton_next: u64,
     /// The model's mean and spread (cross-entropy), after its first fit.
     model: Option<(Vec<f64>, Vec<f64>)>,
+    /// `auto`: the basins given up (their best points), the best margin
+    /// outside them, and the batches since it last improved.
+    tabu: Vec<Vec<f64>>,
+    best: f64,
+    stagnant: u32,
 }
+
+/// `auto` gives a basin up after this many batches without a better margin.
+const PATIENCE: u32 = 4;
+/// The radius (in the unit cube) of a basin given up.
+const TABU_RADIUS: f64 = 0.15;
 
 /// Points drawn from Halton before the model is fitted.
 const COVER: usize = 2 * BATCH;
@@ -396,6 +406,9 @@ impl Proposer {
             shift: (0..dims).map(|_| rng.next_f64()).collect(),
             halton_next: 1,
             model: None,
+            tabu: Vec::new(),
+            best: f64::INFINITY,
+            stagnant: 0,
         }
     }
 
@@ -411,16 +424,48 @@ impl Proposer {
         if self.search == Search::Halton || history.len() < COVER {
             return (0..BATCH).map(|_| self.cover()).collect();
         }
-        // Fit the model to the elites: the points of smallest margin.
-        let mut sorted: Vec<&(Vec<f64>, f64)> = history.iter().collect();
-        sorted.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let n = ((history.len() as f64 * ELITE).ceil() as usize).clamp(4, history.len());
-        let elites = &sorted[..n];
         let (auto, floor, smoothing) = match self.search {
             // Classic cross-entropy: the last fit smoothed, a tiny floor.
             Search::CrossEntropy => (false, 1e-3, 0.7),
             _ => (true, 0.02, 1.0),
         };
+        // `auto` leaves out the basins it gave up.
+        let near = |p: &[f64], c: &[f64]| {
+            p.iter()
+                .zip(c)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt()
+                < TABU_RADIUS
+        };
+        let mut sorted: Vec<&(Vec<f64>, f64)> = history
+            .iter()
+            .filter(|(p, _)| !auto || !self.tabu.iter().any(|c| near(p, c)))
+            .collect();
+        if sorted.len() < 4 {
+            return (0..BATCH).map(|_| self.cover()).collect();
+        }
+        sorted.sort_by(|a, b| a.1.total_cmp(&b.1));
+        // `auto`: a basin whose best margin stops improving is given up,
+        // and the model starts afresh outside it.
+        if auto {
+            if sorted[0].1 < self.best {
+                self.best = sorted[0].1;
+                self.stagnant = 0;
+            } else {
+                self.stagnant += 1;
+            }
+            if self.stagnant >= PATIENCE {
+                self.tabu.push(sorted[0].0.clone());
+                self.best = f64::INFINITY;
+                self.stagnant = 0;
+                self.model = None;
+                return (0..BATCH).map(|_| self.cover()).collect();
+            }
+        }
+        // Fit the model to the elites: the points of smallest margin.
+        let n = ((sorted.len() as f64 * ELITE).ceil() as usize).clamp(4, sorted.len());
+        let elites = &sorted[..n];
         let mut mean = vec![0.0; self.dims];
         let mut spread = vec![0.0; self.dims];
         for j in 0..self.dims {
