@@ -45,6 +45,11 @@ pub struct CarPath {
 }
 
 impl CarPath {
+    /// The shortest steering path from `a` to `b`.
+    pub fn shortest(steering: Steering, a: Config, b: Config) -> Self {
+        CarPath::from_steer(a, steering, &steering.shortest(a, b))
+    }
+
     /// The steering path `path` from `start` (SPEC 2.4).
     pub fn from_steer(start: Config, steering: Steering, path: &SteerPath) -> Self {
         CarPath {
@@ -599,7 +604,7 @@ mod tests {
                 };
                 let model = if rs { Model::ReedsShepp } else { Model::Dubins };
                 let steering = Steering::new(model, radius);
-                let path = CarPath::from_steer(a, steering, &steering.shortest(a, b));
+                let path = CarPath::shortest(steering, a, b);
                 (world, robot, path)
             })
     }

@@ -569,7 +569,7 @@ impl<'a> Run<'a> {
         self.checks += 1;
         match (self.space.steering, &self.referee) {
             (Some(steering), Some(referee)) => {
-                let curve = CarPath::from_steer(a, steering, &steering.shortest(a, b));
+                let curve = CarPath::shortest(steering, a, b);
                 car_path_free(referee, self.task.robot, &curve, DEFAULT_TOLERANCE)
             }
             _ => self.checker.motion_free(a, b),
@@ -847,7 +847,7 @@ impl<'a> Run<'a> {
                         chunk
                             .iter()
                             .map(|e| {
-                                CarPath::from_steer(e.a, steering, &steering.shortest(e.a, e.b))
+                                CarPath::shortest(steering, e.a, e.b)
                                     .poses(CAR_EDGE_STEP)
                                     .iter()
                                     .map(Config::xy)
