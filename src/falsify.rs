@@ -1109,14 +1109,7 @@ fn collect_literals(
     pretty: bool,
     out: &mut HashMap<Span, String>,
 ) {
-    let value =
-        |v: &Value, out: &mut HashMap<Span, String>| literal_value(v, computed, pretty, out);
-    fn literal_value(
-        v: &Value,
-        computed: &HashSet<Span>,
-        pretty: bool,
-        out: &mut HashMap<Span, String>,
-    ) {
+    fn value(v: &Value, computed: &HashSet<Span>, pretty: bool, out: &mut HashMap<Span, String>) {
         if computed.contains(&v.span)
             && let Some(l) = literal(&v.kind, pretty)
         {
@@ -1125,76 +1118,21 @@ fn collect_literals(
         }
         if let ValueKind::Tuple(items) | ValueKind::List(items) = &v.kind {
             for i in items {
-                literal_value(i, computed, pretty, out);
-            }
-        }
-    }
-    fn tokens(
-        ts: &[crate::syntax::ast::ParamToken],
-        computed: &HashSet<Span>,
-        pretty: bool,
-        out: &mut HashMap<Span, String>,
-    ) {
-        for t in ts {
-            match t {
-                crate::syntax::ast::ParamToken::Value(v) => literal_value(v, computed, pretty, out),
-                crate::syntax::ast::ParamToken::Block { tokens: inner, .. } => {
-                    tokens(inner, computed, pretty, out)
-                }
-                crate::syntax::ast::ParamToken::Word(_) => {}
+                value(i, computed, pretty, out);
             }
         }
     }
     for s in sample {
-        match &s.stmt {
-            Stmt::World(w) => {
-                for item in &w.items {
-                    match item {
-                        WorldItem::Bounds { min, max, .. } => {
-                            value(min, out);
-                            value(max, out);
-                        }
-                        WorldItem::Obstacle(o) => match &o.shape {
-                            ObstacleShape::Rect(a, b)
-                            | ObstacleShape::Segment(a, b)
-                            | ObstacleShape::Disk(a, b) => {
-                                value(a, out);
-                                value(b, out);
-                            }
-                            ObstacleShape::Polygon(v) => value(v, out),
-                            ObstacleShape::Grid(g) => {
-                                for v in g.cell.iter().chain(&g.origin) {
-                                    value(v, out);
-                                }
-                            }
-                        },
-                        WorldItem::Scatter(_) => {}
-                    }
-                }
-            }
-            Stmt::Robot(r) => {
-                use crate::syntax::ast::RobotShape;
-                match &r.shape {
-                    RobotShape::Point(_) => {}
-                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, out),
-                    RobotShape::Rect(a, b) => {
-                        value(a, out);
-                        value(b, out);
-                    }
-                }
-                if let Some(steer) = &r.steer {
-                    value(&steer.radius, out);
-                }
-            }
-            Stmt::Plan(p) => tokens(&p.body, computed, pretty, out),
-            Stmt::Expect(e) => e.walk(&mut |n| {
+        s.stmt
+            .each_value(&mut |v, _| value(v, computed, pretty, out));
+        if let Stmt::Expect(e) = &s.stmt {
+            e.walk(&mut |n| {
                 if let ExprKind::Number(x) = &n.kind
                     && computed.contains(&n.span)
                 {
                     out.insert(n.span, number_text(*x, pretty));
                 }
-            }),
-            _ => {}
+            });
         }
     }
 }

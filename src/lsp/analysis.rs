@@ -9,9 +9,7 @@ use crate::contract::schema::ValueSpec;
 use crate::diagnostics::{Diag, FileId, SourceMap, Span};
 use crate::scenario::grouping::{ParamKeys, group_params};
 use crate::scenario::loader::{Overlay, Parsed, SourcedStmt, parse_scenario};
-use crate::syntax::ast::{
-    Expr, ExprKind, ObstacleShape, ParamToken, RobotShape, ScatterShape, Stmt, ValueKind, WorldItem,
-};
+use crate::syntax::ast::{Expr, ExprKind, ParamToken, Stmt, ValueKind, WorldItem};
 
 /// What a name names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -223,7 +221,8 @@ fn symbols(statements: &[SourcedStmt]) -> Vec<Symbol> {
     symbols
 }
 
-/// The names a statement may use as params.
+/// The names a statement may use as params: in expressions, and as lone
+/// words of a body or a list (only a declared param's name gets its uses).
 fn param_uses<'s>(stmt: &'s Stmt, out: &mut Vec<(NameKind, &'s str, Span)>) {
     fn value<'v>(v: &'v crate::syntax::ast::Value, out: &mut Vec<(NameKind, &'v str, Span)>) {
         match &v.kind {
@@ -242,69 +241,18 @@ fn param_uses<'s>(stmt: &'s Stmt, out: &mut Vec<(NameKind, &'s str, Span)>) {
             }
         });
     }
-    fn tokens<'t>(ts: &'t [ParamToken], out: &mut Vec<(NameKind, &'t str, Span)>) {
-        for t in ts {
-            match t {
-                ParamToken::Word(w) => out.push((NameKind::Param, &w.value, w.span)),
-                ParamToken::Value(v) => value(v, out),
-                ParamToken::Block { tokens: inner, .. } => tokens(inner, out),
-            }
-        }
-    }
+    stmt.each_value(&mut |v, _| value(v, out));
     match stmt {
-        Stmt::World(w) => {
-            for item in &w.items {
-                match item {
-                    WorldItem::Bounds { min, max, .. } => {
-                        value(min, out);
-                        value(max, out);
-                    }
-                    WorldItem::Obstacle(o) => match &o.shape {
-                        ObstacleShape::Rect(a, b)
-                        | ObstacleShape::Segment(a, b)
-                        | ObstacleShape::Disk(a, b) => {
-                            value(a, out);
-                            value(b, out);
-                        }
-                        ObstacleShape::Polygon(v) => value(v, out),
-                        ObstacleShape::Grid(_) => {}
-                    },
-                    WorldItem::Scatter(sc) => {
-                        for v in [&sc.count, &sc.min, &sc.max].into_iter().chain(&sc.gap) {
-                            value(v, out);
-                        }
-                        match &sc.shape {
-                            ScatterShape::Disk { radius, .. } => value(radius, out),
-                            ScatterShape::Rect { width, height, .. } => {
-                                value(width, out);
-                                value(height, out);
-                            }
-                        }
-                    }
+        Stmt::Plan(crate::syntax::ast::PlanDecl { body, .. })
+        | Stmt::Bench(crate::syntax::ast::BenchDecl { body, .. }) => {
+            ParamToken::flatten(body, &mut |t| {
+                if let ParamToken::Word(w) = t {
+                    out.push((NameKind::Param, &w.value, w.span));
                 }
-            }
+            });
         }
-        Stmt::Robot(r) => {
-            match &r.shape {
-                RobotShape::Point(_) => {}
-                RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, out),
-                RobotShape::Rect(a, b) => {
-                    value(a, out);
-                    value(b, out);
-                }
-            }
-            if let Some(steer) = &r.steer {
-                value(&steer.radius, out);
-            }
-        }
-        Stmt::Plan(p) => tokens(&p.body, out),
-        Stmt::Bench(b) => tokens(&b.body, out),
         Stmt::Expect(e) | Stmt::Require { condition: e, .. } => names(e, out),
-        Stmt::Param(p) => match &p.value {
-            crate::syntax::ast::ParamSource::Value(v)
-            | crate::syntax::ast::ParamSource::Choice { values: v, .. } => value(v, out),
-        },
-        Stmt::Scenario { .. } | Stmt::Include { .. } => {}
+        _ => {}
     }
 }
 

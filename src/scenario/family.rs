@@ -29,8 +29,9 @@ use crate::contract::schema;
 use crate::diagnostics::{Diag, Span, Spanned};
 use crate::rng::SplitMix64;
 use crate::syntax::ast::{
-    Angle, ArithOp, CompareOp, Expr, ExprKind, ObstacleDecl, ObstacleKind, ObstacleShape,
-    ParamSource, ParamToken, ScatterDecl, ScatterShape, Stmt, Value, ValueKind, WorldItem,
+    Angle, ArithOp, BenchDecl, CompareOp, Expr, ExprKind, ObstacleDecl, ObstacleKind,
+    ObstacleShape, ParamSource, ParamToken, PlanDecl, ScatterDecl, ScatterShape, Stmt, Value,
+    ValueKind, WorldItem,
 };
 
 use super::loader::SourcedStmt;
@@ -311,52 +312,17 @@ impl Family {
     }
 
     fn check_statement(&self, stmt: &Stmt, diags: &mut Vec<Diag>) {
+        if let Stmt::World(w) = stmt
+            && w.items.iter().any(|i| matches!(i, WorldItem::Scatter(_)))
+        {
+            self.active.store(true, Relaxed);
+            self.scatters.store(true, Relaxed);
+        }
+        // A param's own value is checked with its declaration (`source`).
+        if !matches!(stmt, Stmt::Param(_)) {
+            stmt.each_value(&mut |v, size| self.check_value(v, None, size, diags));
+        }
         match stmt {
-            Stmt::World(w) => {
-                for item in &w.items {
-                    match item {
-                        WorldItem::Bounds { min, max, .. } => {
-                            self.check_value(min, None, false, diags);
-                            self.check_value(max, None, false, diags);
-                        }
-                        WorldItem::Obstacle(o) => self.check_obstacle(o, diags),
-                        WorldItem::Scatter(s) => {
-                            self.active.store(true, Relaxed);
-                            self.scatters.store(true, Relaxed);
-                            for v in [&s.count, &s.min, &s.max].into_iter().chain(&s.gap) {
-                                self.check_value(v, None, false, diags);
-                            }
-                            match &s.shape {
-                                ScatterShape::Disk { radius, .. } => {
-                                    self.check_value(radius, None, true, diags);
-                                }
-                                ScatterShape::Rect { width, height, .. } => {
-                                    self.check_value(width, None, true, diags);
-                                    self.check_value(height, None, true, diags);
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            Stmt::Robot(r) => {
-                use crate::syntax::ast::RobotShape;
-                match &r.shape {
-                    RobotShape::Point(_) => {}
-                    RobotShape::Disk(v) | RobotShape::Polygon(v) => {
-                        self.check_value(v, None, false, diags);
-                    }
-                    RobotShape::Rect(a, b) => {
-                        self.check_value(a, None, false, diags);
-                        self.check_value(b, None, false, diags);
-                    }
-                }
-                if let Some(steer) = &r.steer {
-                    self.check_value(&steer.radius, None, false, diags);
-                }
-            }
-            Stmt::Plan(p) => self.check_tokens(&p.body, diags),
-            Stmt::Bench(b) => self.check_tokens(&b.body, diags),
             Stmt::Expect(e) => {
                 let mut used = Vec::new();
                 names(e, &mut used);
@@ -404,34 +370,7 @@ impl Family {
                     _ => {}
                 });
             }
-            Stmt::Param(_) | Stmt::Scenario { .. } | Stmt::Include { .. } => {}
-        }
-    }
-
-    fn check_obstacle(&self, o: &ObstacleDecl, diags: &mut Vec<Diag>) {
-        match &o.shape {
-            ObstacleShape::Rect(a, b)
-            | ObstacleShape::Segment(a, b)
-            | ObstacleShape::Disk(a, b) => {
-                self.check_value(a, None, false, diags);
-                self.check_value(b, None, false, diags);
-            }
-            ObstacleShape::Polygon(v) => self.check_value(v, None, false, diags),
-            ObstacleShape::Grid(g) => {
-                for v in g.cell.iter().chain(&g.origin) {
-                    self.check_value(v, None, false, diags);
-                }
-            }
-        }
-    }
-
-    fn check_tokens(&self, tokens: &[ParamToken], diags: &mut Vec<Diag>) {
-        for t in tokens {
-            match t {
-                ParamToken::Word(_) => {}
-                ParamToken::Value(v) => self.check_value(v, None, false, diags),
-                ParamToken::Block { tokens, .. } => self.check_tokens(tokens, diags),
-            }
+            _ => {}
         }
     }
 
@@ -1403,62 +1342,23 @@ pub(crate) fn computed_spans(
             _ => {}
         }
     }
-    fn tokens(ts: &[ParamToken], params: &HashMap<String, usize>, out: &mut HashSet<Span>) {
-        for t in ts {
-            match t {
-                ParamToken::Word(w) if params.contains_key(&w.value) => {
-                    out.insert(w.span);
-                }
-                ParamToken::Word(_) => {}
-                ParamToken::Value(v) => value(v, params, out),
-                ParamToken::Block { tokens: inner, .. } => tokens(inner, params, out),
-            }
-        }
-    }
     let mut out = HashSet::new();
     for s in statements {
+        // A param's own value is not written out; the statement goes.
+        if matches!(s.stmt, Stmt::Param(_)) {
+            continue;
+        }
+        s.stmt.each_value(&mut |v, _| value(v, params, &mut out));
         match &s.stmt {
-            Stmt::World(w) => {
-                for item in &w.items {
-                    match item {
-                        WorldItem::Bounds { min, max, .. } => {
-                            value(min, params, &mut out);
-                            value(max, params, &mut out);
-                        }
-                        WorldItem::Obstacle(o) => match &o.shape {
-                            ObstacleShape::Rect(a, b)
-                            | ObstacleShape::Segment(a, b)
-                            | ObstacleShape::Disk(a, b) => {
-                                value(a, params, &mut out);
-                                value(b, params, &mut out);
-                            }
-                            ObstacleShape::Polygon(v) => value(v, params, &mut out),
-                            ObstacleShape::Grid(g) => {
-                                for v in g.cell.iter().chain(&g.origin) {
-                                    value(v, params, &mut out);
-                                }
-                            }
-                        },
-                        WorldItem::Scatter(_) => {}
+            Stmt::Plan(PlanDecl { body, .. }) | Stmt::Bench(BenchDecl { body, .. }) => {
+                ParamToken::flatten(body, &mut |t| {
+                    if let ParamToken::Word(w) = t
+                        && params.contains_key(&w.value)
+                    {
+                        out.insert(w.span);
                     }
-                }
+                });
             }
-            Stmt::Robot(r) => {
-                use crate::syntax::ast::RobotShape;
-                match &r.shape {
-                    RobotShape::Point(_) => {}
-                    RobotShape::Disk(v) | RobotShape::Polygon(v) => value(v, params, &mut out),
-                    RobotShape::Rect(a, b) => {
-                        value(a, params, &mut out);
-                        value(b, params, &mut out);
-                    }
-                }
-                if let Some(steer) = &r.steer {
-                    value(&steer.radius, params, &mut out);
-                }
-            }
-            Stmt::Plan(p) => tokens(&p.body, params, &mut out),
-            Stmt::Bench(b) => tokens(&b.body, params, &mut out),
             Stmt::Expect(e) => e.walk(&mut |n| {
                 if let ExprKind::Name(name) = &n.kind
                     && params.contains_key(&name.value)

@@ -42,6 +42,84 @@ pub enum Stmt {
     },
 }
 
+impl Stmt {
+    /// Calls `f` on every value written in this statement (its top-level
+    /// values: a tuple is one value), in source order, with whether the
+    /// value is a scattered item's size (where a distribution may stand).
+    /// `expect` and `require` hold expressions, not values; a plan's or a
+    /// bench's words are in [`ParamToken::flatten`].
+    pub fn each_value<'a>(&'a self, f: &mut dyn FnMut(&'a Value, bool)) {
+        match self {
+            Stmt::World(w) => {
+                for item in &w.items {
+                    match item {
+                        WorldItem::Bounds { min, max, .. } => {
+                            f(min, false);
+                            f(max, false);
+                        }
+                        WorldItem::Obstacle(o) => match &o.shape {
+                            ObstacleShape::Rect(a, b)
+                            | ObstacleShape::Segment(a, b)
+                            | ObstacleShape::Disk(a, b) => {
+                                f(a, false);
+                                f(b, false);
+                            }
+                            ObstacleShape::Polygon(v) => f(v, false),
+                            ObstacleShape::Grid(g) => {
+                                for v in g.cell.iter().chain(&g.origin) {
+                                    f(v, false);
+                                }
+                            }
+                        },
+                        WorldItem::Scatter(sc) => {
+                            f(&sc.count, false);
+                            match &sc.shape {
+                                ScatterShape::Disk { radius, .. } => f(radius, true),
+                                ScatterShape::Rect { width, height, .. } => {
+                                    f(width, true);
+                                    f(height, true);
+                                }
+                            }
+                            f(&sc.min, false);
+                            f(&sc.max, false);
+                            if let Some(g) = &sc.gap {
+                                f(g, false);
+                            }
+                        }
+                    }
+                }
+            }
+            Stmt::Robot(r) => {
+                match &r.shape {
+                    RobotShape::Point(_) => {}
+                    RobotShape::Disk(v) | RobotShape::Polygon(v) => f(v, false),
+                    RobotShape::Rect(a, b) => {
+                        f(a, false);
+                        f(b, false);
+                    }
+                }
+                if let Some(steer) = &r.steer {
+                    f(&steer.radius, false);
+                }
+            }
+            Stmt::Plan(PlanDecl { body, .. }) | Stmt::Bench(BenchDecl { body, .. }) => {
+                ParamToken::flatten(body, &mut |t| {
+                    if let ParamToken::Value(v) = t {
+                        f(v, false);
+                    }
+                });
+            }
+            Stmt::Param(p) => match &p.value {
+                ParamSource::Value(v) | ParamSource::Choice { values: v, .. } => f(v, false),
+            },
+            Stmt::Scenario { .. }
+            | Stmt::Include { .. }
+            | Stmt::Expect(_)
+            | Stmt::Require { .. } => {}
+        }
+    }
+}
+
 /// `param NAME = DISTRIBUTION | choice [v, ...] | EXPR`.
 #[derive(Clone, Debug)]
 pub struct ParamDecl {
@@ -236,6 +314,17 @@ pub enum ParamToken {
 }
 
 impl ParamToken {
+    /// Calls `f` on every word and value of `tokens`, those of nested
+    /// blocks included, in source order.
+    pub fn flatten<'a>(tokens: &'a [ParamToken], f: &mut dyn FnMut(&'a ParamToken)) {
+        for t in tokens {
+            match t {
+                ParamToken::Block { tokens: inner, .. } => ParamToken::flatten(inner, f),
+                t => f(t),
+            }
+        }
+    }
+
     pub fn span(&self) -> Span {
         match self {
             ParamToken::Word(w) => w.span,
