@@ -1034,7 +1034,7 @@ fn write_standalone(
     let mut edits: Vec<(Span, String)> = Vec::new();
     let mut outside = Vec::new();
     for s in &source.statements {
-        let span = stmt_span(&s.stmt);
+        let span = s.stmt.span();
         if span.file != 0 {
             // Statements of included files stay as they are, unless they
             // hold something computed.
@@ -1134,19 +1134,5 @@ fn collect_literals(
                 }
             });
         }
-    }
-}
-
-fn stmt_span(s: &Stmt) -> Span {
-    match s {
-        Stmt::Scenario { span, .. } | Stmt::Include { span, .. } | Stmt::Require { span, .. } => {
-            *span
-        }
-        Stmt::World(w) => w.span,
-        Stmt::Robot(r) => r.span,
-        Stmt::Plan(p) => p.span,
-        Stmt::Expect(e) => e.span,
-        Stmt::Bench(b) => b.span,
-        Stmt::Param(p) => p.span,
     }
 }

@@ -282,16 +282,3 @@ fn limits_of(planner: &Planner) -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
-
-fn stmt_span(s: &ast::Stmt) -> Span {
-    match s {
-        ast::Stmt::Scenario { span, .. } | ast::Stmt::Include { span, .. } => *span,
-        ast::Stmt::World(w) => w.span,
-        ast::Stmt::Robot(r) => r.span,
-        ast::Stmt::Plan(p) => p.span,
-        ast::Stmt::Expect(e) => e.span,
-        ast::Stmt::Bench(b) => b.span,
-        ast::Stmt::Param(p) => p.span,
-        ast::Stmt::Require { span, .. } => *span,
-    }
-}

@@ -43,6 +43,21 @@ pub enum Stmt {
 }
 
 impl Stmt {
+    /// The statement's span (for `expect`, its expression's).
+    pub fn span(&self) -> Span {
+        match self {
+            Stmt::Scenario { span, .. }
+            | Stmt::Include { span, .. }
+            | Stmt::Require { span, .. } => *span,
+            Stmt::World(w) => w.span,
+            Stmt::Robot(r) => r.span,
+            Stmt::Plan(p) => p.span,
+            Stmt::Expect(e) => e.span,
+            Stmt::Bench(b) => b.span,
+            Stmt::Param(p) => p.span,
+        }
+    }
+
     /// Calls `f` on every value written in this statement (its top-level
     /// values: a tuple is one value), in source order, with whether the
     /// value is a scattered item's size (where a distribution may stand).

@@ -112,7 +112,7 @@ impl Analyzer {
         if !any_world {
             let span = statements
                 .first()
-                .map(|s| stmt_span(&s.stmt))
+                .map(|s| s.stmt.span())
                 .unwrap_or_default();
             self.error(
                 Diag::error(
