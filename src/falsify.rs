@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
+use crate::bench::Shard;
 use crate::checks::{self, Values};
 use crate::contract::Metrics;
 use crate::contract::schema::Word;
@@ -55,6 +56,27 @@ pub struct Options {
     pub budget: u64,
     pub search: Search,
     pub seed: u64,
+    /// The part of the search this process runs (`--shard K/N`; 1/1 for
+    /// all of it).
+    pub shard: Shard,
+}
+
+impl Options {
+    /// The candidates of this shard: those whose number is K − 1 modulo N
+    /// among the budget's 0 … budget − 1.
+    pub fn shard_budget(&self) -> u64 {
+        let (k, n) = (self.shard.k, self.shard.n);
+        if self.budget < k {
+            0
+        } else {
+            (self.budget - k) / n + 1
+        }
+    }
+
+    /// The number of this shard's `local`-th candidate in the whole search.
+    fn global(&self, local: u64) -> u64 {
+        local * self.shard.n + self.shard.k - 1
+    }
 }
 
 /// The scenario's statements as read, before any draw.
@@ -377,7 +399,11 @@ struct Proposer {
     search: Search,
     dims: usize,
     shift: Vec<f64>,
+    /// The next cover point is Halton's `halton_next * stride + offset + 1`:
+    /// the shards of a search interleave one sequence.
     halton_next: u64,
+    stride: u64,
+    offset: u64,
     /// The model's mean and spread (cross-entropy), after its first fit.
     model: Option<(Vec<f64>, Vec<f64>)>,
     /// `auto`: the basins given up (their best points), the best margin
@@ -398,13 +424,15 @@ const COVER: usize = 2 * BATCH;
 const ELITE: f64 = 0.1;
 
 impl Proposer {
-    fn new(search: Search, dims: usize, seed: u64) -> Self {
+    fn new(search: Search, dims: usize, seed: u64, shard: Shard) -> Self {
         let mut rng = SplitMix64::new(seed ^ 0x5EED_F00D);
         Proposer {
             search,
             dims,
             shift: (0..dims).map(|_| rng.next_f64()).collect(),
-            halton_next: 1,
+            halton_next: 0,
+            stride: shard.n,
+            offset: shard.k - 1,
             model: None,
             tabu: Vec::new(),
             best: f64::INFINITY,
@@ -413,7 +441,10 @@ impl Proposer {
     }
 
     fn cover(&mut self) -> Vec<f64> {
-        let p = halton(self.halton_next, &self.shift);
+        let p = halton(
+            self.halton_next * self.stride + self.offset + 1,
+            &self.shift,
+        );
         self.halton_next += 1;
         p
     }
@@ -484,7 +515,11 @@ impl Proposer {
             *s = s.max(floor);
         }
         self.model = Some((mean.clone(), spread.clone()));
-        let mut rng = SplitMix64::new(self.shift.len() as u64 ^ batch.wrapping_mul(0x9E37_79B9));
+        let mut rng = SplitMix64::new(
+            self.shift.len() as u64
+                ^ batch.wrapping_mul(0x9E37_79B9)
+                ^ self.offset.wrapping_mul(0xD1B5_4A32_D192_ED03),
+        );
         let best = &sorted[0].0;
         (0..BATCH)
             .map(|k| {
@@ -520,7 +555,8 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
     } else {
         opts.search
     };
-    let mut proposer = Proposer::new(search, dims, opts.seed);
+    let mut proposer = Proposer::new(search, dims, opts.seed, opts.shard);
+    let budget = opts.shard_budget();
     let mut history: Vec<(Vec<f64>, f64)> = Vec::new();
     let mut out = Falsified {
         tried: 0,
@@ -530,8 +566,8 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
         failure: None,
     };
     let mut batch = 0u64;
-    while out.tried < opts.budget {
-        let n = (opts.budget - out.tried).min(BATCH as u64) as usize;
+    while out.tried < budget {
+        let n = (budget - out.tried).min(BATCH as u64) as usize;
         let points: Vec<Option<Vec<f64>>> = if search == Search::Uniform {
             vec![None; n]
         } else {
@@ -546,7 +582,7 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
         let tried: Vec<Result<Tried, Vec<Diag>>> = points
             .par_iter()
             .enumerate()
-            .map(|(k, p)| source.draw(&opts, first + k as u64, p.as_deref()))
+            .map(|(k, p)| source.draw(&opts, opts.global(first + k as u64), p.as_deref()))
             .collect();
         batch += 1;
         for t in tried {
@@ -921,7 +957,7 @@ fn nth_number(item: &mut WorldItem, slot: usize) -> Option<&mut f64> {
 
 /// Whether `text`, read as the scenario file itself (its includes and
 /// maps where they were), has a plain check that fails.
-fn still_failing(source: &Source, text: &str) -> bool {
+pub fn still_failing(source: &Source, text: &str) -> bool {
     let canon = crate::scenario::loader::canonical(&source.path);
     let overlay = |p: &Path| (p == canon).then(|| std::sync::Arc::<str>::from(text));
     let Ok(scenario) = crate::scenario::load_with(&source.path, None, &overlay) else {

@@ -234,3 +234,128 @@ fn falsify_needs_a_family_and_a_plain_check() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("scen::falsify::no_check"));
     assert!(!dir.path().join("unchecked_fail.scen").exists());
 }
+
+/// `scen falsify --shard K/N --out PART.jsonl` on each part, then `merge`.
+fn sharded(dir: &Path, file: &str, search: &str, n: u64, extra: &[&str]) -> Vec<String> {
+    (1..=n)
+        .map(|k| {
+            let part = format!("{search}-{k}.jsonl");
+            let shard = format!("{k}/{n}");
+            let mut args = vec![
+                "falsify", file, "--search", search, "--shard", &shard, "--out", &part,
+            ];
+            args.extend_from_slice(extra);
+            let out = scen(dir, &args, None);
+            assert_eq!(
+                out.status.code(),
+                Some(0),
+                "a part written is exit 0: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            part
+        })
+        .collect()
+}
+
+#[test]
+fn sharded_searches_merge_to_the_failure_of_the_whole_search() {
+    let dir = TempDir::new("falsify-shard");
+    std::fs::write(dir.path().join("needle.scen"), NEEDLE).expect("write");
+    let budget = ["--budget", "2000"];
+    // `uniform` and `halton`: the parts split the whole search's samples,
+    // so the merged failure is the one the whole search finds first, and
+    // the shrunk file is the same.
+    for search in ["uniform", "halton"] {
+        let mut whole = vec!["falsify", "needle.scen", "--search", search, "--json"];
+        whole.extend_from_slice(&budget);
+        whole.extend_from_slice(&["--out", "whole.scen"]);
+        let one = json(&scen(dir.path(), &whole, None));
+        assert_eq!(one["found"], true, "{search}: {one}");
+        let parts = sharded(dir.path(), "needle.scen", search, 3, &budget);
+        let mut args = vec!["falsify", "merge"];
+        // In any order.
+        args.extend(parts.iter().rev().map(String::as_str));
+        args.extend_from_slice(&["--json", "--out", "merged.scen"]);
+        let out = scen(dir.path(), &args, None);
+        assert_eq!(out.status.code(), Some(1), "a failure is exit 1");
+        let merged = json(&out);
+        for key in ["found", "sample", "params", "check", "margin", "obstacles"] {
+            assert_eq!(merged[key], one[key], "{search}: {key}");
+        }
+        // The parts tried at least what the whole search did.
+        assert!(merged["samples_tried"].as_u64() >= one["samples_tried"].as_u64());
+        let read = |f: &str| std::fs::read_to_string(dir.path().join(f)).expect(f);
+        assert_eq!(read("merged.scen"), read("whole.scen"), "{search}");
+    }
+    // `auto`: each part searches on its own; the merged failure is one of
+    // theirs, and it fails.
+    let parts = sharded(dir.path(), "needle.scen", "auto", 2, &budget);
+    let out = scen(
+        dir.path(),
+        &["falsify", "merge", &parts[0], &parts[1], "--json"],
+        None,
+    );
+    let merged = json(&out);
+    assert_eq!(merged["found"], true, "{merged}");
+    assert_eq!(
+        test_exit(
+            dir.path(),
+            "auto.scen",
+            &std::fs::read_to_string(dir.path().join("needle_fail.scen")).expect("written")
+        ),
+        Some(1)
+    );
+
+    // Refusals, each exit 2 with the reason.
+    let refused = |args: &[&str], why: &str| {
+        let out = scen(dir.path(), args, None);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(why), "{args:?}: {err}");
+    };
+    refused(&["falsify", "merge", &parts[0]], "1 part(s) missing: 2/2");
+    refused(&["falsify", "merge", &parts[0], &parts[0]], "given twice");
+    let other = sharded(dir.path(), "needle.scen", "uniform", 2, &["--budget", "10"]);
+    refused(
+        &["falsify", "merge", &parts[0], &other[1]],
+        "does not belong with",
+    );
+    refused(
+        &["falsify", "needle.scen", "--shard", "1/2"],
+        "needs `--out PART.jsonl`",
+    );
+    refused(
+        &[
+            "falsify",
+            "needle.scen",
+            "--shard",
+            "3/2",
+            "--out",
+            "p.jsonl",
+        ],
+        "is not a shard",
+    );
+    refused(
+        &[
+            "falsify",
+            "needle.scen",
+            "--budget",
+            "4",
+            "--shard",
+            "1/5",
+            "--out",
+            "p.jsonl",
+        ],
+        "at most 4 part(s)",
+    );
+    refused(&["falsify", "merge", "needle.scen"], "is not a part");
+    std::fs::write(
+        dir.path().join("needle.scen"),
+        format!("{NEEDLE}# changed\n"),
+    )
+    .expect("write");
+    refused(
+        &["falsify", "merge", &parts[0], &parts[1]],
+        "has changed since the parts were made",
+    );
+}

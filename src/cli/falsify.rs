@@ -1,18 +1,24 @@
-//! `scen falsify FILE` (SPEC §4): search, shrink, write, report.
+//! `scen falsify FILE` (SPEC §4): search, shrink, write, report; and its
+//! sharded form, `--shard K/N --out PART.jsonl` then `scen falsify merge`.
 
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
+use serde_json::{Value, json};
 
 use super::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, outln, outputs_writable, print_failure};
+use crate::bench::Shard;
 use crate::contract::schema::Word;
-use crate::falsify::{self, Falsified, Options, Search};
+use crate::falsify::{self, Failure, Falsified, Options, Search};
 use crate::scenario::loader::{LoadFailure, parse_scenario};
 
 #[derive(Args, Debug)]
 pub struct FalsifyArgs {
-    /// The family of scenarios to search.
-    pub file: PathBuf,
+    /// The family of scenarios to search; or `merge` and the parts written
+    /// by `--shard K/N --out PART.jsonl`.
+    #[arg(required = true, value_name = "FILE")]
+    pub files: Vec<PathBuf>,
     /// The most samples to try.
     #[arg(long, value_name = "N", default_value_t = 1000, value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
     pub budget: u64,
@@ -25,9 +31,13 @@ pub struct FalsifyArgs {
     #[arg(long, value_name = "S", default_value_t = 0)]
     pub seed: u64,
     /// Where to write the shrunk failing scenario (default: FILE's name
-    /// with `_fail` added, beside it).
+    /// with `_fail` added, beside it); with `--shard`, the part.
     #[arg(long, value_name = "FAIL.scen")]
     pub out: Option<PathBuf>,
+    /// Run the K-th of N parts of the search (with `--out PART.jsonl`);
+    /// `scen falsify merge` combines the parts.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
     /// Print one JSON document instead of the report.
     #[arg(long)]
     pub json: bool,
@@ -53,35 +63,55 @@ fn default_out(file: &Path) -> PathBuf {
 }
 
 pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
-    let out = args.out.clone().unwrap_or_else(|| default_out(&args.file));
+    if args.files.first().is_some_and(|f| f == Path::new("merge")) {
+        if args.shard.is_some() {
+            eprintln!("error: `scen falsify merge` combines parts; it takes no `--shard`");
+            return EXIT_BAD_INPUT;
+        }
+        return cmd_merge(args, &args.files[1..]);
+    }
+    let [file] = args.files.as_slice() else {
+        eprintln!(
+            "error: `scen falsify` searches one family at a time (or `scen falsify merge PART.jsonl...`)"
+        );
+        return EXIT_BAD_INPUT;
+    };
+    let shard = match args.shard.as_deref().map(Shard::parse) {
+        Some(Err(e)) => {
+            eprintln!("error: {e}");
+            return EXIT_BAD_INPUT;
+        }
+        Some(Ok(s)) => Some(s),
+        None => None,
+    };
+    if shard.is_some() && args.out.is_none() {
+        eprintln!(
+            "error: `--shard K/N` needs `--out PART.jsonl`, the part `scen falsify merge` reads"
+        );
+        return EXIT_BAD_INPUT;
+    }
+    if let Some(s) = shard
+        && s.n > args.budget
+    {
+        eprintln!(
+            "error: `--shard {}/{}`: a budget of {} sample(s) splits into at most {} part(s)",
+            s.k, s.n, args.budget, args.budget
+        );
+        return EXIT_BAD_INPUT;
+    }
+    let out = args.out.clone().unwrap_or_else(|| default_out(file));
     if !outputs_writable(&[("--out", Some(&out))]) {
         return EXIT_BAD_INPUT;
     }
-    let search = Search::WORDS
-        .iter()
-        .position(|w| *w == args.search)
-        .and_then(<Search as Word>::from_index)
-        .unwrap_or(Search::Auto);
-    let parsed = parse_scenario(&args.file, args.root.as_deref(), &|_| None);
-    if parsed.diags.iter().any(crate::diagnostics::Diag::is_error) {
-        print_failure(&LoadFailure {
-            sources: parsed.sources,
-            diags: parsed.diags,
-        });
-        return EXIT_BAD_INPUT;
-    }
-    let source =
-        match falsify::Source::new(&args.file, parsed.statements, parsed.sources, parsed.maps) {
-            Ok(s) => s,
-            Err((sources, diags)) => {
-                print_failure(&LoadFailure { sources, diags });
-                return EXIT_BAD_INPUT;
-            }
-        };
+    let source = match load_source(file, args.root.as_deref()) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
     let opts = Options {
         budget: args.budget,
-        search,
+        search: search_of(&args.search),
         seed: args.seed,
+        shard: shard.unwrap_or(Shard { k: 1, n: 1 }),
     };
     let result = match falsify::falsify(&source, opts) {
         Ok(r) => r,
@@ -93,25 +123,395 @@ pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
             return EXIT_BAD_INPUT;
         }
     };
+    if let Some(shard) = shard {
+        return write_part(file, &source, &opts, shard, &result, &out);
+    }
+    finish(file, &result, &out, args.json)
+}
+
+fn search_of(word: &str) -> Search {
+    Search::WORDS
+        .iter()
+        .position(|w| *w == word)
+        .and_then(<Search as Word>::from_index)
+        .unwrap_or(Search::Auto)
+}
+
+/// The family read and checked (an error printed, exit 2, otherwise).
+fn load_source(file: &Path, root: Option<&Path>) -> Result<falsify::Source, i32> {
+    let parsed = parse_scenario(file, root, &|_| None);
+    if parsed.diags.iter().any(crate::diagnostics::Diag::is_error) {
+        print_failure(&LoadFailure {
+            sources: parsed.sources,
+            diags: parsed.diags,
+        });
+        return Err(EXIT_BAD_INPUT);
+    }
+    falsify::Source::new(file, parsed.statements, parsed.sources, parsed.maps).map_err(
+        |(sources, diags)| {
+            print_failure(&LoadFailure { sources, diags });
+            EXIT_BAD_INPUT
+        },
+    )
+}
+
+/// Writes the failing scenario, prints the report; the exit code.
+fn finish(file: &Path, result: &Falsified, out: &Path, as_json: bool) -> i32 {
     if let Some(f) = &result.failure
-        && let Err(e) = std::fs::write(&out, &f.text)
+        && let Err(e) = std::fs::write(out, &f.text)
     {
         eprintln!("error: cannot write `{}`: {e}", out.display());
         return EXIT_BAD_INPUT;
     }
-    if args.json {
+    if as_json {
         outln!(
             "{}",
-            serde_json::to_string(&json(&args.file, &result, &out)).unwrap_or_default()
+            serde_json::to_string(&self::json(file, result, out)).unwrap_or_default()
         );
     } else {
-        print_text(&args.file, &result, &out);
+        print_text(file, result, out);
     }
     if result.failure.is_some() {
         EXIT_CHECK_FAILED
     } else {
         EXIT_OK
     }
+}
+
+/// A margin in a part: a number, or the words of the infinities.
+fn margin_json(x: f64) -> Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        json!(x.to_string())
+    }
+}
+
+fn margin_of(v: &Value) -> Option<f64> {
+    v.as_f64()
+        .or_else(|| v.as_str().and_then(|s| s.parse::<f64>().ok()))
+}
+
+fn params_json(ps: &[(String, f64)]) -> Value {
+    Value::Array(ps.iter().map(|(n, x)| json!([n, x])).collect())
+}
+
+fn params_of(v: &Value) -> Option<Vec<(String, f64)>> {
+    v.as_array()?
+        .iter()
+        .map(|p| Some((p.get(0)?.as_str()?.to_string(), p.get(1)?.as_f64()?)))
+        .collect()
+}
+
+/// `--shard K/N --out PART.jsonl`: a header line and the shard's result.
+fn write_part(
+    file: &Path,
+    source: &falsify::Source,
+    opts: &Options,
+    shard: Shard,
+    r: &Falsified,
+    out: &Path,
+) -> i32 {
+    let header = json!({
+        "scen_falsify_part": 1,
+        "file": file.display().to_string(),
+        "hash": source.sources.content_hash(),
+        "search": opts.search.word(),
+        "seed": opts.seed,
+        "budget": opts.budget,
+        "k": shard.k,
+        "n": shard.n,
+    });
+    let failure = r.failure.as_ref().map(|f| {
+        json!({
+            "sample": f.sample,
+            "params": params_json(&f.params),
+            "check": f.check,
+            "line": f.line,
+            "margin": margin_json(f.margin),
+            "obstacles": [f.obstacles.0, f.obstacles.1],
+            "shrink_runs": f.shrink_runs,
+            "text": f.text,
+        })
+    });
+    let smallest = r.smallest.as_ref().map(
+        |(m, k, ps)| json!({"margin": margin_json(*m), "sample": k, "params": params_json(ps)}),
+    );
+    let result = json!({
+        "searched": r.search.word(),
+        "tried": r.tried,
+        "rejected": r.rejected,
+        "smallest": smallest,
+        "failure": failure,
+    });
+    let text = format!("{header}\n{result}\n");
+    if let Err(e) = std::fs::write(out, text) {
+        eprintln!("error: cannot write `{}`: {e}", out.display());
+        return EXIT_BAD_INPUT;
+    }
+    eprintln!(
+        "{}: shard {}/{}: {} sample(s) tried, {}; written to `{}`; combine the parts with `scen falsify merge`",
+        file.display(),
+        shard.k,
+        shard.n,
+        r.tried,
+        match &r.failure {
+            Some(f) => format!("a failure at sample {}", f.sample),
+            None => "no failure".to_string(),
+        },
+        out.display()
+    );
+    EXIT_OK
+}
+
+/// One part, read.
+struct Part {
+    path: PathBuf,
+    /// What the parts of one search share: file, hash, search, seed,
+    /// budget, N.
+    key: (String, String, String, u64, u64, u64),
+    k: u64,
+    result: Falsified,
+}
+
+/// The largest part `merge` reads (a part holds one shrunk scenario).
+const MAX_PART_BYTES: u64 = 64 << 20;
+
+fn read_part(path: &Path) -> Result<Part, String> {
+    let bytes = crate::files::read_regular_file(path, MAX_PART_BYTES)
+        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    let not_a_part = || {
+        format!(
+            "`{}` is not a part written by `scen falsify --shard K/N --out PART.jsonl`",
+            path.display()
+        )
+    };
+    let text = String::from_utf8(bytes).map_err(|_| not_a_part())?;
+    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+    let mut next = || -> Result<Value, String> {
+        lines
+            .next()
+            .and_then(|l| serde_json::from_str(l).ok())
+            .ok_or_else(not_a_part)
+    };
+    let (h, r) = (next()?, next()?);
+    if h.get("scen_falsify_part").and_then(Value::as_u64) != Some(1) {
+        return Err(not_a_part());
+    }
+    let read = || -> Option<Part> {
+        let word = |v: &Value, k: &str| v.get(k)?.as_str().map(str::to_string);
+        let num = |v: &Value, k: &str| v.get(k)?.as_u64();
+        let search = search_of(&word(&r, "searched")?);
+        let failure = match r.get("failure")? {
+            Value::Null => None,
+            f => {
+                let obstacles = f.get("obstacles")?.as_array()?;
+                Some(Failure {
+                    sample: num(f, "sample")?,
+                    params: params_of(f.get("params")?)?,
+                    check: word(f, "check")?,
+                    line: usize::try_from(num(f, "line")?).ok()?,
+                    margin: margin_of(f.get("margin")?)?,
+                    obstacles: (
+                        usize::try_from(obstacles.first()?.as_u64()?).ok()?,
+                        usize::try_from(obstacles.get(1)?.as_u64()?).ok()?,
+                    ),
+                    shrink_runs: usize::try_from(num(f, "shrink_runs")?).ok()?,
+                    text: word(f, "text")?,
+                })
+            }
+        };
+        let smallest = match r.get("smallest")? {
+            Value::Null => None,
+            s => Some((
+                margin_of(s.get("margin")?)?,
+                num(s, "sample")?,
+                params_of(s.get("params")?)?,
+            )),
+        };
+        Some(Part {
+            path: path.to_path_buf(),
+            key: (
+                word(&h, "file")?,
+                word(&h, "hash")?,
+                word(&h, "search")?,
+                num(&h, "seed")?,
+                num(&h, "budget")?,
+                num(&h, "n")?,
+            ),
+            k: num(&h, "k")?,
+            result: Falsified {
+                tried: num(&r, "tried")?,
+                rejected: num(&r, "rejected")?,
+                search,
+                smallest,
+                failure,
+            },
+        })
+    };
+    read().ok_or_else(not_a_part)
+}
+
+/// `scen falsify merge PART.jsonl...`: the search's result from its parts
+/// (the failure of the smallest sample number among them), the failing
+/// scenario checked to fail once more and written.
+fn cmd_merge(args: &FalsifyArgs, paths: &[PathBuf]) -> i32 {
+    match merge(paths, args.root.as_deref()) {
+        Ok((file, source, result)) => {
+            if let Some(f) = &result.failure
+                && !falsify::still_failing(&source, &f.text)
+            {
+                eprintln!(
+                    "error: the failing scenario of sample {} passes when run here: the parts were made by another build of `scen`, or the planners differ between the machines",
+                    f.sample
+                );
+                return EXIT_BAD_INPUT;
+            }
+            let out = args.out.clone().unwrap_or_else(|| default_out(&file));
+            if !outputs_writable(&[("--out", Some(&out))]) {
+                return EXIT_BAD_INPUT;
+            }
+            finish(&file, &result, &out, args.json)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_BAD_INPUT
+        }
+    }
+}
+
+fn merge(
+    paths: &[PathBuf],
+    root: Option<&Path>,
+) -> Result<(PathBuf, falsify::Source, Falsified), String> {
+    if paths.is_empty() {
+        return Err(
+            "`scen falsify merge` needs the parts: `scen falsify merge part-*.jsonl`".into(),
+        );
+    }
+    let parts = paths
+        .iter()
+        .map(|p| read_part(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let first = &parts[0];
+    for p in &parts[1..] {
+        if p.key != first.key {
+            let says = |k: &(String, String, String, u64, u64, u64)| {
+                format!(
+                    "{} (hash {}), --search {}, --seed {}, --budget {}, {} part(s)",
+                    k.0, k.1, k.2, k.3, k.4, k.5
+                )
+            };
+            return Err(format!(
+                "`{}` does not belong with `{}`: it was made from {}; the other from {}",
+                p.path.display(),
+                first.path.display(),
+                says(&p.key),
+                says(&first.key)
+            ));
+        }
+    }
+    let (file, hash, _, _, budget, n) = first.key.clone();
+    let mut seen = BTreeSet::new();
+    for p in &parts {
+        if p.k == 0 || p.k > n || n > budget {
+            return Err(format!(
+                "`{}` says it is part {}/{} of a budget of {budget}",
+                p.path.display(),
+                p.k,
+                n
+            ));
+        }
+        if !seen.insert(p.k) {
+            return Err(format!(
+                "part {}/{n} is given twice (`{}`)",
+                p.k,
+                p.path.display()
+            ));
+        }
+    }
+    if seen.len() as u64 != n {
+        let missing: Vec<String> = (1..=n)
+            .filter(|k| !seen.contains(k))
+            .take(10)
+            .map(|k| format!("{k}/{n}"))
+            .collect();
+        return Err(format!(
+            "{} part(s) missing: {}{} (of {n} parts)",
+            n - seen.len() as u64,
+            missing.join(", "),
+            if n - seen.len() as u64 > 10 {
+                ", …"
+            } else {
+                ""
+            }
+        ));
+    }
+    let file = PathBuf::from(file);
+    let source = load_source(&file, root).map_err(|_| {
+        format!(
+            "cannot load `{}`, the scenario the parts were made from (its diagnostics are above)",
+            file.display()
+        )
+    })?;
+    let now = source.sources.content_hash();
+    if now != hash {
+        return Err(format!(
+            "`{}` has changed since the parts were made (hash {now}, the parts say {hash})",
+            file.display()
+        ));
+    }
+    for p in &parts {
+        let share = Options {
+            budget,
+            search: Search::Auto,
+            seed: 0,
+            shard: Shard { k: p.k, n },
+        }
+        .shard_budget();
+        let theirs = |sample: u64| sample < budget && (Shard { k: p.k, n }).takes(sample);
+        let r = &p.result;
+        if r.tried > share
+            || r.rejected > r.tried
+            || r.failure.as_ref().is_some_and(|f| !theirs(f.sample))
+            || r.smallest.as_ref().is_some_and(|s| !theirs(s.1))
+        {
+            return Err(format!(
+                "`{}` (part {}/{n}) holds samples that are not its own or more than its {share}",
+                p.path.display(),
+                p.k
+            ));
+        }
+    }
+    // The failure (or, without one, the smallest margin) of the smallest
+    // sample number: for `uniform` and `halton`, the failure the whole
+    // search finds first.
+    let mut parts = parts;
+    parts.sort_by_key(|p| p.k);
+    let mut merged = Falsified {
+        tried: parts.iter().map(|p| p.result.tried).sum(),
+        rejected: parts.iter().map(|p| p.result.rejected).sum(),
+        search: parts[0].result.search,
+        smallest: None,
+        failure: None,
+    };
+    for p in parts {
+        let r = p.result;
+        if let Some(s) = r.smallest
+            && merged
+                .smallest
+                .as_ref()
+                .is_none_or(|m| (s.0, s.1) < (m.0, m.1))
+        {
+            merged.smallest = Some(s);
+        }
+        if let Some(f) = r.failure
+            && merged.failure.as_ref().is_none_or(|m| f.sample < m.sample)
+        {
+            merged.failure = Some(f);
+        }
+    }
+    Ok((file, source, merged))
 }
 
 fn params_text(params: &[(String, f64)]) -> String {
