@@ -195,11 +195,11 @@ syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " coloured as a key).
 syn region  scenSelection contained matchgroup=scenSelectedPlan start=/\h\w*\[\@=/ matchgroup=scenPunct end=/\]/
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList,scenSelectOpen,scenSelectPair,scenSelectKey,scenEquals
+      \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList,scenSelectOpen,scenSelectPair,scenSelectKey,scenEquals,scenCalcOperator,scenCalcFunction,scenCalcUnit
       \ nextgroup=scenLastAccessor
 syn region  scenValueList contained matchgroup=scenPunct start=/\[/ end=/\]/
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList
+      \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList,scenCalcOperator,scenCalcFunction,scenCalcUnit
 syn match   scenSelectOpen contained /\w\@1<=\[/
 syn match   scenSelectPair contained /\%(\w\@1<=\[\|,\)\_s*\h\w*\ze\s*=/ contains=scenPunct,scenSelectKey
 syn match   scenSelectKey contained /\<\h\w*\ze\s*=/
