@@ -20,8 +20,12 @@
 //!   within 3 turning radii of the goal, the steering path from the node's
 //!   pose to the goal is tried; the search ends when one is free. It is the
 //!   only way the search reaches the goal exactly.
+//! - The search is the search core's ([`best_first`]): a node is a cell,
+//!   numbered when first reached, holding the pose of the cheapest arc
+//!   into it; the core keeps g, the parents and the open list, and closes
+//!   a cell once.
 //! - Limits: `expansions`, `time` (set-up included), and at most
-//!   [`MAX_NODES`] nodes (about 64 bytes each); the holonomic grid is
+//!   [`MAX_NODES`] cells (about 60 bytes each); the holonomic grid is
 //!   skipped beyond [`MAX_HOLONOMIC_CELLS`] cells (a note says so).
 //!
 //! The path is the chain of arcs from the start (consecutive arcs of the
@@ -42,9 +46,11 @@ use crate::geometry::steer::{Model, Segment, Steering, Turn};
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Config, Point, RobotShape};
 use crate::planners::deadline::Deadline;
-use crate::planners::search::Open;
+use crate::contract::Limits;
+use crate::planners::search::{Edge, Graph, Open, SearchBuffers, Tree, best_first};
 
-/// The most search nodes (continuous poses) kept.
+/// The most (x, y, θ) cells the search reaches (each keeping one
+/// continuous pose, about 60 bytes with the core's state).
 pub const MAX_NODES: usize = 4_000_000;
 
 /// The most (x, y) cells of the holonomic heuristic's grid.
@@ -127,16 +133,6 @@ fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
     }))
 }
 
-/// A search node: a continuous pose, how it was reached, what it cost.
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    pose: Config,
-    g: f64,
-    parent: u32,
-    /// The arc from the parent (length 0 for the start).
-    arc: Segment,
-}
-
 impl Settings for HybridAstar {
     fn plan(&self, task: &Task<'_>) -> PlanOutcome {
         let (Some(steering), Some(goal)) = (task.steering, task.goal) else {
@@ -165,7 +161,10 @@ impl Settings for HybridAstar {
     }
 }
 
-/// A search in progress.
+/// The search graph of the search core ([`best_first`]): a node is an
+/// (x, y, θ) cell, numbered in the order the search first reaches it, and
+/// holds one continuous pose — the one of the cheapest arc into it so far
+/// (the core keeps g and the parents, and never updates a closed cell).
 struct Search<'a> {
     s: &'a HybridAstar,
     task: &'a Task<'a>,
@@ -174,13 +173,25 @@ struct Search<'a> {
     referee: Validator<'a>,
     deadline: Deadline,
     holonomic: Option<Holonomic>,
-    nodes: Vec<Node>,
-    /// The node that holds each cell.
-    holder: HashMap<u64, u32>,
-    closed: std::collections::HashSet<u64>,
-    open: BinaryHeap<Open>,
+    /// The number of each cell reached.
+    ids: HashMap<u64, u32>,
+    /// Per cell: its pose and the arc into it (length 0 for the start).
+    poses: Vec<Config>,
+    arcs: Vec<Segment>,
+    /// The successors of the node being expanded: their pose and arc.
+    candidates: Vec<(Config, Segment)>,
     switch_cost: f64,
+    expanded: u64,
+    generated: u64,
     analytic_tries: u64,
+    /// The node whose steering path to the goal is free, and that path.
+    found: Option<(usize, CarPath)>,
+    /// Why the search stopped early (the core gives up on a `false` from
+    /// `before_expand`).
+    stopped: Option<String>,
+    /// More cells than [`MAX_NODES`] were reached.
+    full: bool,
+    drawn: Vec<Vec<Point>>,
     notes: Vec<String>,
 }
 
@@ -203,12 +214,18 @@ impl<'a> Search<'a> {
             referee: Validator::new(task.world),
             deadline,
             holonomic,
-            nodes: Vec::new(),
-            holder: HashMap::new(),
-            closed: std::collections::HashSet::new(),
-            open: BinaryHeap::new(),
+            ids: HashMap::new(),
+            poses: Vec::new(),
+            arcs: Vec::new(),
+            candidates: Vec::new(),
             switch_cost: s.switch_cost.unwrap_or(steering.radius),
+            expanded: 0,
+            generated: 0,
             analytic_tries: 0,
+            found: None,
+            stopped: None,
+            full: false,
+            drawn: Vec::new(),
             notes,
         }
     }
@@ -223,6 +240,24 @@ impl<'a> Search<'a> {
         (ix.min(0x1f_ffff) << 42) | (iy.min(0x1f_ffff) << 21) | k.min(0x1f_ffff)
     }
 
+    /// The number of the cell of `pose`, numbering it (with `pose` as its
+    /// pose) when first reached; `None` once [`MAX_NODES`] cells are.
+    fn cell(&mut self, pose: Config, arc: Segment) -> Option<usize> {
+        let key = self.key(pose);
+        if let Some(&id) = self.ids.get(&key) {
+            return Some(id as usize);
+        }
+        if self.poses.len() >= MAX_NODES {
+            self.full = true;
+            return None;
+        }
+        let id = self.poses.len();
+        self.ids.insert(key, id as u32);
+        self.poses.push(pose);
+        self.arcs.push(arc);
+        Some(id)
+    }
+
     fn h(&self, c: Config) -> f64 {
         let steer = self.steering.distance(c, self.goal);
         let hol = self.holonomic.as_ref().map_or(0.0, |h| h.at(c));
@@ -231,74 +266,48 @@ impl<'a> Search<'a> {
 
     fn run(mut self) -> PlanOutcome {
         let start = self.task.start;
-        let mut expanded = 0u64;
         let mut out = PlanOutcome::default();
-        let mut drawn: Vec<Vec<Point>> = Vec::new();
-        self.nodes.push(Node {
-            pose: start,
-            g: 0.0,
-            parent: u32::MAX,
-            arc: Segment {
-                turn: Turn::S,
-                length: 0.0,
-            },
-        });
-        let k0 = self.key(start);
-        self.holder.insert(k0, 0);
-        self.open.push(Open {
-            f: self.h(start),
-            g: 0.0,
-            node: 0,
-        });
-        let max_expansions = self.task.limits.expansions.unwrap_or(u64::MAX);
-        let mut found: Option<(u32, CarPath)> = None;
-        let mut stopped: Option<String> = None;
-        while let Some(Open { node, .. }) = self.open.pop() {
-            let n = self.nodes[node as usize];
-            let key = self.key(n.pose);
-            if self.holder.get(&key) != Some(&node) || !self.closed.insert(key) {
-                continue; // replaced by a cheaper pose, or already expanded
-            }
-            if expanded >= max_expansions {
-                stopped = Some(format!("the expansion limit ({max_expansions}) was reached without a path"));
-                break;
-            }
-            if self.deadline.passed() {
-                stopped = Some("the time limit was reached without a path".into());
-                break;
-            }
-            expanded += 1;
-            if let Some(tail) = self.analytic(n.pose, expanded) {
-                found = Some((node, tail));
-                break;
-            }
-            if !self.expand(node, &mut drawn) {
-                stopped = Some(format!(
-                    "the search reached its cap of {MAX_NODES} poses without a path"
-                ));
-                break;
-            }
-        }
-        out.expanded = expanded;
+        let none = Segment {
+            turn: Turn::S,
+            length: 0.0,
+        };
+        let Some(first) = self.cell(start, none) else {
+            unreachable!("the first cell always gets a number")
+        };
+        self.generated = 1;
+        // The time limit is the plan's deadline, asked in `before_expand`
+        // (it counts the holonomic grid's set-up too).
+        let limits = Limits {
+            expansions: self.task.limits.expansions,
+            ..Limits::default()
+        };
+        let result = best_first(
+            &mut self,
+            &[first],
+            &limits,
+            false,
+            &mut SearchBuffers::paged(),
+        );
+        out.expanded = result.expanded;
         out.extra.insert(
             "generated".into(),
-            MetricValue::Num(self.nodes.len() as f64),
+            MetricValue::Num(self.generated as f64),
         );
         out.extra.insert(
             "analytic_tries".into(),
             MetricValue::Num(self.analytic_tries as f64),
         );
         out.notes = std::mem::take(&mut self.notes);
-        if self.task.draw && !drawn.is_empty() {
+        if self.task.draw && !self.drawn.is_empty() {
             out.layers.push(Layer::new(
                 "search",
-                Drawing::Polylines(drawn),
+                Drawing::Polylines(std::mem::take(&mut self.drawn)),
                 Style::new(Colour::Faint, 0.5, 16.0).svg(Svg::line(0.3).key("search arcs")),
             ));
         }
-        match (found, stopped) {
-            (Some((node, tail)), _) => {
-                let car = self.path_to(node, &tail);
+        match (result.nodes, self.found.take()) {
+            (Some(nodes), Some((_, tail))) => {
+                let car = self.path_to(&nodes, &tail);
                 // The pieces were checked one by one; the whole, integrated
                 // from the start, is checked again before it is returned.
                 match validate_car_path(
@@ -323,11 +332,16 @@ impl<'a> Search<'a> {
                     )),
                 }
             }
-            (None, Some(why)) => {
+            _ if result.gave_up => {
                 out.gave_up = true;
-                out.notes.push(why);
+                out.notes.push(self.stopped.take().unwrap_or_else(|| {
+                    format!(
+                        "the expansion limit ({}) was reached without a path",
+                        limits.expansions.unwrap_or(u64::MAX)
+                    )
+                }));
             }
-            (None, None) => out.notes.push(
+            _ => out.notes.push(
                 "every cell reachable from the start was expanded: no path (at this cell size and step)"
                     .into(),
             ),
@@ -337,9 +351,9 @@ impl<'a> Search<'a> {
 
     /// The steering path from `pose` to the goal, when it is tried now and
     /// free.
-    fn analytic(&mut self, pose: Config, expanded: u64) -> Option<CarPath> {
+    fn analytic(&mut self, pose: Config) -> Option<CarPath> {
         let near = (pose.x - self.goal.x).hypot(pose.y - self.goal.y) <= 3.0 * self.steering.radius;
-        if !(near || expanded % self.s.analytic == 1 || self.s.analytic == 1) {
+        if !(near || self.expanded % self.s.analytic == 1 || self.s.analytic == 1) {
             return None;
         }
         self.analytic_tries += 1;
@@ -351,80 +365,12 @@ impl<'a> Search<'a> {
         car_path_free(&self.referee, self.task.robot, &tail, DEFAULT_TOLERANCE).then_some(tail)
     }
 
-    /// Pushes the node's successors; false when the node cap is reached.
-    fn expand(&mut self, node: u32, drawn: &mut Vec<Vec<Point>>) -> bool {
-        let n = self.nodes[node as usize];
-        let directions: &[f64] = match self.steering.model {
-            Model::Dubins => &[1.0],
-            Model::ReedsShepp => &[1.0, -1.0],
-        };
-        for &dir in directions {
-            for turn in [Turn::L, Turn::S, Turn::R] {
-                let arc = Segment {
-                    turn,
-                    length: dir * self.s.step,
-                };
-                let pose = arc.end(n.pose, self.steering.radius).wrapped();
-                let key = self.key(pose);
-                if self.closed.contains(&key) {
-                    continue;
-                }
-                let mut g = n.g + self.s.step * if dir < 0.0 { self.s.reverse_cost } else { 1.0 };
-                let switched = n.parent != u32::MAX && (n.arc.length < 0.0) != (dir < 0.0);
-                if switched {
-                    g += self.switch_cost;
-                }
-                if let Some(&h) = self.holder.get(&key)
-                    && self.nodes[h as usize].g <= g
-                {
-                    continue;
-                }
-                let piece = CarPath {
-                    start: n.pose,
-                    steering: self.steering,
-                    segments: vec![arc],
-                };
-                if !car_path_free(&self.referee, self.task.robot, &piece, DEFAULT_TOLERANCE) {
-                    continue;
-                }
-                if self.nodes.len() >= MAX_NODES {
-                    return false;
-                }
-                let id = self.nodes.len() as u32;
-                self.nodes.push(Node {
-                    pose,
-                    g,
-                    parent: node,
-                    arc,
-                });
-                self.holder.insert(key, id);
-                self.open.push(Open {
-                    f: g + self.h(pose),
-                    g,
-                    node: id,
-                });
-                if self.task.draw && drawn.len() < MAX_DRAWN {
-                    drawn.push(piece.poses(DRAW_STEP).iter().map(Config::xy).collect());
-                }
-            }
-        }
-        true
-    }
-
-    /// The car path from the start through `node`, then `tail`, with
-    /// consecutive segments of the same kind and direction merged.
-    fn path_to(&self, node: u32, tail: &CarPath) -> CarPath {
-        let mut arcs = Vec::new();
-        let mut at = node;
-        while at != u32::MAX && at != 0 {
-            let n = self.nodes[at as usize];
-            arcs.push(n.arc);
-            at = n.parent;
-        }
-        arcs.reverse();
-        arcs.extend(tail.segments.iter().copied());
-        let mut merged: Vec<Segment> = Vec::with_capacity(arcs.len());
-        for a in arcs {
+    /// The car path along the cells `nodes` (from the start), then `tail`,
+    /// with consecutive segments of the same kind and direction merged.
+    fn path_to(&self, nodes: &[usize], tail: &CarPath) -> CarPath {
+        let arcs = nodes[1..].iter().map(|&n| self.arcs[n]);
+        let mut merged: Vec<Segment> = Vec::new();
+        for a in arcs.chain(tail.segments.iter().copied()) {
             if a.length == 0.0 {
                 continue;
             }
@@ -451,6 +397,95 @@ impl<'a> Search<'a> {
     }
 }
 
+impl Graph for Search<'_> {
+    fn node_count(&self) -> usize {
+        MAX_NODES
+    }
+
+    /// The arcs of the turning radius and the straight of length `step`,
+    /// forward and (Reeds–Shepp) in reverse; a change of direction costs
+    /// `switch_cost` more.
+    fn successors(&mut self, node: usize, out: &mut Vec<Edge>) {
+        let (pose, into) = (self.poses[node], self.arcs[node]);
+        let directions: &[f64] = match self.steering.model {
+            Model::Dubins => &[1.0],
+            Model::ReedsShepp => &[1.0, -1.0],
+        };
+        self.candidates.clear();
+        for &dir in directions {
+            for turn in [Turn::L, Turn::S, Turn::R] {
+                let arc = Segment {
+                    turn,
+                    length: dir * self.s.step,
+                };
+                let end = arc.end(pose, self.steering.radius).wrapped();
+                let Some(to) = self.cell(end, arc) else {
+                    return;
+                };
+                let mut cost = self.s.step * if dir < 0.0 { self.s.reverse_cost } else { 1.0 };
+                if node != 0 && (into.length < 0.0) != (dir < 0.0) {
+                    cost += self.switch_cost;
+                }
+                out.push(Edge {
+                    to,
+                    cost,
+                    label: self.candidates.len() as u32,
+                });
+                self.candidates.push((end, arc));
+            }
+        }
+    }
+
+    /// The arc's motion, checked by the motion checker for curves; a free
+    /// arc gives its end pose to the cell.
+    fn usable(&mut self, from: usize, label: u32, to: usize) -> bool {
+        let (end, arc) = self.candidates[label as usize];
+        let piece = CarPath {
+            start: self.poses[from],
+            steering: self.steering,
+            segments: vec![arc],
+        };
+        if !car_path_free(&self.referee, self.task.robot, &piece, DEFAULT_TOLERANCE) {
+            return false;
+        }
+        self.poses[to] = end;
+        self.arcs[to] = arc;
+        self.generated += 1;
+        if self.task.draw && self.drawn.len() < MAX_DRAWN {
+            self.drawn
+                .push(piece.poses(DRAW_STEP).iter().map(Config::xy).collect());
+        }
+        true
+    }
+
+    fn heuristic(&self, node: usize) -> f64 {
+        self.h(self.poses[node])
+    }
+
+    fn is_goal(&self, node: usize) -> bool {
+        self.found.as_ref().is_some_and(|(n, _)| *n == node)
+    }
+
+    /// Stops at the deadline or the cell cap; tries the analytic expansion
+    /// (the only way the goal is reached exactly).
+    fn before_expand(&mut self, node: usize, _tree: &Tree<'_>) -> bool {
+        if self.full {
+            self.stopped = Some(format!(
+                "the search reached its cap of {MAX_NODES} poses without a path"
+            ));
+            return false;
+        }
+        if self.deadline.passed() {
+            self.stopped = Some("the time limit was reached without a path".into());
+            return false;
+        }
+        self.expanded += 1;
+        if let Some(tail) = self.analytic(self.poses[node]) {
+            self.found = Some((node, tail));
+        }
+        true
+    }
+}
 
 /// The holonomic heuristic: the 8-connected distance from each (x, y) cell
 /// to the goal's, over cells whose centre is free for a point.

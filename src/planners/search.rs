@@ -130,7 +130,7 @@ pub struct SearchResult {
 }
 
 /// An open-list entry: lowest f first, then highest g, then lowest index
-/// (also `hybrid_astar`'s, whose open list is its own).
+/// (also the open list of `hybrid_astar`'s holonomic heuristic).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Open {
     pub(crate) f: f64,
@@ -234,6 +234,9 @@ impl States for Paged<'_> {
 /// once; after a search it holds that search's tree.
 pub struct SearchBuffers {
     store: Store,
+    /// Pages whatever the graph's size: for graphs that number their nodes
+    /// as they reach them and announce only a cap ([`SearchBuffers::paged`]).
+    always_paged: bool,
     len: usize,
     stamp: u32,
     heap: BinaryHeap<Open>,
@@ -244,6 +247,7 @@ impl Default for SearchBuffers {
     fn default() -> Self {
         SearchBuffers {
             store: Store::Dense(Vec::new()),
+            always_paged: false,
             len: 0,
             stamp: 0,
             heap: BinaryHeap::new(),
@@ -253,6 +257,16 @@ impl Default for SearchBuffers {
 }
 
 impl SearchBuffers {
+    /// Buffers that keep per-node state in pages allocated on first touch
+    /// even for a small node count: memory grows with the nodes reached,
+    /// not with [`Graph::node_count`].
+    pub fn paged() -> Self {
+        SearchBuffers {
+            always_paged: true,
+            ..SearchBuffers::default()
+        }
+    }
+
     fn state(&self, node: usize) -> NodeState {
         match &self.store {
             Store::Dense(v) => v.get(node).copied().unwrap_or(FRESH),
@@ -286,7 +300,7 @@ impl SearchBuffers {
     /// Starts a search on a graph of `len` nodes.
     fn reset(&mut self, len: usize) {
         if self.len != len {
-            self.store = if len <= DENSE_LIMIT {
+            self.store = if len <= DENSE_LIMIT && !self.always_paged {
                 Store::Dense(vec![FRESH; len])
             } else {
                 Store::Paged((0..len.div_ceil(PAGE)).map(|_| None).collect())
