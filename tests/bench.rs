@@ -637,3 +637,54 @@ fn runs_overrides_every_bench() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("does not belong"));
 }
+
+/// A car's bench exports its curve metrics (cusps, reverse length, segments)
+/// to the OMPL log as extra properties, which OMPL's script turns into
+/// columns of the database.
+#[test]
+fn car_benches_export_their_curve_metrics_to_the_ompl_log() {
+    let Some(script) = ompl_statistics() else {
+        return;
+    };
+    const CARS: &str = "world {\n  bounds (0, 0) (30, 12)\n  rect kerb (0, 0) (30, 1)\n  \
+        rect rear_car (5, 1.2) (10, 3)\n  rect front_car (18, 1.2) (23, 3)\n}\n\
+        robot car polygon [(-1, -0.9), (3.5, -0.9), (3.5, 0.9), (-1, 0.9)] steer reeds_shepp 4.5\n\
+        plan hybrid hybrid_astar car { start (2, 7, 0deg) goal (11.5, 2.2, 0deg) cell 0.5 }\n\
+        plan connect rrt_connect car { start (2, 7, 0deg) goal (11.5, 2.2, 0deg) seed 1 }\n\
+        bench cars {\n  runs 2\n}\n";
+    let t = Test::new()
+        .file("cars.scen", CARS)
+        .args(&["bench", "-q", "--ompl-log", "logs", "cars.scen"]);
+    t.run();
+    let log = t.dir().join("logs/cars.cars.log");
+    let text = std::fs::read_to_string(&log).expect("the log");
+    for property in ["cusps REAL", "reverse length REAL", "segments REAL"] {
+        assert!(text.contains(property), "no `{property}`:\n{text}");
+    }
+    let db = t.dir().join("cars.db");
+    let out = run_with_timeout(
+        Command::new(&script).arg(&log).arg("-d").arg(&db),
+        std::time::Duration::from_secs(120),
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // hybrid A* draws nothing at random: one run; RRT-Connect two. The
+    // parking manoeuvre reverses: a cusp and some length in reverse, each
+    // run.
+    let query = "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); \
+        print(c.execute('select count(*), sum(solved), min(cusps) >= 1, min(reverse_length) > 0, min(segments) >= 2 from runs').fetchone())";
+    let out = Command::new("python3")
+        .args(["-c", query])
+        .arg(&db)
+        .output()
+        .expect("python3 runs");
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout).trim(),
+        "(3, 3, 1, 1, 1)",
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
