@@ -4,12 +4,17 @@
 //! follow θ's wrap-around.
 //!
 //! # Structure
-//! One point per tree node, inserted as it comes (no rebalancing: the
-//! samples of a planner come in random order, so the expected depth is
-//! O(log n)); node `i` is point `i`; the split axis cycles with the depth;
-//! a point goes right when its coordinate on the node's axis is ≥ the
-//! node's. Queries use an explicit stack, so a degenerate insertion order
-//! (a chain of collinear extensions) costs time, never the call stack.
+//! Points are stored in *leaves* of up to [`LEAF`] points; an internal node
+//! splits its points at a value of one axis (points with a coordinate ≥ the
+//! value go right). A point is inserted into the leaf its coordinates lead
+//! to; a full leaf splits at the median of its points along the axis of
+//! their widest spread (a leaf of points equal on every axis grows
+//! instead). No rebalancing: the samples of a planner come in random order,
+//! so the expected depth is O(log n), and the walk uses an explicit stack,
+//! so a degenerate insertion order (a chain of collinear extensions) costs
+//! time, never the call stack. Leaves make a query scan a few short runs of
+//! points rather than visit one tree node per point (a third of the
+//! instructions of the one-point-per-node tree on the apartment rod).
 //!
 //! # Queries and the wrap-around
 //! The distance between keys is Euclidean with the periodic axis'
@@ -24,8 +29,11 @@
 //! which are most of an RRT's. Ties between equal distances go to the
 //! lower index: results do not depend on the walk order.
 
-/// "No child".
+/// "No child": the node is a leaf.
 const NONE: u32 = u32::MAX;
+
+/// The most points of a leaf (unless they are all equal).
+const LEAF: usize = 8;
 
 /// A k-d tree over 2- or 3-dimensional keys (see the module documentation).
 #[derive(Clone, Debug)]
@@ -33,26 +41,29 @@ pub struct KdTree {
     dims: usize,
     /// The period of the last axis (`dims == 3`), 0 when it does not wrap.
     period: f64,
+    /// Point `i`'s key.
+    keys: Vec<[f64; 3]>,
+    /// Node 0 is the root (once a point exists).
     nodes: Vec<Node>,
-    /// The box of all points.
-    lo: [f64; 3],
-    hi: [f64; 3],
+    /// The points of each leaf (`Node::leaf` indexes it).
+    leaves: Vec<Vec<u32>>,
     /// The walk's pending subtrees and their lower bounds.
     stack: Vec<(u32, f64)>,
     /// The walk's k best candidates so far, the worst on top.
     heap: std::collections::BinaryHeap<Candidate>,
 }
 
-/// A point, its children and their subtrees' boxes, in one place: a walk
-/// decides on both children from the parent's memory alone.
+/// A node: the box of its subtree's points (min and max per axis; the third
+/// axis (0, 0) for 2-dimensional keys), and either its split and children
+/// or its leaf.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    key: [f64; 3],
+    lo: [f64; 3],
+    hi: [f64; 3],
+    axis: u32,
+    split: f64,
     children: [u32; 2],
-    /// Per child, the box of its subtree's points: min and max per axis
-    /// (the third axis (0, 0) for 2-dimensional keys).
-    lo: [[f64; 3]; 2],
-    hi: [[f64; 3]; 2],
+    leaf: u32,
 }
 
 impl KdTree {
@@ -67,25 +78,43 @@ impl KdTree {
             } else {
                 0.0
             },
+            keys: Vec::new(),
             nodes: Vec::new(),
-            lo: [f64::INFINITY; 3],
-            hi: [f64::NEG_INFINITY; 3],
+            leaves: Vec::new(),
             stack: Vec::new(),
             heap: std::collections::BinaryHeap::new(),
         }
     }
 
     pub fn len(&self) -> usize {
-        self.nodes.len()
+        self.keys.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.keys.is_empty()
     }
 
     /// The key of point `i`.
     pub fn point(&self, i: usize) -> [f64; 3] {
-        self.nodes[i].key
+        self.keys[i]
+    }
+
+    /// A new leaf node holding `points`, its box theirs.
+    fn leaf_node(&mut self, points: Vec<u32>) -> u32 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &p in &points {
+            grow_box(&mut lo, &mut hi, &self.keys[p as usize]);
+        }
+        self.leaves.push(points);
+        self.nodes.push(Node {
+            lo,
+            hi,
+            axis: 0,
+            split: 0.0,
+            children: [NONE; 2],
+            leaf: (self.leaves.len() - 1) as u32,
+        });
+        (self.nodes.len() - 1) as u32
     }
 
     /// Adds `key` (its periodic coordinate in [0, period); its third one
@@ -95,37 +124,85 @@ impl KdTree {
         if self.dims == 2 {
             key[2] = 0.0;
         }
-        let index = self.nodes.len() as u32;
-        self.nodes.push(Node {
-            key,
-            children: [NONE; 2],
-            lo: [key; 2],
-            hi: [key; 2],
-        });
-        grow_box(&mut self.lo, &mut self.hi, &key);
+        let index = self.keys.len() as u32;
+        self.keys.push(key);
         if index == 0 {
+            self.leaf_node(vec![0]);
             return 0;
         }
-        let (mut node, mut depth) = (0usize, 0usize);
+        let mut node = 0usize;
         loop {
-            let axis = depth % self.dims;
             let n = &mut self.nodes[node];
-            let side = usize::from(key[axis] >= n.key[axis]);
-            let next = n.children[side];
-            if next == NONE {
-                n.children[side] = index;
-                n.lo[side] = key;
-                n.hi[side] = key;
-                return index as usize;
+            grow_box(&mut n.lo, &mut n.hi, &key);
+            if n.children[0] == NONE {
+                break;
             }
-            grow_box(&mut n.lo[side], &mut n.hi[side], &key);
-            node = next as usize;
-            depth += 1;
+            let side = usize::from(key[n.axis as usize] >= n.split);
+            node = n.children[side] as usize;
         }
+        let leaf = self.nodes[node].leaf as usize;
+        self.leaves[leaf].push(index);
+        if self.leaves[leaf].len() > LEAF {
+            self.split(node);
+        }
+        index as usize
+    }
+
+    /// Splits leaf `node` at the median of its points along the axis of
+    /// their widest spread; leaves it whole when they are all equal.
+    fn split(&mut self, node: usize) {
+        let n = self.nodes[node];
+        let Some(axis) = (0..self.dims)
+            .filter(|&a| n.hi[a] > n.lo[a])
+            .max_by(|&a, &b| (n.hi[a] - n.lo[a]).total_cmp(&(n.hi[b] - n.lo[b])))
+        else {
+            return;
+        };
+        let points = std::mem::take(&mut self.leaves[n.leaf as usize]);
+        let mut values: Vec<f64> = points.iter().map(|&p| self.keys[p as usize][axis]).collect();
+        values.sort_by(f64::total_cmp);
+        // The median, moved up past equal values so that both sides hold a
+        // point (the widest spread is positive: some value is larger).
+        let mut split = values[values.len() / 2];
+        if split == values[0] {
+            split = values
+                .iter()
+                .copied()
+                .find(|&v| v > values[0])
+                .unwrap_or(values[0]);
+        }
+        let (right, left): (Vec<u32>, Vec<u32>) = points
+            .iter()
+            .partition(|&&p| self.keys[p as usize][axis] >= split);
+        // The left half keeps the leaf's slot.
+        self.leaves[n.leaf as usize] = left;
+        self.nodes.push(Node {
+            children: [NONE; 2],
+            ..n
+        });
+        let l = (self.nodes.len() - 1) as u32;
+        self.refit(l);
+        let r = self.leaf_node(right);
+        let parent = &mut self.nodes[node];
+        parent.axis = axis as u32;
+        parent.split = split;
+        parent.children = [l, r];
+    }
+
+    /// Sets a leaf's box to its points'.
+    fn refit(&mut self, node: u32) {
+        let n = &mut self.nodes[node as usize];
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &p in &self.leaves[n.leaf as usize] {
+            grow_box(&mut lo, &mut hi, &self.keys[p as usize]);
+        }
+        n.lo = lo;
+        n.hi = hi;
     }
 
     /// The squared distance between two keys, the periodic axis the shorter
     /// way round.
+    #[inline]
     pub fn distance2(&self, a: &[f64; 3], b: &[f64; 3]) -> f64 {
         let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
         let mut dt = (a[2] - b[2]).abs();
@@ -144,7 +221,7 @@ impl KdTree {
     /// The walk of [`KdTree::k_nearest`] with k = 1, keeping the best
     /// candidate in place of a heap (the planners' most frequent query).
     pub fn nearest(&mut self, q: &[f64; 3]) -> Option<(usize, f64)> {
-        if self.nodes.is_empty() {
+        if self.keys.is_empty() {
             return None;
         }
         let mut best = Candidate(f64::INFINITY, u32::MAX);
@@ -162,7 +239,7 @@ impl KdTree {
     /// holds fewer).
     pub fn k_nearest(&mut self, q: &[f64; 3], k: usize, out: &mut Vec<(f64, u32)>) {
         out.clear();
-        if k == 0 || self.nodes.is_empty() {
+        if k == 0 || self.keys.is_empty() {
             return;
         }
         let mut heap = std::mem::take(&mut self.heap);
@@ -198,33 +275,36 @@ impl KdTree {
         }
         let mut stack = std::mem::take(&mut self.stack);
         stack.clear();
-        stack.push((0, self.gap2(&q, &self.lo, &self.hi)));
+        let root = &self.nodes[0];
+        stack.push((0, self.gap2(&q, &root.lo, &root.hi)));
         let mut limit = f64::INFINITY;
         while let Some((node, bound)) = stack.pop() {
             if bound > limit {
                 continue;
             }
             let n = &self.nodes[node as usize];
-            limit = visit(Candidate(self.distance2(&q, &n.key), node));
-            let [a, b] = n.children;
-            let gap = |side: usize| {
-                if n.children[side] == NONE {
-                    f64::INFINITY
-                } else {
-                    self.gap2(&q, &n.lo[side], &n.hi[side])
+            if n.children[0] == NONE {
+                for &p in &self.leaves[n.leaf as usize] {
+                    let d = self.distance2(&q, &self.keys[p as usize]);
+                    if d <= limit {
+                        limit = visit(Candidate(d, p));
+                    }
                 }
-            };
-            let (ga, gb) = (gap(0), gap(1));
+                continue;
+            }
+            let [a, b] = n.children;
+            let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
+            let (ga, gb) = (self.gap2(&q, &na.lo, &na.hi), self.gap2(&q, &nb.lo, &nb.hi));
             // The nearer subtree last onto the stack: walked first.
             let ((near, gn), (far, gf)) = if ga <= gb {
                 ((a, ga), (b, gb))
             } else {
                 ((b, gb), (a, ga))
             };
-            if far != NONE && gf <= limit {
+            if gf <= limit {
                 stack.push((far, gf));
             }
-            if near != NONE && gn <= limit {
+            if gn <= limit {
                 stack.push((near, gn));
             }
         }
@@ -234,6 +314,7 @@ impl KdTree {
     /// The squared distance from `q` to the box [lo, hi] (along the
     /// periodic axis, round the circle to its arc): a lower bound of the
     /// distance to each point in it.
+    #[inline]
     fn gap2(&self, q: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
         let gx = (lo[0] - q[0]).max(q[0] - hi[0]).max(0.0);
         let gy = (lo[1] - q[1]).max(q[1] - hi[1]).max(0.0);
