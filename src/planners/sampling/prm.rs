@@ -202,12 +202,6 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         }
         iteration += 1;
         let q = run.sample();
-        let key = run.space.key(q);
-        if let Some((_, d2)) = index.nearest(&key)
-            && d2 == 0.0
-        {
-            continue;
-        }
         if !run.config_free(q) {
             continue;
         }
@@ -226,11 +220,16 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
             true,
             &mut near,
         );
+        // A state already in the roadmap is not added twice (its nearest
+        // neighbour is itself, at distance 0: no query of its own).
+        if near.first().is_some_and(|&(d2, _)| d2 == 0.0) {
+            continue;
+        }
         let range2 = range * range;
         near.retain(|&(d2, _)| d2 <= range2);
         let v = roadmap.graph.add_node(q).index();
         components.new_set();
-        index.insert(key);
+        index.insert(run.space.key(q));
         connect(
             run,
             &mut roadmap,
