@@ -212,6 +212,8 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     // A car robot's path is its segments (SPEC 3.0): those are validated,
     // and a path given only as poses is refused.
     let car = outcome.car.as_ref().filter(|_| outcome.path.is_some());
+    // A path of poses is validated and measured in one pass.
+    let mut measured_clearance = None;
     let validation = match (measured, car) {
         (Some(m), _) => m.validation.clone(),
         (None, Some(car)) => {
@@ -225,9 +227,15 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
                 reason: "a car robot's path must be given as segments".into(),
             })
         }
-        (None, None) => {
-            motion.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err())
-        }
+        (None, None) => match (outcome.path.as_deref(), motion) {
+            (Some(path), _) => {
+                let (verdict, clearance) =
+                    referee.validate_and_measure(robot, path, DEFAULT_TOLERANCE);
+                measured_clearance = Some(clearance);
+                verdict.err()
+            }
+            (None, m) => m.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err()),
+        },
     };
     let valid = motion.is_some() && validation.is_none();
     let mut metrics = common_metrics(&outcome, robot, plan, time_ms, valid);
@@ -246,7 +254,8 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
                 &swept_poses(robot, car, DEFAULT_TOLERANCE),
                 DEFAULT_TOLERANCE,
             ),
-            (None, None) => referee.clearance(robot, p, DEFAULT_TOLERANCE),
+            (None, None) => measured_clearance
+                .unwrap_or_else(|| referee.clearance(robot, p, DEFAULT_TOLERANCE)),
         })),
     );
     metrics.insert(
