@@ -15,6 +15,7 @@ use crate::viz::{self, ViewerTarget};
 mod bench;
 mod falsify;
 mod fmt;
+mod parts;
 mod watch;
 
 /// Standard output with its failures remembered: a report that could not be

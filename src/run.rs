@@ -254,8 +254,9 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
                 &swept_poses(robot, car, DEFAULT_TOLERANCE),
                 DEFAULT_TOLERANCE,
             ),
-            (None, None) => measured_clearance
-                .unwrap_or_else(|| referee.clearance(robot, p, DEFAULT_TOLERANCE)),
+            (None, None) => {
+                measured_clearance.unwrap_or_else(|| referee.clearance(robot, p, DEFAULT_TOLERANCE))
+            }
         })),
     );
     metrics.insert(

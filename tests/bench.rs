@@ -652,9 +652,13 @@ fn car_benches_export_their_curve_metrics_to_the_ompl_log() {
         plan hybrid hybrid_astar car { start (2, 7, 0deg) goal (11.5, 2.2, 0deg) cell 0.5 }\n\
         plan connect rrt_connect car { start (2, 7, 0deg) goal (11.5, 2.2, 0deg) seed 1 }\n\
         bench cars {\n  runs 2\n}\n";
-    let t = Test::new()
-        .file("cars.scen", CARS)
-        .args(&["bench", "-q", "--ompl-log", "logs", "cars.scen"]);
+    let t = Test::new().file("cars.scen", CARS).args(&[
+        "bench",
+        "-q",
+        "--ompl-log",
+        "logs",
+        "cars.scen",
+    ]);
     t.run();
     let log = t.dir().join("logs/cars.cars.log");
     let text = std::fs::read_to_string(&log).expect("the log");

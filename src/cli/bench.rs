@@ -1,11 +1,12 @@
 //! `scen bench FILE...` and `scen bench merge PART.jsonl...` (SPEC §4).
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::HashMap;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
+use super::parts;
 use super::{
     BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, check_output_path, outln,
     outputs_writable, print_failure, print_report, render_diags,
@@ -317,27 +318,11 @@ struct Part {
 const MAX_PART_BYTES: u64 = 1 << 30;
 
 fn read_part(path: &Path) -> Result<Part, String> {
-    let bytes = crate::files::read_regular_file(path, MAX_PART_BYTES)
-        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
-    let not_a_part = || {
-        format!(
-            "`{}` is not a part written by `scen bench --shard K/N --out PART.jsonl`",
-            path.display()
-        )
-    };
-    let text = String::from_utf8(bytes).map_err(|_| not_a_part())?;
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let header: Value = lines
-        .next()
-        .and_then(|l| serde_json::from_str(l).ok())
-        .ok_or_else(not_a_part)?;
-    if header.get("scen_part").and_then(Value::as_u64) != Some(1) {
-        return Err(not_a_part());
-    }
+    let command = "scen bench";
+    let parts::Lines { header, rest: runs } =
+        parts::read_lines(path, MAX_PART_BYTES, command, "scen_part")?;
+    let not_a_part = || parts::not_a_part(path, command);
     let field = |k: &str| header.get(k).cloned().ok_or_else(not_a_part);
-    let runs = lines
-        .map(|l| serde_json::from_str::<Value>(l).map_err(|_| not_a_part()))
-        .collect::<Result<Vec<_>, _>>()?;
     Ok(Part {
         path: path.to_path_buf(),
         file: field("file")?.as_str().ok_or_else(not_a_part)?.to_string(),
@@ -375,9 +360,6 @@ fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
         }
     }
 }
-
-/// At most this many missing parts are named in an error.
-const MISSING_SHOWN: usize = 10;
 
 fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
     if paths.is_empty() {
@@ -457,43 +439,7 @@ fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
             ids.len()
         ));
     }
-    let mut seen = BTreeSet::new();
-    for p in &parts {
-        if p.k == 0 || p.k > p.n {
-            return Err(format!(
-                "`{}` says it is part {}/{}",
-                p.path.display(),
-                p.k,
-                p.n
-            ));
-        }
-        if !seen.insert(p.k) {
-            return Err(format!(
-                "part {}/{} is given twice (`{}`)",
-                p.k,
-                p.n,
-                p.path.display()
-            ));
-        }
-    }
-    if seen.len() as u64 != first.n {
-        let missing: Vec<String> = (1..=first.n)
-            .filter(|k| !seen.contains(k))
-            .take(MISSING_SHOWN)
-            .map(|k| format!("{k}/{}", first.n))
-            .collect();
-        let count = first.n - seen.len() as u64;
-        return Err(format!(
-            "{count} part(s) missing: {}{} (of {} parts)",
-            missing.join(", "),
-            if count > MISSING_SHOWN as u64 {
-                ", …"
-            } else {
-                ""
-            },
-            first.n
-        ));
-    }
+    parts::check_whole(parts.iter().map(|p| (p.k, p.path.as_path())), first.n)?;
     let at: HashMap<RunKey, usize> = ids
         .iter()
         .enumerate()

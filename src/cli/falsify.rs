@@ -1,12 +1,12 @@
 //! `scen falsify FILE` (SPEC §4): search, shrink, write, report; and its
 //! sharded form, `--shard K/N --out PART.jsonl` then `scen falsify merge`.
 
-use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 use serde_json::{Value, json};
 
+use super::parts;
 use super::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, outln, outputs_writable, print_failure};
 use crate::bench::Shard;
 use crate::contract::schema::Word;
@@ -278,26 +278,11 @@ struct Part {
 const MAX_PART_BYTES: u64 = 64 << 20;
 
 fn read_part(path: &Path) -> Result<Part, String> {
-    let bytes = crate::files::read_regular_file(path, MAX_PART_BYTES)
-        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
-    let not_a_part = || {
-        format!(
-            "`{}` is not a part written by `scen falsify --shard K/N --out PART.jsonl`",
-            path.display()
-        )
-    };
-    let text = String::from_utf8(bytes).map_err(|_| not_a_part())?;
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let mut next = || -> Result<Value, String> {
-        lines
-            .next()
-            .and_then(|l| serde_json::from_str(l).ok())
-            .ok_or_else(not_a_part)
-    };
-    let (h, r) = (next()?, next()?);
-    if h.get("scen_falsify_part").and_then(Value::as_u64) != Some(1) {
-        return Err(not_a_part());
-    }
+    let command = "scen falsify";
+    let parts::Lines { header: h, rest } =
+        parts::read_lines(path, MAX_PART_BYTES, command, "scen_falsify_part")?;
+    let not_a_part = || parts::not_a_part(path, command);
+    let r = rest.into_iter().next().ok_or_else(not_a_part)?;
     let read = || -> Option<Part> {
         let word = |v: &Value, k: &str| v.get(k)?.as_str().map(str::to_string);
         let num = |v: &Value, k: &str| v.get(k)?.as_u64();
@@ -412,41 +397,12 @@ fn merge(
         }
     }
     let (file, hash, _, _, budget, n) = first.key.clone();
-    let mut seen = BTreeSet::new();
-    for p in &parts {
-        if p.k == 0 || p.k > n || n > budget {
-            return Err(format!(
-                "`{}` says it is part {}/{} of a budget of {budget}",
-                p.path.display(),
-                p.k,
-                n
-            ));
-        }
-        if !seen.insert(p.k) {
-            return Err(format!(
-                "part {}/{n} is given twice (`{}`)",
-                p.k,
-                p.path.display()
-            ));
-        }
-    }
-    if seen.len() as u64 != n {
-        let missing: Vec<String> = (1..=n)
-            .filter(|k| !seen.contains(k))
-            .take(10)
-            .map(|k| format!("{k}/{n}"))
-            .collect();
+    if n > budget {
         return Err(format!(
-            "{} part(s) missing: {}{} (of {n} parts)",
-            n - seen.len() as u64,
-            missing.join(", "),
-            if n - seen.len() as u64 > 10 {
-                ", …"
-            } else {
-                ""
-            }
+            "the parts say {n} shards of a budget of {budget}: a split `scen falsify --shard` does not make"
         ));
     }
+    parts::check_whole(parts.iter().map(|p| (p.k, p.path.as_path())), n)?;
     let file = PathBuf::from(file);
     let source = load_source(&file, root).map_err(|_| {
         format!(

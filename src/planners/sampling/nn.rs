@@ -159,7 +159,10 @@ impl KdTree {
             return;
         };
         let points = std::mem::take(&mut self.leaves[n.leaf as usize]);
-        let mut values: Vec<f64> = points.iter().map(|&p| self.keys[p as usize][axis]).collect();
+        let mut values: Vec<f64> = points
+            .iter()
+            .map(|&p| self.keys[p as usize][axis])
+            .collect();
         values.sort_by(f64::total_cmp);
         // The median, moved up past equal values so that both sides hold a
         // point (the widest spread is positive: some value is larger).

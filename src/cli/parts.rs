@@ -1,0 +1,88 @@
+//! The parts of a sharded command (`scen bench` and `scen falsify` with
+//! `--shard K/N --out PART.jsonl`): reading one, and checking that a set of
+//! them is whole (each K of 1 … N once).
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use serde_json::Value;
+
+/// The lines of a part: its header (whose `tag` field is 1) and the rest.
+pub(super) struct Lines {
+    pub header: Value,
+    pub rest: Vec<Value>,
+}
+
+/// The error for a file that is not a part `command` writes.
+pub(super) fn not_a_part(path: &Path, command: &str) -> String {
+    format!(
+        "`{}` is not a part written by `{command} --shard K/N --out PART.jsonl`",
+        path.display()
+    )
+}
+
+/// Reads a part of at most `max_bytes`: JSON Lines whose first line is a
+/// header with `"TAG": 1`.
+pub(super) fn read_lines(
+    path: &Path,
+    max_bytes: u64,
+    command: &str,
+    tag: &str,
+) -> Result<Lines, String> {
+    let bytes = crate::files::read_regular_file(path, max_bytes)
+        .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
+    let bad = || not_a_part(path, command);
+    let text = String::from_utf8(bytes).map_err(|_| bad())?;
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| serde_json::from_str::<Value>(l).map_err(|_| bad()));
+    let header = lines.next().ok_or_else(bad)??;
+    if header.get(tag).and_then(Value::as_u64) != Some(1) {
+        return Err(bad());
+    }
+    Ok(Lines {
+        header,
+        rest: lines.collect::<Result<_, _>>()?,
+    })
+}
+
+/// At most this many missing parts are named in an error.
+const MISSING_SHOWN: usize = 10;
+
+/// Whether the parts (their K and file) are each K of 1 … `n` once.
+pub(super) fn check_whole<'a>(
+    parts: impl IntoIterator<Item = (u64, &'a Path)>,
+    n: u64,
+) -> Result<(), String> {
+    let mut seen = BTreeSet::new();
+    for (k, path) in parts {
+        if k == 0 || k > n {
+            return Err(format!("`{}` says it is part {k}/{n}", path.display()));
+        }
+        if !seen.insert(k) {
+            return Err(format!(
+                "part {k}/{n} is given twice (`{}`)",
+                path.display()
+            ));
+        }
+    }
+    if seen.len() as u64 != n {
+        let missing: Vec<String> = (1..=n)
+            .filter(|k| !seen.contains(k))
+            .take(MISSING_SHOWN)
+            .map(|k| format!("{k}/{n}"))
+            .collect();
+        let count = n - seen.len() as u64;
+        return Err(format!(
+            "{count} part(s) missing: {}{} (of {n} parts)",
+            missing.join(", "),
+            if count > MISSING_SHOWN as u64 {
+                ", …"
+            } else {
+                ""
+            }
+        ));
+    }
+    Ok(())
+}
