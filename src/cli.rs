@@ -224,8 +224,8 @@ pub struct TestArgs {
     pub root: Option<PathBuf>,
     /// Run only the K-th of N parts of the files (1 ≤ K ≤ N), e.g. on a CI
     /// matrix.
-    #[arg(long, value_name = "K/N")]
-    pub shard: Option<String>,
+    #[arg(long, value_name = "K/N", value_parser = crate::bench::Shard::parse)]
+    pub shard: Option<crate::bench::Shard>,
     /// Write a JUnit XML report: one test case per check.
     #[arg(long, value_name = "OUT.xml")]
     pub junit: Option<PathBuf>,
@@ -269,8 +269,8 @@ pub struct BenchArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
     pub worlds: Option<u64>,
     /// Run only the K-th of N parts of the runs (1 ≤ K ≤ N); needs `--out`.
-    #[arg(long, value_name = "K/N", requires = "out")]
-    pub shard: Option<String>,
+    #[arg(long, value_name = "K/N", requires = "out", value_parser = crate::bench::Shard::parse)]
+    pub shard: Option<crate::bench::Shard>,
     /// Where `--shard` writes its part (JSON Lines).
     #[arg(long, value_name = "PART.jsonl", requires = "shard")]
     pub out: Option<PathBuf>,
@@ -672,14 +672,7 @@ fn cmd_test(args: &TestArgs) -> i32 {
     } else {
         args.paths.clone()
     };
-    let shard = match args.shard.as_deref().map(crate::bench::Shard::parse) {
-        Some(Err(e)) => {
-            eprintln!("error: {e}");
-            return EXIT_BAD_INPUT;
-        }
-        Some(Ok(s)) => Some(s),
-        None => None,
-    };
+    let shard = args.shard;
     if !outputs_writable(&[("--junit", args.junit.as_ref())]) {
         return EXIT_BAD_INPUT;
     }

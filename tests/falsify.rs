@@ -320,10 +320,7 @@ fn sharded_searches_merge_to_the_failure_of_the_whole_search() {
         &["falsify", "merge", &parts[0], &other[1]],
         "does not belong with",
     );
-    refused(
-        &["falsify", "needle.scen", "--shard", "1/2"],
-        "needs `--out PART.jsonl`",
-    );
+    refused(&["falsify", "needle.scen", "--shard", "1/2"], "--out");
     refused(
         &[
             "falsify",

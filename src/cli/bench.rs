@@ -46,14 +46,7 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
         );
         return EXIT_BAD_INPUT;
     }
-    let shard = match args.shard.as_deref().map(Shard::parse) {
-        Some(Err(e)) => {
-            eprintln!("error: {e}");
-            return EXIT_BAD_INPUT;
-        }
-        Some(Ok(s)) => Some(s),
-        None => None,
-    };
+    let shard = args.shard;
     let mut code = EXIT_OK;
     for file in &args.files {
         let mut scenario = match super::load(file, args.root.as_deref()) {

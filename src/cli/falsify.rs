@@ -36,8 +36,8 @@ pub struct FalsifyArgs {
     pub out: Option<PathBuf>,
     /// Run the K-th of N parts of the search (with `--out PART.jsonl`);
     /// `scen falsify merge` combines the parts.
-    #[arg(long, value_name = "K/N")]
-    pub shard: Option<String>,
+    #[arg(long, value_name = "K/N", requires = "out", value_parser = crate::bench::Shard::parse)]
+    pub shard: Option<crate::bench::Shard>,
     /// Print one JSON document instead of the report.
     #[arg(long)]
     pub json: bool,
@@ -76,20 +76,7 @@ pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
         );
         return EXIT_BAD_INPUT;
     };
-    let shard = match args.shard.as_deref().map(Shard::parse) {
-        Some(Err(e)) => {
-            eprintln!("error: {e}");
-            return EXIT_BAD_INPUT;
-        }
-        Some(Ok(s)) => Some(s),
-        None => None,
-    };
-    if shard.is_some() && args.out.is_none() {
-        eprintln!(
-            "error: `--shard K/N` needs `--out PART.jsonl`, the part `scen falsify merge` reads"
-        );
-        return EXIT_BAD_INPUT;
-    }
+    let shard = args.shard;
     if let Some(s) = shard
         && s.n > args.budget
     {
