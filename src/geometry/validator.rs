@@ -1141,10 +1141,13 @@ fn convex_core(points: &[Point]) -> Core {
         0 => Core::Point(Point::origin()),
         1 => Core::Point(merged[0]),
         2 => Core::Segment(Segment::new(merged[0], merged[1])),
-        _ => match ParryPolygon::from_convex_polyline_unmodified(merged.clone()) {
-            Some(p) => Core::Polygon(p),
-            None => Core::Segment(Segment::new(merged[0], merged[merged.len() / 2])),
-        },
+        n => {
+            let ends = (merged[0], merged[n / 2]);
+            match ParryPolygon::from_convex_polyline_unmodified(merged) {
+                Some(p) => Core::Polygon(p),
+                None => Core::Segment(Segment::new(ends.0, ends.1)),
+            }
+        }
     }
 }
 
