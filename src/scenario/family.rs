@@ -23,7 +23,6 @@
 #![allow(clippy::result_large_err)]
 
 use std::collections::{HashMap, HashSet};
-use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 
 use crate::contract::schema;
 use crate::diagnostics::{Diag, Span, Spanned};
@@ -91,9 +90,9 @@ pub(crate) struct Family {
     requires: Vec<(Expr, Span)>,
     /// Whether the statements have anything to draw or compute (a param,
     /// a scatter, an expression); when not, a sample is the file itself.
-    active: AtomicBool,
+    active: bool,
     /// Whether a `scatter` draws obstacles.
-    scatters: AtomicBool,
+    scatters: bool,
 }
 
 /// A sample's statements and its params' values, by name.
@@ -147,6 +146,15 @@ fn reserved_words() -> HashSet<&'static str> {
     words
 }
 
+/// Whether a value holds an expression (to compute at each sample).
+fn has_expression(v: &Value) -> bool {
+    match &v.kind {
+        ValueKind::Calc { .. } => true,
+        ValueKind::Tuple(items) | ValueKind::List(items) => items.iter().any(has_expression),
+        _ => false,
+    }
+}
+
 /// The names an expression reads.
 fn names(e: &Expr, out: &mut Vec<Spanned<String>>) {
     e.walk(&mut |n| {
@@ -169,7 +177,6 @@ impl Family {
         for s in statements {
             match &s.stmt {
                 Stmt::Param(p) => {
-                    family.active.store(true, Relaxed);
                     let name = &p.name.value;
                     if let Some(&k) = family.index.get(name) {
                         diags.push(
@@ -208,7 +215,6 @@ impl Family {
                     decls.push(p);
                 }
                 Stmt::Require { condition, span } => {
-                    family.active.store(true, Relaxed);
                     family.requires.push((condition.clone(), *span));
                 }
                 _ => {}
@@ -225,6 +231,16 @@ impl Family {
         for s in statements {
             family.check_statement(&s.stmt, &mut diags);
         }
+        family.scatters = statements.iter().any(|s| {
+            matches!(&s.stmt, Stmt::World(w) if w.items.iter().any(|i| matches!(i, WorldItem::Scatter(_))))
+        });
+        family.active = family.scatters
+            || statements.iter().any(|s| {
+                let mut computed = matches!(s.stmt, Stmt::Param(_) | Stmt::Require { .. });
+                s.stmt
+                    .each_value(&mut |v, _| computed = computed || has_expression(v));
+                computed
+            });
         if diags.is_empty() {
             Ok(family)
         } else {
@@ -239,13 +255,13 @@ impl Family {
 
     /// Whether there is anything to draw or compute.
     pub fn is_active(&self) -> bool {
-        self.active.load(Relaxed)
+        self.active
     }
 
     /// Whether the family draws anything (a param or a scatter): a plain
     /// scenario with constant expressions has one sample only.
     pub fn draws(&self) -> bool {
-        !self.params.is_empty() || self.scatters.load(Relaxed)
+        !self.params.is_empty() || self.scatters
     }
 
     /// A param's source from its declaration; the names it reads must be
@@ -312,12 +328,6 @@ impl Family {
     }
 
     fn check_statement(&self, stmt: &Stmt, diags: &mut Vec<Diag>) {
-        if let Stmt::World(w) = stmt
-            && w.items.iter().any(|i| matches!(i, WorldItem::Scatter(_)))
-        {
-            self.active.store(true, Relaxed);
-            self.scatters.store(true, Relaxed);
-        }
         // A param's own value is checked with its declaration (`source`).
         if !matches!(stmt, Stmt::Param(_)) {
             stmt.each_value(&mut |v, size| self.check_value(v, None, size, diags));
@@ -384,10 +394,7 @@ impl Family {
         diags: &mut Vec<Diag>,
     ) {
         match &v.kind {
-            ValueKind::Calc { expr, .. } => {
-                self.active.store(true, Relaxed);
-                self.check_expr(expr, param, distributions, diags);
-            }
+            ValueKind::Calc { expr, .. } => self.check_expr(expr, param, distributions, diags),
             ValueKind::Tuple(items) | ValueKind::List(items) => {
                 for item in items {
                     self.check_value(item, param, distributions, diags);
