@@ -22,7 +22,7 @@ mod common;
 use std::process::Command;
 use std::time::Duration;
 
-use common::planner_cases::{cell_world, required, robot};
+use common::planner_cases::{block_world, required, robot};
 use common::{Finished, TempDir, run_or_kill, scen_bin};
 use scen::contract::Planner;
 use scen::planners::registry::PLANNERS;
@@ -216,20 +216,7 @@ fn a_200_million_cell_lattice_gives_up_at_its_time_limit() {
 /// 64 × 64 unit cells with a block: set-up enough that every planner looks
 /// at its clock before it is done.
 fn world(planner: &Planner) -> String {
-    let rows: Vec<String> = (0..64)
-        .map(|j| {
-            (0..64)
-                .map(|i| {
-                    if (30..34).contains(&i) && (20..40).contains(&j) {
-                        '#'
-                    } else {
-                        '.'
-                    }
-                })
-                .collect()
-        })
-        .collect();
-    cell_world(planner, &rows)
+    block_world(planner, 64, 20..40, 30..34)
 }
 
 /// SPEC 2.5: a plan whose time is up when it starts (a limit of 0, as a

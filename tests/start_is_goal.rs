@@ -14,7 +14,7 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::TempDir;
-use common::planner_cases::{cell_world, required, robot};
+use common::planner_cases::{block_world, required, robot};
 use scen::contract::MetricValue;
 use scen::contract::Planner;
 use scen::contract::schema::RobotKind;
@@ -24,20 +24,7 @@ use scen::{Scenario, run_scenario};
 
 /// 16 × 16 unit cells with a block, as in the contract test.
 fn world(planner: &Planner) -> String {
-    let rows: Vec<String> = (0..16)
-        .map(|row| {
-            (0..16)
-                .map(|col| {
-                    if (3..6).contains(&row) && (9..12).contains(&col) {
-                        '#'
-                    } else {
-                        '.'
-                    }
-                })
-                .collect()
-        })
-        .collect();
-    cell_world(planner, &rows)
+    block_world(planner, 16, 3..6, 9..12)
 }
 
 /// A plan whose start and goal are both `pose` (written as in a file).

@@ -36,6 +36,31 @@ pub fn required(planner: &Planner) -> Vec<String> {
         .collect()
 }
 
+/// A square world of `side` × `side` unit cells with one block of blocked
+/// cells (rows and columns counted from the top left), as [`cell_world`]
+/// writes it for `planner`.
+pub fn block_world(
+    planner: &Planner,
+    side: usize,
+    rows: std::ops::Range<usize>,
+    cols: std::ops::Range<usize>,
+) -> String {
+    let grid: Vec<String> = (0..side)
+        .map(|r| {
+            (0..side)
+                .map(|c| {
+                    if rows.contains(&r) && cols.contains(&c) {
+                        '#'
+                    } else {
+                        '.'
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    cell_world(planner, &grid)
+}
+
 /// A world of unit cells, `rows` top row first (`#` blocked), from (0, 0):
 /// a `grid G` for a planner that plans among grids, else the same blocked
 /// cells as `rect`s (one per run of `#` in a row), so that the tests of
