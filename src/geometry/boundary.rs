@@ -1011,20 +1011,13 @@ pub fn drive_along(curve: &Curve, s0: f64, s1: f64, out: &mut Vec<Point>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Obstacle;
+    use crate::geometry::fixtures::world_in;
 
     fn world(obstacles: Vec<Shape>) -> World {
-        World {
-            bounds: Aabb::from_corners(Point::new(-10.0, -10.0), Point::new(30.0, 30.0)),
-            obstacles: obstacles
-                .into_iter()
-                .enumerate()
-                .map(|(i, shape)| Obstacle {
-                    name: format!("o{i}"),
-                    shape,
-                })
-                .collect(),
-        }
+        world_in(
+            Aabb::from_corners(Point::new(-10.0, -10.0), Point::new(30.0, 30.0)),
+            obstacles,
+        )
     }
 
     fn square(x0: f64, y0: f64, side: f64) -> Shape {

@@ -9,7 +9,7 @@ pub mod car;
 pub mod collide;
 pub mod cspace;
 #[cfg(test)]
-mod fixtures;
+pub(crate) mod fixtures;
 pub mod minkowski;
 pub mod motion;
 pub mod path;

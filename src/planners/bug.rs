@@ -938,20 +938,14 @@ mod tests {
     use super::*;
     use crate::contract::Limits;
     use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
-    use crate::geometry::{Aabb, Obstacle, Shape, World};
+    use crate::geometry::fixtures::world_in;
+    use crate::geometry::{Aabb, Shape, World};
 
     fn world(shapes: Vec<Shape>) -> World {
-        World {
-            bounds: Aabb::from_corners(Point::new(-10.0, -10.0), Point::new(20.0, 10.0)),
-            obstacles: shapes
-                .into_iter()
-                .enumerate()
-                .map(|(i, shape)| Obstacle {
-                    name: format!("o{i}"),
-                    shape,
-                })
-                .collect(),
-        }
+        world_in(
+            Aabb::from_corners(Point::new(-10.0, -10.0), Point::new(20.0, 10.0)),
+            shapes,
+        )
     }
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
