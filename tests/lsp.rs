@@ -4,7 +4,7 @@
 mod common;
 
 use common::TempDir;
-use common::lsp_client::{Client, range, uri};
+use common::lsp_client::{Client, range, reference_lines, uri};
 use scen::planners::registry::PLANNERS;
 use serde_json::{Value, json};
 
@@ -89,12 +89,7 @@ fn benches_are_completed_navigated_and_outlined() {
     assert_eq!(def["range"], range(1, 5, 1, 6), "{def}");
     // The plan's references: its declaration, `plans [p]` and the series.
     let refs = c.at("textDocument/references", &file, 1, 5);
-    let lines: Vec<u64> = refs
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r["range"]["start"]["line"].as_u64().unwrap())
-        .collect();
+    let lines = reference_lines(&refs);
     assert_eq!(lines, [1, 10, 14], "{refs}");
     // The outline lists the bench.
     let symbols = c.request(
@@ -151,12 +146,7 @@ fn params_are_hovered_navigated_and_referenced() {
     }
     // Its references: the declaration, `half`'s value, the plan, the check.
     let refs = c.at("textDocument/references", &file, 0, 7);
-    let lines: Vec<u64> = refs
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r["range"]["start"]["line"].as_u64().unwrap())
-        .collect();
+    let lines = reference_lines(&refs);
     assert_eq!(lines, [0, 1, 7, 8], "{refs}");
 }
 

@@ -258,3 +258,13 @@ pub fn uri(path: &Path) -> String {
 pub fn range(l0: u32, c0: u32, l1: u32, c1: u32) -> Value {
     json!({ "start": { "line": l0, "character": c0 }, "end": { "line": l1, "character": c1 } })
 }
+
+/// The lines where the locations of a `textDocument/references` answer
+/// start, in order.
+pub fn reference_lines(refs: &Value) -> Vec<u64> {
+    refs.as_array()
+        .expect("a list of locations")
+        .iter()
+        .map(|r| r["range"]["start"]["line"].as_u64().expect("a line"))
+        .collect()
+}
