@@ -558,9 +558,14 @@ impl Region {
         };
         let spread = alpha * alpha / 2.0;
         let (c0, c1) = (cut.at(k0), cut.at(k1));
-        // As `RobotShape::placed_vertices`, to the bit.
+        // As `RobotShape::placed_vertices`, to the bit (a still body's
+        // ends are one placement).
         let (s0, co0) = c0.theta.sin_cos();
-        let (s1, co1) = c1.theta.sin_cos();
+        let (s1, co1) = if k0 == k1 {
+            (s0, co0)
+        } else {
+            c1.theta.sin_cos()
+        };
         self.ends.clear();
         self.curvature.clear();
         let (mut lo, mut hi) = (
