@@ -14,13 +14,13 @@
 //! strictly shorter, so that among words of equal length the first in that
 //! order wins, deterministically.
 //!
-//! Speed: sin φ and cos φ are computed once (the variants only flip signs);
-//! each formula first computes the one distance its word needs (a square
-//! root) and gives up, before any arc tangent, when a lower bound on the
-//! word's length — that distance (or the straight part it fixes) plus what
-//! the arcs must turn, at least |φ| wrapped to [−π, π] — already reaches the
-//! best length found. A word skipped that way could not have been strictly
-//! shorter, so the result is the exhaustive one (a test compares both).
+//! Speed: sin φ and cos φ are computed once (the variants only flip signs).
+//! Every candidate word gets a lower bound on its length first (coarse, then
+//! with a polynomial arc tangent where needed, less a margin for its error);
+//! the formulas themselves run only for candidates whose bound is below the
+//! shortest length found, best first, and OMPL's order is replayed on those.
+//! A candidate skipped that way is longer than the winner by the margin, so
+//! the result is the exhaustive one, bit for bit (a test compares both).
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
