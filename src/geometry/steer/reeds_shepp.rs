@@ -14,13 +14,13 @@
 //! strictly shorter, so that among words of equal length the first in that
 //! order wins, deterministically.
 //!
-//! Speed: sin φ and cos φ are computed once (the variants only flip signs);
-//! each formula first computes the one distance its word needs (a square
-//! root) and gives up, before any arc tangent, when a lower bound on the
-//! word's length — that distance (or the straight part it fixes) plus what
-//! the arcs must turn, at least |φ| wrapped to [−π, π] — already reaches the
-//! best length found. A word skipped that way could not have been strictly
-//! shorter, so the result is the exhaustive one (a test compares both).
+//! Speed: sin φ and cos φ are computed once (the variants only flip signs).
+//! Every candidate word gets a lower bound on its length first (coarse, then
+//! with a polynomial arc tangent where needed, less a margin for its error);
+//! the formulas themselves run only for candidates whose bound is below the
+//! shortest length found, best first, and OMPL's order is replayed on those.
+//! A candidate skipped that way is longer than the winner by the margin, so
+//! the result is the exhaustive one, bit for bit (a test compares both).
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -136,319 +136,522 @@ impl Goal {
     }
 }
 
-/// The search state: the lower bound on what the arcs turn and whether to
-/// prune (off in the test that checks pruning changes nothing).
-struct Search<const PRUNE: bool> {
-    /// |φ| wrapped to [0, π]: every word's arcs turn at least this much.
-    turn: f64,
+// The twelve base formulas, as OMPL writes them. With `PRUNE` they give up
+// early where the result is certain to be rejected (a parameter of the wrong
+// sign), which changes no result (`pruning_changes_nothing`).
+
+// formula 8.1
+#[inline]
+fn lp_sp_lp<const PRUNE: bool>(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+    let u = (xi * xi + eta * eta).sqrt();
+    // t = atan2(eta, xi) ≥ −ZERO needs eta ≥ about 0.
+    if PRUNE && eta < -1e-14 * u {
+        return None;
+    }
+    let t = eta.atan2(xi);
+    if t >= -ZERO {
+        let v = mod2pi(g.phi - t);
+        if v >= -ZERO {
+            return Some((t, u, v));
+        }
+    }
+    None
 }
 
-impl<const PRUNE: bool> Search<PRUNE> {
-    /// Whether a word whose length is at least `lb` cannot beat `lmin`
-    /// (with a margin for rounding, so that a skipped word could not have
-    /// been computed strictly shorter).
-    #[inline]
-    fn hopeless(&self, lb: f64, lmin: f64) -> bool {
-        PRUNE && lb * (1.0 - 1e-10) - 1e-12 >= lmin
+// formula 8.2
+#[inline]
+fn lp_sp_rp(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+    let u1 = xi * xi + eta * eta;
+    if u1 >= 4.0 {
+        let u = (u1 - 4.0).sqrt();
+        let t1 = eta.atan2(xi);
+        let theta = 2f64.atan2(u);
+        let t = mod2pi(t1 + theta);
+        let v = mod2pi(t - g.phi);
+        if t >= -ZERO && v >= -ZERO {
+            return Some((t, u, v));
+        }
     }
+    None
+}
 
-    // formula 8.1
-    #[inline]
-    fn lp_sp_lp(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-        let u = (xi * xi + eta * eta).sqrt();
-        // t = atan2(eta, xi) ≥ −ZERO needs eta ≥ about 0.
-        if PRUNE && eta < -1e-14 * u {
-            return None;
+// formula 8.3 / 8.4 (typo in the paper)
+#[inline]
+fn lp_rm_l(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+    let u1 = (xi * xi + eta * eta).sqrt();
+    if u1 <= 4.0 {
+        let theta = eta.atan2(xi);
+        let u = -2.0 * (0.25 * u1).asin();
+        let t = mod2pi(theta + 0.5 * u + PI);
+        let v = mod2pi(g.phi - t + u);
+        if t >= -ZERO && u <= ZERO {
+            return Some((t, u, v));
         }
-        if self.hopeless(u + self.turn, lmin) {
-            return None;
+    }
+    None
+}
+
+// formula 8.7
+#[inline]
+fn lp_rup_lum_rm(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+    let rho = 0.25 * (2.0 + (xi * xi + eta * eta).sqrt());
+    if rho <= 1.0 {
+        let u = rho.acos();
+        let (t, v) = tau_omega(u, -u, xi, eta, g.phi);
+        if t >= -ZERO && v <= ZERO {
+            return Some((t, u, v));
         }
-        let t = eta.atan2(xi);
-        if t >= -ZERO {
-            let v = mod2pi(g.phi - t);
-            if v >= -ZERO {
+    }
+    None
+}
+
+// formula 8.8
+#[inline]
+fn lp_rum_lum_rp(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+    let rho = (20.0 - xi * xi - eta * eta) / 16.0;
+    if (0.0..=1.0).contains(&rho) {
+        let u = -rho.acos();
+        if u >= -0.5 * PI {
+            let (t, v) = tau_omega(u, u, xi, eta, g.phi);
+            if t >= -ZERO && v >= -ZERO {
                 return Some((t, u, v));
             }
         }
-        None
     }
+    None
+}
 
-    // formula 8.2
-    #[inline]
-    fn lp_sp_rp(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-        let u1 = xi * xi + eta * eta;
-        if u1 >= 4.0 {
-            let u = (u1 - 4.0).sqrt();
-            if self.hopeless(u + self.turn, lmin) {
-                return None;
-            }
-            let t1 = eta.atan2(xi);
-            let theta = 2f64.atan2(u);
-            let t = mod2pi(t1 + theta);
+// formula 8.9
+#[inline]
+fn lp_rm_sm_lm<const PRUNE: bool>(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+    let rho = (xi * xi + eta * eta).sqrt();
+    if rho >= 2.0 {
+        let r = (rho * rho - 4.0).sqrt();
+        let u = 2.0 - r;
+        if PRUNE && u > ZERO {
+            return None;
+        }
+        let theta = eta.atan2(xi);
+        let t = mod2pi(theta + r.atan2(-2.0));
+        let v = mod2pi(g.phi - 0.5 * PI - t);
+        if t >= -ZERO && u <= ZERO && v <= ZERO {
+            return Some((t, u, v));
+        }
+    }
+    None
+}
+
+// formula 8.10
+#[inline]
+fn lp_rm_sm_rm<const PRUNE: bool>(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+    let rho = (eta * eta + xi * xi).sqrt();
+    if rho >= 2.0 {
+        let u = 2.0 - rho;
+        if PRUNE && u > ZERO {
+            return None;
+        }
+        let t = xi.atan2(-eta);
+        let v = mod2pi(t + 0.5 * PI - g.phi);
+        if t >= -ZERO && u <= ZERO && v <= ZERO {
+            return Some((t, u, v));
+        }
+    }
+    None
+}
+
+// formula 8.11 (typo in the paper)
+#[inline]
+fn lp_rm_s_lm_rp(g: Goal) -> Option<(f64, f64, f64)> {
+    let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+    let rho = (xi * xi + eta * eta).sqrt();
+    if rho >= 2.0 {
+        let u = 4.0 - (rho * rho - 4.0).sqrt();
+        if u <= ZERO {
+            let t = mod2pi(((4.0 - u) * xi - 2.0 * eta).atan2(-2.0 * xi + (u - 4.0) * eta));
             let v = mod2pi(t - g.phi);
             if t >= -ZERO && v >= -ZERO {
                 return Some((t, u, v));
             }
         }
-        None
     }
+    None
+}
 
-    // formula 8.3 / 8.4 (typo in the paper)
-    #[inline]
-    fn lp_rm_l(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-        let u1 = (xi * xi + eta * eta).sqrt();
-        if u1 <= 4.0 {
-            // |u| = 2 asin(u1 / 4) ≥ u1 / 2.
-            if self.hopeless((0.5 * u1).max(self.turn), lmin) {
-                return None;
-            }
-            let theta = eta.atan2(xi);
-            let u = -2.0 * (0.25 * u1).asin();
-            let t = mod2pi(theta + 0.5 * u + PI);
-            let v = mod2pi(g.phi - t + u);
-            if t >= -ZERO && u <= ZERO {
-                return Some((t, u, v));
+/// The number of candidate words: CSC 8, CCC 8, CCCC 8, CCSC 16, CCSCC 4.
+const CANDIDATES: usize = 44;
+
+/// The goal and its variants, as the candidates use them: the goal, its
+/// timeflip, reflect and both, then the same of the goal seen backwards.
+type Variants = [Goal; 8];
+
+fn variants(g: Goal) -> Variants {
+    let b = backwards(g);
+    [
+        g,
+        g.timeflip(),
+        g.reflect(),
+        g.both(),
+        b,
+        b.timeflip(),
+        b.reflect(),
+        b.both(),
+    ]
+}
+
+/// Candidate `k`'s formula (t, u, v), `k` in OMPL's order: 0–3 8.1 and
+/// 4–7 8.2 on the four variants; 8–11 8.3, 12–15 8.3 backwards; 16–19 8.7,
+/// 20–23 8.8; 24–27 8.9, 28–31 8.10, 32–35 8.9 backwards, 36–39 8.10
+/// backwards; 40–43 8.11.
+#[inline]
+fn formula<const PRUNE: bool>(k: usize, v: &Variants) -> Option<(f64, f64, f64)> {
+    match k {
+        0..4 => lp_sp_lp::<PRUNE>(v[k]),
+        4..8 => lp_sp_rp(v[k - 4]),
+        8..16 => lp_rm_l(v[k - 8]),
+        16..20 => lp_rup_lum_rm(v[k - 16]),
+        20..24 => lp_rum_lum_rp(v[k - 20]),
+        24..28 => lp_rm_sm_lm::<PRUNE>(v[k - 24]),
+        28..32 => lp_rm_sm_rm::<PRUNE>(v[k - 28]),
+        32..36 => lp_rm_sm_lm::<PRUNE>(v[k - 28]),
+        36..40 => lp_rm_sm_rm::<PRUNE>(v[k - 32]),
+        _ => lp_rm_s_lm_rp(v[k - 40]),
+    }
+}
+
+/// The length of candidate `k`'s word with parameters (t, u, v), the fixed
+/// quarter turns included (to rounding; only compared with margins).
+#[inline]
+fn total(k: usize, (t, u, v): (f64, f64, f64)) -> f64 {
+    match k {
+        0..16 => t.abs() + u.abs() + v.abs(),
+        16..24 => t.abs() + 2.0 * u.abs() + v.abs(),
+        24..40 => t.abs() + u.abs() + v.abs() + 0.5 * PI,
+        _ => t.abs() + u.abs() + v.abs() + PI,
+    }
+}
+
+/// OMPL's search over the candidates in its order: a word replaces the best
+/// so far only when strictly shorter, lengths compared as OMPL compares
+/// them (per family, without the fixed quarter turns). `f(k)` is candidate
+/// `k`'s formula, or `None` for a candidate that cannot win.
+#[inline]
+fn ompl_order(mut f: impl FnMut(usize) -> Option<(f64, f64, f64)>) -> Word {
+    // OMPL's empty path: longer than any word.
+    let mut best = Word {
+        word: 0,
+        params: [0.0; 5],
+        length: f64::MAX,
+    };
+    // Timeflip and both reverse the word: every odd variant.
+    let flip = |i: usize| if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+
+    let mut lmin = best.length;
+    for i in 0..8 {
+        if let Some((t, u, v)) = f(i) {
+            let l = t.abs() + u.abs() + v.abs();
+            if lmin > l {
+                let (word, flip) = ([14, 14, 15, 15, 12, 12, 13, 13][i], flip(i));
+                best = Word::new(word, [flip * t, flip * u, flip * v, 0.0, 0.0]);
+                lmin = l;
             }
         }
-        None
     }
 
-    // formula 8.7
-    #[inline]
-    fn lp_rup_lum_rm(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-        let rho = 0.25 * (2.0 + (xi * xi + eta * eta).sqrt());
-        if rho <= 1.0 {
-            if self.hopeless(self.turn, lmin) {
-                return None;
-            }
-            let u = rho.acos();
-            let (t, v) = tau_omega(u, -u, xi, eta, g.phi);
-            if t >= -ZERO && v <= ZERO {
-                return Some((t, u, v));
+    let mut lmin = best.length;
+    for i in 0..8 {
+        if let Some((t, u, v)) = f(8 + i) {
+            let l = t.abs() + u.abs() + v.abs();
+            if lmin > l {
+                let (word, flip) = ([0, 0, 1, 1, 0, 0, 1, 1][i], flip(i));
+                let (a, c) = if i >= 4 { (v, t) } else { (t, v) };
+                best = Word::new(word, [flip * a, flip * u, flip * c, 0.0, 0.0]);
+                lmin = l;
             }
         }
-        None
     }
 
-    // formula 8.8
-    #[inline]
-    fn lp_rum_lum_rp(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-        let rho = (20.0 - xi * xi - eta * eta) / 16.0;
-        if (0.0..=1.0).contains(&rho) {
-            if self.hopeless(self.turn, lmin) {
-                return None;
-            }
-            let u = -rho.acos();
-            if u >= -0.5 * PI {
-                let (t, v) = tau_omega(u, u, xi, eta, g.phi);
-                if t >= -ZERO && v >= -ZERO {
-                    return Some((t, u, v));
-                }
+    // 8.7 (the two middle arcs of opposite signs), then 8.8 (same signs).
+    let mut lmin = best.length;
+    for i in 0..8 {
+        if let Some((t, u, v)) = f(16 + i) {
+            let l = t.abs() + 2.0 * u.abs() + v.abs();
+            if lmin > l {
+                let (word, flip) = ([2, 2, 3, 3, 2, 2, 3, 3][i], flip(i));
+                let u2 = if i >= 4 { u } else { -u };
+                best = Word::new(word, [flip * t, flip * u, flip * u2, flip * v, 0.0]);
+                lmin = l;
             }
         }
-        None
     }
 
-    // formula 8.9
-    #[inline]
-    fn lp_rm_sm_lm(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-        let rho = (xi * xi + eta * eta).sqrt();
-        if rho >= 2.0 {
-            let r = (rho * rho - 4.0).sqrt();
-            let u = 2.0 - r;
-            if PRUNE && u > ZERO {
-                return None;
-            }
-            if self.hopeless(u.abs() + (self.turn - FRAC_PI_2).max(0.0), lmin) {
-                return None;
-            }
-            let theta = eta.atan2(xi);
-            let t = mod2pi(theta + r.atan2(-2.0));
-            let v = mod2pi(g.phi - 0.5 * PI - t);
-            if t >= -ZERO && u <= ZERO && v <= ZERO {
-                return Some((t, u, v));
+    // Lengths here leave out the fixed quarter turn, as OMPL's do.
+    let mut lmin = best.length - 0.5 * PI;
+    for i in 0..16 {
+        if let Some((t, u, v)) = f(24 + i) {
+            let l = t.abs() + u.abs() + v.abs();
+            if lmin > l {
+                let word = [4, 4, 5, 5, 8, 8, 9, 9, 6, 6, 7, 7, 10, 10, 11, 11][i];
+                let q = -0.5 * PI;
+                let p = if i >= 8 {
+                    [v, u, q, t, 0.0]
+                } else {
+                    [t, q, u, v, 0.0]
+                };
+                let flip = flip(i);
+                best = Word::new(word, p.map(|a| flip * a));
+                lmin = l;
             }
         }
-        None
     }
 
-    // formula 8.10
-    #[inline]
-    fn lp_rm_sm_rm(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-        let rho = (eta * eta + xi * xi).sqrt();
-        if rho >= 2.0 {
-            let u = 2.0 - rho;
-            if PRUNE && u > ZERO {
-                return None;
-            }
-            if self.hopeless(u.abs() + (self.turn - FRAC_PI_2).max(0.0), lmin) {
-                return None;
-            }
-            let t = xi.atan2(-eta);
-            let v = mod2pi(t + 0.5 * PI - g.phi);
-            if t >= -ZERO && u <= ZERO && v <= ZERO {
-                return Some((t, u, v));
+    // Lengths here leave out the two fixed quarter turns.
+    let mut lmin = best.length - PI;
+    for i in 0..4 {
+        if let Some((t, u, v)) = f(40 + i) {
+            let l = t.abs() + u.abs() + v.abs();
+            if lmin > l {
+                let (word, flip) = ([16, 16, 17, 17][i], flip(i));
+                let q = -0.5 * PI;
+                best = Word::new(word, [t, q, u, q, v].map(|a| flip * a));
+                lmin = l;
             }
         }
-        None
     }
+    best
+}
 
-    // formula 8.11 (typo in the paper)
-    #[inline]
-    fn lp_rm_s_lm_rp(&self, g: Goal, lmin: f64) -> Option<(f64, f64, f64)> {
-        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-        let rho = (xi * xi + eta * eta).sqrt();
-        if rho >= 2.0 {
-            let u = 4.0 - (rho * rho - 4.0).sqrt();
-            if u <= ZERO {
-                if self.hopeless(u.abs() + (self.turn - PI).max(0.0), lmin) {
-                    return None;
-                }
-                let t = mod2pi(((4.0 - u) * xi - 2.0 * eta).atan2(-2.0 * xi + (u - 4.0) * eta));
-                let v = mod2pi(t - g.phi);
-                if t >= -ZERO && v >= -ZERO {
-                    return Some((t, u, v));
-                }
-            }
-        }
-        None
+/// atan on [0, 1]: an odd polynomial of degree 9, |error| < 1.2e-5.
+#[inline]
+fn atan01(z: f64) -> f64 {
+    let w = z * z;
+    z * (0.999_866_308_210_730_6
+        + w * (-0.330_304_484_949_521_5
+            + w * (0.180_158_167_053_336_73
+                + w * (-0.085_154_798_710_814_05 + w * 0.020_844_406_034_172_508))))
+}
+
+/// atan2 to within 1.3e-5 rad (as an angle: the lower bounds use it only
+/// modulo 2π).
+#[inline]
+fn atan2_approx(y: f64, x: f64) -> f64 {
+    let (ax, ay) = (x.abs(), y.abs());
+    let steep = ay > ax;
+    let (lo, hi) = if steep { (ax, ay) } else { (ay, ax) };
+    let z = if hi > 0.0 { lo / hi } else { 0.0 };
+    let mut a = atan01(z);
+    if steep {
+        a = FRAC_PI_2 - a;
     }
-
-    fn csc(&self, g: Goal, best: &mut Word) {
-        let mut lmin = best.length;
-        let mut take = |r: Option<(f64, f64, f64)>, word: usize, flip: f64, lmin: &mut f64| {
-            if let Some((t, u, v)) = r {
-                let l = t.abs() + u.abs() + v.abs();
-                if *lmin > l {
-                    *best = Word::new(word, [flip * t, flip * u, flip * v, 0.0, 0.0]);
-                    *lmin = l;
-                }
-            }
-        };
-        let (tf, rf, bo) = (g.timeflip(), g.reflect(), g.both());
-        take(self.lp_sp_lp(g, lmin), 14, 1.0, &mut lmin);
-        take(self.lp_sp_lp(tf, lmin), 14, -1.0, &mut lmin);
-        take(self.lp_sp_lp(rf, lmin), 15, 1.0, &mut lmin);
-        take(self.lp_sp_lp(bo, lmin), 15, -1.0, &mut lmin);
-        take(self.lp_sp_rp(g, lmin), 12, 1.0, &mut lmin);
-        take(self.lp_sp_rp(tf, lmin), 12, -1.0, &mut lmin);
-        take(self.lp_sp_rp(rf, lmin), 13, 1.0, &mut lmin);
-        take(self.lp_sp_rp(bo, lmin), 13, -1.0, &mut lmin);
+    if x < 0.0 {
+        a = PI - a;
     }
+    if y < 0.0 { -a } else { a }
+}
 
-    fn ccc(&self, g: Goal, best: &mut Word) {
-        let mut lmin = best.length;
-        let mut take =
-            |r: Option<(f64, f64, f64)>, word: usize, flip: f64, back: bool, lmin: &mut f64| {
-                if let Some((t, u, v)) = r {
-                    let l = t.abs() + u.abs() + v.abs();
-                    if *lmin > l {
-                        let (a, c) = if back { (v, t) } else { (t, v) };
-                        *best = Word::new(word, [flip * a, flip * u, flip * c, 0.0, 0.0]);
-                        *lmin = l;
+/// The distance of two angles on the circle, |a − b| wrapped to [0, π]
+/// (1-Lipschitz in each: an error in an angle moves it no more).
+#[inline]
+fn gap(a: f64, b: f64) -> f64 {
+    // Rounds to the nearest integer by the float format (1.5 · 2⁵²).
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let d = a - b;
+    let k = (d * (1.0 / TAU) + ROUND) - ROUND;
+    (d - k * TAU).abs()
+}
+
+/// Whether the angle `a` (approximate, modulo 2π) is certainly a negative
+/// parameter in (−π, 0): clear of both ends by far more than the error.
+#[inline]
+fn surely_negative(a: f64) -> bool {
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let w = a - ((a * (1.0 / TAU) + ROUND) - ROUND) * TAU;
+    w < -1e-3 && w > -PI + 1e-3
+}
+
+/// What a lower bound leaves for the approximations (each formula's length
+/// moves at most 10 × 1.3e-5 with them) and for the formulas' own rounding.
+#[inline]
+fn lower(l: f64) -> f64 {
+    l - 5e-4 - 1e-9 * l
+}
+
+/// The turn of an LSL word (8.1) ending at heading φ: its two arcs turn
+/// t, v ≥ 0 with t + v ≡ φ (mod 2π), so t + v is φ taken into [0, 2π).
+#[inline]
+fn lsl_arcs(phi: f64) -> f64 {
+    if phi < -1e-9 { phi + TAU } else { phi.max(0.0) }
+}
+
+/// A lower bound on candidate `k`'s length (quarter turns included), +∞
+/// where its formula certainly gives no word. Quantities that decide
+/// whether a formula applies are computed exactly as the formula does.
+///
+/// Coarse (`FINE` false): from the distance `d` to the goal, the heading
+/// change and the word's straight, no arc tangent. Fine: what the formula
+/// computes, with an approximate arc tangent (an angle's error changes the
+/// length by at most a few times as much, the arcs being distances on the
+/// circle), less the margin of [`lower`].
+#[inline(always)]
+fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
+    const INF: f64 = f64::INFINITY;
+    let g = v[match k {
+        12..16 | 32..40 => 4 + k % 4,
+        _ => k % 4,
+    }];
+    let phi = g.phi;
+    let turn = phi.abs();
+    match k {
+        // The A formulas: 8.1, 8.3, 8.9.
+        0..4 | 8..16 | 24..28 | 32..36 => {
+            let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+            let an = (xi * xi + eta * eta).sqrt();
+            match k {
+                0..4 => {
+                    if eta < -1e-14 * an || g.s * xi - g.c * eta < -1e-6 * an {
+                        // t ∈ [0, π] and v ∈ [0, π]: sin v = sin(φ − t) ≥ 0.
+                        INF
+                    } else {
+                        lower(an + lsl_arcs(phi))
                     }
                 }
-            };
-        take(self.lp_rm_l(g, lmin), 0, 1.0, false, &mut lmin);
-        take(self.lp_rm_l(g.timeflip(), lmin), 0, -1.0, false, &mut lmin);
-        take(self.lp_rm_l(g.reflect(), lmin), 1, 1.0, false, &mut lmin);
-        take(self.lp_rm_l(g.both(), lmin), 1, -1.0, false, &mut lmin);
-        let b = backwards(g);
-        take(self.lp_rm_l(b, lmin), 0, 1.0, true, &mut lmin);
-        take(self.lp_rm_l(b.timeflip(), lmin), 0, -1.0, true, &mut lmin);
-        take(self.lp_rm_l(b.reflect(), lmin), 1, 1.0, true, &mut lmin);
-        take(self.lp_rm_l(b.both(), lmin), 1, -1.0, true, &mut lmin);
-    }
-
-    fn cccc(&self, g: Goal, best: &mut Word) {
-        let mut lmin = best.length;
-        // `same`: the two middle arcs have the same sign (8.8) or not (8.7).
-        let mut take =
-            |r: Option<(f64, f64, f64)>, word: usize, flip: f64, same: bool, lmin: &mut f64| {
-                if let Some((t, u, v)) = r {
-                    let l = t.abs() + 2.0 * u.abs() + v.abs();
-                    if *lmin > l {
-                        let u2 = if same { u } else { -u };
-                        *best = Word::new(word, [flip * t, flip * u, flip * u2, flip * v, 0.0]);
-                        *lmin = l;
+                8..16 => {
+                    if an > 4.0 {
+                        INF
+                    } else if !FINE {
+                        lower((0.5 * an).max(turn).max(d))
+                    } else {
+                        let q = 0.25 * an;
+                        let u = 2.0 * atan2_approx(q, ((1.0 - q) * (1.0 + q)).sqrt());
+                        let t = atan2_approx(eta, xi) - 0.5 * u + PI;
+                        if surely_negative(t) {
+                            return INF;
+                        }
+                        lower(u + gap(t, 0.0) + gap(t + u, phi))
                     }
                 }
-            };
-        let (tf, rf, bo) = (g.timeflip(), g.reflect(), g.both());
-        take(self.lp_rup_lum_rm(g, lmin), 2, 1.0, false, &mut lmin);
-        take(self.lp_rup_lum_rm(tf, lmin), 2, -1.0, false, &mut lmin);
-        take(self.lp_rup_lum_rm(rf, lmin), 3, 1.0, false, &mut lmin);
-        take(self.lp_rup_lum_rm(bo, lmin), 3, -1.0, false, &mut lmin);
-        take(self.lp_rum_lum_rp(g, lmin), 2, 1.0, true, &mut lmin);
-        take(self.lp_rum_lum_rp(tf, lmin), 2, -1.0, true, &mut lmin);
-        take(self.lp_rum_lum_rp(rf, lmin), 3, 1.0, true, &mut lmin);
-        take(self.lp_rum_lum_rp(bo, lmin), 3, -1.0, true, &mut lmin);
-    }
-
-    fn ccsc(&self, g: Goal, best: &mut Word) {
-        // Lengths here leave out the fixed quarter turn, as OMPL's do.
-        let mut lmin = best.length - 0.5 * PI;
-        let mut take =
-            |r: Option<(f64, f64, f64)>, word: usize, flip: f64, back: bool, lmin: &mut f64| {
-                if let Some((t, u, v)) = r {
-                    let l = t.abs() + u.abs() + v.abs();
-                    if *lmin > l {
-                        let q = -0.5 * PI;
-                        let p = if back {
-                            [v, u, q, t, 0.0]
+                _ => {
+                    if an < 2.0 {
+                        return INF;
+                    }
+                    let r = (an * an - 4.0).sqrt();
+                    let u = 2.0 - r;
+                    if u > ZERO {
+                        INF
+                    } else if !FINE {
+                        lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
+                    } else {
+                        let t = atan2_approx(eta, xi) + atan2_approx(r, -2.0);
+                        if surely_negative(t) || surely_negative(0.5 * PI - phi + t) {
+                            return INF;
+                        }
+                        lower(0.5 * PI + u.abs() + gap(t, 0.0) + gap(t, phi - 0.5 * PI))
+                    }
+                }
+            }
+        }
+        // The B formulas: 8.2, 8.7, 8.8, 8.10, 8.11.
+        _ => {
+            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+            let b2 = xi * xi + eta * eta;
+            let bn = b2.sqrt();
+            match k {
+                4..8 => {
+                    if b2 < 4.0 {
+                        return INF;
+                    }
+                    let u = (b2 - 4.0).sqrt();
+                    if !FINE {
+                        lower((u + turn).max(d))
+                    } else {
+                        let t = atan2_approx(eta, xi) + atan2_approx(2.0, u);
+                        if surely_negative(t) || surely_negative(t - phi) {
+                            return INF;
+                        }
+                        lower(u + gap(t, 0.0) + gap(t, phi))
+                    }
+                }
+                16..20 => {
+                    let rho = 0.25 * (2.0 + bn);
+                    if rho > 1.0 {
+                        INF
+                    } else if !FINE {
+                        lower(turn.max(d))
+                    } else {
+                        // u = acos ρ; tau = θ + π/2 + u, omega = tau − 2u − φ.
+                        let u = atan2_approx(((1.0 - rho) * (1.0 + rho)).sqrt(), rho);
+                        if bn < 1e-4 {
+                            // The formula's angle is ill-conditioned here.
+                            lower(2.0 * u)
                         } else {
-                            [t, q, u, v, 0.0]
-                        };
-                        *best = Word::new(word, p.map(|a| flip * a));
-                        *lmin = l;
+                            let t = atan2_approx(eta, xi) + 0.5 * PI + u;
+                            if surely_negative(t) || surely_negative(phi - t + 2.0 * u) {
+                                return INF;
+                            }
+                            lower(2.0 * u + gap(t, 0.0) + gap(t - 2.0 * u, phi))
+                        }
                     }
                 }
-            };
-        let (tf, rf, bo) = (g.timeflip(), g.reflect(), g.both());
-        take(self.lp_rm_sm_lm(g, lmin), 4, 1.0, false, &mut lmin);
-        take(self.lp_rm_sm_lm(tf, lmin), 4, -1.0, false, &mut lmin);
-        take(self.lp_rm_sm_lm(rf, lmin), 5, 1.0, false, &mut lmin);
-        take(self.lp_rm_sm_lm(bo, lmin), 5, -1.0, false, &mut lmin);
-        take(self.lp_rm_sm_rm(g, lmin), 8, 1.0, false, &mut lmin);
-        take(self.lp_rm_sm_rm(tf, lmin), 8, -1.0, false, &mut lmin);
-        take(self.lp_rm_sm_rm(rf, lmin), 9, 1.0, false, &mut lmin);
-        take(self.lp_rm_sm_rm(bo, lmin), 9, -1.0, false, &mut lmin);
-        let b = backwards(g);
-        let (tf, rf, bo) = (b.timeflip(), b.reflect(), b.both());
-        take(self.lp_rm_sm_lm(b, lmin), 6, 1.0, true, &mut lmin);
-        take(self.lp_rm_sm_lm(tf, lmin), 6, -1.0, true, &mut lmin);
-        take(self.lp_rm_sm_lm(rf, lmin), 7, 1.0, true, &mut lmin);
-        take(self.lp_rm_sm_lm(bo, lmin), 7, -1.0, true, &mut lmin);
-        take(self.lp_rm_sm_rm(b, lmin), 10, 1.0, true, &mut lmin);
-        take(self.lp_rm_sm_rm(tf, lmin), 10, -1.0, true, &mut lmin);
-        take(self.lp_rm_sm_rm(rf, lmin), 11, 1.0, true, &mut lmin);
-        take(self.lp_rm_sm_rm(bo, lmin), 11, -1.0, true, &mut lmin);
-    }
-
-    fn ccscc(&self, g: Goal, best: &mut Word) {
-        // Lengths here leave out the two fixed quarter turns.
-        let mut lmin = best.length - PI;
-        let mut take = |r: Option<(f64, f64, f64)>, word: usize, flip: f64, lmin: &mut f64| {
-            if let Some((t, u, v)) = r {
-                let l = t.abs() + u.abs() + v.abs();
-                if *lmin > l {
-                    let q = -0.5 * PI;
-                    *best = Word::new(word, [t, q, u, q, v].map(|a| flip * a));
-                    *lmin = l;
+                20..24 => {
+                    let rho = (20.0 - xi * xi - eta * eta) / 16.0;
+                    if !(0.0..=1.0).contains(&rho) {
+                        INF
+                    } else if !FINE {
+                        lower(turn.max(d))
+                    } else {
+                        // u = −acos ρ; tau = θ − angle(sin u, cos u − 2),
+                        // omega = tau − φ.
+                        let su = ((1.0 - rho) * (1.0 + rho)).sqrt();
+                        let u = atan2_approx(su, rho);
+                        let t = atan2_approx(eta, xi) - atan2_approx(rho - 2.0, -su);
+                        if surely_negative(t) || surely_negative(t - phi) {
+                            return INF;
+                        }
+                        lower(2.0 * u + gap(t, 0.0) + gap(t, phi))
+                    }
+                }
+                28..32 | 36..40 => {
+                    if bn < 2.0 {
+                        return INF;
+                    }
+                    let u = 2.0 - bn;
+                    if u > ZERO {
+                        INF
+                    } else if !FINE {
+                        lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
+                    } else {
+                        let t = atan2_approx(eta, xi) + 0.5 * PI;
+                        if surely_negative(t) || surely_negative(phi - t - 0.5 * PI) {
+                            return INF;
+                        }
+                        lower(0.5 * PI + u.abs() + gap(t, 0.0) + gap(t, phi - 0.5 * PI))
+                    }
+                }
+                _ => {
+                    if bn < 2.0 {
+                        return INF;
+                    }
+                    let u = 4.0 - (bn * bn - 4.0).sqrt();
+                    if u > ZERO {
+                        INF
+                    } else if !FINE {
+                        lower((PI + u.abs() + turn).max(d))
+                    } else {
+                        let t = atan2_approx(eta, xi) + atan2_approx(4.0 - u, -2.0);
+                        if surely_negative(t) || surely_negative(t - phi) {
+                            return INF;
+                        }
+                        lower(PI + u.abs() + gap(t, 0.0) + gap(t, phi))
+                    }
                 }
             }
-        };
-        take(self.lp_rm_s_lm_rp(g, lmin), 16, 1.0, &mut lmin);
-        take(self.lp_rm_s_lm_rp(g.timeflip(), lmin), 16, -1.0, &mut lmin);
-        take(self.lp_rm_s_lm_rp(g.reflect(), lmin), 17, 1.0, &mut lmin);
-        take(self.lp_rm_s_lm_rp(g.both(), lmin), 17, -1.0, &mut lmin);
+        }
     }
 }
 
@@ -485,23 +688,102 @@ pub(super) fn shortest(x: f64, y: f64, phi: f64) -> Word {
     solve::<true>(x, y, phi)
 }
 
+/// How many candidates the fast search keeps; more (ties of many words)
+/// goes the exhaustive way.
+const KEEP: usize = 8;
+
 fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     let phi = mod2pi(phi);
     let (s, c) = phi.sin_cos();
-    let g = Goal { x, y, phi, s, c };
-    let search = Search::<PRUNE> { turn: phi.abs() };
-    // OMPL's empty path: longer than any word.
-    let mut best = Word {
-        word: 0,
-        params: [0.0; 5],
-        length: f64::MAX,
+    let v = variants(Goal { x, y, phi, s, c });
+    if !PRUNE {
+        return ompl_order(|k| formula::<false>(k, &v));
+    }
+    // Lower bounds, coarse then fine where the coarse one does not settle
+    // it; the CSC words first (they win far from the start, and the best of
+    // them bounds the rest), then every candidate whose bound is below the
+    // shortest length found. A candidate left out is longer than that by
+    // the margin of `lower`, so it could not win in OMPL's order either, nor
+    // change how the others compare.
+    let d = (x * x + y * y).sqrt();
+    let mut lb = [0.0; CANDIDATES];
+    // Unrolled, so that each candidate's bound is specialised (and the
+    // shared norms computed once).
+    macro_rules! coarse {
+        ($($k:literal)*) => { $( lb[$k] = bound::<false>($k, &v, d); )* };
+    }
+    coarse!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    // The LSL bounds (0–3) are fine already.
+    macro_rules! lsr {
+        ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d); } )* };
+    }
+    lsr!(4 5 6 7);
+    let mut found = Found {
+        kept: [(0, (0.0, 0.0, 0.0)); KEEP],
+        n: 0,
+        upper: f64::INFINITY,
+        done: 0,
     };
-    search.csc(g, &mut best);
-    search.ccc(g, &mut best);
-    search.cccc(g, &mut best);
-    search.ccsc(g, &mut best);
-    search.ccscc(g, &mut best);
-    best
+    while found.upper == f64::INFINITY {
+        let (mut k, mut m) = (0, f64::INFINITY);
+        for (i, &l) in lb[..8].iter().enumerate() {
+            if l < m && found.done & (1 << i) == 0 {
+                (k, m) = (i, l);
+            }
+        }
+        if m == f64::INFINITY {
+            break;
+        }
+        found.eval(k, &v);
+    }
+    // Fine bounds where the coarse ones do not settle it, then best first.
+    let upper = found.upper;
+    macro_rules! fine {
+        ($($k:literal)*) => { $( if lb[$k] <= upper { lb[$k] = bound::<true>($k, &v, d); } )* };
+    }
+    fine!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    loop {
+        let (mut k, mut m) = (0, f64::INFINITY);
+        for (i, &l) in lb.iter().enumerate() {
+            if l < m && found.done & (1 << i) == 0 {
+                (k, m) = (i, l);
+            }
+        }
+        if m > found.upper || m == f64::INFINITY {
+            break;
+        }
+        if !found.eval(k, &v) {
+            return ompl_order(|k| formula::<true>(k, &v));
+        }
+    }
+    let kept = &found.kept[..found.n];
+    ompl_order(|k| kept.iter().find(|e| e.0 == k).map(|e| e.1))
+}
+
+/// The candidates computed so far: those that gave a word, the shortest
+/// length among them, and which were computed.
+struct Found {
+    kept: [(usize, (f64, f64, f64)); KEEP],
+    n: usize,
+    upper: f64,
+    done: u64,
+}
+
+impl Found {
+    /// Computes candidate `k`; false when more than [`KEEP`] gave words.
+    #[inline]
+    fn eval(&mut self, k: usize, v: &Variants) -> bool {
+        self.done |= 1 << k;
+        if let Some(r) = formula::<true>(k, v) {
+            if self.n == KEEP {
+                return false;
+            }
+            self.kept[self.n] = (k, r);
+            self.n += 1;
+            self.upper = self.upper.min(total(k, r));
+        }
+        true
+    }
 }
 
 #[cfg(test)]
@@ -522,6 +804,41 @@ mod tests {
             assert_eq!(a, b, "at ({x}, {y}, {phi})");
             assert!(a.length < f64::MAX, "no word reaches ({x}, {y}, {phi})");
         }
+    }
+
+    /// Every lower bound is below its formula's length, at every scale and
+    /// on the special headings (0, ±π/2, ±π) and positions (axes, circles'
+    /// centres) where angles wrap.
+    #[test]
+    fn bounds_are_below_the_formulas() {
+        let mut rng = SplitMix64::new(11);
+        let mut worst = f64::INFINITY;
+        for k in 0..400_000 {
+            let reach = [0.01, 0.5, 3.0, 10.0, 100.0, 1e6][k % 6];
+            let (mut x, mut y) = (rng.range(-reach, reach), rng.range(-reach, reach));
+            let mut phi = rng.range(-PI, PI);
+            match (k / 6) % 8 {
+                0 => phi = [0.0, FRAC_PI_2, -FRAC_PI_2, PI, -PI][k % 5],
+                1 => y = 0.0,
+                2 => x = 0.0,
+                3 => (x, y) = (phi.sin(), 1.0 - phi.cos()),
+                4 => (x, y) = (-phi.sin(), -1.0 + phi.cos()),
+                _ => {}
+            }
+            let (s, c) = phi.sin_cos();
+            let v = variants(Goal { x, y, phi, s, c });
+            let d = (x * x + y * y).sqrt();
+            for i in 0..CANDIDATES {
+                if let Some(r) = formula::<false>(i, &v) {
+                    let l = total(i, r);
+                    for b in [bound::<false>(i, &v, d), bound::<true>(i, &v, d)] {
+                        assert!(b <= l, "candidate {i} at ({x}, {y}, {phi}): {b} > {l}");
+                        worst = worst.min(l - b);
+                    }
+                }
+            }
+        }
+        assert!(worst >= 0.0);
     }
 
     #[test]
