@@ -16,8 +16,12 @@ keeping CLEARANCE / 2 from the obstacles.
 
 Usage: python scripts/ompl_car.py PLANNER SEED [TIME_LIMIT]
 Prints one line: planner seed solved time length states checks
+       python scripts/ompl_car.py --world
+Prints the problem as JSON (tests/steer_ompl.rs compares it with the
+scenario's).
 """
 
+import json
 import math
 import sys
 import time
@@ -85,6 +89,12 @@ def valid(state):
 
 
 def main():
+    if sys.argv[1] == "--world":
+        print(json.dumps({
+            "bounds": BOUNDS, "obstacles": OBSTACLES, "body": BODY,
+            "radius": RADIUS, "start": START, "goal": GOAL,
+        }))
+        return
     planner_name = sys.argv[1]
     seed = int(sys.argv[2])
     limit = float(sys.argv[3]) if len(sys.argv) > 3 else 60.0

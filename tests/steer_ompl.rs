@@ -154,3 +154,72 @@ fn reeds_shepp_lengths_equal_ompls() {
 fn dubins_lengths_equal_ompls() {
     compare(Model::Dubins, "d", 24);
 }
+
+/// The OMPL peer of the parking comparison (scripts/ompl_car.py,
+/// BENCHMARKS.md) poses the problem of benches/car_parking_ompl.scen —
+/// the same bounds, obstacles, body, radius, start and goal — and its
+/// RRT-Connect solves it.
+#[test]
+fn the_ompl_peer_of_the_parking_comparison_poses_the_same_problem() {
+    let Some(py) = python() else { return };
+    let repo = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let script = repo.join("scripts/ompl_car.py");
+    let out = Command::new(&py)
+        .arg(&script)
+        .arg("--world")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let theirs: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let scenario = scen::load(&repo.join("benches/car_parking_ompl.scen")).expect("loads");
+    let b = scenario.world.bounds;
+    assert_eq!(
+        theirs["bounds"],
+        serde_json::json!([b.min.x, b.min.y, b.max.x, b.max.y])
+    );
+    let rects: Vec<serde_json::Value> = scenario
+        .world
+        .obstacles
+        .iter()
+        .map(|o| match &o.shape {
+            scen::geometry::Shape::Rect(r) => {
+                serde_json::json!([r.min.x, r.min.y, r.max.x, r.max.y])
+            }
+            other => panic!("the peer knows rectangles only: {other:?}"),
+        })
+        .collect();
+    assert_eq!(theirs["obstacles"], serde_json::Value::Array(rects));
+    let robot = &scenario.robots[0];
+    let scen::geometry::RobotShape::Polygon(body) = &robot.shape else {
+        panic!("a polygon car")
+    };
+    let vertices: Vec<serde_json::Value> = body
+        .vertices
+        .iter()
+        .map(|v| serde_json::json!([v.x, v.y]))
+        .collect();
+    assert_eq!(theirs["body"], serde_json::Value::Array(vertices));
+    let steering = robot.steering.expect("a car");
+    assert_eq!(steering.model, Model::ReedsShepp);
+    assert_eq!(theirs["radius"], serde_json::json!(steering.radius));
+    for plan in &scenario.plans {
+        let (s, g) = (plan.params.start, plan.params.goal.expect("a goal"));
+        assert_eq!(theirs["start"], serde_json::json!([s.x, s.y, s.theta]));
+        assert_eq!(theirs["goal"], serde_json::json!([g.x, g.y, g.theta]));
+    }
+    // And it solves it.
+    let out = Command::new(&py)
+        .arg(&script)
+        .args(["rrt_connect", "1", "60"])
+        .output()
+        .unwrap();
+    let line = String::from_utf8_lossy(&out.stdout);
+    let fields: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(fields.get(2), Some(&"1"), "not solved: {line}");
+    let length: f64 = fields[4].parse().unwrap();
+    assert!(length >= 10.7, "{line}");
+}
