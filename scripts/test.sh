@@ -40,9 +40,10 @@ MATURIN="$PWD/$venv/bin/maturin" bash scripts/wheel.sh --check
 # target/release/scen for the problem matcher's test).
 SCEN="$PWD/target/release/scen" bash editors/test.sh
 
-# The committed scenarios are in the canonical layout (`scen fmt`; prints
-# the files that would change).
-"$PWD/target/release/scen" fmt --check scenarios/
+# The committed scenarios (the suite, the benches', the manual's examples,
+# the falsified regression files) are in the canonical layout (`scen fmt`;
+# prints the files that would change).
+"$PWD/target/release/scen" fmt --check scenarios/ benches/ docs/examples/ tests/falsified/ examples/
 
 # The scenario suite as a user runs it (also run inside the tests above);
 # it ends with the line `N passed, M failed`. The binary cargo test built:
