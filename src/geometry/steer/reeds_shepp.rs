@@ -758,6 +758,9 @@ pub(super) fn shortest(x: f64, y: f64, phi: f64) -> Word {
     solve::<true>(x, y, phi)
 }
 
+/// Beyond this distance (in radii) no CCC or CCCC word applies.
+const CCC_REACH: f64 = 6.5;
+
 /// How many candidates the fast search keeps; more (ties of many words)
 /// goes the exhaustive way.
 const KEEP: usize = 8;
@@ -776,14 +779,24 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     // the margin of `lower`, so it could not win in OMPL's order either, nor
     // change how the others compare.
     let d = (x * x + y * y).sqrt();
-    let mut lb = [0.0; CANDIDATES];
+    let mut lb = [f64::INFINITY; CANDIDATES];
     let mut angles = Angles::new();
     // Unrolled, so that each candidate's bound is specialised (and the
     // shared norms computed once).
     macro_rules! coarse {
         ($($k:literal)*) => { $( lb[$k] = bound::<false>($k, &v, d, &mut angles); )* };
     }
-    coarse!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    coarse!(0 1 2 3 4 5 6 7 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    // The CCC and CCCC words (8–23) by one test: their formulas need a
+    // centre vector no longer than √20 < 4.5 (8.3: A ≤ 4; 8.7: B ≤ 2;
+    // 8.8: B² ≤ 20). Both centre vectors are the goal less a point within
+    // 2 of the origin ((sin φ, 1 − cos φ) and (−sin φ, 1 + cos φ)), and the
+    // goal seen backwards is the goal rotated, so every centre vector is
+    // at least d − 2 long (to a few roundings): beyond 6.5 radii none
+    // applies, and their bounds stay +∞.
+    if d <= CCC_REACH {
+        coarse!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23);
+    }
     // The LSL bounds (0–3) are fine already.
     macro_rules! lsr {
         ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d, &mut angles); } )* };
@@ -792,6 +805,7 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     let mut found = Found {
         kept: [(0, (0.0, 0.0, 0.0)); KEEP],
         n: 0,
+        kept_mask: 0,
         upper: f64::INFINITY,
         done: 0,
     };
@@ -807,28 +821,53 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
         }
         found.eval(k, &v);
     }
-    // Fine bounds where the coarse ones do not settle it, then best first.
+    // Fine bounds where the coarse ones do not settle it; the candidates
+    // whose bound is still within reach (a bit set in `open`), then
+    // computed best first while their bound is below the shortest found.
     let upper = found.upper;
+    let mut open = 0u64;
+    for (k, &l) in lb[..8].iter().enumerate() {
+        if l <= upper && l < f64::INFINITY && found.done & (1 << k) == 0 {
+            open |= 1 << k;
+        }
+    }
     macro_rules! fine {
-        ($($k:literal)*) => { $( if lb[$k] <= upper { lb[$k] = bound::<true>($k, &v, d, &mut angles); } )* };
+        ($($k:literal)*) => { $(
+            if lb[$k] <= upper && lb[$k] < f64::INFINITY {
+                lb[$k] = bound::<true>($k, &v, d, &mut angles);
+                if lb[$k] <= upper {
+                    open |= 1 << $k;
+                }
+            }
+        )* };
     }
     fine!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
-    loop {
-        let (mut k, mut m) = (0, f64::INFINITY);
-        for (i, &l) in lb.iter().enumerate() {
-            if l < m && found.done & (1 << i) == 0 {
-                (k, m) = (i, l);
+    while open != 0 {
+        let (mut k, mut m, mut rest) = (0, f64::INFINITY, open);
+        while rest != 0 {
+            let i = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            if lb[i] < m {
+                (k, m) = (i, lb[i]);
             }
         }
-        if m > found.upper || m == f64::INFINITY {
+        if m > found.upper {
             break;
         }
+        open &= !(1 << k);
         if !found.eval(k, &v) {
             return ompl_order(|k| formula::<true>(k, &v));
         }
     }
+    // `kept_mask` answers most candidates (not kept) in one test.
     let kept = &found.kept[..found.n];
-    ompl_order(|k| kept.iter().find(|e| e.0 == k).map(|e| e.1))
+    ompl_order(|k| {
+        if found.kept_mask & (1 << k) == 0 {
+            None
+        } else {
+            kept.iter().find(|e| e.0 == k).map(|e| e.1)
+        }
+    })
 }
 
 /// The candidates computed so far: those that gave a word, the shortest
@@ -836,6 +875,8 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
 struct Found {
     kept: [(usize, (f64, f64, f64)); KEEP],
     n: usize,
+    /// Which candidates are in `kept`, one bit each.
+    kept_mask: u64,
     upper: f64,
     done: u64,
 }
@@ -851,6 +892,7 @@ impl Found {
             }
             self.kept[self.n] = (k, r);
             self.n += 1;
+            self.kept_mask |= 1 << k;
             self.upper = self.upper.min(total(k, r));
         }
         true
