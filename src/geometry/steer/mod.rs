@@ -258,7 +258,9 @@ fn heading_change(from: f64, to: f64) -> f64 {
     } else {
         to % TAU - from % TAU
     };
-    let d = d % TAU;
+    // `fmod` returns its argument unchanged below one turn (it is exact),
+    // so skipping it there gives the same bits.
+    let d = if d.abs() < TAU { d } else { d % TAU };
     if d > std::f64::consts::PI {
         d - TAU
     } else if d < -std::f64::consts::PI {

@@ -489,6 +489,65 @@ fn lsl_arcs(phi: f64) -> f64 {
     if phi < -1e-9 { phi + TAU } else { phi.max(0.0) }
 }
 
+/// The approximate arc tangents the fine bounds of one goal share,
+/// computed on first use (NaN until then).
+///
+/// Each variant has two centre vectors, A = (x − sin φ, y − 1 + cos φ)
+/// (formulas 8.1, 8.3, 8.9) and B = (x + sin φ, y − 1 − cos φ) (8.2, 8.7,
+/// 8.8, 8.10, 8.11). Timeflip negates x and sin φ, so it negates the
+/// first coordinate of both vectors exactly (IEEE negation commutes with
+/// the sums) and leaves their norms bit for bit: the timeflip's angle is
+/// π minus the variant's, and the pairs (goal, timeflip) and (reflect,
+/// both) cost one arc tangent each. The angles that depend only on a norm
+/// (8.2's `atan2(2, u)`, 8.9's `atan2(r, −2)`, 8.11's `atan2(4 − u, −2)`)
+/// are likewise shared by the two variants of a pair. Every angle here is
+/// used only modulo 2π, through [`gap`] and [`surely_negative`], and
+/// `π − a` is within one rounding of the mirrored vector's angle, far
+/// inside the margin of [`lower`].
+struct Angles {
+    /// The A and B vectors' angles, per pair of variants (goal, reflect,
+    /// backwards, backwards reflect).
+    a: [f64; 4],
+    b: [f64; 4],
+    /// 8.9's `atan2(r, −2)`, per pair.
+    ccsc_a: [f64; 4],
+    /// 8.2's `atan2(2, u)` and 8.11's `atan2(4 − u, −2)`, per pair of the
+    /// goal's own variants.
+    lsr: [f64; 2],
+    ccscc: [f64; 2],
+}
+
+impl Angles {
+    fn new() -> Self {
+        Angles {
+            a: [f64::NAN; 4],
+            b: [f64::NAN; 4],
+            ccsc_a: [f64::NAN; 4],
+            lsr: [f64::NAN; 2],
+            ccscc: [f64::NAN; 2],
+        }
+    }
+}
+
+/// `slot`, computed by `f` on first use.
+#[inline(always)]
+fn memo(slot: &mut f64, f: impl FnOnce() -> f64) -> f64 {
+    if slot.is_nan() {
+        *slot = f();
+    }
+    *slot
+}
+
+/// The approximate angle of variant `i`'s centre vector (xi, eta) from the
+/// pair's shared one in `slot`: odd variants (timeflip, both) are the even
+/// ones mirrored, xi negated.
+#[inline(always)]
+fn centre_angle(slot: &mut f64, i: usize, xi: f64, eta: f64) -> f64 {
+    let odd = i % 2 == 1;
+    let base = memo(slot, || atan2_approx(eta, if odd { -xi } else { xi }));
+    if odd { PI - base } else { base }
+}
+
 /// A lower bound on candidate `k`'s length (quarter turns included), +∞
 /// where its formula certainly gives no word. Quantities that decide
 /// whether a formula applies are computed exactly as the formula does.
@@ -499,12 +558,15 @@ fn lsl_arcs(phi: f64) -> f64 {
 /// length by at most a few times as much, the arcs being distances on the
 /// circle), less the margin of [`lower`].
 #[inline(always)]
-fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
+fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) -> f64 {
     const INF: f64 = f64::INFINITY;
-    let g = v[match k {
+    // The variant, and its pair of variants (see [`Angles`]).
+    let i = match k {
         12..16 | 32..40 => 4 + k % 4,
         _ => k % 4,
-    }];
+    };
+    let pair = i / 2;
+    let g = v[i];
     let phi = g.phi;
     let turn = phi.abs();
     match k {
@@ -529,7 +591,8 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
                     } else {
                         let q = 0.25 * an;
                         let u = 2.0 * atan2_approx(q, ((1.0 - q) * (1.0 + q)).sqrt());
-                        let t = atan2_approx(eta, xi) - 0.5 * u + PI;
+                        let theta = centre_angle(&mut angles.a[pair], i, xi, eta);
+                        let t = theta - 0.5 * u + PI;
                         if surely_negative(t) {
                             return INF;
                         }
@@ -547,7 +610,8 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
                     } else if !FINE {
                         lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
                     } else {
-                        let t = atan2_approx(eta, xi) + atan2_approx(r, -2.0);
+                        let theta = centre_angle(&mut angles.a[pair], i, xi, eta);
+                        let t = theta + memo(&mut angles.ccsc_a[pair], || atan2_approx(r, -2.0));
                         if surely_negative(t) || surely_negative(0.5 * PI - phi + t) {
                             return INF;
                         }
@@ -570,7 +634,8 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
                     if !FINE {
                         lower((u + turn).max(d))
                     } else {
-                        let t = atan2_approx(eta, xi) + atan2_approx(2.0, u);
+                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
+                        let t = theta + memo(&mut angles.lsr[pair], || atan2_approx(2.0, u));
                         if surely_negative(t) || surely_negative(t - phi) {
                             return INF;
                         }
@@ -590,7 +655,8 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
                             // The formula's angle is ill-conditioned here.
                             lower(2.0 * u)
                         } else {
-                            let t = atan2_approx(eta, xi) + 0.5 * PI + u;
+                            let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
+                            let t = theta + 0.5 * PI + u;
                             if surely_negative(t) || surely_negative(phi - t + 2.0 * u) {
                                 return INF;
                             }
@@ -609,7 +675,8 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
                         // omega = tau − φ.
                         let su = ((1.0 - rho) * (1.0 + rho)).sqrt();
                         let u = atan2_approx(su, rho);
-                        let t = atan2_approx(eta, xi) - atan2_approx(rho - 2.0, -su);
+                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
+                        let t = theta - atan2_approx(rho - 2.0, -su);
                         if surely_negative(t) || surely_negative(t - phi) {
                             return INF;
                         }
@@ -626,7 +693,8 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
                     } else if !FINE {
                         lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
                     } else {
-                        let t = atan2_approx(eta, xi) + 0.5 * PI;
+                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
+                        let t = theta + 0.5 * PI;
                         if surely_negative(t) || surely_negative(phi - t - 0.5 * PI) {
                             return INF;
                         }
@@ -643,7 +711,9 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64) -> f64 {
                     } else if !FINE {
                         lower((PI + u.abs() + turn).max(d))
                     } else {
-                        let t = atan2_approx(eta, xi) + atan2_approx(4.0 - u, -2.0);
+                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
+                        let t =
+                            theta + memo(&mut angles.ccscc[pair], || atan2_approx(4.0 - u, -2.0));
                         if surely_negative(t) || surely_negative(t - phi) {
                             return INF;
                         }
@@ -688,6 +758,9 @@ pub(super) fn shortest(x: f64, y: f64, phi: f64) -> Word {
     solve::<true>(x, y, phi)
 }
 
+/// Beyond this distance (in radii) no CCC or CCCC word applies.
+const CCC_REACH: f64 = 6.5;
+
 /// How many candidates the fast search keeps; more (ties of many words)
 /// goes the exhaustive way.
 const KEEP: usize = 8;
@@ -706,21 +779,33 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     // the margin of `lower`, so it could not win in OMPL's order either, nor
     // change how the others compare.
     let d = (x * x + y * y).sqrt();
-    let mut lb = [0.0; CANDIDATES];
+    let mut lb = [f64::INFINITY; CANDIDATES];
+    let mut angles = Angles::new();
     // Unrolled, so that each candidate's bound is specialised (and the
     // shared norms computed once).
     macro_rules! coarse {
-        ($($k:literal)*) => { $( lb[$k] = bound::<false>($k, &v, d); )* };
+        ($($k:literal)*) => { $( lb[$k] = bound::<false>($k, &v, d, &mut angles); )* };
     }
-    coarse!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    coarse!(0 1 2 3 4 5 6 7 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    // The CCC and CCCC words (8–23) by one test: their formulas need a
+    // centre vector no longer than √20 < 4.5 (8.3: A ≤ 4; 8.7: B ≤ 2;
+    // 8.8: B² ≤ 20). Both centre vectors are the goal less a point within
+    // 2 of the origin ((sin φ, 1 − cos φ) and (−sin φ, 1 + cos φ)), and the
+    // goal seen backwards is the goal rotated, so every centre vector is
+    // at least d − 2 long (to a few roundings): beyond 6.5 radii none
+    // applies, and their bounds stay +∞.
+    if d <= CCC_REACH {
+        coarse!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23);
+    }
     // The LSL bounds (0–3) are fine already.
     macro_rules! lsr {
-        ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d); } )* };
+        ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d, &mut angles); } )* };
     }
     lsr!(4 5 6 7);
     let mut found = Found {
         kept: [(0, (0.0, 0.0, 0.0)); KEEP],
         n: 0,
+        kept_mask: 0,
         upper: f64::INFINITY,
         done: 0,
     };
@@ -736,28 +821,53 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
         }
         found.eval(k, &v);
     }
-    // Fine bounds where the coarse ones do not settle it, then best first.
+    // Fine bounds where the coarse ones do not settle it; the candidates
+    // whose bound is still within reach (a bit set in `open`), then
+    // computed best first while their bound is below the shortest found.
     let upper = found.upper;
+    let mut open = 0u64;
+    for (k, &l) in lb[..8].iter().enumerate() {
+        if l <= upper && l < f64::INFINITY && found.done & (1 << k) == 0 {
+            open |= 1 << k;
+        }
+    }
     macro_rules! fine {
-        ($($k:literal)*) => { $( if lb[$k] <= upper { lb[$k] = bound::<true>($k, &v, d); } )* };
+        ($($k:literal)*) => { $(
+            if lb[$k] <= upper && lb[$k] < f64::INFINITY {
+                lb[$k] = bound::<true>($k, &v, d, &mut angles);
+                if lb[$k] <= upper {
+                    open |= 1 << $k;
+                }
+            }
+        )* };
     }
     fine!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
-    loop {
-        let (mut k, mut m) = (0, f64::INFINITY);
-        for (i, &l) in lb.iter().enumerate() {
-            if l < m && found.done & (1 << i) == 0 {
-                (k, m) = (i, l);
+    while open != 0 {
+        let (mut k, mut m, mut rest) = (0, f64::INFINITY, open);
+        while rest != 0 {
+            let i = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            if lb[i] < m {
+                (k, m) = (i, lb[i]);
             }
         }
-        if m > found.upper || m == f64::INFINITY {
+        if m > found.upper {
             break;
         }
+        open &= !(1 << k);
         if !found.eval(k, &v) {
             return ompl_order(|k| formula::<true>(k, &v));
         }
     }
+    // `kept_mask` answers most candidates (not kept) in one test.
     let kept = &found.kept[..found.n];
-    ompl_order(|k| kept.iter().find(|e| e.0 == k).map(|e| e.1))
+    ompl_order(|k| {
+        if found.kept_mask & (1 << k) == 0 {
+            None
+        } else {
+            kept.iter().find(|e| e.0 == k).map(|e| e.1)
+        }
+    })
 }
 
 /// The candidates computed so far: those that gave a word, the shortest
@@ -765,6 +875,8 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
 struct Found {
     kept: [(usize, (f64, f64, f64)); KEEP],
     n: usize,
+    /// Which candidates are in `kept`, one bit each.
+    kept_mask: u64,
     upper: f64,
     done: u64,
 }
@@ -780,6 +892,7 @@ impl Found {
             }
             self.kept[self.n] = (k, r);
             self.n += 1;
+            self.kept_mask |= 1 << k;
             self.upper = self.upper.min(total(k, r));
         }
         true
@@ -828,10 +941,14 @@ mod tests {
             let (s, c) = phi.sin_cos();
             let v = variants(Goal { x, y, phi, s, c });
             let d = (x * x + y * y).sqrt();
+            // One goal's bounds share their angles, as in the search.
+            let mut angles = Angles::new();
             for i in 0..CANDIDATES {
                 if let Some(r) = formula::<false>(i, &v) {
                     let l = total(i, r);
-                    for b in [bound::<false>(i, &v, d), bound::<true>(i, &v, d)] {
+                    let coarse = bound::<false>(i, &v, d, &mut angles);
+                    let fine = bound::<true>(i, &v, d, &mut angles);
+                    for b in [coarse, fine] {
                         assert!(b <= l, "candidate {i} at ({x}, {y}, {phi}): {b} > {l}");
                         worst = worst.min(l - b);
                     }
