@@ -285,6 +285,7 @@ impl PolygonChecker {
     /// Whether every validator sub-step of `cut` is clear of every piece.
     fn free(&self, cut: &Cut) -> bool {
         with_scratch(|Scratch { region, pending }| {
+            region.start();
             region.set(self, cut, 0, cut.steps);
             pending.clear();
             let ((c0, c1), (k0, k1)) = self.buckets.range(&region.aabb);
@@ -512,14 +513,25 @@ impl Cut {
     }
 }
 
+/// How many boundaries [`Region`] keeps: the bisection sets `k0 .. mid`
+/// then `mid .. k1`, so the boundaries of the last few groups come back.
+const TURNS: usize = 4;
+
 /// The bodies of one group of sub-steps, in a reusable buffer.
 struct Region {
     /// Vertex i at the group's first configuration, then at its last:
     /// `ends[2i]`, `ends[2i + 1]`.
     ends: Vec<Point>,
     /// `|v_i|·α²/2`, the bound on the second derivative of vertex i's
-    /// deviation from its chord (see [`bulge`]).
+    /// deviation from its chord (see [`bulge`]); not kept when `flat`.
     curvature: Vec<f64>,
+    /// α = 0 (a single sub-step or one configuration): every curvature is
+    /// 0.
+    flat: bool,
+    /// The last few boundaries set: sub-step index, configuration, and
+    /// the sine and cosine of its angle; `next_turn` is the oldest.
+    turns: [Option<(usize, Config, f64, f64)>; TURNS],
+    next_turn: usize,
     /// The box of every body during the group.
     aabb: Aabb,
     /// The hull of `ends` (counter-clockwise), and its edge normals other
@@ -539,6 +551,9 @@ impl Region {
         Region {
             ends: Vec::new(),
             curvature: Vec::new(),
+            flat: true,
+            turns: [None; TURNS],
+            next_turn: 0,
             aabb: Aabb::around(&[]),
             hull: Vec::new(),
             normals: Vec::new(),
@@ -557,32 +572,43 @@ impl Region {
             cut.dtheta.abs() * (k1 - k0) as f64 / cut.steps as f64
         };
         let spread = alpha * alpha / 2.0;
-        let (c0, c1) = (cut.at(k0), cut.at(k1));
         // As `RobotShape::placed_vertices`, to the bit (a still body's
-        // ends are one placement).
-        let (s0, co0) = c0.theta.sin_cos();
-        let (s1, co1) = if k0 == k1 {
-            (s0, co0)
-        } else {
-            c1.theta.sin_cos()
-        };
+        // ends are one placement); a boundary's configuration and sin_cos
+        // are taken from the last few set (the same computation).
+        let (c0, s0, co0) = self.turn(cut, k0);
+        let (c1, s1, co1) = self.turn(cut, k1);
         self.ends.clear();
         self.curvature.clear();
         let (mut lo, mut hi) = (
             Point::new(f64::INFINITY, f64::INFINITY),
             Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
         );
-        for (v, lever) in robot.vertices.iter().zip(&robot.lever) {
-            let p = Point::new(c0.x + co0 * v.x - s0 * v.y, c0.y + s0 * v.x + co0 * v.y);
-            let q = Point::new(c1.x + co1 * v.x - s1 * v.y, c1.y + s1 * v.x + co1 * v.y);
-            let k = lever * spread;
-            self.ends.push(p);
-            self.ends.push(q);
-            self.curvature.push(k);
-            lo.x = lo.x.min(-bulge(-p.x, -q.x, k));
-            lo.y = lo.y.min(-bulge(-p.y, -q.y, k));
-            hi.x = hi.x.max(bulge(p.x, q.x, k));
-            hi.y = hi.y.max(bulge(p.y, q.y, k));
+        self.flat = spread == 0.0;
+        if self.flat {
+            // `lever · 0 = 0`: the bounds below with k = 0, to the bit.
+            for v in &robot.vertices {
+                let p = Point::new(c0.x + co0 * v.x - s0 * v.y, c0.y + s0 * v.x + co0 * v.y);
+                let q = Point::new(c1.x + co1 * v.x - s1 * v.y, c1.y + s1 * v.x + co1 * v.y);
+                self.ends.push(p);
+                self.ends.push(q);
+                lo.x = lo.x.min(-bulge(-p.x, -q.x, 0.0));
+                lo.y = lo.y.min(-bulge(-p.y, -q.y, 0.0));
+                hi.x = hi.x.max(bulge(p.x, q.x, 0.0));
+                hi.y = hi.y.max(bulge(p.y, q.y, 0.0));
+            }
+        } else {
+            for (v, lever) in robot.vertices.iter().zip(&robot.lever) {
+                let p = Point::new(c0.x + co0 * v.x - s0 * v.y, c0.y + s0 * v.x + co0 * v.y);
+                let q = Point::new(c1.x + co1 * v.x - s1 * v.y, c1.y + s1 * v.x + co1 * v.y);
+                let k = lever * spread;
+                self.ends.push(p);
+                self.ends.push(q);
+                self.curvature.push(k);
+                lo.x = lo.x.min(-bulge(-p.x, -q.x, k));
+                lo.y = lo.y.min(-bulge(-p.y, -q.y, k));
+                hi.x = hi.x.max(bulge(p.x, q.x, k));
+                hi.y = hi.y.max(bulge(p.y, q.y, k));
+            }
         }
         self.aabb = Aabb { min: lo, max: hi };
         self.hull_ready = false;
@@ -593,14 +619,40 @@ impl Region {
         }
     }
 
-    /// The largest projection on the unit `u` of any body during the group.
+    /// Forgets the boundaries of the previous cut.
+    fn start(&mut self) {
+        self.turns = [None; TURNS];
+    }
+
+    /// Boundary `k` of the current cut, with the sine and cosine of its
+    /// angle: kept from a recent [`Region::set`] or computed (over the
+    /// oldest).
     #[inline]
+    fn turn(&mut self, cut: &Cut, k: usize) -> (Config, f64, f64) {
+        for t in self.turns.iter().flatten() {
+            if t.0 == k {
+                return (t.1, t.2, t.3);
+            }
+        }
+        let c = cut.at(k);
+        let (s, co) = c.theta.sin_cos();
+        self.turns[self.next_turn] = Some((k, c, s, co));
+        self.next_turn = (self.next_turn + 1) % TURNS;
+        (c, s, co)
+    }
+
+    /// The largest projection on the unit `u` of any body during the group.
+    #[inline(always)]
     fn high(&self, u: Vector) -> f64 {
-        self.ends
-            .chunks_exact(2)
-            .zip(&self.curvature)
-            .map(|(e, &k)| bulge(u.dot(&e[0].coords), u.dot(&e[1].coords), k))
-            .fold(f64::NEG_INFINITY, f64::max)
+        let ends = self.ends.chunks_exact(2);
+        if self.flat {
+            ends.map(|e| bulge(u.dot(&e[0].coords), u.dot(&e[1].coords), 0.0))
+                .fold(f64::NEG_INFINITY, f64::max)
+        } else {
+            ends.zip(&self.curvature)
+                .map(|(e, &k)| bulge(u.dot(&e[0].coords), u.dot(&e[1].coords), k))
+                .fold(f64::NEG_INFINITY, f64::max)
+        }
     }
 
     /// The smallest projection on the unit `u` of any body during the group.
