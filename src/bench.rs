@@ -100,6 +100,15 @@ impl Shard {
     pub fn takes(&self, index: u64) -> bool {
         index % self.n == self.k - 1
     }
+
+    /// How many of the items 0 … total − 1 this shard takes.
+    pub fn share(&self, total: u64) -> u64 {
+        if total < self.k {
+            0
+        } else {
+            (total - self.k) / self.n + 1
+        }
+    }
 }
 
 /// Every run of the file's benches, in order, for the benches named in
@@ -397,6 +406,10 @@ mod tests {
             let mut count = vec![0; 50];
             for k in 1..=n {
                 let s = Shard::parse(&format!("{k}/{n}")).expect("a shard");
+                for total in 0..50u64 {
+                    let taken = (0..total).filter(|&i| s.takes(i)).count() as u64;
+                    assert_eq!(s.share(total), taken, "{k}/{n} of {total}");
+                }
                 for (i, c) in count.iter_mut().enumerate() {
                     if s.takes(i as u64) {
                         *c += 1;

@@ -62,17 +62,6 @@ pub struct Options {
 }
 
 impl Options {
-    /// The candidates of this shard: those whose number is K − 1 modulo N
-    /// among the budget's 0 … budget − 1.
-    pub fn shard_budget(&self) -> u64 {
-        let (k, n) = (self.shard.k, self.shard.n);
-        if self.budget < k {
-            0
-        } else {
-            (self.budget - k) / n + 1
-        }
-    }
-
     /// The number of this shard's `local`-th candidate in the whole search.
     fn global(&self, local: u64) -> u64 {
         local * self.shard.n + self.shard.k - 1
@@ -556,7 +545,8 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
         opts.search
     };
     let mut proposer = Proposer::new(search, dims, opts.seed, opts.shard);
-    let budget = opts.shard_budget();
+    // This shard's candidates: those numbered K − 1 modulo N below the budget.
+    let budget = opts.shard.share(opts.budget);
     let mut history: Vec<(Vec<f64>, f64)> = Vec::new();
     let mut out = Falsified {
         tried: 0,

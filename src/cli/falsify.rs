@@ -26,7 +26,7 @@ pub struct FalsifyArgs {
     /// a cross-entropy search on the checks' margins), `uniform` (samples
     /// 0, 1, … of the family), `halton`, `cross_entropy`.
     #[arg(long, value_name = "HOW", default_value = "auto", value_parser = search_word)]
-    pub search: String,
+    pub search: Search,
     /// The search's seed (and, for `uniform`, the family seed).
     #[arg(long, value_name = "S", default_value_t = 0)]
     pub seed: u64,
@@ -46,12 +46,13 @@ pub struct FalsifyArgs {
     pub root: Option<PathBuf>,
 }
 
-fn search_word(text: &str) -> Result<String, String> {
-    if Search::WORDS.contains(&text) {
-        Ok(text.to_string())
-    } else {
-        Err(format!("one of {}", Search::WORDS.join(", ")))
-    }
+/// `--search HOW` (and a part's search) read as a [`Search`].
+fn search_word(text: &str) -> Result<Search, String> {
+    Search::WORDS
+        .iter()
+        .position(|w| *w == text)
+        .and_then(<Search as Word>::from_index)
+        .ok_or_else(|| format!("one of {}", Search::WORDS.join(", ")))
 }
 
 /// `FILE_fail.scen` beside FILE.
@@ -96,7 +97,7 @@ pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
     };
     let opts = Options {
         budget: args.budget,
-        search: search_of(&args.search),
+        search: args.search,
         seed: args.seed,
         shard: shard.unwrap_or(Shard { k: 1, n: 1 }),
     };
@@ -114,14 +115,6 @@ pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
         return write_part(file, &source, &opts, shard, &result, &out);
     }
     finish(file, &result, &out, args.json)
-}
-
-fn search_of(word: &str) -> Search {
-    Search::WORDS
-        .iter()
-        .position(|w| *w == word)
-        .and_then(<Search as Word>::from_index)
-        .unwrap_or(Search::Auto)
 }
 
 /// The family read and checked (an error printed, exit 2, otherwise).
@@ -273,7 +266,7 @@ fn read_part(path: &Path) -> Result<Part, String> {
     let read = || -> Option<Part> {
         let word = |v: &Value, k: &str| v.get(k)?.as_str().map(str::to_string);
         let num = |v: &Value, k: &str| v.get(k)?.as_u64();
-        let search = search_of(&word(&r, "searched")?);
+        let search = search_word(&word(&r, "searched")?).ok()?;
         let failure = match r.get("failure")? {
             Value::Null => None,
             f => {
@@ -405,14 +398,9 @@ fn merge(
         ));
     }
     for p in &parts {
-        let share = Options {
-            budget,
-            search: Search::Auto,
-            seed: 0,
-            shard: Shard { k: p.k, n },
-        }
-        .shard_budget();
-        let theirs = |sample: u64| sample < budget && (Shard { k: p.k, n }).takes(sample);
+        let shard = Shard { k: p.k, n };
+        let share = shard.share(budget);
+        let theirs = |sample: u64| sample < budget && shard.takes(sample);
         let r = &p.result;
         if r.tried > share
             || r.rejected > r.tried
