@@ -101,6 +101,11 @@ impl Shard {
         index % self.n == self.k - 1
     }
 
+    /// The number of this shard's `local`-th item (0-based) among all.
+    pub fn nth(&self, local: u64) -> u64 {
+        local * self.n + self.k - 1
+    }
+
     /// How many of the items 0 … total − 1 this shard takes.
     pub fn share(&self, total: u64) -> u64 {
         if total < self.k {
@@ -409,6 +414,9 @@ mod tests {
                 for total in 0..50u64 {
                     let taken = (0..total).filter(|&i| s.takes(i)).count() as u64;
                     assert_eq!(s.share(total), taken, "{k}/{n} of {total}");
+                    let nth: Vec<u64> = (0..taken).map(|j| s.nth(j)).collect();
+                    let all: Vec<u64> = (0..total).filter(|&i| s.takes(i)).collect();
+                    assert_eq!(nth, all, "{k}/{n} of {total}");
                 }
                 for (i, c) in count.iter_mut().enumerate() {
                     if s.takes(i as u64) {

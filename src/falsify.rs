@@ -61,13 +61,6 @@ pub struct Options {
     pub shard: Shard,
 }
 
-impl Options {
-    /// The number of this shard's `local`-th candidate in the whole search.
-    fn global(&self, local: u64) -> u64 {
-        local * self.shard.n + self.shard.k - 1
-    }
-}
-
 /// The scenario's statements as read, before any draw.
 pub struct Source {
     pub path: PathBuf,
@@ -388,11 +381,10 @@ struct Proposer {
     search: Search,
     dims: usize,
     shift: Vec<f64>,
-    /// The next cover point is Halton's `halton_next * stride + offset + 1`:
+    /// The next cover point is Halton's point `shard.nth(halton_next) + 1`:
     /// the shards of a search interleave one sequence.
     halton_next: u64,
-    stride: u64,
-    offset: u64,
+    shard: Shard,
     /// The model's mean and spread (cross-entropy), after its first fit.
     model: Option<(Vec<f64>, Vec<f64>)>,
     /// `auto`: the basins given up (their best points), the best margin
@@ -420,8 +412,7 @@ impl Proposer {
             dims,
             shift: (0..dims).map(|_| rng.next_f64()).collect(),
             halton_next: 0,
-            stride: shard.n,
-            offset: shard.k - 1,
+            shard,
             model: None,
             tabu: Vec::new(),
             best: f64::INFINITY,
@@ -430,10 +421,7 @@ impl Proposer {
     }
 
     fn cover(&mut self) -> Vec<f64> {
-        let p = halton(
-            self.halton_next * self.stride + self.offset + 1,
-            &self.shift,
-        );
+        let p = halton(self.shard.nth(self.halton_next) + 1, &self.shift);
         self.halton_next += 1;
         p
     }
@@ -507,7 +495,7 @@ impl Proposer {
         let mut rng = SplitMix64::new(
             self.shift.len() as u64
                 ^ batch.wrapping_mul(0x9E37_79B9)
-                ^ self.offset.wrapping_mul(0xD1B5_4A32_D192_ED03),
+                ^ (self.shard.k - 1).wrapping_mul(0xD1B5_4A32_D192_ED03),
         );
         let best = &sorted[0].0;
         (0..BATCH)
@@ -572,7 +560,7 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
         let tried: Vec<Result<Tried, Vec<Diag>>> = points
             .par_iter()
             .enumerate()
-            .map(|(k, p)| source.draw(&opts, opts.global(first + k as u64), p.as_deref()))
+            .map(|(k, p)| source.draw(&opts, opts.shard.nth(first + k as u64), p.as_deref()))
             .collect();
         batch += 1;
         for t in tried {
