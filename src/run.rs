@@ -227,14 +227,16 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
                 reason: "a car robot's path must be given as segments".into(),
             })
         }
-        (None, None) => match (outcome.path.as_deref(), motion) {
-            (Some(path), _) => {
+        (None, None) => match outcome.path.as_deref() {
+            Some(path) => {
                 let (verdict, clearance) =
                     referee.validate_and_measure(robot, path, DEFAULT_TOLERANCE);
                 measured_clearance = Some(clearance);
                 verdict.err()
             }
-            (None, m) => m.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err()),
+            // No path: the motion a run executed, validated only (a clearance
+            // without a path has no value).
+            None => motion.and_then(|m| referee.validate_path(robot, m, DEFAULT_TOLERANCE).err()),
         },
     };
     let valid = motion.is_some() && validation.is_none();
