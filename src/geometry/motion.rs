@@ -585,7 +585,10 @@ impl Region {
         );
         self.flat = spread == 0.0;
         if self.flat {
-            // `lever · 0 = 0`: the bounds below with k = 0, to the bit.
+            // `lever · 0 = 0`: the bounds below with k = 0, to the bit. A
+            // loop of its own: with the constant 0, `bulge` folds to a max
+            // (one loop for both cost 3 % more instructions on the
+            // apartment rod's rrt_connect).
             for v in &robot.vertices {
                 let p = Point::new(c0.x + co0 * v.x - s0 * v.y, c0.y + s0 * v.x + co0 * v.y);
                 let q = Point::new(c1.x + co1 * v.x - s1 * v.y, c1.y + s1 * v.x + co1 * v.y);
