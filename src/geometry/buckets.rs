@@ -73,8 +73,9 @@ impl Buckets {
     /// Inclusive column and row ranges of the buckets that `b` meets
     /// (clamped to the grid).
     pub(crate) fn range(&self, b: &Aabb) -> ((usize, usize), (usize, usize)) {
-        let index =
-            |v: f64, o: f64, n: usize| (((v - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        // `as usize` is `floor` for the non-negative, 0 below (and for NaN):
+        // `floor().max(0.0) as usize` without libm's floor.
+        let index = |v: f64, o: f64, n: usize| (((v - o) / self.cell) as usize).min(n - 1);
         let cols = (
             index(b.min.x, self.origin.x, self.nx),
             index(b.max.x, self.origin.x, self.nx),
@@ -99,5 +100,38 @@ pub(crate) fn union(a: &Aabb, b: &Aabb) -> Aabb {
     Aabb {
         min: Point::new(a.min.x.min(b.min.x), a.min.y.min(b.min.y)),
         max: Point::new(a.max.x.max(b.max.x), a.max.y.max(b.max.y)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        /// `range` indexes as `floor().max(0.0)` would, clamped.
+        #[test]
+        fn range_is_floor_clamped(
+            x0 in -50.0f64..50.0, y0 in -50.0f64..50.0, w in 0.0f64..30.0, h in 0.0f64..30.0,
+        ) {
+            let bounds = Aabb { min: Point::new(-10.0, -10.0), max: Point::new(10.0, 20.0) };
+            let boxes: Vec<Aabb> = (0..30)
+                .map(|i| {
+                    let p = Point::new(-10.0 + i as f64 * 0.6, -10.0 + i as f64);
+                    Aabb { min: p, max: p + nalgebra::Vector2::new(1.0, 0.5) }
+                })
+                .collect();
+            let b = Buckets::new(bounds, &boxes, 512);
+            let q = Aabb { min: Point::new(x0, y0), max: Point::new(x0 + w, y0 + h) };
+            let floor = |v: f64, o: f64, n: usize| {
+                (((v - o) / b.cell).floor().max(0.0) as usize).min(n - 1)
+            };
+            let want = (
+                (floor(q.min.x, b.origin.x, b.nx), floor(q.max.x, b.origin.x, b.nx)),
+                (floor(q.min.y, b.origin.y, b.ny), floor(q.max.y, b.origin.y, b.ny)),
+            );
+            prop_assert_eq!(b.range(&q), want);
+        }
     }
 }

@@ -276,8 +276,20 @@ pub struct World {
 /// `theta` in [0, 2π) (`rem_euclid` of a tiny negative angle rounds up
 /// to 2π itself, which becomes 0).
 pub fn wrap_angle(theta: f64) -> f64 {
-    let t = theta.rem_euclid(std::f64::consts::TAU);
+    let t = rem_tau(theta);
     if t >= std::f64::consts::TAU { 0.0 } else { t }
+}
+
+/// `x.rem_euclid(2π)`, bit for bit, without `fmod` for |x| < 2π (where
+/// `x % 2π` is `x` itself): the angles of planning are nearly always there.
+#[inline]
+fn rem_tau(x: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    if x > -tau && x < tau {
+        if x < 0.0 { x + tau } else { x }
+    } else {
+        x.rem_euclid(tau)
+    }
 }
 
 /// Shortest signed angular difference `b - a`, in (-π, π].
@@ -292,9 +304,45 @@ pub fn wrap_angle(theta: f64) -> f64 {
 /// ```
 pub fn angle_diff(a: f64, b: f64) -> f64 {
     let tau = std::f64::consts::TAU;
-    let mut d = (b - a).rem_euclid(tau);
+    let mut d = rem_tau(b - a);
     if d > std::f64::consts::PI {
         d -= tau;
     }
     d
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::rem_tau;
+
+    #[test]
+    fn rem_tau_is_rem_euclid_at_the_edges() {
+        let tau = std::f64::consts::TAU;
+        for x in [
+            0.0,
+            -0.0,
+            1e-300,
+            -1e-300,
+            tau,
+            -tau,
+            tau.next_down(),
+            (-tau).next_up(),
+            3.0 * tau,
+            -7.5,
+            f64::INFINITY,
+            f64::NAN,
+        ] {
+            assert_eq!(rem_tau(x).to_bits(), x.rem_euclid(tau).to_bits(), "{x}");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn rem_tau_is_rem_euclid(x in -20.0f64..20.0) {
+            let tau = std::f64::consts::TAU;
+            prop_assert_eq!(rem_tau(x).to_bits(), x.rem_euclid(tau).to_bits());
+        }
+    }
 }

@@ -93,7 +93,14 @@
 //! # Cost
 //! A uniform bucket grid of the pieces' boxes ([`Buckets`]) gives the
 //! pieces near the box of the whole motion; each is reported once (in the
-//! first bucket that both boxes meet). The groups are visited depth first,
+//! first bucket that both boxes meet). A motion to (or from) a new state
+//! ([`MotionChecker::extension_free`]) tests the new state's body first,
+//! against the pieces near that body alone: most extensions that fail end in
+//! collision, and then neither the whole motion's bounds and hull nor the
+//! pieces near the whole motion are needed. It changes no verdict: a body
+//! overlapping a piece deeper than `TOUCH_EPS / 2` lies in the hull of the
+//! sub-step it ends, which overlaps the piece at least as deep, so the
+//! group search would reject the motion too. The groups are visited depth first,
 //! left half first, so a motion that collides late would first have every
 //! sub-step before its collision cleared: when the whole motion fails, the
 //! bodies at its end, middle and quarters are tested first (a body in
@@ -167,7 +174,7 @@ impl MotionChecker {
         self.in_bounds(c)
             && match &self.robot {
                 Robot::Round { index, radius } => index.disk_free(c.xy(), *radius),
-                Robot::Polygon(p) => p.free(&Cut::still(c)),
+                Robot::Polygon(p) => p.free(&Cut::still(c), None),
             }
     }
 
@@ -181,7 +188,22 @@ impl MotionChecker {
             && self.in_bounds(b)
             && match &self.robot {
                 Robot::Round { index, radius } => index.sweep_free(a.xy(), b.xy(), *radius),
-                Robot::Polygon(p) => p.free(&Cut::new(a, b, p.radius)),
+                Robot::Polygon(p) => p.free(&Cut::new(a, b, p.radius), None),
+            }
+    }
+
+    /// [`MotionChecker::motion_free`], the same verdict, for a motion to a
+    /// new state `b` from `a`, or from a new state `a` when `new_start`:
+    /// the new state's body is tested first.
+    pub fn extension_free(&self, a: Config, b: Config, new_start: bool) -> bool {
+        self.in_bounds(a)
+            && self.in_bounds(b)
+            && match &self.robot {
+                Robot::Round { index, radius } => index.sweep_free(a.xy(), b.xy(), *radius),
+                Robot::Polygon(p) => {
+                    let cut = Cut::new(a, b, p.radius);
+                    p.free(&cut, Some(if new_start { 0 } else { cut.steps }))
+                }
             }
     }
 
@@ -283,24 +305,42 @@ impl PolygonChecker {
     }
 
     /// Whether every validator sub-step of `cut` is clear of every piece.
-    fn free(&self, cut: &Cut) -> bool {
+    /// `fresh`: a boundary whose body a planner has not checked (a new
+    /// state), tested first against the pieces near it alone.
+    fn free(&self, cut: &Cut, fresh: Option<usize>) -> bool {
         with_scratch(|Scratch { region, pending }| {
             region.start();
+            if let Some(k) = fresh {
+                region.set(self, cut, k, k);
+                self.near(&region.aabb, pending);
+                if pending
+                    .iter()
+                    .any(|&i| !self.clear(&self.pieces[i as usize], region))
+                {
+                    return false;
+                }
+            }
             region.set(self, cut, 0, cut.steps);
-            pending.clear();
-            let ((c0, c1), (k0, k1)) = self.buckets.range(&region.aabb);
-            for k in k0..=k1 {
-                for c in c0..=c1 {
-                    for &item in self.buckets.items(c, k) {
-                        let (pc, pk) = self.pieces[item as usize].first;
-                        if (pc as usize).max(c0) == c && (pk as usize).max(k0) == k {
-                            pending.push(item);
-                        }
+            self.near(&region.aabb, pending);
+            self.decide(cut, 0, cut.steps, pending, region)
+        })
+    }
+
+    /// The pieces whose boxes share a bucket with `aabb` into `pending`,
+    /// each once.
+    fn near(&self, aabb: &Aabb, pending: &mut Vec<u32>) {
+        pending.clear();
+        let ((c0, c1), (k0, k1)) = self.buckets.range(aabb);
+        for k in k0..=k1 {
+            for c in c0..=c1 {
+                for &item in self.buckets.items(c, k) {
+                    let (pc, pk) = self.pieces[item as usize].first;
+                    if (pc as usize).max(c0) == c && (pk as usize).max(k0) == k {
+                        pending.push(item);
                     }
                 }
             }
-            self.decide(cut, 0, cut.steps, pending, region)
-        })
+        }
     }
 
     /// Whether sub-steps `k0 .. k1` of `cut` are clear of the pieces
@@ -584,7 +624,19 @@ impl Region {
             Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
         );
         self.flat = spread == 0.0;
-        if self.flat {
+        if k0 == k1 {
+            // One placement: both ends it, its bounds its own (the flat
+            // bounds below with p = q, to the bit).
+            for v in &robot.vertices {
+                let p = Point::new(c0.x + co0 * v.x - s0 * v.y, c0.y + s0 * v.x + co0 * v.y);
+                self.ends.push(p);
+                self.ends.push(p);
+                lo.x = lo.x.min(p.x);
+                lo.y = lo.y.min(p.y);
+                hi.x = hi.x.max(p.x);
+                hi.y = hi.y.max(p.y);
+            }
+        } else if self.flat {
             // `lever · 0 = 0`: the bounds below with k = 0, to the bit. A
             // loop of its own: with the constant 0, `bulge` folds to a max
             // (one loop for both cost 3 % more instructions on the
@@ -648,7 +700,11 @@ impl Region {
     #[inline(always)]
     fn high(&self, u: Vector) -> f64 {
         let ends = self.ends.chunks_exact(2);
-        if self.flat {
+        if self.still {
+            // Both ends one placement: `bulge(a, a, 0) = a`.
+            ends.map(|e| u.dot(&e[0].coords))
+                .fold(f64::NEG_INFINITY, f64::max)
+        } else if self.flat {
             ends.map(|e| bulge(u.dot(&e[0].coords), u.dot(&e[1].coords), 0.0))
                 .fold(f64::NEG_INFINITY, f64::max)
         } else {
@@ -1004,6 +1060,19 @@ mod tests {
                 prop_assert!(w.bounds.contains(a.xy()));
                 prop_assert!(config_collision(&w, &robot, a).is_none(), "{:?} at {:?}", robot, a);
             }
+        }
+
+        /// Testing a new end first changes no verdict.
+        #[test]
+        fn an_extension_is_decided_as_the_motion(
+            w in random_world(),
+            robot in robot_strategy(),
+            (a, b) in motion_strategy(),
+        ) {
+            let checker = MotionChecker::new(&with_bounds(w), &robot);
+            let whole = checker.motion_free(a, b);
+            prop_assert_eq!(checker.extension_free(a, b, false), whole);
+            prop_assert_eq!(checker.extension_free(a, b, true), whole);
         }
     }
 

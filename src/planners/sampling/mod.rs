@@ -576,6 +576,17 @@ impl<'a> Run<'a> {
         }
     }
 
+    /// [`Run::motion_free`] for a motion to a new state `b`, or from a new
+    /// state `a` when `new_start` (the same verdict; the new state is
+    /// tested first).
+    pub fn extension_free(&mut self, a: Config, b: Config, new_start: bool) -> bool {
+        if self.space.steering.is_some() {
+            return self.motion_free(a, b);
+        }
+        self.checks += 1;
+        self.checker.extension_free(a, b, new_start)
+    }
+
     /// The `k` states nearest to `q` in the space's distance into `out`, as
     /// (squared distance, index), nearest first, ties to the lower index.
     /// `state(i)` is state `i` of `index`. `to_q`: the distance from each

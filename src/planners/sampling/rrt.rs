@@ -202,7 +202,7 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         } else {
             run.space.steer(from, sample, range)
         };
-        if !run.motion_free(from, new) {
+        if !run.extension_free(from, new, false) {
             continue;
         }
         let mut parent = nearest;

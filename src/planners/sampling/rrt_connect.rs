@@ -112,10 +112,10 @@ fn step(
     let range = run.settings.range;
     let (new, free) = if tree.towards_root {
         let new = run.space.steer_back(target, a, range);
-        (new, run.motion_free(new, a))
+        (new, run.extension_free(new, a, true))
     } else {
         let new = run.space.steer(a, target, range);
-        (new, run.motion_free(a, new))
+        (new, run.extension_free(a, new, false))
     };
     if !free {
         return Step::Trapped;
