@@ -608,6 +608,18 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
+                        // t's direction is A turned by atan2(r, −2), whose
+                        // cosine and sine are −2/|A| and r/|A|: (cos t, sin t)
+                        // = (ct, st) / |A|², no arc tangent. The formula
+                        // needs t ∈ [0, π] (sin t ≥ 0) and v = φ − π/2 − t in
+                        // [−π, 0] (sin v = −cos(φ − t) ≤ 0); a sine below
+                        // −1e-9 is an angle that far inside (−π, 0), beyond
+                        // ZERO and every rounding of the formula's angles.
+                        let (st, ct) = (r * xi - 2.0 * eta, -2.0 * xi - r * eta);
+                        let tol = 1e-9 * (an * an);
+                        if st < -tol || g.c * ct + g.s * st < -tol {
+                            return INF;
+                        }
                         lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
                     } else {
                         let theta = centre_angle(&mut angles.a[pair], i, xi, eta);
@@ -632,6 +644,16 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     }
                     let u = (b2 - 4.0).sqrt();
                     if !FINE {
+                        // t's direction is B turned by atan2(2, u), whose
+                        // cosine and sine are u/|B| and 2/|B|: (cos t, sin t)
+                        // = (ct, st) / |B|². t and v = t − φ must be in
+                        // [0, π] (sines ≥ 0), to within the tolerance argued
+                        // for 8.9.
+                        let (st, ct) = (2.0 * xi + u * eta, u * xi - 2.0 * eta);
+                        let tol = 1e-9 * b2;
+                        if st < -tol || st * g.c - ct * g.s < -tol {
+                            return INF;
+                        }
                         lower((u + turn).max(d))
                     } else {
                         let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
@@ -691,6 +713,13 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
+                        // t = atan2(xi, −eta) must be in [0, π] (xi ≥ 0) and
+                        // v = t + π/2 − φ in [−π, 0] (sin v = cos(t − φ) ≤ 0),
+                        // to within the tolerance argued for 8.9.
+                        let tol = 1e-9 * bn;
+                        if xi < -tol || g.s * xi - g.c * eta > tol {
+                            return INF;
+                        }
                         lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
                     } else {
                         let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
@@ -709,6 +738,16 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
+                        // t is the angle of (ct, st), the formula's own
+                        // atan2 arguments, of norm √((4 − u)² + 4)·|B| ≤ m;
+                        // t and v = t − φ must be in [0, π] (sines ≥ 0), to
+                        // within the tolerance argued for 8.9.
+                        let st = (4.0 - u) * xi - 2.0 * eta;
+                        let ct = -2.0 * xi + (u - 4.0) * eta;
+                        let tol = 1e-9 * ((6.0 - u) * bn);
+                        if st < -tol || st * g.c - ct * g.s < -tol {
+                            return INF;
+                        }
                         lower((PI + u.abs() + turn).max(d))
                     } else {
                         let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
@@ -930,12 +969,24 @@ mod tests {
             let reach = [0.01, 0.5, 3.0, 10.0, 100.0, 1e6][k % 6];
             let (mut x, mut y) = (rng.range(-reach, reach), rng.range(-reach, reach));
             let mut phi = rng.range(-PI, PI);
-            match (k / 6) % 8 {
+            // Near the boundaries: a distance or centre vector of 2, 4,
+            // √20 or 6.5 radii, a heading by 0, ±π/2 or ±π.
+            let near = [2.0, 4.0, 20f64.sqrt(), 6.5][k % 4] * (1.0 + rng.range(-1e-9, 1e-9));
+            let a = rng.range(-PI, PI);
+            let (ca, sa) = (near * a.cos(), near * a.sin());
+            match (k / 6) % 12 {
                 0 => phi = [0.0, FRAC_PI_2, -FRAC_PI_2, PI, -PI][k % 5],
                 1 => y = 0.0,
                 2 => x = 0.0,
                 3 => (x, y) = (phi.sin(), 1.0 - phi.cos()),
                 4 => (x, y) = (-phi.sin(), -1.0 + phi.cos()),
+                5 => (x, y) = (ca, sa),
+                // The A and B centre vectors (see `Angles`) of that length.
+                6 => (x, y) = (phi.sin() + ca, 1.0 - phi.cos() + sa),
+                7 => (x, y) = (-phi.sin() + ca, 1.0 + phi.cos() + sa),
+                8 => {
+                    phi = [0.0, FRAC_PI_2, -FRAC_PI_2, PI, -PI][k % 5] + rng.range(-1e-9, 1e-9);
+                }
                 _ => {}
             }
             let (s, c) = phi.sin_cos();
