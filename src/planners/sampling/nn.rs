@@ -27,13 +27,14 @@
 //! (unless that is already beyond the current k-th candidate), then pops
 //! the pushed subtrees, skipping those whose distance now lies beyond the
 //! k-th candidate, and descends from each the same way; so the result is
-//! exact. Only the far child's box is measured (the near one holds the
-//! query's side of the split), and the tight boxes (rather than the cells
-//! of the splits) prune at once for samples far from the tree, which are
-//! most of an RRT's. The wrap-around is a min with the period measured
-//! the other way round ([`distance2`], [`gap2`]), the period infinite for
-//! keys that do not wrap, so the walk has no branch on the kind of keys
-//! (2-dimensional keys have a third coordinate 0). Ties between equal
+//! exact. Only the far child's box is measured on the way down (the near
+//! one holds the query's side of the split), and a leaf's own box before
+//! its points once there is a candidate; the tight boxes (rather than the
+//! cells of the splits) prune at once for samples far from the tree,
+//! which are most of an RRT's. The wrap-around is a min with the period
+//! measured the other way round (`distance2`, `gap2`), the period infinite
+//! for keys that do not wrap, so the walk has no branch on the kind of
+//! keys (2-dimensional keys have a third coordinate 0). Ties between equal
 //! distances go to the lower index: results do not depend on the walk
 //! order.
 
@@ -241,7 +242,9 @@ impl KdTree {
         }
         let mut best = Candidate(f64::INFINITY, u32::MAX);
         self.walk(q, |candidate| {
-            if candidate < best {
+            // The walk offers only candidates no farther than the best: one
+            // nearer, or as near with a lower index, wins.
+            if candidate.0 < best.0 || candidate.1 < best.1 {
                 best = candidate;
             }
             best.0
@@ -307,10 +310,14 @@ impl KdTree {
                 node = n.children[side];
                 continue;
             }
-            for &p in &self.leaves[n.leaf as usize] {
-                let d = distance2(&q, &self.keys[p as usize], wrap);
-                if d <= limit {
-                    limit = visit(Candidate(d, p));
+            // A leaf reached below a popped subtree may lie beyond the
+            // bound: its box is measured before its points.
+            if limit == f64::INFINITY || gap2(&q, &n.lo, &n.hi, wrap) <= limit {
+                for &p in &self.leaves[n.leaf as usize] {
+                    let d = distance2(&q, &self.keys[p as usize], wrap);
+                    if d <= limit {
+                        limit = visit(Candidate(d, p));
+                    }
                 }
             }
             loop {
