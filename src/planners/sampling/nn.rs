@@ -22,12 +22,21 @@
 //! node keeps the bounding box of its subtree's points (grown on insertion);
 //! the query's distance to a box, along the periodic axis round the circle
 //! to the box's arc, is a lower bound of its distance to every point in the
-//! subtree. A query walks the tree depth first, the subtree with the nearer
-//! box first, and skips subtrees whose box lies farther than the current
-//! k-th candidate, so the result is exact; the tight boxes (rather than the
-//! cells of the splits) also prune at once for samples far from the tree,
-//! which are most of an RRT's. Ties between equal distances go to the
-//! lower index: results do not depend on the walk order.
+//! subtree. A query descends from the root to the leaf its coordinates
+//! lead to, at each split pushing the other child with its box's distance
+//! (unless that is already beyond the current k-th candidate), then pops
+//! the pushed subtrees, skipping those whose distance now lies beyond the
+//! k-th candidate, and descends from each the same way; so the result is
+//! exact. Only the far child's box is measured on the way down (the near
+//! one holds the query's side of the split), and a leaf's own box before
+//! its points once there is a candidate; the tight boxes (rather than the
+//! cells of the splits) prune at once for samples far from the tree,
+//! which are most of an RRT's. The wrap-around is a min with the period
+//! measured the other way round (`distance2`, `gap2`), the period infinite
+//! for keys that do not wrap, so the walk has no branch on the kind of
+//! keys (2-dimensional keys have a third coordinate 0). Ties between equal
+//! distances go to the lower index: results do not depend on the walk
+//! order.
 
 /// "No child": the node is a leaf.
 const NONE: u32 = u32::MAX;
@@ -41,6 +50,8 @@ pub struct KdTree {
     dims: usize,
     /// The period of the last axis (`dims == 3`), 0 when it does not wrap.
     period: f64,
+    /// The period as the walk's formulas take it: infinite for no wrap.
+    wrap: f64,
     /// Point `i`'s key.
     keys: Vec<[f64; 3]>,
     /// Node 0 is the root (once a point exists).
@@ -71,13 +82,15 @@ impl KdTree {
     /// with period `period` when it is positive.
     pub fn new(dims: usize, period: f64) -> Self {
         assert!(dims == 2 || dims == 3, "a k-d tree of 2 or 3 axes");
+        let period = if dims == 3 && period > 0.0 {
+            period
+        } else {
+            0.0
+        };
         KdTree {
             dims,
-            period: if dims == 3 && period > 0.0 {
-                period
-            } else {
-                0.0
-            },
+            period,
+            wrap: if period > 0.0 { period } else { f64::INFINITY },
             keys: Vec::new(),
             nodes: Vec::new(),
             leaves: Vec::new(),
@@ -229,7 +242,9 @@ impl KdTree {
         }
         let mut best = Candidate(f64::INFINITY, u32::MAX);
         self.walk(q, |candidate| {
-            if candidate < best {
+            // The walk offers only candidates no farther than the best: one
+            // nearer, or as near with a lower index, wins.
+            if candidate.0 < best.0 || candidate.1 < best.1 {
                 best = candidate;
             }
             best.0
@@ -267,8 +282,9 @@ impl KdTree {
         self.heap = heap;
     }
 
-    /// The walk both queries share: depth first, the nearer subtree first,
-    /// skipping every subtree whose box is farther than the bound. `visit`
+    /// The walk both queries share: depth first, the query's side of each
+    /// split first, skipping every subtree whose box is farther than the
+    /// bound. `visit`
     /// sees each point reached as a candidate and returns the bound after
     /// it (the squared distance beyond which nothing is wanted).
     fn walk(&mut self, q: &[f64; 3], mut visit: impl FnMut(Candidate) -> f64) {
@@ -276,58 +292,68 @@ impl KdTree {
         if self.dims == 2 {
             q[2] = 0.0;
         }
+        let wrap = self.wrap;
         let mut stack = std::mem::take(&mut self.stack);
         stack.clear();
-        let root = &self.nodes[0];
-        stack.push((0, self.gap2(&q, &root.lo, &root.hi)));
         let mut limit = f64::INFINITY;
-        while let Some((node, bound)) = stack.pop() {
-            if bound > limit {
+        let mut node = 0u32;
+        loop {
+            let n = &self.nodes[node as usize];
+            if n.children[0] != NONE {
+                let side = usize::from(q[n.axis as usize] >= n.split);
+                let far = n.children[1 - side];
+                let f = &self.nodes[far as usize];
+                let g = gap2(&q, &f.lo, &f.hi, wrap);
+                if g <= limit {
+                    stack.push((far, g));
+                }
+                node = n.children[side];
                 continue;
             }
-            let n = &self.nodes[node as usize];
-            if n.children[0] == NONE {
+            // A leaf reached below a popped subtree may lie beyond the
+            // bound: its box is measured before its points.
+            if limit == f64::INFINITY || gap2(&q, &n.lo, &n.hi, wrap) <= limit {
                 for &p in &self.leaves[n.leaf as usize] {
-                    let d = self.distance2(&q, &self.keys[p as usize]);
+                    let d = distance2(&q, &self.keys[p as usize], wrap);
                     if d <= limit {
                         limit = visit(Candidate(d, p));
                     }
                 }
-                continue;
             }
-            let [a, b] = n.children;
-            let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
-            let (ga, gb) = (self.gap2(&q, &na.lo, &na.hi), self.gap2(&q, &nb.lo, &nb.hi));
-            // The nearer subtree last onto the stack: walked first.
-            let ((near, gn), (far, gf)) = if ga <= gb {
-                ((a, ga), (b, gb))
-            } else {
-                ((b, gb), (a, ga))
-            };
-            if gf <= limit {
-                stack.push((far, gf));
-            }
-            if gn <= limit {
-                stack.push((near, gn));
+            loop {
+                let Some((next, bound)) = stack.pop() else {
+                    self.stack = stack;
+                    return;
+                };
+                if bound <= limit {
+                    node = next;
+                    break;
+                }
             }
         }
-        self.stack = stack;
     }
+}
 
-    /// The squared distance from `q` to the box [lo, hi] (along the
-    /// periodic axis, round the circle to its arc): a lower bound of the
-    /// distance to each point in it.
-    #[inline]
-    fn gap2(&self, q: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
-        let gx = (lo[0] - q[0]).max(q[0] - hi[0]).max(0.0);
-        let gy = (lo[1] - q[1]).max(q[1] - hi[1]).max(0.0);
-        let gt = if self.period > 0.0 {
-            arc_gap(q[2], (lo[2], hi[2]), self.period)
-        } else {
-            (lo[2] - q[2]).max(q[2] - hi[2]).max(0.0)
-        };
-        gx * gx + gy * gy + gt * gt
-    }
+/// The squared distance between keys `a` and `b` whose last axis wraps
+/// with period `wrap` (infinite when it does not: the same formula).
+#[inline]
+fn distance2(a: &[f64; 3], b: &[f64; 3], wrap: f64) -> f64 {
+    let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
+    let dt = (a[2] - b[2]).abs();
+    let dt = dt.min(wrap - dt);
+    dx * dx + dy * dy + dt * dt
+}
+
+/// The squared distance from `q` to the box [lo, hi] (along the axis that
+/// wraps with period `wrap`, round the circle to its arc): a lower bound
+/// of the distance to each point in it.
+#[inline]
+fn gap2(q: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3], wrap: f64) -> f64 {
+    let gx = (lo[0] - q[0]).max(q[0] - hi[0]).max(0.0);
+    let gy = (lo[1] - q[1]).max(q[1] - hi[1]).max(0.0);
+    let gt = (lo[2] - q[2]).max(q[2] - hi[2]).max(0.0);
+    let gt = gt.min(wrap - (hi[2].max(q[2]) - lo[2].min(q[2])));
+    gx * gx + gy * gy + gt * gt
 }
 
 /// Grows the box [lo, hi] to hold `key`.
@@ -336,16 +362,6 @@ fn grow_box(lo: &mut [f64; 3], hi: &mut [f64; 3], key: &[f64; 3]) {
         lo[axis] = lo[axis].min(key[axis]);
         hi[axis] = hi[axis].max(key[axis]);
     }
-}
-
-/// The distance from `q` to the arc [lo, hi] of a circle of circumference
-/// `period` (0 inside it).
-fn arc_gap(q: f64, (lo, hi): (f64, f64), period: f64) -> f64 {
-    if (lo..=hi).contains(&q) {
-        return 0.0;
-    }
-    let round = |d: f64| d.min(period - d);
-    round((q - lo).abs()).min(round((q - hi).abs()))
 }
 
 /// A candidate neighbour: squared distance, then index (the order of the
