@@ -246,15 +246,22 @@ impl RobotShape {
 
     /// The body's vertices placed at `c` (empty for point and disk robots).
     pub fn placed_vertices(&self, c: Config) -> Vec<Point> {
-        match self {
-            RobotShape::Polygon(p) => {
-                let (s, co) = c.theta.sin_cos();
+        let mut placed = Vec::new();
+        self.place_into(c, &mut placed);
+        placed
+    }
+
+    /// [`RobotShape::placed_vertices`] written into `out` (cleared first):
+    /// no allocation once `out` has room for the body's vertices.
+    pub fn place_into(&self, c: Config, out: &mut Vec<Point>) {
+        out.clear();
+        if let RobotShape::Polygon(p) = self {
+            let (s, co) = c.theta.sin_cos();
+            out.extend(
                 p.vertices
                     .iter()
-                    .map(|v| Point::new(c.x + co * v.x - s * v.y, c.y + s * v.x + co * v.y))
-                    .collect()
-            }
-            _ => Vec::new(),
+                    .map(|v| Point::new(c.x + co * v.x - s * v.y, c.y + s * v.x + co * v.y)),
+            );
         }
     }
 }

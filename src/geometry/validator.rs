@@ -45,9 +45,13 @@
 use nalgebra::Unit;
 use parry2d_f64::math::Isometry;
 use parry2d_f64::query;
+use parry2d_f64::query::Unsupported;
+use parry2d_f64::query::gjk::VoronoiSimplex;
+use parry2d_f64::query::point::local_point_projection_on_support_map;
 use parry2d_f64::shape::{
     Ball, ConvexPolygon as ParryPolygon, Cuboid, Segment, Shape as ParryShape, SupportMap,
 };
+use parry2d_f64::utils::{ccw_face_normal, point_cloud_support_point};
 
 use super::{
     Aabb, Config, Grid, Point, RobotShape, Shape, TOUCH_EPS, Vector, World, angle_diff, polygon,
@@ -171,7 +175,112 @@ impl Region {
     /// Whether the region is so thin that it can lie on a seam without
     /// overlapping the pieces on either side.
     fn is_thin(&self) -> bool {
-        self.radius <= TOUCH_EPS && !matches!(self.core, Core::Polygon(_))
+        self.radius <= TOUCH_EPS && !matches!(self.core, Core::Polygon(_) | Core::Hull(_))
+    }
+}
+
+/// The buffers of a walk over sub-steps, reused from one to the next so
+/// that building a polygon robot's swept region allocates nothing: the
+/// bodies placed at the sub-step's ends (the end of one sub-step is the
+/// start of the next, placed once), the points and hull of the two, and
+/// the hull's vertices and normals lent to the region ([`Sweep::recycle`]
+/// takes them back).
+#[derive(Default)]
+struct Sweep {
+    /// The bits of the configuration `start` is placed at, if any.
+    placed: Option<[u64; 3]>,
+    start: Vec<Point>,
+    end: Vec<Point>,
+    points: Vec<Point>,
+    hull: Vec<Point>,
+    vertices: Vec<Point>,
+    normals: Vec<Unit<Vector>>,
+}
+
+/// The finite vertices of the robot's body placed at `c`, sorted by
+/// [`polygon::lex_cmp`] (as [`polygon::convex_hull`] filters and sorts
+/// them; the order of a body's vertices does not change its hull).
+fn place_sorted(robot: &RobotShape, c: Config, out: &mut Vec<Point>) {
+    robot.place_into(c, out);
+    out.retain(|p| p.x.is_finite() && p.y.is_finite());
+    out.sort_unstable_by(polygon::lex_cmp);
+}
+
+/// The points of two sorted runs into `out` (cleared first), sorted.
+fn merge_sorted(a: &[Point], b: &[Point], out: &mut Vec<Point>) {
+    out.clear();
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        if polygon::lex_cmp(&b[j], &a[i]).is_lt() {
+            out.push(b[j]);
+            j += 1;
+        } else {
+            out.push(a[i]);
+            i += 1;
+        }
+    }
+    out.extend_from_slice(&a[i..]);
+    out.extend_from_slice(&b[j..]);
+}
+
+fn config_bits(c: Config) -> [u64; 3] {
+    [c.x.to_bits(), c.y.to_bits(), c.theta.to_bits()]
+}
+
+impl Sweep {
+    /// The region swept by the robot from `c0` to `c1`: [`body_region`],
+    /// the same core to the bit (a polygon's hull as a [`Core::Hull`]).
+    fn region(&mut self, robot: &RobotShape, c0: Config, c1: Config) -> Region {
+        if !matches!(robot, RobotShape::Polygon(_)) {
+            return body_region(robot, c0, c1);
+        }
+        if self.placed != Some(config_bits(c0)) {
+            place_sorted(robot, c0, &mut self.start);
+        }
+        if c1 != c0 {
+            place_sorted(robot, c1, &mut self.end);
+            merge_sorted(&self.start, &self.end, &mut self.points);
+            std::mem::swap(&mut self.start, &mut self.end);
+            self.placed = Some(config_bits(c1));
+        } else {
+            self.points.clear();
+            self.points.extend_from_slice(&self.start);
+            self.placed = Some(config_bits(c0));
+        }
+        polygon::convex_hull_of_sorted_into(&mut self.points, &mut self.hull);
+        merge_close_vertices(&self.hull, &mut self.vertices);
+        let core = match self.vertices.len() {
+            0..=2 => core_of_few(&self.vertices),
+            n => {
+                // As `ParryPolygon::from_convex_polyline_unmodified`.
+                let v = &self.vertices;
+                self.normals.clear();
+                let normals = (0..n).map(|i| ccw_face_normal([&v[i], &v[(i + 1) % n]]));
+                for normal in normals {
+                    match normal {
+                        Some(normal) => self.normals.push(normal),
+                        None => break,
+                    }
+                }
+                if self.normals.len() == n {
+                    Core::Hull(Hull {
+                        points: std::mem::take(&mut self.vertices),
+                        normals: std::mem::take(&mut self.normals),
+                    })
+                } else {
+                    Core::Segment(Segment::new(v[0], v[n / 2]))
+                }
+            }
+        };
+        Region::new(core, 0.0)
+    }
+
+    /// Takes back the buffers lent to `region`.
+    fn recycle(&mut self, region: Region) {
+        if let Core::Hull(hull) = region.core {
+            self.vertices = hull.points;
+            self.normals = hull.normals;
+        }
     }
 }
 
@@ -218,7 +327,7 @@ impl<'w> Validator<'w> {
                 }
             }
             _ => {
-                self.check_motions(robot, path, tolerance, &mut |_| {})?;
+                self.check_motions(robot, path, tolerance, &mut |region| self.first_hit(region))?;
                 self.check_walls(robot, path)
             }
         }
@@ -242,7 +351,9 @@ impl<'w> Validator<'w> {
         let mut best = f64::INFINITY;
         let motions = self.check_motions(robot, path, tolerance, &mut |region| {
             if best > TOUCH_EPS {
-                self.measure(region, &mut best);
+                self.measure_and_hit(region, &mut best)
+            } else {
+                self.first_hit(region)
             }
         });
         match motions {
@@ -256,19 +367,20 @@ impl<'w> Validator<'w> {
     }
 
     /// The bounds at the start and every motion of a path of two or more
-    /// configurations, handing each sub-step's swept region to `each`
-    /// before it is checked.
+    /// configurations, each sub-step's swept region checked by `hit`
+    /// ([`Validator::first_hit`], or a function that finds the same).
     fn check_motions(
         &self,
         robot: &RobotShape,
         path: &[Config],
         tolerance: f64,
-        each: &mut dyn FnMut(&Region),
+        hit: &mut dyn FnMut(&Region) -> Option<usize>,
     ) -> Result<(), ValidationError> {
         let tolerance = usable_tolerance(tolerance);
         self.check_config_in_bounds(0, path[0])?;
+        let mut sweep = Sweep::default();
         for (segment, pair) in path.windows(2).enumerate() {
-            self.check_motion(robot, segment, pair[0], pair[1], tolerance, each)?;
+            self.check_motion(robot, segment, pair[0], pair[1], tolerance, &mut sweep, hit)?;
         }
         Ok(())
     }
@@ -288,6 +400,7 @@ impl<'w> Validator<'w> {
         self.first_hit(&body)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn check_motion(
         &self,
         robot: &RobotShape,
@@ -295,16 +408,18 @@ impl<'w> Validator<'w> {
         a: Config,
         b: Config,
         tolerance: f64,
-        each: &mut dyn FnMut(&Region),
+        sweep: &mut Sweep,
+        hit: &mut dyn FnMut(&Region) -> Option<usize>,
     ) -> Result<(), ValidationError> {
         self.check_config_in_bounds(segment, b)?;
         let steps = SubSteps::new(robot, a, b, tolerance);
         // Bounds are convex: both ends inside means the whole motion is.
         for k in 0..steps.count {
             let (c0, c1) = (steps.at(k), steps.at(k + 1));
-            let region = body_region(robot, c0, c1);
-            each(&region);
-            if let Some(i) = self.first_hit(&region) {
+            let region = sweep.region(robot, c0, c1);
+            let first = hit(&region);
+            sweep.recycle(region);
+            if let Some(i) = first {
                 // Name the start if the robot is already in collision there.
                 let culprit = if k == 0 && self.config_collision(robot, c0).is_some() {
                     c0
@@ -617,7 +732,7 @@ impl<'w> Validator<'w> {
     /// when that is smaller.
     fn measure(&self, region: &Region, best: &mut f64) {
         for o in &self.obstacles {
-            if aabb_distance(&region.aabb, &o.aabb) < *best {
+            if aabb_distance_below(&region.aabb, &o.aabb, *best) {
                 *best = best.min(body_distance(region, &o.body, *best));
             }
         }
@@ -640,6 +755,29 @@ impl<'w> Validator<'w> {
     /// The world's bounds.
     pub fn bounds(&self) -> Aabb {
         self.world.bounds
+    }
+
+    /// [`Validator::measure`] and [`Validator::first_hit`] in one pass over
+    /// the obstacles: the same hit, and when there is none, the same `best`
+    /// (after a hit, `best` is left part-measured). An obstacle that is
+    /// measured tells whether it collides from the same gaps and distances
+    /// ([`core_distance_and_overlap`]); the others are tested as
+    /// `first_hit` tests them.
+    fn measure_and_hit(&self, region: &Region, best: &mut f64) -> Option<usize> {
+        let reach = grow(region.aabb, 2.0 * TOUCH_EPS);
+        for (i, o) in self.obstacles.iter().enumerate() {
+            let near = aabbs_meet(&o.aabb, &reach);
+            let mut known = None;
+            if aabb_distance_below(&region.aabb, &o.aabb, *best) {
+                let (d, overlap) = body_distance_and_overlap(region, &o.body, *best);
+                *best = best.min(d);
+                known = overlap;
+            }
+            if near && known.unwrap_or_else(|| collides(region, &o.body)) {
+                return Some(i);
+            }
+        }
+        None
     }
 
     /// The smallest index of an obstacle that `region` collides with.
@@ -719,6 +857,64 @@ fn body_distance(region: &Region, body: &Body, best: f64) -> f64 {
     }
 }
 
+/// [`body_distance`], and whether `region` collides with `body`
+/// ([`collides`]) when that follows from the same computations (not for
+/// grids).
+fn body_distance_and_overlap(region: &Region, body: &Body, best: f64) -> (f64, Option<bool>) {
+    match body {
+        Body::Solid { pieces, seams } => {
+            let mut distance = f64::INFINITY;
+            let mut overlap = false;
+            for (core, radius) in pieces {
+                let (d, o) = core_distance_and_overlap(
+                    &region.core,
+                    core,
+                    best + region.radius + radius,
+                    region.radius + radius,
+                );
+                distance = distance.min(d - region.radius - radius);
+                overlap |= o;
+            }
+            let collides = overlap
+                || (region.is_thin()
+                    && seams.iter().any(|zone| meets_interior(&region.core, zone)));
+            (distance, Some(collides))
+        }
+        Body::Wall(wall) => {
+            let (d, o) =
+                core_distance_and_overlap(&region.core, wall, best + region.radius, region.radius);
+            (d - region.radius, Some(o))
+        }
+        Body::Grid(grid) => (grid_distance(region, grid, best), None),
+    }
+}
+
+/// `(core_distance(a, b, beyond), overlaps(a, b, radius))`, the gap and
+/// the distance computed once for both.
+fn core_distance_and_overlap(a: &Core, b: &Core, beyond: f64, radius: f64) -> (f64, bool) {
+    let gap = largest_gap(a, b);
+    let early_distance = match gap {
+        Some(g) if g >= beyond => Some(g),
+        Some(g) if g < 0.0 => Some(0.0),
+        _ => None,
+    };
+    let early_overlap = match gap {
+        Some(g) if g >= radius - TOUCH_EPS => Some(false),
+        Some(g) if g < 0.0 => Some(true),
+        _ => None,
+    };
+    let full = || distance(a, b).unwrap_or(0.0).max(gap.unwrap_or(0.0));
+    match (early_distance, early_overlap) {
+        (Some(d), Some(o)) => (d, o),
+        (Some(d), None) => (d, radius - full() > TOUCH_EPS),
+        (None, Some(o)) => (full(), o),
+        (None, None) => {
+            let d = full();
+            (d, radius - d > TOUCH_EPS)
+        }
+    }
+}
+
 /// The distance between two cores, or a lower bound of it that is at least
 /// `beyond` (when the separating axes already show they are that far apart).
 fn core_distance(a: &Core, b: &Core, beyond: f64) -> f64 {
@@ -728,8 +924,7 @@ fn core_distance(a: &Core, b: &Core, beyond: f64) -> f64 {
         Some(g) if g < 0.0 => return 0.0,
         _ => {}
     }
-    let d = a.with_shape(|pa, sa| b.with_shape(|pb, sb| query::distance(pa, sa, pb, sb)));
-    d.unwrap_or(0.0).max(gap.unwrap_or(0.0))
+    distance(a, b).unwrap_or(0.0).max(gap.unwrap_or(0.0))
 }
 
 /// The distance from `region` to the blocked cells of `grid` (or anything
@@ -769,6 +964,23 @@ fn aabb_distance(a: &Aabb, b: &Aabb) -> f64 {
     let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
     let dy = (b.min.y - a.max.y).max(a.min.y - b.max.y).max(0.0);
     dx.hypot(dy)
+}
+
+/// `aabb_distance(a, b) < bound`, most often without its `hypot`: boxes
+/// that meet are at 0, and boxes apart by more than `bound` along an axis
+/// are not below it (`hypot` is within an ulp of the true distance, which
+/// is at least the gap along either axis; the margin of 1e-9 covers the
+/// ulp).
+fn aabb_distance_below(a: &Aabb, b: &Aabb, bound: f64) -> bool {
+    let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
+    let dy = (b.min.y - a.max.y).max(a.min.y - b.max.y).max(0.0);
+    if dx == 0.0 && dy == 0.0 {
+        0.0 < bound
+    } else if dx.max(dy) > bound * (1.0 + 1e-9) {
+        false
+    } else {
+        dx.hypot(dy) < bound
+    }
 }
 
 /// The region swept by the robot from `c0` to `c1`: the hull of its bodies
@@ -984,7 +1196,62 @@ enum Core {
     Point(Point),
     Segment(Segment),
     Polygon(ParryPolygon),
-    Box { center: Point, half: Cuboid },
+    /// A convex polygon as [`Core::Polygon`] would hold it, in buffers
+    /// that a [`Sweep`] reuses.
+    Hull(Hull),
+    Box {
+        center: Point,
+        half: Cuboid,
+    },
+}
+
+/// The vertices (counter-clockwise, at least 3) and edge normals of a
+/// convex polygon, as `ParryPolygon::from_convex_polyline_unmodified`
+/// makes them: it behaves as that polygon to the bit.
+struct Hull {
+    points: Vec<Point>,
+    normals: Vec<Unit<Vector>>,
+}
+
+impl SupportMap for Hull {
+    fn local_support_point(&self, dir: &Vector) -> Point {
+        // As `ParryPolygon`'s.
+        point_cloud_support_point(dir, &self.points)
+    }
+}
+
+/// parry's distance between the cores (`query::distance` of their shapes),
+/// a [`Core::Hull`] first taken as the polygon it stands for: the same
+/// dispatch and the same arithmetic, without building that polygon.
+fn distance(a: &Core, b: &Core) -> Result<f64, Unsupported> {
+    let Core::Hull(hull) = a else {
+        return a.with_shape(|pa, sa| b.with_shape(|pb, sb| query::distance(pa, sa, pb, sb)));
+    };
+    if matches!(b, Core::Hull(_)) {
+        return a.with_shape(|pa, sa| b.with_shape(|pb, sb| query::distance(pa, sa, pb, sb)));
+    }
+    // `DefaultQueryDispatcher::distance` for a convex polygon and `b`'s
+    // shape (a ball, a cuboid, a segment or a convex polygon): a ball's
+    // centre is projected on the polygon, any other shape meets it by GJK.
+    b.with_shape(|pb, sb| {
+        let pos12 = Isometry::identity().inv_mul(pb);
+        if let Some(ball) = sb.as_ball() {
+            let center = Point::from(pos12.translation.vector);
+            let proj = local_point_projection_on_support_map(
+                hull,
+                &mut VoronoiSimplex::new(),
+                &center,
+                true,
+            );
+            Ok((nalgebra::distance(&proj.point, &center) - ball.radius).max(0.0))
+        } else if let Some(sb) = sb.as_support_map() {
+            Ok(query::details::distance_support_map_support_map(
+                &pos12, hull, sb,
+            ))
+        } else {
+            a.with_shape(|pa, sa| query::distance(pa, sa, pb, sb))
+        }
+    })
 }
 
 impl Core {
@@ -1001,6 +1268,7 @@ impl Core {
             Core::Point(p) => Aabb { min: *p, max: *p },
             Core::Segment(s) => Aabb::from_corners(s.a, s.b),
             Core::Polygon(p) => aabb_of(p.points()),
+            Core::Hull(h) => aabb_of(&h.points),
             Core::Box { center, half } => Aabb {
                 min: center - half.half_extents,
                 max: center + half.half_extents,
@@ -1020,6 +1288,7 @@ impl Core {
                 }
             }
             Core::Polygon(p) => p.normals().iter().for_each(|n| f(*n)),
+            Core::Hull(h) => h.normals.iter().for_each(|n| f(*n)),
             Core::Box { .. } => {
                 for n in [Vector::x_axis(), Vector::y_axis()] {
                     f(n);
@@ -1037,9 +1306,13 @@ impl Core {
     /// O(n²).
     fn for_each_normal_with_support(&self, mut f: impl FnMut(Unit<Vector>, Point)) {
         match self {
-            Core::Polygon(p) => {
-                let points = p.points();
-                for (i, n) in p.normals().iter().enumerate() {
+            Core::Polygon(_) | Core::Hull(_) => {
+                let (points, normals) = match self {
+                    Core::Polygon(p) => (p.points(), p.normals()),
+                    Core::Hull(h) => (h.points.as_slice(), h.normals.as_slice()),
+                    _ => unreachable!(),
+                };
+                for (i, n) in normals.iter().enumerate() {
                     let j = (i + 1) % points.len();
                     let (first, second) = (i.min(j), i.max(j));
                     let far = if points[second].coords.dot(n) > points[first].coords.dot(n) {
@@ -1060,6 +1333,11 @@ impl Core {
             Core::Point(p) => f(&Isometry::translation(p.x, p.y), &Ball::new(0.0)),
             Core::Segment(s) => f(&Isometry::identity(), s),
             Core::Polygon(p) => f(&Isometry::identity(), p),
+            Core::Hull(h) => {
+                let p = ParryPolygon::from_convex_polyline_unmodified(h.points.clone())
+                    .expect("a hull's normals were computed");
+                f(&Isometry::identity(), &p)
+            }
             Core::Box { center, half } => f(&Isometry::translation(center.x, center.y), half),
         }
     }
@@ -1071,6 +1349,7 @@ impl SupportMap for Core {
             Core::Point(p) => *p,
             Core::Segment(s) => s.local_support_point(dir),
             Core::Polygon(p) => p.local_support_point(dir),
+            Core::Hull(h) => h.local_support_point(dir),
             Core::Box { center, half } => center + half.local_support_point(dir).coords,
         }
     }
@@ -1109,7 +1388,7 @@ fn overlaps(a: &Core, b: &Core, radius: f64) -> bool {
     // Disjoint or touching cores: their distance decides. Parry's distance
     // is exact for these polygonal pairs (point projections and GJK on
     // polytopes).
-    let distance = a.with_shape(|pa, sa| b.with_shape(|pb, sb| query::distance(pa, sa, pb, sb)));
+    let distance = distance(a, b);
     // `Unsupported` cannot happen for these shapes; count it as contact.
     let distance = distance.unwrap_or(0.0).max(gap.unwrap_or(0.0));
     radius - distance > TOUCH_EPS
@@ -1124,23 +1403,11 @@ fn meets_interior(a: &Core, zone: &Core) -> bool {
 /// `1e-12` relative to the coordinates are merged (parry refuses edges
 /// shorter than machine epsilon).
 fn convex_core(points: &[Point]) -> Core {
-    let mut hull = polygon::convex_hull(points);
-    let scale = hull
-        .iter()
-        .fold(1.0f64, |s, p| s.max(p.x.abs()).max(p.y.abs()));
+    let hull = polygon::convex_hull(points);
     let mut merged: Vec<Point> = Vec::with_capacity(hull.len());
-    for p in hull.drain(..) {
-        if merged.last().is_none_or(|q| (p - q).norm() > 1e-12 * scale) {
-            merged.push(p);
-        }
-    }
-    while merged.len() > 1 && (merged[merged.len() - 1] - merged[0]).norm() <= 1e-12 * scale {
-        merged.pop();
-    }
+    merge_close_vertices(&hull, &mut merged);
     match merged.len() {
-        0 => Core::Point(Point::origin()),
-        1 => Core::Point(merged[0]),
-        2 => Core::Segment(Segment::new(merged[0], merged[1])),
+        0..=2 => core_of_few(&merged),
         n => {
             let ends = (merged[0], merged[n / 2]);
             match ParryPolygon::from_convex_polyline_unmodified(merged) {
@@ -1148,6 +1415,33 @@ fn convex_core(points: &[Point]) -> Core {
                 None => Core::Segment(Segment::new(ends.0, ends.1)),
             }
         }
+    }
+}
+
+/// `hull`'s vertices into `merged` (cleared first), those closer than
+/// `1e-12` relative to the coordinates merged ([`convex_core`]).
+fn merge_close_vertices(hull: &[Point], merged: &mut Vec<Point>) {
+    let scale = hull
+        .iter()
+        .fold(1.0f64, |s, p| s.max(p.x.abs()).max(p.y.abs()));
+    merged.clear();
+    for &p in hull {
+        if merged.last().is_none_or(|q| (p - q).norm() > 1e-12 * scale) {
+            merged.push(p);
+        }
+    }
+    while merged.len() > 1 && (merged[merged.len() - 1] - merged[0]).norm() <= 1e-12 * scale {
+        merged.pop();
+    }
+}
+
+/// The core of a hull of at most two vertices.
+fn core_of_few(vertices: &[Point]) -> Core {
+    match *vertices {
+        [] => Core::Point(Point::origin()),
+        [p] => Core::Point(p),
+        [p, q] => Core::Segment(Segment::new(p, q)),
+        _ => unreachable!("more than two vertices"),
     }
 }
 

@@ -605,6 +605,21 @@ pub fn convex_hull(points: &[Point]) -> Vec<Point> {
 /// points. `points` is sorted and deduplicated in place.
 pub fn convex_hull_into(points: &mut Vec<Point>, hull: &mut Vec<Point>) {
     sort_lex(points);
+    convex_hull_of_sorted_into(points, hull);
+}
+
+/// The order of [`convex_hull_into`]'s sort: by x, then y, by `total_cmp`.
+/// Points sorted by it are in the one order that sort gives them (points
+/// it finds equal have the same bits).
+pub fn lex_cmp(a: &Point, b: &Point) -> std::cmp::Ordering {
+    a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y))
+}
+
+/// [`convex_hull_into`] of finite `points` already sorted by [`lex_cmp`]
+/// (e.g. merged from sorted parts): the same hull, without the sort.
+/// `points` is deduplicated in place.
+pub fn convex_hull_of_sorted_into(points: &mut Vec<Point>, hull: &mut Vec<Point>) {
+    debug_assert!(points.is_sorted_by(|a, b| lex_cmp(a, b).is_le()));
     points.dedup();
     hull.clear();
     if points.len() < 3 {
@@ -643,7 +658,7 @@ const SMALL_SORT: usize = 16;
 fn sort_lex(points: &mut [Point]) {
     let plain = |p: &Point| p.x.abs() > 0.0 && p.y.abs() > 0.0;
     if points.len() > SMALL_SORT || !points.iter().all(plain) {
-        points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        points.sort_unstable_by(lex_cmp);
         return;
     }
     for i in 1..points.len() {
