@@ -14,7 +14,9 @@
 //! so a degenerate insertion order (a chain of collinear extensions) costs
 //! time, never the call stack. Leaves make a query scan a few short runs of
 //! points rather than visit one tree node per point (a third of the
-//! instructions of the one-point-per-node tree on the apartment rod).
+//! instructions of the one-point-per-node tree on the apartment rod); a
+//! leaf holds a copy of each point's key beside its index, so a scan reads
+//! one run of memory.
 //!
 //! # Queries and the wrap-around
 //! The distance between keys is Euclidean with the periodic axis'
@@ -28,13 +30,19 @@
 //! the pushed subtrees, skipping those whose distance now lies beyond the
 //! k-th candidate, and descends from each the same way; so the result is
 //! exact. Only the far child's box is measured on the way down (the near
-//! one holds the query's side of the split), and a leaf's own box before
-//! its points once there is a candidate; the tight boxes (rather than the
-//! cells of the splits) prune at once for samples far from the tree,
-//! which are most of an RRT's. The wrap-around is a min with the period
-//! measured the other way round (`distance2`, `gap2`), the period infinite
-//! for keys that do not wrap, so the walk has no branch on the kind of
-//! keys (2-dimensional keys have a third coordinate 0). Ties between equal
+//! one holds the query's side of the split), and only once the distance
+//! to the split plane, a cheaper lower bound, is within the bound (along
+//! the periodic axis, where the way round the circle may be shorter, that
+//! distance is taken as 0); a leaf's own box is measured before its points
+//! once there is a candidate, unless the leaf was itself popped (measured
+//! when pushed). The tight boxes (rather than the cells of the splits)
+//! prune at once for samples far from the tree, which are most of an
+//! RRT's. The wrap-around is a min with the period measured the other way
+//! round (`distance2`, `gap2`), the period infinite for keys that do not
+//! wrap, so the walk has no branch on the kind of keys (2-dimensional keys
+//! have a third coordinate 0); those mins and maxes are plain comparisons
+//! (one instruction each) rather than `f64::min`/`max`, whose care for NaN
+//! costs several, as nothing the walk compares is NaN. Ties between equal
 //! distances go to the lower index: results do not depend on the walk
 //! order.
 
@@ -56,8 +64,12 @@ pub struct KdTree {
     keys: Vec<[f64; 3]>,
     /// Node 0 is the root (once a point exists).
     nodes: Vec<Node>,
-    /// The points of each leaf (`Node::leaf` indexes it).
-    leaves: Vec<Vec<u32>>,
+    /// The points of each leaf (`Node::leaf` indexes it), each with a copy
+    /// of its key (a scan reads them in a row).
+    leaves: Vec<Vec<([f64; 3], u32)>>,
+    /// Per axis, 1 when the distance to a split plane along it is a lower
+    /// bound of the distance to the points beyond, 0 for the periodic axis.
+    plane: [f64; 3],
     /// The walk's pending subtrees and their lower bounds.
     stack: Vec<(u32, f64)>,
     /// The walk's k best candidates so far, the worst on top.
@@ -91,6 +103,7 @@ impl KdTree {
             dims,
             period,
             wrap: if period > 0.0 { period } else { f64::INFINITY },
+            plane: [1.0, 1.0, if period > 0.0 { 0.0 } else { 1.0 }],
             keys: Vec::new(),
             nodes: Vec::new(),
             leaves: Vec::new(),
@@ -113,10 +126,10 @@ impl KdTree {
     }
 
     /// A new leaf node holding `points`, its box theirs.
-    fn leaf_node(&mut self, points: Vec<u32>) -> u32 {
+    fn leaf_node(&mut self, points: Vec<([f64; 3], u32)>) -> u32 {
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for &p in &points {
-            grow_box(&mut lo, &mut hi, &self.keys[p as usize]);
+        for (key, _) in &points {
+            grow_box(&mut lo, &mut hi, key);
         }
         self.leaves.push(points);
         self.nodes.push(Node {
@@ -140,7 +153,7 @@ impl KdTree {
         let index = self.keys.len() as u32;
         self.keys.push(key);
         if index == 0 {
-            self.leaf_node(vec![0]);
+            self.leaf_node(vec![(key, 0)]);
             return 0;
         }
         let mut node = 0usize;
@@ -154,7 +167,7 @@ impl KdTree {
             node = n.children[side] as usize;
         }
         let leaf = self.nodes[node].leaf as usize;
-        self.leaves[leaf].push(index);
+        self.leaves[leaf].push((key, index));
         if self.leaves[leaf].len() > LEAF {
             self.split(node);
         }
@@ -172,10 +185,7 @@ impl KdTree {
             return;
         };
         let points = std::mem::take(&mut self.leaves[n.leaf as usize]);
-        let mut values: Vec<f64> = points
-            .iter()
-            .map(|&p| self.keys[p as usize][axis])
-            .collect();
+        let mut values: Vec<f64> = points.iter().map(|(key, _)| key[axis]).collect();
         values.sort_by(f64::total_cmp);
         // The median, moved up past equal values so that both sides hold a
         // point (the widest spread is positive: some value is larger).
@@ -187,9 +197,8 @@ impl KdTree {
                 .find(|&v| v > values[0])
                 .unwrap_or(values[0]);
         }
-        let (right, left): (Vec<u32>, Vec<u32>) = points
-            .iter()
-            .partition(|&&p| self.keys[p as usize][axis] >= split);
+        let (right, left): (Vec<_>, Vec<_>) =
+            points.iter().partition(|(key, _)| key[axis] >= split);
         // The left half keeps the leaf's slot.
         self.leaves[n.leaf as usize] = left;
         self.nodes.push(Node {
@@ -209,8 +218,8 @@ impl KdTree {
     fn refit(&mut self, node: u32) {
         let n = &mut self.nodes[node as usize];
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for &p in &self.leaves[n.leaf as usize] {
-            grow_box(&mut lo, &mut hi, &self.keys[p as usize]);
+        for (key, _) in &self.leaves[n.leaf as usize] {
+            grow_box(&mut lo, &mut hi, key);
         }
         n.lo = lo;
         n.hi = hi;
@@ -293,28 +302,36 @@ impl KdTree {
             q[2] = 0.0;
         }
         let wrap = self.wrap;
+        let plane = self.plane;
         let mut stack = std::mem::take(&mut self.stack);
         stack.clear();
         let mut limit = f64::INFINITY;
         let mut node = 0u32;
+        // Whether `node`'s box was measured against the bound (popped).
+        let mut measured = false;
         loop {
             let n = &self.nodes[node as usize];
             if n.children[0] != NONE {
-                let side = usize::from(q[n.axis as usize] >= n.split);
+                let axis = n.axis as usize;
+                let side = usize::from(q[axis] >= n.split);
                 let far = n.children[1 - side];
-                let f = &self.nodes[far as usize];
-                let g = gap2(&q, &f.lo, &f.hi, wrap);
-                if g <= limit {
-                    stack.push((far, g));
+                let d = q[axis] - n.split;
+                if d * d * plane[axis] <= limit {
+                    let f = &self.nodes[far as usize];
+                    let g = gap2(&q, &f.lo, &f.hi, wrap);
+                    if g <= limit {
+                        stack.push((far, g));
+                    }
                 }
                 node = n.children[side];
+                measured = false;
                 continue;
             }
             // A leaf reached below a popped subtree may lie beyond the
             // bound: its box is measured before its points.
-            if limit == f64::INFINITY || gap2(&q, &n.lo, &n.hi, wrap) <= limit {
-                for &p in &self.leaves[n.leaf as usize] {
-                    let d = distance2(&q, &self.keys[p as usize], wrap);
+            if measured || limit == f64::INFINITY || gap2(&q, &n.lo, &n.hi, wrap) <= limit {
+                for &(key, p) in &self.leaves[n.leaf as usize] {
+                    let d = distance2(&q, &key, wrap);
                     if d <= limit {
                         limit = visit(Candidate(d, p));
                     }
@@ -327,6 +344,7 @@ impl KdTree {
                 };
                 if bound <= limit {
                     node = next;
+                    measured = true;
                     break;
                 }
             }
@@ -340,7 +358,7 @@ impl KdTree {
 fn distance2(a: &[f64; 3], b: &[f64; 3], wrap: f64) -> f64 {
     let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
     let dt = (a[2] - b[2]).abs();
-    let dt = dt.min(wrap - dt);
+    let dt = min(dt, wrap - dt);
     dx * dx + dy * dy + dt * dt
 }
 
@@ -349,11 +367,25 @@ fn distance2(a: &[f64; 3], b: &[f64; 3], wrap: f64) -> f64 {
 /// of the distance to each point in it.
 #[inline]
 fn gap2(q: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3], wrap: f64) -> f64 {
-    let gx = (lo[0] - q[0]).max(q[0] - hi[0]).max(0.0);
-    let gy = (lo[1] - q[1]).max(q[1] - hi[1]).max(0.0);
-    let gt = (lo[2] - q[2]).max(q[2] - hi[2]).max(0.0);
-    let gt = gt.min(wrap - (hi[2].max(q[2]) - lo[2].min(q[2])));
+    let gx = max(max(lo[0] - q[0], q[0] - hi[0]), 0.0);
+    let gy = max(max(lo[1] - q[1], q[1] - hi[1]), 0.0);
+    let gt = max(max(lo[2] - q[2], q[2] - hi[2]), 0.0);
+    let gt = min(gt, wrap - (max(hi[2], q[2]) - min(lo[2], q[2])));
     gx * gx + gy * gy + gt * gt
+}
+
+/// The larger of `a` and `b`, without `f64::max`'s care for NaN (the walk
+/// sees none: keys, queries and boxes are finite, the period at most
+/// infinite), which costs instructions: one `maxsd`.
+#[inline]
+fn max(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// The smaller of `a` and `b` (see [`max`]).
+#[inline]
+fn min(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
 }
 
 /// Grows the box [lo, hi] to hold `key`.
