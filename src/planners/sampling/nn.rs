@@ -72,8 +72,6 @@ pub struct KdTree {
     plane: [f64; 3],
     /// The walk's pending subtrees and their lower bounds.
     stack: Vec<(u32, f64)>,
-    /// The walk's k best candidates so far, the worst on top.
-    heap: std::collections::BinaryHeap<Candidate>,
 }
 
 /// A node: the box of its subtree's points (min and max per axis; the third
@@ -108,7 +106,6 @@ impl KdTree {
             nodes: Vec::new(),
             leaves: Vec::new(),
             stack: Vec::new(),
-            heap: std::collections::BinaryHeap::new(),
         }
     }
 
@@ -244,7 +241,7 @@ impl KdTree {
     /// empty); ties to the lower index.
     ///
     /// The walk of [`KdTree::k_nearest`] with k = 1, keeping the best
-    /// candidate in place of a heap (the planners' most frequent query).
+    /// candidate in place of an ordered list (the planners' most frequent query).
     pub fn nearest(&mut self, q: &[f64; 3]) -> Option<(usize, f64)> {
         if self.keys.is_empty() {
             return None;
@@ -269,26 +266,28 @@ impl KdTree {
         if k == 0 || self.keys.is_empty() {
             return;
         }
-        let mut heap = std::mem::take(&mut self.heap);
-        heap.clear();
+        // `out` holds the best so far in order, at most k: a candidate
+        // is inserted in place (k is small), the worst dropped past k.
         let mut worst = f64::INFINITY;
-        self.walk(q, |candidate| {
-            if candidate.0 <= worst {
-                if heap.len() < k {
-                    heap.push(candidate);
-                } else if heap.peek().is_some_and(|w| candidate < *w) {
-                    heap.pop();
-                    heap.push(candidate);
+        self.walk(q, |c| {
+            // The walk offers only candidates no farther than the worst.
+            let before = |o: &(f64, u32)| c.0 < o.0 || (c.0 == o.0 && c.1 < o.1);
+            if out.len() == k {
+                if !before(&out[k - 1]) {
+                    return worst;
                 }
-                if heap.len() == k {
-                    worst = heap.peek().map_or(f64::INFINITY, |w| w.0);
-                }
+                out.pop();
+            }
+            let mut i = out.len();
+            while i > 0 && before(&out[i - 1]) {
+                i -= 1;
+            }
+            out.insert(i, (c.0, c.1));
+            if out.len() == k {
+                worst = out[k - 1].0;
             }
             worst
         });
-        out.extend(heap.drain().map(|c| (c.0, c.1)));
-        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        self.heap = heap;
     }
 
     /// The walk both queries share: depth first, the query's side of each
