@@ -354,29 +354,27 @@ impl<F: FnMut(usize, &Tree<'_>, &mut GridLattice) -> bool> Graph for XyGraph<'_,
 
     fn successors(&mut self, node: usize, out: &mut Vec<Edge>) {
         let spec = &self.lat.spec;
-        let (nx, ny) = (spec.nx as i64, spec.ny as i64);
-        let (i, j) = ((node % spec.nx) as i64, (node / spec.nx) as i64);
-        self.from = (i, j);
+        let (nx, ny) = (spec.nx, spec.ny);
+        let (i, j) = (node % nx, node / nx);
+        self.from = (i as i64, j as i64);
         let free = &self.lat.free;
-        for (d, &(dx, dy)) in DIRS.iter().enumerate().take(self.dirs) {
-            let (ni, nj) = (i + dx, j + dy);
-            if ni < 0 || nj < 0 || ni >= nx || nj >= ny {
-                continue;
-            }
-            let to = (node as i64 + self.delta[d]) as usize;
-            if !free.get(to) {
-                continue;
-            }
-            // No corner cutting: both orthogonal neighbours must be free
-            // (they are inside the lattice since the diagonal one is).
-            if d >= 4
-                && !(free.get((node as i64 + dx) as usize)
-                    && free.get((node as i64 + dy * nx) as usize))
-            {
-                continue;
-            }
+        // Each neighbour read once: the four axis ones (inside the lattice
+        // and free), then a diagonal one only where both axis moves beside
+        // it are open (no corner cutting; it is then inside the lattice).
+        let east = i + 1 < nx && free.get(node + 1);
+        let north = j + 1 < ny && free.get(node + nx);
+        let west = i > 0 && free.get(node - 1);
+        let south = j > 0 && free.get(node - nx);
+        let mut open = [east, north, west, south, false, false, false, false];
+        if self.dirs > 4 {
+            open[4] = east && north && free.get(node + nx + 1);
+            open[5] = west && north && free.get(node + nx - 1);
+            open[6] = west && south && free.get(node - nx - 1);
+            open[7] = east && south && free.get(node - nx + 1);
+        }
+        for (d, _) in open.iter().enumerate().take(self.dirs).filter(|(_, o)| **o) {
             out.push(Edge {
-                to,
+                to: (node as i64 + self.delta[d]) as usize,
                 cost: self.step_cost[d],
                 label: d as u32,
             });

@@ -160,6 +160,45 @@ impl Ord for Open {
     }
 }
 
+/// An open-list entry of [`best_first`]: [`Open`]'s order on integer keys
+/// (f and g mapped to unsigned integers in `f64::total_cmp`'s order), so
+/// that the heap's comparisons need no float handling. A max-heap pops the
+/// greatest: the lowest f, then the highest g, then the lowest node.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Entry {
+    /// `!key(f)`.
+    f: u64,
+    /// `key(g)`.
+    g: u64,
+    /// `!node`.
+    node: u32,
+}
+
+/// `x`'s place in `f64::total_cmp`'s order, as an unsigned integer.
+#[inline]
+fn key(x: f64) -> u64 {
+    let b = x.to_bits();
+    // Negative values: all bits flipped; others: the sign bit set.
+    b ^ (((b as i64 >> 63) as u64) | (1 << 63))
+}
+
+/// The inverse of [`key`].
+#[inline]
+fn unkey(k: u64) -> f64 {
+    f64::from_bits(k ^ ((((!k) as i64 >> 63) as u64) | (1 << 63)))
+}
+
+impl Entry {
+    #[inline]
+    fn new(f: f64, g: f64, node: usize) -> Self {
+        Entry {
+            f: !key(f),
+            g: key(g),
+            node: !(node as u32),
+        }
+    }
+}
+
 /// Per-node search state, packed so that one cache line serves a node.
 #[derive(Clone, Copy)]
 struct NodeState {
@@ -239,7 +278,7 @@ pub struct SearchBuffers {
     always_paged: bool,
     len: usize,
     stamp: u32,
-    heap: BinaryHeap<Open>,
+    heap: BinaryHeap<Entry>,
     successors: Vec<Edge>,
 }
 
@@ -366,16 +405,12 @@ fn run<G: Graph, S: States>(
                 mark: seen,
             },
         );
-        buf.heap.push(Open {
-            f: graph.heuristic(s),
-            g: 0.0,
-            node: s as u32,
-        });
+        buf.heap.push(Entry::new(graph.heuristic(s), 0.0, s));
         out.generated += 1;
     }
     let mut successors = std::mem::take(&mut buf.successors);
-    while let Some(Open { g, node, .. }) = buf.heap.pop() {
-        let node = node as usize;
+    while let Some(Entry { g, node, .. }) = buf.heap.pop() {
+        let (g, node) = (unkey(g), !node as usize);
         let state = states.get(node);
         if state.mark == closed || g > state.g {
             continue; // a stale entry
@@ -447,11 +482,8 @@ fn run<G: Graph, S: States>(
                     mark: seen,
                 },
             );
-            buf.heap.push(Open {
-                f: ng + graph.edge_heuristic(e),
-                g: ng,
-                node: e.to as u32,
-            });
+            buf.heap
+                .push(Entry::new(ng + graph.edge_heuristic(e), ng, e.to));
         }
     }
     buf.successors = successors;
@@ -529,6 +561,35 @@ mod tests {
         );
         assert_eq!(buf.parent(3), Some(2));
         assert_eq!(buf.parent(0), None);
+    }
+
+    #[test]
+    fn entries_order_as_open_does() {
+        let xs = [
+            f64::NEG_INFINITY,
+            -2.5,
+            -0.0,
+            0.0,
+            1e-300,
+            1.0,
+            1.0 + f64::EPSILON,
+            2.5,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        let opens: Vec<Open> = xs
+            .iter()
+            .flat_map(|&f| xs.iter().map(move |&g| (f, g)))
+            .flat_map(|(f, g)| [3u32, 7].map(|node| Open { f, g, node }))
+            .collect();
+        for a in &opens {
+            assert_eq!(unkey(key(a.g)).to_bits(), a.g.to_bits());
+            let ea = Entry::new(a.f, a.g, a.node as usize);
+            for b in &opens {
+                let eb = Entry::new(b.f, b.g, b.node as usize);
+                assert_eq!(ea.cmp(&eb), a.cmp(b));
+            }
+        }
     }
 
     #[test]
