@@ -257,11 +257,7 @@ impl RobotShape {
         out.clear();
         if let RobotShape::Polygon(p) = self {
             let (s, co) = c.theta.sin_cos();
-            out.extend(
-                p.vertices
-                    .iter()
-                    .map(|v| Point::new(c.x + co * v.x - s * v.y, c.y + s * v.x + co * v.y)),
-            );
+            out.extend(p.vertices.iter().map(|v| place(c, s, co, v)));
         }
     }
 }
@@ -278,6 +274,14 @@ pub struct Obstacle {
 pub struct World {
     pub bounds: Aabb,
     pub obstacles: Vec<Obstacle>,
+}
+
+/// The robot-frame point `v` placed at `c`, whose angle has sine `s` and
+/// cosine `co`: the one formula of every placement, so that placements
+/// agree to the bit.
+#[inline(always)]
+pub(crate) fn place(c: Config, s: f64, co: f64, v: &Point) -> Point {
+    Point::new(c.x + co * v.x - s * v.y, c.y + s * v.x + co * v.y)
 }
 
 /// `theta` in [0, 2π) (`rem_euclid` of a tiny negative angle rounds up

@@ -57,7 +57,7 @@ use crate::contract::schema::{
 use crate::diagnostics::Diag;
 use crate::geometry::car::{CarPath, DRAW_STEP, car_path_free, validate_car_path};
 use crate::geometry::cspace::ObstaclePieces;
-use crate::geometry::motion::MotionChecker;
+use crate::geometry::motion::{MotionChecker, NewEnd};
 use crate::geometry::path::path_length;
 use crate::geometry::steer::Steering;
 use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
@@ -566,25 +566,25 @@ impl<'a> Run<'a> {
     /// Whether the motion from `a` to `b` is free, in that direction
     /// (counted).
     pub fn motion_free(&mut self, a: Config, b: Config) -> bool {
+        self.motion(a, b, None)
+    }
+
+    /// [`Run::motion_free`] for a motion whose `new` end is a state not
+    /// checked yet (the same verdict; that state is tested first).
+    pub fn extension_free(&mut self, a: Config, b: Config, new: NewEnd) -> bool {
+        self.motion(a, b, Some(new))
+    }
+
+    fn motion(&mut self, a: Config, b: Config, new: Option<NewEnd>) -> bool {
         self.checks += 1;
-        match (self.space.steering, &self.referee) {
-            (Some(steering), Some(referee)) => {
+        match (self.space.steering, &self.referee, new) {
+            (Some(steering), Some(referee), _) => {
                 let curve = CarPath::shortest(steering, a, b);
                 car_path_free(referee, self.task.robot, &curve, DEFAULT_TOLERANCE)
             }
-            _ => self.checker.motion_free(a, b),
+            (_, _, Some(new)) => self.checker.extension_free(a, b, new),
+            (_, _, None) => self.checker.motion_free(a, b),
         }
-    }
-
-    /// [`Run::motion_free`] for a motion to a new state `b`, or from a new
-    /// state `a` when `new_start` (the same verdict; the new state is
-    /// tested first).
-    pub fn extension_free(&mut self, a: Config, b: Config, new_start: bool) -> bool {
-        if self.space.steering.is_some() {
-            return self.motion_free(a, b);
-        }
-        self.checks += 1;
-        self.checker.extension_free(a, b, new_start)
     }
 
     /// The `k` states nearest to `q` in the space's distance into `out`, as

@@ -28,6 +28,7 @@ use crate::contract::PlanArgs;
 use crate::contract::schema::RobotKind;
 use crate::contract::{Planner, Settings};
 use crate::geometry::Config;
+use crate::geometry::motion::NewEnd;
 
 use super::space::Informed;
 use super::{
@@ -202,7 +203,7 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         } else {
             run.space.steer(from, sample, range)
         };
-        if !run.extension_free(from, new, false) {
+        if !run.extension_free(from, new, NewEnd::End) {
             continue;
         }
         let mut parent = nearest;

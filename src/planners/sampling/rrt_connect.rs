@@ -17,6 +17,7 @@ use crate::contract::PlanArgs;
 use crate::contract::schema::RobotKind;
 use crate::contract::{Planner, Settings};
 use crate::geometry::Config;
+use crate::geometry::motion::NewEnd;
 
 use super::nn::KdTree;
 use super::{
@@ -112,10 +113,10 @@ fn step(
     let range = run.settings.range;
     let (new, free) = if tree.towards_root {
         let new = run.space.steer_back(target, a, range);
-        (new, run.extension_free(new, a, true))
+        (new, run.extension_free(new, a, NewEnd::Start))
     } else {
         let new = run.space.steer(a, target, range);
-        (new, run.extension_free(a, new, false))
+        (new, run.extension_free(a, new, NewEnd::End))
     };
     if !free {
         return Step::Trapped;
