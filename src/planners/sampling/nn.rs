@@ -56,9 +56,8 @@ const LEAF: usize = 8;
 #[derive(Clone, Debug)]
 pub struct KdTree {
     dims: usize,
-    /// The period of the last axis (`dims == 3`), 0 when it does not wrap.
-    period: f64,
-    /// The period as the walk's formulas take it: infinite for no wrap.
+    /// The period of the last axis (`dims == 3`), infinite when it does
+    /// not wrap (the formulas' `min` with the way round is then a no-op).
     wrap: f64,
     /// Point `i`'s key.
     keys: Vec<[f64; 3]>,
@@ -99,7 +98,6 @@ impl KdTree {
         };
         KdTree {
             dims,
-            period,
             wrap: if period > 0.0 { period } else { f64::INFINITY },
             plane: [1.0, 1.0, if period > 0.0 { 0.0 } else { 1.0 }],
             keys: Vec::new(),
@@ -223,18 +221,14 @@ impl KdTree {
     }
 
     /// The squared distance between two keys, the periodic axis the shorter
-    /// way round.
+    /// way round (the third coordinates ignored for 2 axes).
     #[inline]
     pub fn distance2(&self, a: &[f64; 3], b: &[f64; 3]) -> f64 {
-        let (dx, dy) = (a[0] - b[0], a[1] - b[1]);
-        let mut dt = (a[2] - b[2]).abs();
-        if self.period > 0.0 && dt > self.period - dt {
-            dt = self.period - dt;
-        }
         if self.dims == 2 {
-            dt = 0.0;
+            distance2(&[a[0], a[1], 0.0], &[b[0], b[1], 0.0], self.wrap)
+        } else {
+            distance2(a, b, self.wrap)
         }
-        dx * dx + dy * dy + dt * dt
     }
 
     /// The nearest point to `q` and its squared distance (`None` when
@@ -395,24 +389,10 @@ fn grow_box(lo: &mut [f64; 3], hi: &mut [f64; 3], key: &[f64; 3]) {
     }
 }
 
-/// A candidate neighbour: squared distance, then index (the order of the
-/// results, ties to the lower index).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A candidate neighbour: squared distance and index (results are in
+/// that order, ties to the lower index).
+#[derive(Clone, Copy, Debug)]
 struct Candidate(f64, u32);
-
-impl Eq for Candidate {}
-
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Candidate {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
-    }
-}
 
 /// The `k` points nearest to `q` in a distance `exact(i)` that the index's
 /// own distance never exceeds (a car's steering length over the Euclidean
