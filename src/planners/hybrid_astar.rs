@@ -47,7 +47,7 @@ use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Config, Point, RobotShape};
 use crate::planners::deadline::Deadline;
 use crate::contract::Limits;
-use crate::planners::search::{Edge, Graph, Open, SearchBuffers, Tree, best_first};
+use crate::planners::search::{Edge, Entry, Graph, SearchBuffers, Tree, best_first};
 
 /// The most (x, y, θ) cells the search reaches (each keeping one
 /// continuous pose, about 60 bytes with the core's state).
@@ -532,13 +532,9 @@ impl Holonomic {
         h.dist[g] = 0.0;
         free[g] = true;
         let mut open = BinaryHeap::new();
-        open.push(Open {
-            f: 0.0,
-            g: 0.0,
-            node: g as u32,
-        });
-        while let Some(Open { f, node, .. }) = open.pop() {
-            let u = node as usize;
+        open.push(Entry::new(0.0, 0.0, g));
+        while let Some(entry) = open.pop() {
+            let (f, u) = (entry.f(), entry.node());
             if f > h.dist[u] {
                 continue;
             }
@@ -569,11 +565,7 @@ impl Holonomic {
                 let d = f + step;
                 if d < h.dist[v] {
                     h.dist[v] = d;
-                    open.push(Open {
-                        f: d,
-                        g: d,
-                        node: v as u32,
-                    });
+                    open.push(Entry::new(d, d, v));
                 }
             }
         }

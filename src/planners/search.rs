@@ -20,7 +20,6 @@
 //!   grows with what the search touches, not with the lattice (plus a page
 //!   table of 8 bytes per 256 nodes).
 
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::time::Instant;
 
@@ -129,43 +128,13 @@ pub struct SearchResult {
     pub expansion_order: Vec<usize>,
 }
 
-/// An open-list entry: lowest f first, then highest g, then lowest index
-/// (also the open list of `hybrid_astar`'s holonomic heuristic).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Open {
-    pub(crate) f: f64,
-    pub(crate) g: f64,
-    pub(crate) node: u32,
-}
-
-impl PartialEq for Open {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Open {}
-impl PartialOrd for Open {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Open {
-    fn cmp(&self, other: &Self) -> Ordering {
-        // BinaryHeap is a max-heap: "greater" pops first.
-        other
-            .f
-            .total_cmp(&self.f)
-            .then(self.g.total_cmp(&other.g))
-            .then(other.node.cmp(&self.node))
-    }
-}
-
-/// An open-list entry of [`best_first`]: [`Open`]'s order on integer keys
-/// (f and g mapped to unsigned integers in `f64::total_cmp`'s order), so
-/// that the heap's comparisons need no float handling. A max-heap pops the
-/// greatest: the lowest f, then the highest g, then the lowest node.
+/// An open-list entry (of [`best_first`], and of `hybrid_astar`'s
+/// holonomic heuristic): lowest f first (by `f64::total_cmp`), then highest
+/// g, then lowest node. f and g are mapped to unsigned integers in
+/// `total_cmp`'s order, so that the heap's comparisons need no float
+/// handling; a max-heap pops the greatest.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-struct Entry {
+pub(crate) struct Entry {
     /// `!key(f)`.
     f: u64,
     /// `key(g)`.
@@ -190,12 +159,27 @@ fn unkey(k: u64) -> f64 {
 
 impl Entry {
     #[inline]
-    fn new(f: f64, g: f64, node: usize) -> Self {
+    pub(crate) fn new(f: f64, g: f64, node: usize) -> Self {
         Entry {
             f: !key(f),
             g: key(g),
             node: !(node as u32),
         }
+    }
+
+    #[inline]
+    pub(crate) fn f(&self) -> f64 {
+        unkey(!self.f)
+    }
+
+    #[inline]
+    pub(crate) fn g(&self) -> f64 {
+        unkey(self.g)
+    }
+
+    #[inline]
+    pub(crate) fn node(&self) -> usize {
+        !self.node as usize
     }
 }
 
@@ -409,8 +393,8 @@ fn run<G: Graph, S: States>(
         out.generated += 1;
     }
     let mut successors = std::mem::take(&mut buf.successors);
-    while let Some(Entry { g, node, .. }) = buf.heap.pop() {
-        let (g, node) = (unkey(g), !node as usize);
+    while let Some(entry) = buf.heap.pop() {
+        let (g, node) = (entry.g(), entry.node());
         let state = states.get(node);
         if state.mark == closed || g > state.g {
             continue; // a stale entry
@@ -564,7 +548,7 @@ mod tests {
     }
 
     #[test]
-    fn entries_order_as_open_does() {
+    fn entries_order_as_their_floats_do() {
         let xs = [
             f64::NEG_INFINITY,
             -2.5,
@@ -577,17 +561,27 @@ mod tests {
             f64::INFINITY,
             f64::NAN,
         ];
-        let opens: Vec<Open> = xs
+        // The order by floats: "greater" pops first.
+        let order = |a: &(f64, f64, u32), b: &(f64, f64, u32)| {
+            b.0.total_cmp(&a.0)
+                .then(a.1.total_cmp(&b.1))
+                .then(b.2.cmp(&a.2))
+        };
+        let opens: Vec<(f64, f64, u32)> = xs
             .iter()
             .flat_map(|&f| xs.iter().map(move |&g| (f, g)))
-            .flat_map(|(f, g)| [3u32, 7].map(|node| Open { f, g, node }))
+            .flat_map(|(f, g)| [3u32, 7].map(|node| (f, g, node)))
             .collect();
         for a in &opens {
-            assert_eq!(unkey(key(a.g)).to_bits(), a.g.to_bits());
-            let ea = Entry::new(a.f, a.g, a.node as usize);
+            assert_eq!(unkey(key(a.1)).to_bits(), a.1.to_bits());
+            let ea = Entry::new(a.0, a.1, a.2 as usize);
+            assert_eq!(
+                (ea.f().to_bits(), ea.g().to_bits(), ea.node()),
+                (a.0.to_bits(), a.1.to_bits(), a.2 as usize)
+            );
             for b in &opens {
-                let eb = Entry::new(b.f, b.g, b.node as usize);
-                assert_eq!(ea.cmp(&eb), a.cmp(b));
+                let eb = Entry::new(b.0, b.1, b.2 as usize);
+                assert_eq!(ea.cmp(&eb), order(a, b));
             }
         }
     }
