@@ -284,6 +284,22 @@ pub(crate) fn place(c: Config, s: f64, co: f64, v: &Point) -> Point {
     Point::new(c.x + co * v.x - s * v.y, c.y + s * v.x + co * v.y)
 }
 
+/// The larger of `a` and `b` for values that are never NaN: one `maxsd`,
+/// without `f64::max`'s care for NaN, which costs several instructions in
+/// the hot loops (the sign of a zero result may differ from `f64::max`'s,
+/// which comparisons do not see).
+#[inline(always)]
+pub(crate) fn max_of_numbers(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// The smaller of `a` and `b` for values that are never NaN (see
+/// [`max_of_numbers`]).
+#[inline(always)]
+pub(crate) fn min_of_numbers(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
+}
+
 /// `theta` in [0, 2π) (`rem_euclid` of a tiny negative angle rounds up
 /// to 2π itself, which becomes 0).
 pub fn wrap_angle(theta: f64) -> f64 {

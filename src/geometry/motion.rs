@@ -119,7 +119,8 @@ use super::minkowski::DISK_SIDES;
 use super::polygon::{closest_point_on_segment, convex_hull_into};
 use super::validator::DEFAULT_TOLERANCE;
 use super::{
-    Aabb, Config, ConvexPolygon, Point, RobotShape, Shape, TOUCH_EPS, Vector, World, place,
+    Aabb, Config, ConvexPolygon, Point, RobotShape, Shape, TOUCH_EPS, Vector, World,
+    max_of_numbers, min_of_numbers, place,
 };
 
 /// A gap of at least this along an axis clears a piece: an overlap of at
@@ -128,6 +129,11 @@ const SLACK: f64 = -TOUCH_EPS / 2.0;
 
 /// Where [`PolygonChecker::witness`] looks, in eighths of the motion.
 const WITNESSES: [u128; 4] = [8, 4, 2, 6];
+
+/// Up to this many pieces, the broad phase scans their boxes rather than
+/// the buckets (a long wall lies in many buckets: the apartment's 11 walls
+/// cost more through them).
+const SCAN_PIECES: usize = 32;
 
 /// The buckets of the broad phase have at most this many per side.
 const MAX_BUCKETS_PER_SIDE: usize = 512;
@@ -339,9 +345,19 @@ impl PolygonChecker {
     }
 
     /// The pieces whose boxes share a bucket with `aabb` into `pending`,
-    /// each once.
+    /// each once; in a world of at most [`SCAN_PIECES`] pieces, those whose
+    /// boxes overlap `aabb` by more than [`SLACK`] (every other piece is
+    /// cleared by its box at once, in every group: the same verdicts).
     fn near(&self, aabb: &Aabb, pending: &mut Vec<u32>) {
         pending.clear();
+        if self.pieces.len() <= SCAN_PIECES {
+            for (i, piece) in self.pieces.iter().enumerate() {
+                if box_gap(&piece.aabb, aabb) < SLACK {
+                    pending.push(i as u32);
+                }
+            }
+            return;
+        }
         let ((c0, c1), (k0, k1)) = self.buckets.range(aabb);
         for k in k0..=k1 {
             for c in c0..=c1 {
@@ -413,12 +429,7 @@ impl PolygonChecker {
     /// Whether some axis shows every body of the region's group at most
     /// `TOUCH_EPS / 2` into `piece` (see the module documentation).
     fn clear(&self, piece: &Piece, region: &mut Region) -> bool {
-        let (b, w) = (&piece.aabb, &region.aabb);
-        let gap = (b.min.x - w.max.x)
-            .max(w.min.x - b.max.x)
-            .max(b.min.y - w.max.y)
-            .max(w.min.y - b.max.y);
-        if gap >= SLACK {
+        if box_gap(&piece.aabb, &region.aabb) >= SLACK {
             return true;
         }
         match piece.kind {
@@ -433,7 +444,7 @@ impl PolygonChecker {
                     let low = pts
                         .iter()
                         .map(|p| m.dot(&p.coords))
-                        .fold(f64::INFINITY, f64::min);
+                        .fold(f64::INFINITY, min_of_numbers);
                     low - high >= SLACK
                 })
             }
@@ -473,6 +484,17 @@ impl PolygonChecker {
     }
 }
 
+/// The largest gap between two boxes along ±x and ±y (negative: they
+/// overlap by that much along every axis).
+#[inline]
+fn box_gap(b: &Aabb, w: &Aabb) -> f64 {
+    let max = max_of_numbers;
+    max(
+        max(b.min.x - w.max.x, w.min.x - b.max.x),
+        max(b.min.y - w.max.y, w.min.y - b.max.y),
+    )
+}
+
 /// The piece of the convex `pts` (see [`Kind::Convex`]), its points and
 /// axes appended to `points` and `axes`.
 fn convex_piece(pts: &[Point], points: &mut Vec<Point>, axes: &mut Vec<Axis>) -> Piece {
@@ -494,7 +516,7 @@ fn convex_piece(pts: &[Point], points: &mut Vec<Point>, axes: &mut Vec<Axis>) ->
         let support = pts
             .iter()
             .map(|p| normal.dot(&p.coords))
-            .fold(f64::NEG_INFINITY, f64::max);
+            .fold(f64::NEG_INFINITY, max_of_numbers);
         axes.push(Axis { n: normal, support });
     }
     Piece {
@@ -629,52 +651,61 @@ impl Region {
         // are taken from the last few set (the same computation).
         let (c0, s0, co0) = self.turn(cut, k0);
         let (c1, s1, co1) = self.turn(cut, k1);
-        self.ends.clear();
-        self.curvature.clear();
+        // The buffers keep their length from one group to the next (one
+        // robot per checker): written in place, not pushed.
+        let n = robot.vertices.len();
+        self.ends.resize(2 * n, Point::origin());
         let (mut lo, mut hi) = (
             Point::new(f64::INFINITY, f64::INFINITY),
             Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
         );
+        // The placed coordinates are finite (so are the configurations and
+        // the vertices): plain comparisons for the bounds.
+        let (min, max) = (min_of_numbers, max_of_numbers);
         self.flat = spread == 0.0;
+        let ends = self.ends.chunks_exact_mut(2).zip(&robot.vertices);
         if k0 == k1 {
             // One placement: both ends it, its bounds its own (the flat
-            // bounds below with p = q, to the bit).
-            for v in &robot.vertices {
+            // bounds below with p = q).
+            for (e, v) in ends {
                 let p = place(c0, s0, co0, v);
-                self.ends.push(p);
-                self.ends.push(p);
-                lo.x = lo.x.min(p.x);
-                lo.y = lo.y.min(p.y);
-                hi.x = hi.x.max(p.x);
-                hi.y = hi.y.max(p.y);
+                e[0] = p;
+                e[1] = p;
+                lo.x = min(lo.x, p.x);
+                lo.y = min(lo.y, p.y);
+                hi.x = max(hi.x, p.x);
+                hi.y = max(hi.y, p.y);
             }
         } else if self.flat {
-            // `lever · 0 = 0`: the bounds below with k = 0, to the bit. A
-            // loop of its own: with the constant 0, `bulge` folds to a max
-            // (one loop for both cost 3 % more instructions on the
-            // apartment rod's rrt_connect).
-            for v in &robot.vertices {
+            // `lever · 0 = 0`: the bounds below with k = 0. A loop of its
+            // own: with the constant 0, `bulge` folds to a max (one loop for
+            // both cost 3 % more instructions on the apartment rod's
+            // rrt_connect).
+            for (e, v) in ends {
                 let p = place(c0, s0, co0, v);
                 let q = place(c1, s1, co1, v);
-                self.ends.push(p);
-                self.ends.push(q);
-                lo.x = lo.x.min(-bulge(-p.x, -q.x, 0.0));
-                lo.y = lo.y.min(-bulge(-p.y, -q.y, 0.0));
-                hi.x = hi.x.max(bulge(p.x, q.x, 0.0));
-                hi.y = hi.y.max(bulge(p.y, q.y, 0.0));
+                e[0] = p;
+                e[1] = q;
+                lo.x = min(lo.x, -bulge(-p.x, -q.x, 0.0));
+                lo.y = min(lo.y, -bulge(-p.y, -q.y, 0.0));
+                hi.x = max(hi.x, bulge(p.x, q.x, 0.0));
+                hi.y = max(hi.y, bulge(p.y, q.y, 0.0));
             }
         } else {
-            for (v, lever) in robot.vertices.iter().zip(&robot.lever) {
+            self.curvature.resize(n, 0.0);
+            for ((e, v), (lever, curvature)) in
+                ends.zip(robot.lever.iter().zip(&mut self.curvature))
+            {
                 let p = place(c0, s0, co0, v);
                 let q = place(c1, s1, co1, v);
                 let k = lever * spread;
-                self.ends.push(p);
-                self.ends.push(q);
-                self.curvature.push(k);
-                lo.x = lo.x.min(-bulge(-p.x, -q.x, k));
-                lo.y = lo.y.min(-bulge(-p.y, -q.y, k));
-                hi.x = hi.x.max(bulge(p.x, q.x, k));
-                hi.y = hi.y.max(bulge(p.y, q.y, k));
+                e[0] = p;
+                e[1] = q;
+                *curvature = k;
+                lo.x = min(lo.x, -bulge(-p.x, -q.x, k));
+                lo.y = min(lo.y, -bulge(-p.y, -q.y, k));
+                hi.x = max(hi.x, bulge(p.x, q.x, k));
+                hi.y = max(hi.y, bulge(p.y, q.y, k));
             }
         }
         self.aabb = Aabb { min: lo, max: hi };
@@ -715,14 +746,14 @@ impl Region {
         if self.still {
             // Both ends one placement: `bulge(a, a, 0) = a`.
             ends.map(|e| u.dot(&e[0].coords))
-                .fold(f64::NEG_INFINITY, f64::max)
+                .fold(f64::NEG_INFINITY, max_of_numbers)
         } else if self.flat {
             ends.map(|e| bulge(u.dot(&e[0].coords), u.dot(&e[1].coords), 0.0))
-                .fold(f64::NEG_INFINITY, f64::max)
+                .fold(f64::NEG_INFINITY, max_of_numbers)
         } else {
             ends.zip(&self.curvature)
                 .map(|(e, &k)| bulge(u.dot(&e[0].coords), u.dot(&e[1].coords), k))
-                .fold(f64::NEG_INFINITY, f64::max)
+                .fold(f64::NEG_INFINITY, max_of_numbers)
         }
     }
 
@@ -775,7 +806,7 @@ fn bulge(a: f64, b: f64, k: f64) -> f64 {
         // The parabola's top lies inside (0, 1), at λ = (d + k) / 2k.
         a + (d + k) * (d + k) / (4.0 * k)
     } else {
-        a.max(b)
+        max_of_numbers(a, b)
     }
 }
 

@@ -410,7 +410,7 @@ impl<'w> Validator<'w> {
         robot: &RobotShape,
         path: &[Config],
         tolerance: f64,
-        hit: &mut dyn FnMut(&Region, f64) -> (Option<usize>, usize),
+        hit: &mut dyn FnMut(&Region, f64) -> Checked,
     ) -> Result<(), ValidationError> {
         let tolerance = usable_tolerance(tolerance);
         self.check_config_in_bounds(0, path[0])?;
@@ -445,7 +445,7 @@ impl<'w> Validator<'w> {
         b: Config,
         tolerance: f64,
         sweep: &mut Sweep,
-        hit: &mut dyn FnMut(&Region, f64) -> (Option<usize>, usize),
+        hit: &mut dyn FnMut(&Region, f64) -> Checked,
     ) -> Result<(), ValidationError> {
         self.check_config_in_bounds(segment, b)?;
         let steps = SubSteps::new(robot, a, b, tolerance);
@@ -823,7 +823,7 @@ impl<'w> Validator<'w> {
         region: &Region,
         step: f64,
         best: &mut f64,
-    ) -> (Option<usize>, usize) {
+    ) -> Checked {
         let reach = grow(region.aabb, 2.0 * TOUCH_EPS);
         // Only a polygon's hull: the other cores are not that hull (a thin
         // hull's segment lies inside it), so their distance bounds nothing.
@@ -884,6 +884,10 @@ impl<'w> Validator<'w> {
             .position(|o| aabbs_meet(&o.aabb, &reach) && collides(region, &o.body))
     }
 }
+
+/// What checking one sub-step found: the obstacle it hits, if any, and how
+/// many of the motion's next sub-steps need no check.
+type Checked = (Option<usize>, usize);
 
 #[cfg(test)]
 thread_local! {
