@@ -33,9 +33,15 @@
 //! one holds the query's side of the split), and only once the distance
 //! to the split plane, a cheaper lower bound, is within the bound (along
 //! the periodic axis, where the way round the circle may be shorter, that
-//! distance is taken as 0); a leaf's own box is measured before its points
-//! once there is a candidate, unless the leaf was itself popped (measured
-//! when pushed). The tight boxes (rather than the cells of the splits)
+//! distance is taken as 0); on the first descent, before any candidate,
+//! nothing can be pruned, so the far children are pushed with that plane
+//! distance alone and their boxes measured when popped, if still within
+//! the bound. A leaf's own box is measured before its points once there
+//! is a candidate, unless the leaf was itself popped (measured then). The
+//! box distance computes x and y as one pair of lanes and θ with a spare
+//! lane as another (boxes have a fourth coordinate, 0), two lanes per
+//! instruction, summed in the order of the point distance so that it
+//! stays a lower bound in floating point. The tight boxes (rather than the cells of the splits)
 //! prune at once for samples far from the tree, which are most of an
 //! RRT's. The wrap-around is a min with the period measured the other way
 //! round (`distance2`, `gap2`), the period infinite for keys that do not
@@ -587,6 +593,27 @@ mod tests {
         let (i, d2) = tree.nearest(&[0.0, 0.0, 0.05]).expect("a point");
         assert_eq!(i, 1);
         assert!((d2 - 0.15f64.powi(2)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_leaf_of_many_equal_points_grows_and_splits() {
+        let mut tree = KdTree::new(3, 4.0);
+        for i in 0..40 {
+            tree.insert([1.0, 2.0, 3.0]);
+            if i % 7 == 0 {
+                tree.insert([1.0 + f64::from(i) * 0.1, 2.0, 0.5]);
+            }
+        }
+        let mut out = Vec::new();
+        for q in [[1.0, 2.0, 3.0], [1.5, 2.0, 0.4], [0.0, 0.0, 3.9]] {
+            tree.k_nearest(&q, 20, &mut out);
+            let expected = brute(&tree, &q, 20);
+            assert_eq!(out, expected);
+            assert_eq!(
+                tree.nearest(&q),
+                Some((expected[0].1 as usize, expected[0].0))
+            );
+        }
     }
 
     #[test]
