@@ -33,9 +33,15 @@
 //! one holds the query's side of the split), and only once the distance
 //! to the split plane, a cheaper lower bound, is within the bound (along
 //! the periodic axis, where the way round the circle may be shorter, that
-//! distance is taken as 0); a leaf's own box is measured before its points
-//! once there is a candidate, unless the leaf was itself popped (measured
-//! when pushed). The tight boxes (rather than the cells of the splits)
+//! distance is taken as 0); on the first descent, before any candidate,
+//! nothing can be pruned, so the far children are pushed with that plane
+//! distance alone and their boxes measured when popped, if still within
+//! the bound. A leaf's own box is measured before its points once there
+//! is a candidate, unless the leaf was itself popped (measured then). The
+//! box distance computes x and y as one pair of lanes and θ with a spare
+//! lane as another (boxes have a fourth coordinate, 0), two lanes per
+//! instruction, summed in the order of the point distance so that it
+//! stays a lower bound in floating point. The tight boxes (rather than the cells of the splits)
 //! prune at once for samples far from the tree, which are most of an
 //! RRT's. The wrap-around is a min with the period measured the other way
 //! round (`distance2`, `gap2`), the period infinite for keys that do not
@@ -49,6 +55,11 @@
 /// "No child": the node is a leaf.
 const NONE: u32 = u32::MAX;
 
+/// The tag of a pending subtree on the walk's stack whose bound is only its
+/// split plane's distance (its box not yet measured); node indices stay
+/// below it (asserted when a node is made).
+const UNMEASURED: u32 = 1 << 31;
+
 /// The most points of a leaf (unless they are all equal).
 const LEAF: usize = 8;
 
@@ -59,6 +70,9 @@ pub struct KdTree {
     /// The period of the last axis (`dims == 3`), infinite when it does
     /// not wrap (the formulas' `min` with the way round is then a no-op).
     wrap: f64,
+    /// Per lane of [`gap2`], the period of its axis: `wrap` for the third,
+    /// infinite for the others.
+    wraps: [f64; 4],
     /// Point `i`'s key.
     keys: Vec<[f64; 3]>,
     /// Node 0 is the root (once a point exists).
@@ -78,8 +92,8 @@ pub struct KdTree {
 /// or its leaf.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    lo: [f64; 3],
-    hi: [f64; 3],
+    lo: [f64; 4],
+    hi: [f64; 4],
     axis: u32,
     split: f64,
     children: [u32; 2],
@@ -99,6 +113,12 @@ impl KdTree {
         KdTree {
             dims,
             wrap: if period > 0.0 { period } else { f64::INFINITY },
+            wraps: [
+                f64::INFINITY,
+                f64::INFINITY,
+                if period > 0.0 { period } else { f64::INFINITY },
+                f64::INFINITY,
+            ],
             plane: [1.0, 1.0, if period > 0.0 { 0.0 } else { 1.0 }],
             keys: Vec::new(),
             nodes: Vec::new(),
@@ -122,7 +142,7 @@ impl KdTree {
 
     /// A new leaf node holding `points`, its box theirs.
     fn leaf_node(&mut self, points: Vec<([f64; 3], u32)>) -> u32 {
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        let (mut lo, mut hi) = EMPTY_BOX;
         for (key, _) in &points {
             grow_box(&mut lo, &mut hi, key);
         }
@@ -203,6 +223,7 @@ impl KdTree {
         let l = (self.nodes.len() - 1) as u32;
         self.refit(l);
         let r = self.leaf_node(right);
+        assert!(r < UNMEASURED, "fewer than 2³¹ nodes");
         let parent = &mut self.nodes[node];
         parent.axis = axis as u32;
         parent.split = split;
@@ -212,7 +233,7 @@ impl KdTree {
     /// Sets a leaf's box to its points'.
     fn refit(&mut self, node: u32) {
         let n = &mut self.nodes[node as usize];
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        let (mut lo, mut hi) = EMPTY_BOX;
         for (key, _) in &self.leaves[n.leaf as usize] {
             grow_box(&mut lo, &mut hi, key);
         }
@@ -295,13 +316,31 @@ impl KdTree {
             q[2] = 0.0;
         }
         let wrap = self.wrap;
+        let wraps = self.wraps;
+        let q4 = [q[0], q[1], q[2], 0.0];
         let plane = self.plane;
         let mut stack = std::mem::take(&mut self.stack);
         stack.clear();
         let mut limit = f64::INFINITY;
         let mut node = 0u32;
-        // Whether `node`'s box was measured against the bound (popped).
-        let mut measured = false;
+        // The first descent, before any candidate: nothing is pruned yet,
+        // so each far side is pushed with the distance to its split plane
+        // and its box is measured only if that bound is within the bound
+        // when it is popped (most are beyond it by then).
+        loop {
+            let n = &self.nodes[node as usize];
+            if n.children[0] == NONE {
+                break;
+            }
+            let axis = n.axis as usize;
+            let side = usize::from(q[axis] >= n.split);
+            let d = q[axis] - n.split;
+            stack.push((n.children[1 - side] | UNMEASURED, d * d * plane[axis]));
+            node = n.children[side];
+        }
+        // Whether `node`'s box was measured against the bound (popped, or
+        // the first leaf, which nothing bounds yet).
+        let mut measured = true;
         loop {
             let n = &self.nodes[node as usize];
             if n.children[0] != NONE {
@@ -311,7 +350,7 @@ impl KdTree {
                 let d = q[axis] - n.split;
                 if d * d * plane[axis] <= limit {
                     let f = &self.nodes[far as usize];
-                    let g = gap2(&q, &f.lo, &f.hi, wrap);
+                    let g = gap2(&q4, &f.lo, &f.hi, &wraps);
                     if g <= limit {
                         stack.push((far, g));
                     }
@@ -322,7 +361,7 @@ impl KdTree {
             }
             // A leaf reached below a popped subtree may lie beyond the
             // bound: its box is measured before its points.
-            if measured || limit == f64::INFINITY || gap2(&q, &n.lo, &n.hi, wrap) <= limit {
+            if measured || gap2(&q4, &n.lo, &n.hi, &wraps) <= limit {
                 for &(key, p) in &self.leaves[n.leaf as usize] {
                     let d = distance2(&q, &key, wrap);
                     if d <= limit {
@@ -336,7 +375,13 @@ impl KdTree {
                     return;
                 };
                 if bound <= limit {
-                    node = next;
+                    node = next & !UNMEASURED;
+                    if next & UNMEASURED != 0 {
+                        let n = &self.nodes[node as usize];
+                        if gap2(&q4, &n.lo, &n.hi, &wraps) > limit {
+                            continue;
+                        }
+                    }
                     measured = true;
                     break;
                 }
@@ -355,16 +400,27 @@ fn distance2(a: &[f64; 3], b: &[f64; 3], wrap: f64) -> f64 {
     dx * dx + dy * dy + dt * dt
 }
 
-/// The squared distance from `q` to the box [lo, hi] (along the axis that
-/// wraps with period `wrap`, round the circle to its arc): a lower bound
-/// of the distance to each point in it.
+/// The squared distance from `q` to the box [lo, hi] (along an axis that
+/// wraps, round the circle to its arc): a lower bound of the distance to
+/// each point in it. Two pairs of lanes, (x, y) and (θ, a fourth lane 0 in
+/// `q` and the box, which adds 0), each pair of one formula so that the
+/// compiler computes it two lanes per instruction; `wraps` the period of
+/// the second pair's lanes (infinite: the `min` with the way round is a
+/// no-op). The sum in [`distance2`]'s order, so the bound holds in floating
+/// point too.
 #[inline]
-fn gap2(q: &[f64; 3], lo: &[f64; 3], hi: &[f64; 3], wrap: f64) -> f64 {
-    let gx = max(max(lo[0] - q[0], q[0] - hi[0]), 0.0);
-    let gy = max(max(lo[1] - q[1], q[1] - hi[1]), 0.0);
-    let gt = max(max(lo[2] - q[2], q[2] - hi[2]), 0.0);
-    let gt = min(gt, wrap - (max(hi[2], q[2]) - min(lo[2], q[2])));
-    gx * gx + gy * gy + gt * gt
+fn gap2(q: &[f64; 4], lo: &[f64; 4], hi: &[f64; 4], wraps: &[f64; 4]) -> f64 {
+    let mut g = [0.0; 4];
+    for a in 0..2 {
+        let out = max(max(lo[a] - q[a], q[a] - hi[a]), 0.0);
+        g[a] = out * out;
+    }
+    for a in 2..4 {
+        let out = max(max(lo[a] - q[a], q[a] - hi[a]), 0.0);
+        let v = min(out, wraps[a] - (max(hi[a], q[a]) - min(lo[a], q[a])));
+        g[a] = v * v;
+    }
+    g[0] + g[1] + g[2] + g[3]
 }
 
 /// The larger of `a` and `b`, without `f64::max`'s care for NaN (the walk
@@ -381,8 +437,14 @@ fn min(a: f64, b: f64) -> f64 {
     if a < b { a } else { b }
 }
 
+/// The box of no point (its fourth lane, unused, 0: see [`gap2`]).
+const EMPTY_BOX: ([f64; 4], [f64; 4]) = (
+    [f64::INFINITY, f64::INFINITY, f64::INFINITY, 0.0],
+    [f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY, 0.0],
+);
+
 /// Grows the box [lo, hi] to hold `key`.
-fn grow_box(lo: &mut [f64; 3], hi: &mut [f64; 3], key: &[f64; 3]) {
+fn grow_box(lo: &mut [f64; 4], hi: &mut [f64; 4], key: &[f64; 3]) {
     for axis in 0..3 {
         lo[axis] = lo[axis].min(key[axis]);
         hi[axis] = hi[axis].max(key[axis]);
@@ -531,6 +593,27 @@ mod tests {
         let (i, d2) = tree.nearest(&[0.0, 0.0, 0.05]).expect("a point");
         assert_eq!(i, 1);
         assert!((d2 - 0.15f64.powi(2)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_leaf_of_many_equal_points_grows_and_splits() {
+        let mut tree = KdTree::new(3, 4.0);
+        for i in 0..40 {
+            tree.insert([1.0, 2.0, 3.0]);
+            if i % 7 == 0 {
+                tree.insert([1.0 + f64::from(i) * 0.1, 2.0, 0.5]);
+            }
+        }
+        let mut out = Vec::new();
+        for q in [[1.0, 2.0, 3.0], [1.5, 2.0, 0.4], [0.0, 0.0, 3.9]] {
+            tree.k_nearest(&q, 20, &mut out);
+            let expected = brute(&tree, &q, 20);
+            assert_eq!(out, expected);
+            assert_eq!(
+                tree.nearest(&q),
+                Some((expected[0].1 as usize, expected[0].0))
+            );
+        }
     }
 
     #[test]
