@@ -818,12 +818,7 @@ impl<'w> Validator<'w> {
     /// ([`body_distance`] is exact below its bound, whatever the bound, so
     /// `best` comes out the same); grids only up to `best`, as before (so
     /// next to a grid nothing is skipped).
-    fn measure_hit_and_skip(
-        &self,
-        region: &Region,
-        step: f64,
-        best: &mut f64,
-    ) -> Checked {
+    fn measure_hit_and_skip(&self, region: &Region, step: f64, best: &mut f64) -> Checked {
         let reach = grow(region.aabb, 2.0 * TOUCH_EPS);
         // Only a polygon's hull: the other cores are not that hull (a thin
         // hull's segment lies inside it), so their distance bounds nothing.

@@ -52,6 +52,10 @@
 //! distances go to the lower index: results do not depend on the walk
 //! order.
 
+// The walk compares no NaN (keys, queries and boxes are finite, the
+// period at most infinite): plain comparisons, one instruction each.
+use crate::geometry::{max_of_numbers as max, min_of_numbers as min};
+
 /// "No child": the node is a leaf.
 const NONE: u32 = u32::MAX;
 
@@ -421,20 +425,6 @@ fn gap2(q: &[f64; 4], lo: &[f64; 4], hi: &[f64; 4], wraps: &[f64; 4]) -> f64 {
         g[a] = v * v;
     }
     g[0] + g[1] + g[2] + g[3]
-}
-
-/// The larger of `a` and `b`, without `f64::max`'s care for NaN (the walk
-/// sees none: keys, queries and boxes are finite, the period at most
-/// infinite), which costs instructions: one `maxsd`.
-#[inline]
-fn max(a: f64, b: f64) -> f64 {
-    if a > b { a } else { b }
-}
-
-/// The smaller of `a` and `b` (see [`max`]).
-#[inline]
-fn min(a: f64, b: f64) -> f64 {
-    if a < b { a } else { b }
 }
 
 /// The box of no point (its fourth lane, unused, 0: see [`gap2`]).
