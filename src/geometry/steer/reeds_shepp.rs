@@ -339,92 +339,107 @@ fn total(k: usize, (t, u, v): (f64, f64, f64)) -> f64 {
 
 /// OMPL's search over the candidates in its order: a word replaces the best
 /// so far only when strictly shorter, lengths compared as OMPL compares
-/// them (per family, without the fixed quarter turns). `f(k)` is candidate
-/// `k`'s formula, or `None` for a candidate that cannot win.
-#[inline]
-fn ompl_order(mut f: impl FnMut(usize) -> Option<(f64, f64, f64)>) -> Word {
-    // OMPL's empty path: longer than any word.
-    let mut best = Word {
-        word: 0,
-        params: [0.0; 5],
-        length: f64::MAX,
-    };
-    // Timeflip and both reverse the word: every odd variant.
-    let flip = |i: usize| if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+/// them (per family, without the fixed quarter turns). Fed the candidates
+/// that gave a word, in increasing `k`; a candidate left out is one that
+/// gave none, so feeding only the few computed ones is OMPL's whole search.
+struct Replay {
+    best: Word,
+    /// The family of the last candidate offered (5 before the first).
+    family: usize,
+    /// The best length as this family compares it.
+    lmin: f64,
+}
 
-    let mut lmin = best.length;
-    for i in 0..8 {
-        if let Some((t, u, v)) = f(i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([14, 14, 15, 15, 12, 12, 13, 13][i], flip(i));
-                best = Word::new(word, [flip * t, flip * u, flip * v, 0.0, 0.0]);
-                lmin = l;
-            }
+impl Replay {
+    fn new() -> Self {
+        Replay {
+            // OMPL's empty path: longer than any word.
+            best: Word {
+                word: 0,
+                params: [0.0; 5],
+                length: f64::MAX,
+            },
+            family: 5,
+            lmin: f64::MAX,
         }
     }
 
-    let mut lmin = best.length;
-    for i in 0..8 {
-        if let Some((t, u, v)) = f(8 + i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([0, 0, 1, 1, 0, 0, 1, 1][i], flip(i));
+    /// Candidate `k`'s word (t, u, v), after every smaller `k`'s.
+    #[inline]
+    fn offer(&mut self, k: usize, (t, u, v): (f64, f64, f64)) {
+        // CSC, CCC, CCCC (8.7 with the two middle arcs of opposite signs,
+        // then 8.8 with the same signs), CCSC, CCSCC.
+        let (family, start) = match k {
+            0..8 => (0, 0),
+            8..16 => (1, 8),
+            16..24 => (2, 16),
+            24..40 => (3, 24),
+            _ => (4, 40),
+        };
+        if family != self.family {
+            self.family = family;
+            // CCSC's and CCSCC's lengths leave out their one or two fixed
+            // quarter turns, as OMPL's do.
+            self.lmin = match family {
+                3 => self.best.length - 0.5 * PI,
+                4 => self.best.length - PI,
+                _ => self.best.length,
+            };
+        }
+        let l = if family == 2 {
+            t.abs() + 2.0 * u.abs() + v.abs()
+        } else {
+            t.abs() + u.abs() + v.abs()
+        };
+        if !(self.lmin > l) {
+            return;
+        }
+        self.lmin = l;
+        let i = k - start;
+        // Timeflip and both reverse the word: every odd variant.
+        let flip = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+        let q = -0.5 * PI;
+        let (word, p) = match family {
+            0 => ([14, 14, 15, 15, 12, 12, 13, 13][i], [t, u, v, 0.0, 0.0]),
+            1 => {
                 let (a, c) = if i >= 4 { (v, t) } else { (t, v) };
-                best = Word::new(word, [flip * a, flip * u, flip * c, 0.0, 0.0]);
-                lmin = l;
+                ([0, 0, 1, 1, 0, 0, 1, 1][i], [a, u, c, 0.0, 0.0])
             }
-        }
-    }
-
-    // 8.7 (the two middle arcs of opposite signs), then 8.8 (same signs).
-    let mut lmin = best.length;
-    for i in 0..8 {
-        if let Some((t, u, v)) = f(16 + i) {
-            let l = t.abs() + 2.0 * u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([2, 2, 3, 3, 2, 2, 3, 3][i], flip(i));
+            2 => {
                 let u2 = if i >= 4 { u } else { -u };
-                best = Word::new(word, [flip * t, flip * u, flip * u2, flip * v, 0.0]);
-                lmin = l;
+                ([2, 2, 3, 3, 2, 2, 3, 3][i], [t, u, u2, v, 0.0])
             }
-        }
-    }
-
-    // Lengths here leave out the fixed quarter turn, as OMPL's do.
-    let mut lmin = best.length - 0.5 * PI;
-    for i in 0..16 {
-        if let Some((t, u, v)) = f(24 + i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
+            3 => {
                 let word = [4, 4, 5, 5, 8, 8, 9, 9, 6, 6, 7, 7, 10, 10, 11, 11][i];
-                let q = -0.5 * PI;
                 let p = if i >= 8 {
                     [v, u, q, t, 0.0]
                 } else {
                     [t, q, u, v, 0.0]
                 };
-                let flip = flip(i);
-                best = Word::new(word, p.map(|a| flip * a));
-                lmin = l;
+                (word, p)
             }
+            _ => ([16, 16, 17, 17][i], [t, q, u, q, v]),
+        };
+        let mut p = p.map(|a| flip * a);
+        // OMPL's unused slots stay +0 (CCSC's fifth is flipped, as OMPL's).
+        match family {
+            0 | 1 => (p[3], p[4]) = (0.0, 0.0),
+            2 => p[4] = 0.0,
+            _ => {}
         }
+        self.best = Word::new(word, p);
     }
+}
 
-    // Lengths here leave out the two fixed quarter turns.
-    let mut lmin = best.length - PI;
-    for i in 0..4 {
-        if let Some((t, u, v)) = f(40 + i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([16, 16, 17, 17][i], flip(i));
-                let q = -0.5 * PI;
-                best = Word::new(word, [t, q, u, q, v].map(|a| flip * a));
-                lmin = l;
-            }
+/// OMPL's search over all the candidates, `f(k)` candidate `k`'s formula.
+fn ompl_order(mut f: impl FnMut(usize) -> Option<(f64, f64, f64)>) -> Word {
+    let mut replay = Replay::new();
+    for k in 0..CANDIDATES {
+        if let Some(r) = f(k) {
+            replay.offer(k, r);
         }
     }
-    best
+    replay.best
 }
 
 /// atan on [0, 1]: an odd polynomial of degree 9, |error| < 1.2e-5.
@@ -898,15 +913,18 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
             return ompl_order(|k| formula::<true>(k, &v));
         }
     }
-    // `kept_mask` answers most candidates (not kept) in one test.
+    // OMPL's order replayed on the few candidates that gave a word.
     let kept = &found.kept[..found.n];
-    ompl_order(|k| {
-        if found.kept_mask & (1 << k) == 0 {
-            None
-        } else {
-            kept.iter().find(|e| e.0 == k).map(|e| e.1)
+    let mut replay = Replay::new();
+    let mut rest = found.kept_mask;
+    while rest != 0 {
+        let k = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        if let Some(e) = kept.iter().find(|e| e.0 == k) {
+            replay.offer(k, e.1);
         }
-    })
+    }
+    replay.best
 }
 
 /// The candidates computed so far: those that gave a word, the shortest
