@@ -779,6 +779,59 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
     }
 }
 
+/// A lower bound on the lengths of CCSC or CCSCC candidates `k` and
+/// `k + 1` (`k` even, 24–42), the two variants of a pair (see [`Angles`]),
+/// +∞ where neither formula gives a word; no sign test, no arc tangent.
+///
+/// Both variants have the same centre vector but for the sign of its first
+/// coordinate, so the same norm bit for bit, and headings ±φ. Each word's
+/// length is its arcs |t| + |v|, its straight |u| and its fixed quarter
+/// turns (π/2 for CCSC, π for CCSCC). The arcs make up the heading: t + v ≡
+/// ±φ − π/2 (8.9) or t − v ≡ ±φ − π/2 (8.10), so |t| + |v| ≥ gap(±φ, π/2)
+/// ≥ ||φ| − π/2| (φ in [−π, π]); t − v ≡ ±φ (8.11), so |t| + |v| ≥ |φ|.
+/// And any path is at least as long as the sum of its chords, which is at
+/// least the distance d: an arc of angle θ (radius 1) has chord 2 sin(θ/2)
+/// ≤ θ, and a quarter turn's chord is √2, so a CCSC word is at least
+/// d + π/2 − √2 long, a CCSCC word d + π − 2√2. [`lower`] leaves the margin
+/// for the roundings.
+#[inline(always)]
+fn pair_bound(k: usize, v: &Variants, d: f64) -> f64 {
+    // The chord excess of a quarter turn: π/2 − √2.
+    const QUARTER: f64 = 0.5 * PI - std::f64::consts::SQRT_2;
+    let i = match k {
+        32..40 => 4 + k % 4,
+        _ => k % 4,
+    };
+    let g = v[i];
+    let heading = (g.phi.abs() - 0.5 * PI).abs();
+    match k {
+        // 8.9: u = 2 − √(|A|² − 4).
+        24..28 | 32..36 => {
+            let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+            let an = (xi * xi + eta * eta).sqrt();
+            if an < 2.0 {
+                return f64::INFINITY;
+            }
+            let u = 2.0 - (an * an - 4.0).sqrt();
+            lower((0.5 * PI + u.abs() + heading).max(d + QUARTER))
+        }
+        // 8.10: u = 2 − |B|; 8.11: u = 4 − √(|B|² − 4).
+        _ => {
+            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+            let bn = (xi * xi + eta * eta).sqrt();
+            if bn < 2.0 {
+                return f64::INFINITY;
+            }
+            if k < 40 {
+                lower((0.5 * PI + (2.0 - bn).abs() + heading).max(d + QUARTER))
+            } else {
+                let u = 4.0 - (bn * bn - 4.0).sqrt();
+                lower((PI + u.abs() + g.phi.abs()).max(d + 2.0 * QUARTER))
+            }
+        }
+    }
+}
+
 /// The goal seen backwards: the start reached from the goal in reverse
 /// (OMPL's `xb`, `yb`; the heading stays φ).
 #[inline]
@@ -828,30 +881,22 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     }
     // Lower bounds, coarse then fine where the coarse one does not settle
     // it; the CSC words first (they win far from the start, and the best of
-    // them bounds the rest), then every candidate whose bound is below the
-    // shortest length found. A candidate left out is longer than that by
-    // the margin of `lower`, so it could not win in OMPL's order either, nor
-    // change how the others compare.
+    // them bounds the rest), then every other candidate, its coarse bound
+    // first and its fine one only when the coarse one is below the shortest
+    // CSC length found; those whose bound is still below it are computed,
+    // best first, while their bound is below the shortest length found. A
+    // candidate left out is longer than that by the margin of `lower`, so
+    // it could not win in OMPL's order either, nor change how the others
+    // compare.
     let d = (x * x + y * y).sqrt();
     let mut lb = [f64::INFINITY; CANDIDATES];
     let mut angles = Angles::new();
     // Unrolled, so that each candidate's bound is specialised (and the
-    // shared norms computed once).
-    macro_rules! coarse {
+    // shared norms computed once). The LSL bounds (0–3) are fine already.
+    macro_rules! csc {
         ($($k:literal)*) => { $( lb[$k] = bound::<false>($k, &v, d, &mut angles); )* };
     }
-    coarse!(0 1 2 3 4 5 6 7 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
-    // The CCC and CCCC words (8–23) by one test: their formulas need a
-    // centre vector no longer than √20 < 4.5 (8.3: A ≤ 4; 8.7: B ≤ 2;
-    // 8.8: B² ≤ 20). Both centre vectors are the goal less a point within
-    // 2 of the origin ((sin φ, 1 − cos φ) and (−sin φ, 1 + cos φ)), and the
-    // goal seen backwards is the goal rotated, so every centre vector is
-    // at least d − 2 long (to a few roundings): beyond 6.5 radii none
-    // applies, and their bounds stay +∞.
-    if d <= CCC_REACH {
-        coarse!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23);
-    }
-    // The LSL bounds (0–3) are fine already.
+    csc!(0 1 2 3 4 5 6 7);
     macro_rules! lsr {
         ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d, &mut angles); } )* };
     }
@@ -875,27 +920,45 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
         }
         found.eval(k, &v);
     }
-    // Fine bounds where the coarse ones do not settle it; the candidates
-    // whose bound is still within reach (a bit set in `open`), then
-    // computed best first while their bound is below the shortest found.
-    let upper = found.upper;
+    // The candidates whose bound is still within reach (a bit set in
+    // `open`); `upper` is finite, so that +∞ bounds are never in reach.
+    let upper = found.upper.min(f64::MAX);
     let mut open = 0u64;
     for (k, &l) in lb[..8].iter().enumerate() {
-        if l <= upper && l < f64::INFINITY && found.done & (1 << k) == 0 {
+        if l <= upper && found.done & (1 << k) == 0 {
             open |= 1 << k;
         }
     }
-    macro_rules! fine {
+    macro_rules! rest {
         ($($k:literal)*) => { $(
-            if lb[$k] <= upper && lb[$k] < f64::INFINITY {
-                lb[$k] = bound::<true>($k, &v, d, &mut angles);
-                if lb[$k] <= upper {
+            if bound::<false>($k, &v, d, &mut angles) <= upper {
+                let l = bound::<true>($k, &v, d, &mut angles);
+                if l <= upper {
+                    lb[$k] = l;
                     open |= 1 << $k;
                 }
             }
         )* };
     }
-    fine!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    // CCSC and CCSCC by pairs of variants, one test first for both.
+    macro_rules! pair {
+        ($($k:literal $k1:literal)*) => { $(
+            if pair_bound($k, &v, d) <= upper {
+                rest!($k $k1);
+            }
+        )* };
+    }
+    // The CCC and CCCC words (8–23) by one test: their formulas need a
+    // centre vector no longer than √20 < 4.5 (8.3: A ≤ 4; 8.7: B ≤ 2;
+    // 8.8: B² ≤ 20). Both centre vectors are the goal less a point within
+    // 2 of the origin ((sin φ, 1 − cos φ) and (−sin φ, 1 + cos φ)), and the
+    // goal seen backwards is the goal rotated, so every centre vector is
+    // at least d − 2 long (to a few roundings): beyond 6.5 radii none
+    // applies.
+    if d <= CCC_REACH {
+        rest!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23);
+    }
+    pair!(24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
     while open != 0 {
         let (mut k, mut m, mut rest) = (0, f64::INFINITY, open);
         while rest != 0 {
@@ -1017,7 +1080,13 @@ mod tests {
                     let l = total(i, r);
                     let coarse = bound::<false>(i, &v, d, &mut angles);
                     let fine = bound::<true>(i, &v, d, &mut angles);
-                    for b in [coarse, fine] {
+                    // CCSC and CCSCC also by pairs of variants.
+                    let pair = if i >= 24 {
+                        pair_bound(i & !1, &v, d)
+                    } else {
+                        f64::NEG_INFINITY
+                    };
+                    for b in [coarse, fine, pair] {
                         assert!(b <= l, "candidate {i} at ({x}, {y}, {phi}): {b} > {l}");
                         worst = worst.min(l - b);
                     }
