@@ -15,8 +15,11 @@
 //! order wins, deterministically.
 //!
 //! Speed: sin φ and cos φ are computed once (the variants only flip signs).
-//! Every candidate word gets a lower bound on its length first (coarse, then
-//! with a polynomial arc tangent where needed, less a margin for its error);
+//! The CSC words are bounded from below first and computed best first until
+//! one gives a word, whose length bounds the rest. Every other candidate is
+//! then bounded from below: CCSC and CCSCC first by pairs of variants (one
+//! test for both), then each coarsely, then with a polynomial arc tangent
+//! where the coarse bound is within reach (less a margin for its error);
 //! the formulas themselves run only for candidates whose bound is below the
 //! shortest length found, best first, and OMPL's order is replayed on those.
 //! A candidate skipped that way is longer than the winner by the margin, so
@@ -906,26 +909,29 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
         n: 0,
         kept_mask: 0,
         upper: f64::INFINITY,
-        done: 0,
     };
-    while found.upper == f64::INFINITY {
-        let (mut k, mut m) = (0, f64::INFINITY);
-        for (i, &l) in lb[..8].iter().enumerate() {
-            if l < m && found.done & (1 << i) == 0 {
-                (k, m) = (i, l);
-            }
+    // The CSC candidates not yet computed whose bound is finite (a bit
+    // each), computed best first until one gives a word.
+    let mut csc = 0u64;
+    for (k, &l) in lb[..8].iter().enumerate() {
+        if l < f64::INFINITY {
+            csc |= 1 << k;
         }
-        if m == f64::INFINITY {
-            break;
-        }
+    }
+    while found.upper == f64::INFINITY && csc != 0 {
+        let k = best(csc, &lb);
+        csc &= !(1 << k);
         found.eval(k, &v);
     }
     // The candidates whose bound is still within reach (a bit set in
     // `open`); `upper` is finite, so that +∞ bounds are never in reach.
     let upper = found.upper.min(f64::MAX);
     let mut open = 0u64;
-    for (k, &l) in lb[..8].iter().enumerate() {
-        if l <= upper && found.done & (1 << k) == 0 {
+    let mut rest = csc;
+    while rest != 0 {
+        let k = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        if lb[k] <= upper {
             open |= 1 << k;
         }
     }
@@ -960,15 +966,8 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     }
     pair!(24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
     while open != 0 {
-        let (mut k, mut m, mut rest) = (0, f64::INFINITY, open);
-        while rest != 0 {
-            let i = rest.trailing_zeros() as usize;
-            rest &= rest - 1;
-            if lb[i] < m {
-                (k, m) = (i, lb[i]);
-            }
-        }
-        if m > found.upper {
+        let k = best(open, &lb);
+        if lb[k] > found.upper {
             break;
         }
         open &= !(1 << k);
@@ -990,22 +989,36 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     replay.best
 }
 
-/// The candidates computed so far: those that gave a word, the shortest
-/// length among them, and which were computed.
+/// The candidate of `set` (a bit each, not empty) with the least bound,
+/// the first of equal ones.
+#[inline]
+fn best(set: u64, lb: &[f64; CANDIDATES]) -> usize {
+    let (mut k, mut rest) = (set.trailing_zeros() as usize, set);
+    rest &= rest - 1;
+    while rest != 0 {
+        let i = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        if lb[i] < lb[k] {
+            k = i;
+        }
+    }
+    k
+}
+
+/// The candidates computed so far that gave a word, and the shortest
+/// length among them.
 struct Found {
     kept: [(usize, (f64, f64, f64)); KEEP],
     n: usize,
     /// Which candidates are in `kept`, one bit each.
     kept_mask: u64,
     upper: f64,
-    done: u64,
 }
 
 impl Found {
     /// Computes candidate `k`; false when more than [`KEEP`] gave words.
     #[inline]
     fn eval(&mut self, k: usize, v: &Variants) -> bool {
-        self.done |= 1 << k;
         if let Some(r) = formula::<true>(k, v) {
             if self.n == KEEP {
                 return false;
