@@ -516,23 +516,16 @@ fn lsl_arcs(phi: f64) -> f64 {
 /// first coordinate of both vectors exactly (IEEE negation commutes with
 /// the sums) and leaves their norms bit for bit: the timeflip's angle is
 /// π minus the variant's, and the pairs (goal, timeflip) and (reflect,
-/// both) cost one arc tangent each. The angles that depend only on a norm
-/// (8.2's `atan2(2, u)`, 8.9's `atan2(r, −2)`, 8.11's `atan2(4 − u, −2)`)
-/// are likewise shared by the two variants of a pair. Every angle here is
-/// used only modulo 2π, through [`gap`] and [`surely_negative`], and
-/// `π − a` is within one rounding of the mirrored vector's angle, far
-/// inside the margin of [`lower`].
+/// both) cost one arc tangent each. Every angle here is used only modulo
+/// 2π, through [`gap`] and [`surely_negative`], and `π − a` is within one
+/// rounding of the mirrored vector's angle, far inside the margin of
+/// [`lower`]. (8.2, 8.9 and 8.11 take their t in one arc tangent of the
+/// vector their coarse bound rotates, not from these.)
 struct Angles {
     /// The A and B vectors' angles, per pair of variants (goal, reflect,
     /// backwards, backwards reflect).
     a: [f64; 4],
     b: [f64; 4],
-    /// 8.9's `atan2(r, −2)`, per pair.
-    ccsc_a: [f64; 4],
-    /// 8.2's `atan2(2, u)` and 8.11's `atan2(4 − u, −2)`, per pair of the
-    /// goal's own variants.
-    lsr: [f64; 2],
-    ccscc: [f64; 2],
 }
 
 impl Angles {
@@ -540,9 +533,6 @@ impl Angles {
         Angles {
             a: [f64::NAN; 4],
             b: [f64::NAN; 4],
-            ccsc_a: [f64::NAN; 4],
-            lsr: [f64::NAN; 2],
-            ccscc: [f64::NAN; 2],
         }
     }
 }
@@ -640,8 +630,9 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                         }
                         lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
                     } else {
-                        let theta = centre_angle(&mut angles.a[pair], i, xi, eta);
-                        let t = theta + memo(&mut angles.ccsc_a[pair], || atan2_approx(r, -2.0));
+                        // The angle of (ct, st) of the coarse bound: one
+                        // approximate arc tangent, not two.
+                        let t = atan2_approx(r * xi - 2.0 * eta, -2.0 * xi - r * eta);
                         if surely_negative(t) || surely_negative(0.5 * PI - phi + t) {
                             return INF;
                         }
@@ -674,8 +665,8 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                         }
                         lower((u + turn).max(d))
                     } else {
-                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
-                        let t = theta + memo(&mut angles.lsr[pair], || atan2_approx(2.0, u));
+                        // The angle of (ct, st) of the coarse bound.
+                        let t = atan2_approx(2.0 * xi + u * eta, u * xi - 2.0 * eta);
                         if surely_negative(t) || surely_negative(t - phi) {
                             return INF;
                         }
@@ -768,9 +759,9 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                         }
                         lower((PI + u.abs() + turn).max(d))
                     } else {
-                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
+                        // The formula's own arc tangent, approximated.
                         let t =
-                            theta + memo(&mut angles.ccscc[pair], || atan2_approx(4.0 - u, -2.0));
+                            atan2_approx((4.0 - u) * xi - 2.0 * eta, -2.0 * xi + (u - 4.0) * eta);
                         if surely_negative(t) || surely_negative(t - phi) {
                             return INF;
                         }
