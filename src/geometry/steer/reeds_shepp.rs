@@ -616,19 +616,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
-                        // t's direction is A turned by atan2(r, −2), whose
-                        // cosine and sine are −2/|A| and r/|A|: (cos t, sin t)
-                        // = (ct, st) / |A|², no arc tangent. The formula
-                        // needs t ∈ [0, π] (sin t ≥ 0) and v = φ − π/2 − t in
-                        // [−π, 0] (sin v = −cos(φ − t) ≤ 0); a sine below
-                        // −1e-9 is an angle that far inside (−π, 0), beyond
-                        // ZERO and every rounding of the formula's angles.
-                        let (st, ct) = (r * xi - 2.0 * eta, -2.0 * xi - r * eta);
-                        let tol = 1e-9 * (an * an);
-                        if st < -tol || g.c * ct + g.s * st < -tol {
-                            return INF;
-                        }
-                        lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
+                        coarse_pair(k & !1, v, d, INF)[k & 1]
                     } else {
                         // The angle of (ct, st) of the coarse bound: one
                         // approximate arc tangent, not two.
@@ -722,14 +710,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
-                        // t = atan2(xi, −eta) must be in [0, π] (xi ≥ 0) and
-                        // v = t + π/2 − φ in [−π, 0] (sin v = cos(t − φ) ≤ 0),
-                        // to within the tolerance argued for 8.9.
-                        let tol = 1e-9 * bn;
-                        if xi < -tol || g.s * xi - g.c * eta > tol {
-                            return INF;
-                        }
-                        lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
+                        coarse_pair(k & !1, v, d, INF)[k & 1]
                     } else {
                         let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
                         let t = theta + 0.5 * PI;
@@ -747,17 +728,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
-                        // t is the angle of (ct, st), the formula's own
-                        // atan2 arguments, of norm √((4 − u)² + 4)·|B| ≤ m;
-                        // t and v = t − φ must be in [0, π] (sines ≥ 0), to
-                        // within the tolerance argued for 8.9.
-                        let st = (4.0 - u) * xi - 2.0 * eta;
-                        let ct = -2.0 * xi + (u - 4.0) * eta;
-                        let tol = 1e-9 * ((6.0 - u) * bn);
-                        if st < -tol || st * g.c - ct * g.s < -tol {
-                            return INF;
-                        }
-                        lower((PI + u.abs() + turn).max(d))
+                        coarse_pair(k & !1, v, d, INF)[k & 1]
                     } else {
                         // The formula's own arc tangent, approximated.
                         let t =
@@ -773,30 +744,41 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
     }
 }
 
-/// A lower bound on the lengths of CCSC or CCSCC candidates `k` and
-/// `k + 1` (`k` even, 24–42), the two variants of a pair (see [`Angles`]),
-/// +∞ where neither formula gives a word; no sign test, no arc tangent.
+/// The coarse lower bounds of CCSC or CCSCC candidates `k` and `k + 1`
+/// (`k` even, 24–42), the two variants of a pair (see [`Angles`]), +∞
+/// where a formula certainly gives no word; where even the pair's common
+/// bound is above `upper`, that bound for both, without their sign tests.
+/// Quantities that decide whether a formula applies are computed exactly
+/// as the formula does.
 ///
 /// Both variants have the same centre vector but for the sign of its first
-/// coordinate, so the same norm bit for bit, and headings ±φ. Each word's
-/// length is its arcs |t| + |v|, its straight |u| and its fixed quarter
-/// turns (π/2 for CCSC, π for CCSCC). The arcs make up the heading: t + v ≡
-/// ±φ − π/2 (8.9) or t − v ≡ ±φ − π/2 (8.10), so |t| + |v| ≥ gap(±φ, π/2)
-/// ≥ ||φ| − π/2| (φ in [−π, π]); t − v ≡ ±φ (8.11), so |t| + |v| ≥ |φ|.
-/// And any path is at least as long as the sum of its chords, which is at
-/// least the distance d: an arc of angle θ (radius 1) has chord 2 sin(θ/2)
-/// ≤ θ, and a quarter turn's chord is √2, so a CCSC word is at least
-/// d + π/2 − √2 long, a CCSCC word d + π − 2√2. [`lower`] leaves the margin
-/// for the roundings.
+/// coordinate (timeflip negates x and sin φ), so the same norm bit for bit,
+/// and headings ±φ. Each word's length is its arcs |t| + |v|, its straight
+/// |u| and its fixed quarter turns (π/2 for CCSC, π for CCSCC). The arcs
+/// make up the heading: t + v ≡ ±φ − π/2 (8.9) or t − v ≡ ±φ − π/2 (8.10),
+/// so |t| + |v| ≥ gap(±φ, π/2) ≥ ||φ| − π/2| (φ in [−π, π]); t − v ≡ ±φ
+/// (8.11), so |t| + |v| ≥ |φ|. And any path is at least as long as the sum
+/// of its chords, which is at least the distance d: an arc of angle θ
+/// (radius 1) has chord 2 sin(θ/2) ≤ θ, and a quarter turn's chord is √2,
+/// so a CCSC word is at least d + π/2 − √2 long, a CCSCC word
+/// d + π − 2√2. [`lower`] leaves the margin for the roundings.
+///
+/// The sign tests: t and v must be in the formula's ranges; their sines
+/// are read off the centre vector (cos t and sin t without an arc tangent,
+/// v's sine from φ's), and a sine below −1e-9 of the vector's scale is an
+/// angle that far inside (−π, 0), beyond ZERO and every rounding of the
+/// formula's angles.
 #[inline(always)]
-fn pair_bound(k: usize, v: &Variants, d: f64) -> f64 {
+fn coarse_pair(k: usize, v: &Variants, d: f64, upper: f64) -> [f64; 2] {
+    const INF: f64 = f64::INFINITY;
     // The chord excess of a quarter turn: π/2 − √2.
     const QUARTER: f64 = 0.5 * PI - std::f64::consts::SQRT_2;
     let i = match k {
         32..40 => 4 + k % 4,
         _ => k % 4,
     };
-    let g = v[i];
+    // The variant and its timeflip.
+    let (g, h) = (v[i], v[i + 1]);
     let heading = (g.phi.abs() - 0.5 * PI).abs();
     match k {
         // 8.9: u = 2 − √(|A|² − 4).
@@ -804,24 +786,96 @@ fn pair_bound(k: usize, v: &Variants, d: f64) -> f64 {
             let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
             let an = (xi * xi + eta * eta).sqrt();
             if an < 2.0 {
-                return f64::INFINITY;
+                return [INF; 2];
             }
-            let u = 2.0 - (an * an - 4.0).sqrt();
-            lower((0.5 * PI + u.abs() + heading).max(d + QUARTER))
+            let r = (an * an - 4.0).sqrt();
+            let u = 2.0 - r;
+            if u > ZERO {
+                return [INF; 2];
+            }
+            let straight = 0.5 * PI + u.abs();
+            let pair = lower((straight + heading).max(d + QUARTER));
+            if pair > upper {
+                return [pair; 2];
+            }
+            // t's direction is A turned by atan2(r, −2), whose cosine and
+            // sine are −2/|A| and r/|A|: (cos t, sin t) = (ct, st) / |A|².
+            // The formula needs t ∈ [0, π] (sin t ≥ 0) and v = φ − π/2 − t
+            // in [−π, 0] (sin v = −cos(φ − t) ≤ 0). The timeflip's (ct, st)
+            // is the same of −xi.
+            let (rx, ey, ex, ry) = (r * xi, 2.0 * eta, 2.0 * xi, r * eta);
+            let tol = 1e-9 * (an * an);
+            let one = |st: f64, ct: f64, g: Goal| {
+                if st < -tol || g.c * ct + g.s * st < -tol {
+                    INF
+                } else {
+                    lower((straight + gap(g.phi, 0.5 * PI)).max(d)).max(pair)
+                }
+            };
+            [one(rx - ey, -ex - ry, g), one(-rx - ey, ex - ry, h)]
         }
-        // 8.10: u = 2 − |B|; 8.11: u = 4 − √(|B|² − 4).
+        // 8.10: u = 2 − |B|.
+        28..32 | 36..40 => {
+            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+            let bn = (xi * xi + eta * eta).sqrt();
+            if bn < 2.0 {
+                return [INF; 2];
+            }
+            let u = 2.0 - bn;
+            if u > ZERO {
+                return [INF; 2];
+            }
+            let straight = 0.5 * PI + u.abs();
+            let pair = lower((straight + heading).max(d + QUARTER));
+            if pair > upper {
+                return [pair; 2];
+            }
+            // t = atan2(xi, −eta) must be in [0, π] (xi ≥ 0) and
+            // v = t + π/2 − φ in [−π, 0] (sin v = cos(t − φ) ≤ 0); the
+            // latter, sin φ·xi − cos φ·eta ≤ 0 over |B|, is the same for
+            // the timeflip (xi and sin φ negated).
+            let tol = 1e-9 * bn;
+            if g.s * xi - g.c * eta > tol {
+                return [INF; 2];
+            }
+            let one = |xi: f64, g: Goal| {
+                if xi < -tol {
+                    INF
+                } else {
+                    lower((straight + gap(g.phi, 0.5 * PI)).max(d)).max(pair)
+                }
+            };
+            [one(xi, g), one(-xi, h)]
+        }
+        // 8.11: u = 4 − √(|B|² − 4).
         _ => {
             let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
             let bn = (xi * xi + eta * eta).sqrt();
             if bn < 2.0 {
-                return f64::INFINITY;
+                return [INF; 2];
             }
-            if k < 40 {
-                lower((0.5 * PI + (2.0 - bn).abs() + heading).max(d + QUARTER))
-            } else {
-                let u = 4.0 - (bn * bn - 4.0).sqrt();
-                lower((PI + u.abs() + g.phi.abs()).max(d + 2.0 * QUARTER))
+            let u = 4.0 - (bn * bn - 4.0).sqrt();
+            if u > ZERO {
+                return [INF; 2];
             }
+            let pair = lower((PI + u.abs() + g.phi.abs()).max(d + 2.0 * QUARTER));
+            if pair > upper {
+                return [pair; 2];
+            }
+            // t is the angle of (ct, st), the formula's own atan2
+            // arguments, of norm √((4 − u)² + 4)·|B| ≤ (6 − u)·|B|; t and
+            // v = t − φ must be in [0, π] (sines ≥ 0). The timeflip's
+            // (ct, st) is the same of −xi.
+            let (px, ey, ex, qy) = ((4.0 - u) * xi, 2.0 * eta, 2.0 * xi, (u - 4.0) * eta);
+            let tol = 1e-9 * ((6.0 - u) * bn);
+            let one = |st: f64, ct: f64, g: Goal| {
+                if st < -tol || st * g.c - ct * g.s < -tol {
+                    INF
+                } else {
+                    pair
+                }
+            };
+            [one(px - ey, -ex + qy, g), one(-px - ey, ex + qy, h)]
         }
     }
 }
@@ -926,9 +980,10 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
             open |= 1 << k;
         }
     }
-    macro_rules! rest {
-        ($($k:literal)*) => { $(
-            if bound::<false>($k, &v, d, &mut angles) <= upper {
+    // Candidate `k`'s fine bound where its coarse one is within reach.
+    macro_rules! fine {
+        ($($k:literal $coarse:expr)*) => { $(
+            if $coarse <= upper {
                 let l = bound::<true>($k, &v, d, &mut angles);
                 if l <= upper {
                     lb[$k] = l;
@@ -937,12 +992,14 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
             }
         )* };
     }
+    macro_rules! rest {
+        ($($k:literal)*) => { $( fine!($k bound::<false>($k, &v, d, &mut angles)); )* };
+    }
     // CCSC and CCSCC by pairs of variants, one test first for both.
     macro_rules! pair {
         ($($k:literal $k1:literal)*) => { $(
-            if pair_bound($k, &v, d) <= upper {
-                rest!($k $k1);
-            }
+            let coarse = coarse_pair($k, &v, d, upper);
+            fine!($k coarse[0] $k1 coarse[1]);
         )* };
     }
     // The CCC and CCCC words (8–23) by one test: their formulas need a
@@ -1084,9 +1141,9 @@ mod tests {
                     let l = total(i, r);
                     let coarse = bound::<false>(i, &v, d, &mut angles);
                     let fine = bound::<true>(i, &v, d, &mut angles);
-                    // CCSC and CCSCC also by pairs of variants.
+                    // CCSC and CCSCC also by their pair's common bound.
                     let pair = if i >= 24 {
-                        pair_bound(i & !1, &v, d)
+                        coarse_pair(i & !1, &v, d, -1.0)[i & 1]
                     } else {
                         f64::NEG_INFINITY
                     };
