@@ -583,14 +583,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
             let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
             let an = (xi * xi + eta * eta).sqrt();
             match k {
-                0..4 => {
-                    if eta < -1e-14 * an || g.s * xi - g.c * eta < -1e-6 * an {
-                        // t ∈ [0, π] and v ∈ [0, π]: sin v = sin(φ − t) ≥ 0.
-                        INF
-                    } else {
-                        lower(an + lsl_arcs(phi))
-                    }
-                }
+                0..4 => csc_pair(k & !1, v, d)[k & 1],
                 8..16 => {
                     if an > 4.0 {
                         INF
@@ -641,17 +634,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     }
                     let u = (b2 - 4.0).sqrt();
                     if !FINE {
-                        // t's direction is B turned by atan2(2, u), whose
-                        // cosine and sine are u/|B| and 2/|B|: (cos t, sin t)
-                        // = (ct, st) / |B|². t and v = t − φ must be in
-                        // [0, π] (sines ≥ 0), to within the tolerance argued
-                        // for 8.9.
-                        let (st, ct) = (2.0 * xi + u * eta, u * xi - 2.0 * eta);
-                        let tol = 1e-9 * b2;
-                        if st < -tol || st * g.c - ct * g.s < -tol {
-                            return INF;
-                        }
-                        lower((u + turn).max(d))
+                        csc_pair(k & !1, v, d)[k & 1]
                     } else {
                         // The angle of (ct, st) of the coarse bound.
                         let t = atan2_approx(2.0 * xi + u * eta, u * xi - 2.0 * eta);
@@ -741,6 +724,53 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                 }
             }
         }
+    }
+}
+
+/// The lower bounds of CSC candidates `k` and `k + 1` (`k` even, 0–6), a
+/// variant and its timeflip (see [`coarse_pair`]: the same centre vector
+/// but for the sign of its first coordinate, headings ±φ); +∞ where a
+/// formula certainly gives no word. Quantities that decide whether a
+/// formula applies are computed exactly as the formula does.
+#[inline(always)]
+fn csc_pair(k: usize, v: &Variants, d: f64) -> [f64; 2] {
+    const INF: f64 = f64::INFINITY;
+    let (g, h) = (v[k % 4], v[k % 4 + 1]);
+    if k < 4 {
+        // 8.1: t = atan2(eta, xi) must be in [0, π] and v = φ − t in
+        // [0, π] (sin v = sin(φ − t) ≥ 0, sin φ·xi − cos φ·eta ≥ 0 over
+        // |A|); both tests are the same for the timeflip (xi and sin φ
+        // negated). The arcs make up φ (see `lsl_arcs`).
+        let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+        let an = (xi * xi + eta * eta).sqrt();
+        if eta < -1e-14 * an || g.s * xi - g.c * eta < -1e-6 * an {
+            [INF; 2]
+        } else {
+            [lower(an + lsl_arcs(g.phi)), lower(an + lsl_arcs(h.phi))]
+        }
+    } else {
+        // 8.2: t's direction is B turned by atan2(2, u), whose cosine and
+        // sine are u/|B| and 2/|B|: (cos t, sin t) = (ct, st) / |B|². t and
+        // v = t − φ must be in [0, π] (sines ≥ 0), to within the tolerance
+        // argued at `coarse_pair`. The timeflip's (ct, st) is the same of
+        // −xi.
+        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+        let b2 = xi * xi + eta * eta;
+        if b2 < 4.0 {
+            return [INF; 2];
+        }
+        let u = (b2 - 4.0).sqrt();
+        let (ex, ue, ux, ee) = (2.0 * xi, u * eta, u * xi, 2.0 * eta);
+        let tol = 1e-9 * b2;
+        let l = lower((u + g.phi.abs()).max(d));
+        let one = |st: f64, ct: f64, g: Goal| {
+            if st < -tol || st * g.c - ct * g.s < -tol {
+                INF
+            } else {
+                l
+            }
+        };
+        [one(ex + ue, ux - ee, g), one(-ex + ue, -ux - ee, h)]
     }
 }
 
@@ -939,12 +969,13 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     let d = (x * x + y * y).sqrt();
     let mut lb = [f64::INFINITY; CANDIDATES];
     let mut angles = Angles::new();
-    // Unrolled, so that each candidate's bound is specialised (and the
-    // shared norms computed once). The LSL bounds (0–3) are fine already.
-    macro_rules! csc {
-        ($($k:literal)*) => { $( lb[$k] = bound::<false>($k, &v, d, &mut angles); )* };
-    }
-    csc!(0 1 2 3 4 5 6 7);
+    // By pairs of variants; the LSL bounds (0–3) are fine already. The
+    // macros below are unrolled, so that each candidate's bound is
+    // specialised (and the shared norms computed once).
+    [lb[0], lb[1]] = csc_pair(0, &v, d);
+    [lb[2], lb[3]] = csc_pair(2, &v, d);
+    [lb[4], lb[5]] = csc_pair(4, &v, d);
+    [lb[6], lb[7]] = csc_pair(6, &v, d);
     macro_rules! lsr {
         ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d, &mut angles); } )* };
     }
