@@ -583,7 +583,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
             let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
             let an = (xi * xi + eta * eta).sqrt();
             match k {
-                0..4 => csc_pair(k & !1, v, d)[k & 1],
+                0..4 => csc_pair::<false>(k & !1, v, d)[k & 1],
                 8..16 => {
                     if an > 4.0 {
                         INF
@@ -628,22 +628,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
             let b2 = xi * xi + eta * eta;
             let bn = b2.sqrt();
             match k {
-                4..8 => {
-                    if b2 < 4.0 {
-                        return INF;
-                    }
-                    let u = (b2 - 4.0).sqrt();
-                    if !FINE {
-                        csc_pair(k & !1, v, d)[k & 1]
-                    } else {
-                        // The angle of (ct, st) of the coarse bound.
-                        let t = atan2_approx(2.0 * xi + u * eta, u * xi - 2.0 * eta);
-                        if surely_negative(t) || surely_negative(t - phi) {
-                            return INF;
-                        }
-                        lower(u + gap(t, 0.0) + gap(t, phi))
-                    }
-                }
+                4..8 => csc_pair::<FINE>(k & !1, v, d)[k & 1],
                 16..20 => {
                     let rho = 0.25 * (2.0 + bn);
                     if rho > 1.0 {
@@ -731,9 +716,10 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
 /// variant and its timeflip (see [`coarse_pair`]: the same centre vector
 /// but for the sign of its first coordinate, headings ±φ); +∞ where a
 /// formula certainly gives no word. Quantities that decide whether a
-/// formula applies are computed exactly as the formula does.
+/// formula applies are computed exactly as the formula does. LSR's fine
+/// bound (`FINE`) follows its sign tests, from the same rotated vector.
 #[inline(always)]
-fn csc_pair(k: usize, v: &Variants, d: f64) -> [f64; 2] {
+fn csc_pair<const FINE: bool>(k: usize, v: &Variants, d: f64) -> [f64; 2] {
     const INF: f64 = f64::INFINITY;
     let (g, h) = (v[k % 4], v[k % 4 + 1]);
     if k < 4 {
@@ -766,8 +752,16 @@ fn csc_pair(k: usize, v: &Variants, d: f64) -> [f64; 2] {
         let one = |st: f64, ct: f64, g: Goal| {
             if st < -tol || st * g.c - ct * g.s < -tol {
                 INF
-            } else {
+            } else if !FINE {
                 l
+            } else {
+                // The angle of (ct, st), approximated.
+                let t = atan2_approx(st, ct);
+                if surely_negative(t) || surely_negative(t - g.phi) {
+                    INF
+                } else {
+                    lower(u + gap(t, 0.0) + gap(t, g.phi))
+                }
             }
         };
         [one(ex + ue, ux - ee, g), one(-ex + ue, -ux - ee, h)]
@@ -969,17 +963,13 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     let d = (x * x + y * y).sqrt();
     let mut lb = [f64::INFINITY; CANDIDATES];
     let mut angles = Angles::new();
-    // By pairs of variants; the LSL bounds (0–3) are fine already. The
+    // By pairs of variants, fine (the LSL bounds are fine already). The
     // macros below are unrolled, so that each candidate's bound is
     // specialised (and the shared norms computed once).
-    [lb[0], lb[1]] = csc_pair(0, &v, d);
-    [lb[2], lb[3]] = csc_pair(2, &v, d);
-    [lb[4], lb[5]] = csc_pair(4, &v, d);
-    [lb[6], lb[7]] = csc_pair(6, &v, d);
-    macro_rules! lsr {
-        ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d, &mut angles); } )* };
-    }
-    lsr!(4 5 6 7);
+    [lb[0], lb[1]] = csc_pair::<true>(0, &v, d);
+    [lb[2], lb[3]] = csc_pair::<true>(2, &v, d);
+    [lb[4], lb[5]] = csc_pair::<true>(4, &v, d);
+    [lb[6], lb[7]] = csc_pair::<true>(6, &v, d);
     let mut found = Found {
         kept: [(0, (0.0, 0.0, 0.0)); KEEP],
         n: 0,
