@@ -394,7 +394,8 @@ impl Replay {
         } else {
             t.abs() + u.abs() + v.abs()
         };
-        if !(self.lmin > l) {
+        // Only a strictly shorter word replaces the best (OMPL's `>`).
+        if self.lmin.partial_cmp(&l) != Some(std::cmp::Ordering::Greater) {
             return;
         }
         self.lmin = l;
