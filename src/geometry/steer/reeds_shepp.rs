@@ -972,7 +972,8 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     [lb[4], lb[5]] = csc_pair::<true>(4, &v, d);
     [lb[6], lb[7]] = csc_pair::<true>(6, &v, d);
     let mut found = Found {
-        kept: [(0, (0.0, 0.0, 0.0)); KEEP],
+        kept: [(0.0, 0.0, 0.0); KEEP],
+        kept_k: [0; KEEP],
         n: 0,
         kept_mask: 0,
         upper: f64::INFINITY,
@@ -1046,14 +1047,14 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
         }
     }
     // OMPL's order replayed on the few candidates that gave a word.
-    let kept = &found.kept[..found.n];
+    let kept_k = &found.kept_k[..found.n];
     let mut replay = Replay::new();
     let mut rest = found.kept_mask;
     while rest != 0 {
         let k = rest.trailing_zeros() as usize;
         rest &= rest - 1;
-        if let Some(e) = kept.iter().find(|e| e.0 == k) {
-            replay.offer(k, e.1);
+        if let Some(j) = kept_k.iter().position(|&e| usize::from(e) == k) {
+            replay.offer(k, found.kept[j]);
         }
     }
     replay.best
@@ -1078,7 +1079,10 @@ fn best(set: u64, lb: &[f64; CANDIDATES]) -> usize {
 /// The candidates computed so far that gave a word, and the shortest
 /// length among them.
 struct Found {
-    kept: [(usize, (f64, f64, f64)); KEEP],
+    /// Their words, and which candidates they are (apart, so that the
+    /// whole is small enough to be cleared without a call to `memset`).
+    kept: [(f64, f64, f64); KEEP],
+    kept_k: [u8; KEEP],
     n: usize,
     /// Which candidates are in `kept`, one bit each.
     kept_mask: u64,
@@ -1093,7 +1097,8 @@ impl Found {
             if self.n == KEEP {
                 return false;
             }
-            self.kept[self.n] = (k, r);
+            self.kept[self.n] = r;
+            self.kept_k[self.n] = k as u8;
             self.n += 1;
             self.kept_mask |= 1 << k;
             self.upper = self.upper.min(total(k, r));
