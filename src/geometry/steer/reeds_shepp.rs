@@ -19,7 +19,9 @@
 //! one gives a word, whose length bounds the rest. Every other candidate is
 //! then bounded from below: CCSC and CCSCC first by pairs of variants (one
 //! test for both), then each coarsely, then with a polynomial arc tangent
-//! where the coarse bound is within reach (less a margin for its error);
+//! where the coarse bound is within reach (less a margin for its error). A
+//! variant and its timeflip are bounded together (they share a centre
+//! vector's norm and products);
 //! the formulas themselves run only for candidates whose bound is below the
 //! shortest length found, best first, and OMPL's order is replayed on those.
 //! A candidate skipped that way is longer than the winner by the margin, so
