@@ -15,8 +15,13 @@
 //! order wins, deterministically.
 //!
 //! Speed: sin φ and cos φ are computed once (the variants only flip signs).
-//! Every candidate word gets a lower bound on its length first (coarse, then
-//! with a polynomial arc tangent where needed, less a margin for its error);
+//! The CSC words are bounded from below first and computed best first until
+//! one gives a word, whose length bounds the rest. Every other candidate is
+//! then bounded from below: CCSC and CCSCC first by pairs of variants (one
+//! test for both), then each coarsely, then with a polynomial arc tangent
+//! where the coarse bound is within reach (less a margin for its error). A
+//! variant and its timeflip are bounded together (they share a centre
+//! vector's norm and products);
 //! the formulas themselves run only for candidates whose bound is below the
 //! shortest length found, best first, and OMPL's order is replayed on those.
 //! A candidate skipped that way is longer than the winner by the margin, so
@@ -339,92 +344,108 @@ fn total(k: usize, (t, u, v): (f64, f64, f64)) -> f64 {
 
 /// OMPL's search over the candidates in its order: a word replaces the best
 /// so far only when strictly shorter, lengths compared as OMPL compares
-/// them (per family, without the fixed quarter turns). `f(k)` is candidate
-/// `k`'s formula, or `None` for a candidate that cannot win.
-#[inline]
-fn ompl_order(mut f: impl FnMut(usize) -> Option<(f64, f64, f64)>) -> Word {
-    // OMPL's empty path: longer than any word.
-    let mut best = Word {
-        word: 0,
-        params: [0.0; 5],
-        length: f64::MAX,
-    };
-    // Timeflip and both reverse the word: every odd variant.
-    let flip = |i: usize| if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+/// them (per family, without the fixed quarter turns). Fed the candidates
+/// that gave a word, in increasing `k`; a candidate left out is one that
+/// gave none, so feeding only the few computed ones is OMPL's whole search.
+struct Replay {
+    best: Word,
+    /// The family of the last candidate offered (5 before the first).
+    family: usize,
+    /// The best length as this family compares it.
+    lmin: f64,
+}
 
-    let mut lmin = best.length;
-    for i in 0..8 {
-        if let Some((t, u, v)) = f(i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([14, 14, 15, 15, 12, 12, 13, 13][i], flip(i));
-                best = Word::new(word, [flip * t, flip * u, flip * v, 0.0, 0.0]);
-                lmin = l;
-            }
+impl Replay {
+    fn new() -> Self {
+        Replay {
+            // OMPL's empty path: longer than any word.
+            best: Word {
+                word: 0,
+                params: [0.0; 5],
+                length: f64::MAX,
+            },
+            family: 5,
+            lmin: f64::MAX,
         }
     }
 
-    let mut lmin = best.length;
-    for i in 0..8 {
-        if let Some((t, u, v)) = f(8 + i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([0, 0, 1, 1, 0, 0, 1, 1][i], flip(i));
+    /// Candidate `k`'s word (t, u, v), after every smaller `k`'s.
+    #[inline]
+    fn offer(&mut self, k: usize, (t, u, v): (f64, f64, f64)) {
+        // CSC, CCC, CCCC (8.7 with the two middle arcs of opposite signs,
+        // then 8.8 with the same signs), CCSC, CCSCC.
+        let (family, start) = match k {
+            0..8 => (0, 0),
+            8..16 => (1, 8),
+            16..24 => (2, 16),
+            24..40 => (3, 24),
+            _ => (4, 40),
+        };
+        if family != self.family {
+            self.family = family;
+            // CCSC's and CCSCC's lengths leave out their one or two fixed
+            // quarter turns, as OMPL's do.
+            self.lmin = match family {
+                3 => self.best.length - 0.5 * PI,
+                4 => self.best.length - PI,
+                _ => self.best.length,
+            };
+        }
+        let l = if family == 2 {
+            t.abs() + 2.0 * u.abs() + v.abs()
+        } else {
+            t.abs() + u.abs() + v.abs()
+        };
+        // Only a strictly shorter word replaces the best (OMPL's `>`).
+        if self.lmin.partial_cmp(&l) != Some(std::cmp::Ordering::Greater) {
+            return;
+        }
+        self.lmin = l;
+        let i = k - start;
+        // Timeflip and both reverse the word: every odd variant.
+        let flip = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+        let q = -0.5 * PI;
+        let (word, p) = match family {
+            0 => ([14, 14, 15, 15, 12, 12, 13, 13][i], [t, u, v, 0.0, 0.0]),
+            1 => {
                 let (a, c) = if i >= 4 { (v, t) } else { (t, v) };
-                best = Word::new(word, [flip * a, flip * u, flip * c, 0.0, 0.0]);
-                lmin = l;
+                ([0, 0, 1, 1, 0, 0, 1, 1][i], [a, u, c, 0.0, 0.0])
             }
-        }
-    }
-
-    // 8.7 (the two middle arcs of opposite signs), then 8.8 (same signs).
-    let mut lmin = best.length;
-    for i in 0..8 {
-        if let Some((t, u, v)) = f(16 + i) {
-            let l = t.abs() + 2.0 * u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([2, 2, 3, 3, 2, 2, 3, 3][i], flip(i));
+            2 => {
                 let u2 = if i >= 4 { u } else { -u };
-                best = Word::new(word, [flip * t, flip * u, flip * u2, flip * v, 0.0]);
-                lmin = l;
+                ([2, 2, 3, 3, 2, 2, 3, 3][i], [t, u, u2, v, 0.0])
             }
-        }
-    }
-
-    // Lengths here leave out the fixed quarter turn, as OMPL's do.
-    let mut lmin = best.length - 0.5 * PI;
-    for i in 0..16 {
-        if let Some((t, u, v)) = f(24 + i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
+            3 => {
                 let word = [4, 4, 5, 5, 8, 8, 9, 9, 6, 6, 7, 7, 10, 10, 11, 11][i];
-                let q = -0.5 * PI;
                 let p = if i >= 8 {
                     [v, u, q, t, 0.0]
                 } else {
                     [t, q, u, v, 0.0]
                 };
-                let flip = flip(i);
-                best = Word::new(word, p.map(|a| flip * a));
-                lmin = l;
+                (word, p)
             }
+            _ => ([16, 16, 17, 17][i], [t, q, u, q, v]),
+        };
+        let mut p = p.map(|a| flip * a);
+        // OMPL's unused slots stay +0 (CCSC's fifth is flipped, as OMPL's).
+        match family {
+            0 | 1 => (p[3], p[4]) = (0.0, 0.0),
+            2 => p[4] = 0.0,
+            _ => {}
         }
+        self.best = Word::new(word, p);
     }
+}
 
-    // Lengths here leave out the two fixed quarter turns.
-    let mut lmin = best.length - PI;
-    for i in 0..4 {
-        if let Some((t, u, v)) = f(40 + i) {
-            let l = t.abs() + u.abs() + v.abs();
-            if lmin > l {
-                let (word, flip) = ([16, 16, 17, 17][i], flip(i));
-                let q = -0.5 * PI;
-                best = Word::new(word, [t, q, u, q, v].map(|a| flip * a));
-                lmin = l;
-            }
+/// OMPL's search over all the candidates, `f(k)` candidate `k`'s formula.
+fn ompl_order(mut f: impl FnMut(usize) -> Option<(f64, f64, f64)>) -> Word {
+    let mut replay = Replay::new();
+    for k in 0..CANDIDATES {
+        if let Some(r) = f(k) {
+            replay.offer(k, r);
         }
     }
-    best
+    replay.best
 }
 
 /// atan on [0, 1]: an odd polynomial of degree 9, |error| < 1.2e-5.
@@ -498,23 +519,16 @@ fn lsl_arcs(phi: f64) -> f64 {
 /// first coordinate of both vectors exactly (IEEE negation commutes with
 /// the sums) and leaves their norms bit for bit: the timeflip's angle is
 /// π minus the variant's, and the pairs (goal, timeflip) and (reflect,
-/// both) cost one arc tangent each. The angles that depend only on a norm
-/// (8.2's `atan2(2, u)`, 8.9's `atan2(r, −2)`, 8.11's `atan2(4 − u, −2)`)
-/// are likewise shared by the two variants of a pair. Every angle here is
-/// used only modulo 2π, through [`gap`] and [`surely_negative`], and
-/// `π − a` is within one rounding of the mirrored vector's angle, far
-/// inside the margin of [`lower`].
+/// both) cost one arc tangent each. Every angle here is used only modulo
+/// 2π, through [`gap`] and [`surely_negative`], and `π − a` is within one
+/// rounding of the mirrored vector's angle, far inside the margin of
+/// [`lower`]. (8.2, 8.9 and 8.11 take their t in one arc tangent of the
+/// vector their coarse bound rotates, not from these.)
 struct Angles {
     /// The A and B vectors' angles, per pair of variants (goal, reflect,
     /// backwards, backwards reflect).
     a: [f64; 4],
     b: [f64; 4],
-    /// 8.9's `atan2(r, −2)`, per pair.
-    ccsc_a: [f64; 4],
-    /// 8.2's `atan2(2, u)` and 8.11's `atan2(4 − u, −2)`, per pair of the
-    /// goal's own variants.
-    lsr: [f64; 2],
-    ccscc: [f64; 2],
 }
 
 impl Angles {
@@ -522,9 +536,6 @@ impl Angles {
         Angles {
             a: [f64::NAN; 4],
             b: [f64::NAN; 4],
-            ccsc_a: [f64::NAN; 4],
-            lsr: [f64::NAN; 2],
-            ccscc: [f64::NAN; 2],
         }
     }
 }
@@ -575,14 +586,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
             let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
             let an = (xi * xi + eta * eta).sqrt();
             match k {
-                0..4 => {
-                    if eta < -1e-14 * an || g.s * xi - g.c * eta < -1e-6 * an {
-                        // t ∈ [0, π] and v ∈ [0, π]: sin v = sin(φ − t) ≥ 0.
-                        INF
-                    } else {
-                        lower(an + lsl_arcs(phi))
-                    }
-                }
+                0..4 => csc_pair::<false>(k & !1, v, d)[k & 1],
                 8..16 => {
                     if an > 4.0 {
                         INF
@@ -608,22 +612,11 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
-                        // t's direction is A turned by atan2(r, −2), whose
-                        // cosine and sine are −2/|A| and r/|A|: (cos t, sin t)
-                        // = (ct, st) / |A|², no arc tangent. The formula
-                        // needs t ∈ [0, π] (sin t ≥ 0) and v = φ − π/2 − t in
-                        // [−π, 0] (sin v = −cos(φ − t) ≤ 0); a sine below
-                        // −1e-9 is an angle that far inside (−π, 0), beyond
-                        // ZERO and every rounding of the formula's angles.
-                        let (st, ct) = (r * xi - 2.0 * eta, -2.0 * xi - r * eta);
-                        let tol = 1e-9 * (an * an);
-                        if st < -tol || g.c * ct + g.s * st < -tol {
-                            return INF;
-                        }
-                        lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
+                        coarse_pair(k & !1, v, d, INF)[k & 1]
                     } else {
-                        let theta = centre_angle(&mut angles.a[pair], i, xi, eta);
-                        let t = theta + memo(&mut angles.ccsc_a[pair], || atan2_approx(r, -2.0));
+                        // The angle of (ct, st) of the coarse bound: one
+                        // approximate arc tangent, not two.
+                        let t = atan2_approx(r * xi - 2.0 * eta, -2.0 * xi - r * eta);
                         if surely_negative(t) || surely_negative(0.5 * PI - phi + t) {
                             return INF;
                         }
@@ -638,32 +631,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
             let b2 = xi * xi + eta * eta;
             let bn = b2.sqrt();
             match k {
-                4..8 => {
-                    if b2 < 4.0 {
-                        return INF;
-                    }
-                    let u = (b2 - 4.0).sqrt();
-                    if !FINE {
-                        // t's direction is B turned by atan2(2, u), whose
-                        // cosine and sine are u/|B| and 2/|B|: (cos t, sin t)
-                        // = (ct, st) / |B|². t and v = t − φ must be in
-                        // [0, π] (sines ≥ 0), to within the tolerance argued
-                        // for 8.9.
-                        let (st, ct) = (2.0 * xi + u * eta, u * xi - 2.0 * eta);
-                        let tol = 1e-9 * b2;
-                        if st < -tol || st * g.c - ct * g.s < -tol {
-                            return INF;
-                        }
-                        lower((u + turn).max(d))
-                    } else {
-                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
-                        let t = theta + memo(&mut angles.lsr[pair], || atan2_approx(2.0, u));
-                        if surely_negative(t) || surely_negative(t - phi) {
-                            return INF;
-                        }
-                        lower(u + gap(t, 0.0) + gap(t, phi))
-                    }
-                }
+                4..8 => csc_pair::<FINE>(k & !1, v, d)[k & 1],
                 16..20 => {
                     let rho = 0.25 * (2.0 + bn);
                     if rho > 1.0 {
@@ -713,14 +681,7 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
-                        // t = atan2(xi, −eta) must be in [0, π] (xi ≥ 0) and
-                        // v = t + π/2 − φ in [−π, 0] (sin v = cos(t − φ) ≤ 0),
-                        // to within the tolerance argued for 8.9.
-                        let tol = 1e-9 * bn;
-                        if xi < -tol || g.s * xi - g.c * eta > tol {
-                            return INF;
-                        }
-                        lower((0.5 * PI + u.abs() + gap(phi, 0.5 * PI)).max(d))
+                        coarse_pair(k & !1, v, d, INF)[k & 1]
                     } else {
                         let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
                         let t = theta + 0.5 * PI;
@@ -738,21 +699,11 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     if u > ZERO {
                         INF
                     } else if !FINE {
-                        // t is the angle of (ct, st), the formula's own
-                        // atan2 arguments, of norm √((4 − u)² + 4)·|B| ≤ m;
-                        // t and v = t − φ must be in [0, π] (sines ≥ 0), to
-                        // within the tolerance argued for 8.9.
-                        let st = (4.0 - u) * xi - 2.0 * eta;
-                        let ct = -2.0 * xi + (u - 4.0) * eta;
-                        let tol = 1e-9 * ((6.0 - u) * bn);
-                        if st < -tol || st * g.c - ct * g.s < -tol {
-                            return INF;
-                        }
-                        lower((PI + u.abs() + turn).max(d))
+                        coarse_pair(k & !1, v, d, INF)[k & 1]
                     } else {
-                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
+                        // The formula's own arc tangent, approximated.
                         let t =
-                            theta + memo(&mut angles.ccscc[pair], || atan2_approx(4.0 - u, -2.0));
+                            atan2_approx((4.0 - u) * xi - 2.0 * eta, -2.0 * xi + (u - 4.0) * eta);
                         if surely_negative(t) || surely_negative(t - phi) {
                             return INF;
                         }
@@ -760,6 +711,198 @@ fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) 
                     }
                 }
             }
+        }
+    }
+}
+
+/// The lower bounds of CSC candidates `k` and `k + 1` (`k` even, 0–6), a
+/// variant and its timeflip (see [`coarse_pair`]: the same centre vector
+/// but for the sign of its first coordinate, headings ±φ); +∞ where a
+/// formula certainly gives no word. Quantities that decide whether a
+/// formula applies are computed exactly as the formula does. LSR's fine
+/// bound (`FINE`) follows its sign tests, from the same rotated vector.
+#[inline(always)]
+fn csc_pair<const FINE: bool>(k: usize, v: &Variants, d: f64) -> [f64; 2] {
+    const INF: f64 = f64::INFINITY;
+    let (g, h) = (v[k % 4], v[k % 4 + 1]);
+    if k < 4 {
+        // 8.1: t = atan2(eta, xi) must be in [0, π] and v = φ − t in
+        // [0, π] (sin v = sin(φ − t) ≥ 0, sin φ·xi − cos φ·eta ≥ 0 over
+        // |A|); both tests are the same for the timeflip (xi and sin φ
+        // negated). The arcs make up φ (see `lsl_arcs`).
+        let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+        let an = (xi * xi + eta * eta).sqrt();
+        if eta < -1e-14 * an || g.s * xi - g.c * eta < -1e-6 * an {
+            [INF; 2]
+        } else {
+            [lower(an + lsl_arcs(g.phi)), lower(an + lsl_arcs(h.phi))]
+        }
+    } else {
+        // 8.2: t's direction is B turned by atan2(2, u), whose cosine and
+        // sine are u/|B| and 2/|B|: (cos t, sin t) = (ct, st) / |B|². t and
+        // v = t − φ must be in [0, π] (sines ≥ 0), to within the tolerance
+        // argued at `coarse_pair`. The timeflip's (ct, st) is the same of
+        // −xi.
+        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+        let b2 = xi * xi + eta * eta;
+        if b2 < 4.0 {
+            return [INF; 2];
+        }
+        let u = (b2 - 4.0).sqrt();
+        let (ex, ue, ux, ee) = (2.0 * xi, u * eta, u * xi, 2.0 * eta);
+        let tol = 1e-9 * b2;
+        let l = lower((u + g.phi.abs()).max(d));
+        let one = |st: f64, ct: f64, g: Goal| {
+            if st < -tol || st * g.c - ct * g.s < -tol {
+                INF
+            } else if !FINE {
+                l
+            } else {
+                // The angle of (ct, st), approximated.
+                let t = atan2_approx(st, ct);
+                if surely_negative(t) || surely_negative(t - g.phi) {
+                    INF
+                } else {
+                    lower(u + gap(t, 0.0) + gap(t, g.phi))
+                }
+            }
+        };
+        [one(ex + ue, ux - ee, g), one(-ex + ue, -ux - ee, h)]
+    }
+}
+
+/// The coarse lower bounds of CCSC or CCSCC candidates `k` and `k + 1`
+/// (`k` even, 24–42), the two variants of a pair (see [`Angles`]), +∞
+/// where a formula certainly gives no word; where even the pair's common
+/// bound is above `upper`, that bound for both, without their sign tests.
+/// Quantities that decide whether a formula applies are computed exactly
+/// as the formula does.
+///
+/// Both variants have the same centre vector but for the sign of its first
+/// coordinate (timeflip negates x and sin φ), so the same norm bit for bit,
+/// and headings ±φ. Each word's length is its arcs |t| + |v|, its straight
+/// |u| and its fixed quarter turns (π/2 for CCSC, π for CCSCC). The arcs
+/// make up the heading: t + v ≡ ±φ − π/2 (8.9) or t − v ≡ ±φ − π/2 (8.10),
+/// so |t| + |v| ≥ gap(±φ, π/2) ≥ ||φ| − π/2| (φ in [−π, π]); t − v ≡ ±φ
+/// (8.11), so |t| + |v| ≥ |φ|. And any path is at least as long as the sum
+/// of its chords, which is at least the distance d: an arc of angle θ
+/// (radius 1) has chord 2 sin(θ/2) ≤ θ, and a quarter turn's chord is √2,
+/// so a CCSC word is at least d + π/2 − √2 long, a CCSCC word
+/// d + π − 2√2. [`lower`] leaves the margin for the roundings.
+///
+/// The sign tests: t and v must be in the formula's ranges; their sines
+/// are read off the centre vector (cos t and sin t without an arc tangent,
+/// v's sine from φ's), and a sine below −1e-9 of the vector's scale is an
+/// angle that far inside (−π, 0), beyond ZERO and every rounding of the
+/// formula's angles.
+#[inline(always)]
+fn coarse_pair(k: usize, v: &Variants, d: f64, upper: f64) -> [f64; 2] {
+    const INF: f64 = f64::INFINITY;
+    // The chord excess of a quarter turn: π/2 − √2.
+    const QUARTER: f64 = 0.5 * PI - std::f64::consts::SQRT_2;
+    let i = match k {
+        32..40 => 4 + k % 4,
+        _ => k % 4,
+    };
+    // The variant and its timeflip.
+    let (g, h) = (v[i], v[i + 1]);
+    let heading = (g.phi.abs() - 0.5 * PI).abs();
+    match k {
+        // 8.9: u = 2 − √(|A|² − 4).
+        24..28 | 32..36 => {
+            let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
+            let an = (xi * xi + eta * eta).sqrt();
+            if an < 2.0 {
+                return [INF; 2];
+            }
+            let r = (an * an - 4.0).sqrt();
+            let u = 2.0 - r;
+            if u > ZERO {
+                return [INF; 2];
+            }
+            let straight = 0.5 * PI + u.abs();
+            let pair = lower((straight + heading).max(d + QUARTER));
+            if pair > upper {
+                return [pair; 2];
+            }
+            // t's direction is A turned by atan2(r, −2), whose cosine and
+            // sine are −2/|A| and r/|A|: (cos t, sin t) = (ct, st) / |A|².
+            // The formula needs t ∈ [0, π] (sin t ≥ 0) and v = φ − π/2 − t
+            // in [−π, 0] (sin v = −cos(φ − t) ≤ 0). The timeflip's (ct, st)
+            // is the same of −xi.
+            let (rx, ey, ex, ry) = (r * xi, 2.0 * eta, 2.0 * xi, r * eta);
+            let tol = 1e-9 * (an * an);
+            let one = |st: f64, ct: f64, g: Goal| {
+                if st < -tol || g.c * ct + g.s * st < -tol {
+                    INF
+                } else {
+                    lower((straight + gap(g.phi, 0.5 * PI)).max(d)).max(pair)
+                }
+            };
+            [one(rx - ey, -ex - ry, g), one(-rx - ey, ex - ry, h)]
+        }
+        // 8.10: u = 2 − |B|.
+        28..32 | 36..40 => {
+            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+            let bn = (xi * xi + eta * eta).sqrt();
+            if bn < 2.0 {
+                return [INF; 2];
+            }
+            let u = 2.0 - bn;
+            if u > ZERO {
+                return [INF; 2];
+            }
+            let straight = 0.5 * PI + u.abs();
+            let pair = lower((straight + heading).max(d + QUARTER));
+            if pair > upper {
+                return [pair; 2];
+            }
+            // t = atan2(xi, −eta) must be in [0, π] (xi ≥ 0) and
+            // v = t + π/2 − φ in [−π, 0] (sin v = cos(t − φ) ≤ 0); the
+            // latter, sin φ·xi − cos φ·eta ≤ 0 over |B|, is the same for
+            // the timeflip (xi and sin φ negated).
+            let tol = 1e-9 * bn;
+            if g.s * xi - g.c * eta > tol {
+                return [INF; 2];
+            }
+            let one = |xi: f64, g: Goal| {
+                if xi < -tol {
+                    INF
+                } else {
+                    lower((straight + gap(g.phi, 0.5 * PI)).max(d)).max(pair)
+                }
+            };
+            [one(xi, g), one(-xi, h)]
+        }
+        // 8.11: u = 4 − √(|B|² − 4).
+        _ => {
+            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
+            let bn = (xi * xi + eta * eta).sqrt();
+            if bn < 2.0 {
+                return [INF; 2];
+            }
+            let u = 4.0 - (bn * bn - 4.0).sqrt();
+            if u > ZERO {
+                return [INF; 2];
+            }
+            let pair = lower((PI + u.abs() + g.phi.abs()).max(d + 2.0 * QUARTER));
+            if pair > upper {
+                return [pair; 2];
+            }
+            // t is the angle of (ct, st), the formula's own atan2
+            // arguments, of norm √((4 − u)² + 4)·|B| ≤ (6 − u)·|B|; t and
+            // v = t − φ must be in [0, π] (sines ≥ 0). The timeflip's
+            // (ct, st) is the same of −xi.
+            let (px, ey, ex, qy) = ((4.0 - u) * xi, 2.0 * eta, 2.0 * xi, (u - 4.0) * eta);
+            let tol = 1e-9 * ((6.0 - u) * bn);
+            let one = |st: f64, ct: f64, g: Goal| {
+                if st < -tol || st * g.c - ct * g.s < -tol {
+                    INF
+                } else {
+                    pair
+                }
+            };
+            [one(px - ey, -ex + qy, g), one(-px - ey, ex + qy, h)]
         }
     }
 }
@@ -813,84 +956,91 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     }
     // Lower bounds, coarse then fine where the coarse one does not settle
     // it; the CSC words first (they win far from the start, and the best of
-    // them bounds the rest), then every candidate whose bound is below the
-    // shortest length found. A candidate left out is longer than that by
-    // the margin of `lower`, so it could not win in OMPL's order either, nor
-    // change how the others compare.
+    // them bounds the rest), then every other candidate, its coarse bound
+    // first and its fine one only when the coarse one is below the shortest
+    // CSC length found; those whose bound is still below it are computed,
+    // best first, while their bound is below the shortest length found. A
+    // candidate left out is longer than that by the margin of `lower`, so
+    // it could not win in OMPL's order either, nor change how the others
+    // compare.
     let d = (x * x + y * y).sqrt();
     let mut lb = [f64::INFINITY; CANDIDATES];
     let mut angles = Angles::new();
-    // Unrolled, so that each candidate's bound is specialised (and the
-    // shared norms computed once).
-    macro_rules! coarse {
-        ($($k:literal)*) => { $( lb[$k] = bound::<false>($k, &v, d, &mut angles); )* };
+    // By pairs of variants, fine (the LSL bounds are fine already). The
+    // macros below are unrolled, so that each candidate's bound is
+    // specialised (and the shared norms computed once).
+    [lb[0], lb[1]] = csc_pair::<true>(0, &v, d);
+    [lb[2], lb[3]] = csc_pair::<true>(2, &v, d);
+    [lb[4], lb[5]] = csc_pair::<true>(4, &v, d);
+    [lb[6], lb[7]] = csc_pair::<true>(6, &v, d);
+    let mut found = Found {
+        kept: [(0.0, 0.0, 0.0); KEEP],
+        kept_k: [0; KEEP],
+        n: 0,
+        kept_mask: 0,
+        upper: f64::INFINITY,
+    };
+    // The CSC candidates not yet computed whose bound is finite (a bit
+    // each), computed best first until one gives a word.
+    let mut csc = 0u64;
+    for (k, &l) in lb[..8].iter().enumerate() {
+        if l < f64::INFINITY {
+            csc |= 1 << k;
+        }
     }
-    coarse!(0 1 2 3 4 5 6 7 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    while found.upper == f64::INFINITY && csc != 0 {
+        let k = best(csc, &lb);
+        csc &= !(1 << k);
+        found.eval(k, &v);
+    }
+    // The candidates whose bound is still within reach (a bit set in
+    // `open`); `upper` is finite, so that +∞ bounds are never in reach.
+    let upper = found.upper.min(f64::MAX);
+    let mut open = 0u64;
+    let mut rest = csc;
+    while rest != 0 {
+        let k = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        if lb[k] <= upper {
+            open |= 1 << k;
+        }
+    }
+    // Candidate `k`'s fine bound where its coarse one is within reach.
+    macro_rules! fine {
+        ($($k:literal $coarse:expr)*) => { $(
+            if $coarse <= upper {
+                let l = bound::<true>($k, &v, d, &mut angles);
+                if l <= upper {
+                    lb[$k] = l;
+                    open |= 1 << $k;
+                }
+            }
+        )* };
+    }
+    macro_rules! rest {
+        ($($k:literal)*) => { $( fine!($k bound::<false>($k, &v, d, &mut angles)); )* };
+    }
+    // CCSC and CCSCC by pairs of variants, one test first for both.
+    macro_rules! pair {
+        ($($k:literal $k1:literal)*) => { $(
+            let coarse = coarse_pair($k, &v, d, upper);
+            fine!($k coarse[0] $k1 coarse[1]);
+        )* };
+    }
     // The CCC and CCCC words (8–23) by one test: their formulas need a
     // centre vector no longer than √20 < 4.5 (8.3: A ≤ 4; 8.7: B ≤ 2;
     // 8.8: B² ≤ 20). Both centre vectors are the goal less a point within
     // 2 of the origin ((sin φ, 1 − cos φ) and (−sin φ, 1 + cos φ)), and the
     // goal seen backwards is the goal rotated, so every centre vector is
     // at least d − 2 long (to a few roundings): beyond 6.5 radii none
-    // applies, and their bounds stay +∞.
+    // applies.
     if d <= CCC_REACH {
-        coarse!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23);
+        rest!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23);
     }
-    // The LSL bounds (0–3) are fine already.
-    macro_rules! lsr {
-        ($($k:literal)*) => { $( if lb[$k] < f64::INFINITY { lb[$k] = bound::<true>($k, &v, d, &mut angles); } )* };
-    }
-    lsr!(4 5 6 7);
-    let mut found = Found {
-        kept: [(0, (0.0, 0.0, 0.0)); KEEP],
-        n: 0,
-        kept_mask: 0,
-        upper: f64::INFINITY,
-        done: 0,
-    };
-    while found.upper == f64::INFINITY {
-        let (mut k, mut m) = (0, f64::INFINITY);
-        for (i, &l) in lb[..8].iter().enumerate() {
-            if l < m && found.done & (1 << i) == 0 {
-                (k, m) = (i, l);
-            }
-        }
-        if m == f64::INFINITY {
-            break;
-        }
-        found.eval(k, &v);
-    }
-    // Fine bounds where the coarse ones do not settle it; the candidates
-    // whose bound is still within reach (a bit set in `open`), then
-    // computed best first while their bound is below the shortest found.
-    let upper = found.upper;
-    let mut open = 0u64;
-    for (k, &l) in lb[..8].iter().enumerate() {
-        if l <= upper && l < f64::INFINITY && found.done & (1 << k) == 0 {
-            open |= 1 << k;
-        }
-    }
-    macro_rules! fine {
-        ($($k:literal)*) => { $(
-            if lb[$k] <= upper && lb[$k] < f64::INFINITY {
-                lb[$k] = bound::<true>($k, &v, d, &mut angles);
-                if lb[$k] <= upper {
-                    open |= 1 << $k;
-                }
-            }
-        )* };
-    }
-    fine!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
+    pair!(24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
     while open != 0 {
-        let (mut k, mut m, mut rest) = (0, f64::INFINITY, open);
-        while rest != 0 {
-            let i = rest.trailing_zeros() as usize;
-            rest &= rest - 1;
-            if lb[i] < m {
-                (k, m) = (i, lb[i]);
-            }
-        }
-        if m > found.upper {
+        let k = best(open, &lb);
+        if lb[k] > found.upper {
             break;
         }
         open &= !(1 << k);
@@ -898,38 +1048,59 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
             return ompl_order(|k| formula::<true>(k, &v));
         }
     }
-    // `kept_mask` answers most candidates (not kept) in one test.
-    let kept = &found.kept[..found.n];
-    ompl_order(|k| {
-        if found.kept_mask & (1 << k) == 0 {
-            None
-        } else {
-            kept.iter().find(|e| e.0 == k).map(|e| e.1)
+    // OMPL's order replayed on the few candidates that gave a word.
+    let kept_k = &found.kept_k[..found.n];
+    let mut replay = Replay::new();
+    let mut rest = found.kept_mask;
+    while rest != 0 {
+        let k = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        if let Some(j) = kept_k.iter().position(|&e| usize::from(e) == k) {
+            replay.offer(k, found.kept[j]);
         }
-    })
+    }
+    replay.best
 }
 
-/// The candidates computed so far: those that gave a word, the shortest
-/// length among them, and which were computed.
+/// The candidate of `set` (a bit each, not empty) with the least bound,
+/// the first of equal ones.
+#[inline]
+fn best(set: u64, lb: &[f64; CANDIDATES]) -> usize {
+    let (mut k, mut rest) = (set.trailing_zeros() as usize, set);
+    rest &= rest - 1;
+    while rest != 0 {
+        let i = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        if lb[i] < lb[k] {
+            k = i;
+        }
+    }
+    k
+}
+
+/// The candidates computed so far that gave a word, and the shortest
+/// length among them.
 struct Found {
-    kept: [(usize, (f64, f64, f64)); KEEP],
+    /// Their words, and which candidates they are (apart, so that the
+    /// whole is small enough to be cleared without a call to `memset`).
+    kept: [(f64, f64, f64); KEEP],
+    kept_k: [u8; KEEP],
     n: usize,
     /// Which candidates are in `kept`, one bit each.
     kept_mask: u64,
     upper: f64,
-    done: u64,
 }
 
 impl Found {
     /// Computes candidate `k`; false when more than [`KEEP`] gave words.
     #[inline]
     fn eval(&mut self, k: usize, v: &Variants) -> bool {
-        self.done |= 1 << k;
         if let Some(r) = formula::<true>(k, v) {
             if self.n == KEEP {
                 return false;
             }
-            self.kept[self.n] = (k, r);
+            self.kept[self.n] = r;
+            self.kept_k[self.n] = k as u8;
             self.n += 1;
             self.kept_mask |= 1 << k;
             self.upper = self.upper.min(total(k, r));
@@ -999,7 +1170,13 @@ mod tests {
                     let l = total(i, r);
                     let coarse = bound::<false>(i, &v, d, &mut angles);
                     let fine = bound::<true>(i, &v, d, &mut angles);
-                    for b in [coarse, fine] {
+                    // CCSC and CCSCC also by their pair's common bound.
+                    let pair = if i >= 24 {
+                        coarse_pair(i & !1, &v, d, -1.0)[i & 1]
+                    } else {
+                        f64::NEG_INFINITY
+                    };
+                    for b in [coarse, fine, pair] {
                         assert!(b <= l, "candidate {i} at ({x}, {y}, {phi}): {b} > {l}");
                         worst = worst.min(l - b);
                     }
