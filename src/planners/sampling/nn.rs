@@ -4,24 +4,39 @@
 //! follow θ's wrap-around.
 //!
 //! # Structure
-//! Points are stored in *leaves* of up to [`LEAF`] points; an internal node
-//! splits its points at a value of one axis (points with a coordinate ≥ the
-//! value go right). A point is inserted into the leaf its coordinates lead
-//! to; a full leaf splits at the median of its points along the axis of
-//! their widest spread (a leaf of points equal on every axis grows
-//! instead). No rebalancing: the samples of a planner come in random order,
-//! so the expected depth is O(log n), and the walk uses an explicit stack,
-//! so a degenerate insertion order (a chain of collinear extensions) costs
-//! time, never the call stack. Leaves make a query scan a few short runs of
-//! points rather than visit one tree node per point (a third of the
-//! instructions of the one-point-per-node tree on the apartment rod); a
-//! leaf holds a copy of each point's key beside its index, so a scan reads
-//! one run of memory.
+//! Points are stored in *leaves*; an internal node splits its points at a
+//! value of one axis (points with a smaller coordinate lie left, a larger
+//! one right, an equal one on either side). The tree is *built* balanced
+//! over every point whenever their number has doubled since the last build
+//! (from 16 points): each node splits at the median by position of the
+//! axis of its points' widest spread (so both sides hold points, however
+//! many are equal), down to leaves of at most [`LEAF`] points, and the
+//! nodes are laid out depth first (a left child right after its parent).
+//! Between builds a point is inserted into the leaf its coordinates lead
+//! to (the boxes on the way grown); each leaf owns a fixed slot of [`SLOT`]
+//! points in one array (slots in leaf order as built), so a leaf grows in
+//! place, and a full one splits at its median in two (the right half in a
+//! new slot, the two new nodes at the end). A build costs O(n log n) once
+//! per doubling, O(log n) per insertion; a slot holds at least 4 points
+//! (unless the tree holds fewer),
+//! a node is one cache line of 64 bytes, so the tree's memory stays within
+//! a constant factor of its points'. The walk uses an explicit stack, so a
+//! degenerate insertion order (a chain of collinear extensions, or equal
+//! points) costs time, never the call stack. Leaves make a query scan a few
+//! short runs of points rather than visit one tree node per point; a leaf
+//! holds a copy of each point's key beside its index, so a scan reads one
+//! run of memory. The compact layout (against the former tree of 96-byte
+//! nodes grown by insertion alone, with a `Vec` per leaf) and a walk with
+//! fewer unpredictable branches (the near child picked by index, a subtree
+//! pushed by writing past the stack's top and moving the top only if it
+//! is kept) take a fifth off the apartment rod's `rrt_connect` wall time
+//! (BENCHMARKS.md, issue 22).
 //!
 //! # Queries and the wrap-around
 //! The distance between keys is Euclidean with the periodic axis'
 //! difference taken the shorter way round ([`KdTree::distance2`]). Each
-//! node keeps the bounding box of its subtree's points (grown on insertion);
+//! node keeps the bounding box of its subtree's points (set when built,
+//! grown on insertion);
 //! the query's distance to a box, along the periodic axis round the circle
 //! to the box's arc, is a lower bound of its distance to every point in the
 //! subtree. A query descends from the root to the leaf its coordinates
@@ -39,7 +54,8 @@
 //! the bound. A leaf's own box is measured before its points once there
 //! is a candidate, unless the leaf was itself popped (measured then). The
 //! box distance computes x and y as one pair of lanes and θ with a spare
-//! lane as another (boxes have a fourth coordinate, 0), two lanes per
+//! lane as another (the query and the box given a fourth coordinate, 0),
+//! two lanes per
 //! instruction, summed in the order of the point distance so that it
 //! stays a lower bound in floating point. The tight boxes (rather than the cells of the splits)
 //! prune at once for samples far from the tree, which are most of an
@@ -56,16 +72,28 @@
 // period at most infinite): plain comparisons, one instruction each.
 use crate::geometry::{max_of_numbers as max, min_of_numbers as min};
 
-/// "No child": the node is a leaf.
-const NONE: u32 = u32::MAX;
-
 /// The tag of a pending subtree on the walk's stack whose bound is only its
 /// split plane's distance (its box not yet measured); node indices stay
-/// below it (asserted when a node is made).
+/// below [`AXIS_SHIFT`]'s bit (asserted when a node is made).
 const UNMEASURED: u32 = 1 << 31;
 
-/// The most points of a leaf (unless they are all equal).
+/// In an internal node's [`Node::b`], the split's axis sits above this bit
+/// and the right child below.
+const AXIS_SHIFT: u32 = 30;
+
+/// In [`Node::a`], marks a leaf (its point count in the low bits).
+const LEAF_BIT: u32 = 1 << 31;
+
+/// The most points of a leaf as built.
 const LEAF: usize = 8;
+
+/// The tree is built again whenever its points have doubled since the
+/// last build, first at twice this many.
+const REBUILT: usize = 8;
+
+/// The room of a leaf's slot: a leaf grows by insertion up to this many
+/// points, then splits in two.
+const SLOT: usize = 16;
 
 /// A k-d tree over 2- or 3-dimensional keys (see the module documentation).
 #[derive(Clone, Debug)]
@@ -79,11 +107,15 @@ pub struct KdTree {
     wraps: [f64; 4],
     /// Point `i`'s key.
     keys: Vec<[f64; 3]>,
-    /// Node 0 is the root (once a point exists).
+    /// Node 0 is the root (once a point exists); as built, depth first (a
+    /// node's left child the node after it), then the nodes of later
+    /// leaf splits.
     nodes: Vec<Node>,
-    /// The points of each leaf (`Node::leaf` indexes it), each with a copy
-    /// of its key (a scan reads them in a row).
-    leaves: Vec<Vec<([f64; 3], u32)>>,
+    /// The leaves' points with copies of their keys: leaf slot `s` holds
+    /// its points from `s * SLOT` (as built, slots in leaf order).
+    slots: Vec<([f64; 3], u32)>,
+    /// The number of points at the last build.
+    built: usize,
     /// Per axis, 1 when the distance to a split plane along it is a lower
     /// bound of the distance to the points beyond, 0 for the periodic axis.
     plane: [f64; 3],
@@ -91,17 +123,57 @@ pub struct KdTree {
     stack: Vec<(u32, f64)>,
 }
 
-/// A node: the box of its subtree's points (min and max per axis; the third
-/// axis (0, 0) for 2-dimensional keys), and either its split and children
-/// or its leaf.
+/// A node, one cache line: the box of its subtree's points (min and max
+/// per axis; the third axis (0, 0) for 2-dimensional keys), and either its
+/// split (value `split`; `a` the left child, `b` the right child and the
+/// axis above [`AXIS_SHIFT`]) or its points (`a` = [`LEAF_BIT`] + their
+/// count, `b` their slot).
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 struct Node {
-    lo: [f64; 4],
-    hi: [f64; 4],
-    axis: u32,
+    lo: [f64; 3],
+    hi: [f64; 3],
     split: f64,
-    children: [u32; 2],
-    leaf: u32,
+    a: u32,
+    b: u32,
+}
+
+impl Node {
+    fn leaf(points: &[([f64; 3], u32)], slot: usize) -> Node {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for (key, _) in points {
+            grow_box(&mut lo, &mut hi, key);
+        }
+        Node {
+            lo,
+            hi,
+            split: 0.0,
+            a: LEAF_BIT | points.len() as u32,
+            b: slot as u32,
+        }
+    }
+}
+
+/// The axis of the widest spread of the box [lo, hi] among the first
+/// `dims` (the first of equal ones).
+fn widest(lo: &[f64; 3], hi: &[f64; 3], dims: usize) -> usize {
+    let mut axis = 0;
+    for a in 1..dims {
+        if hi[a] - lo[a] > hi[axis] - lo[axis] {
+            axis = a;
+        }
+    }
+    axis
+}
+
+/// Splits `points` (at least 2) at the median by position along `axis`:
+/// returns the split value, every point before the median no larger and
+/// every point from it no smaller (both halves hold points, whatever the
+/// equal values).
+fn median_split(points: &mut [([f64; 3], u32)], axis: usize) -> (usize, f64) {
+    let mid = points.len() / 2;
+    points.select_nth_unstable_by(mid, |a, b| a.0[axis].total_cmp(&b.0[axis]));
+    (mid, points[mid].0[axis])
 }
 
 impl KdTree {
@@ -126,7 +198,8 @@ impl KdTree {
             plane: [1.0, 1.0, if period > 0.0 { 0.0 } else { 1.0 }],
             keys: Vec::new(),
             nodes: Vec::new(),
-            leaves: Vec::new(),
+            slots: Vec::new(),
+            built: 0,
             stack: Vec::new(),
         }
     }
@@ -144,24 +217,6 @@ impl KdTree {
         self.keys[i]
     }
 
-    /// A new leaf node holding `points`, its box theirs.
-    fn leaf_node(&mut self, points: Vec<([f64; 3], u32)>) -> u32 {
-        let (mut lo, mut hi) = EMPTY_BOX;
-        for (key, _) in &points {
-            grow_box(&mut lo, &mut hi, key);
-        }
-        self.leaves.push(points);
-        self.nodes.push(Node {
-            lo,
-            hi,
-            axis: 0,
-            split: 0.0,
-            children: [NONE; 2],
-            leaf: (self.leaves.len() - 1) as u32,
-        });
-        (self.nodes.len() - 1) as u32
-    }
-
     /// Adds `key` (its periodic coordinate in [0, period); its third one
     /// ignored for 2 axes); returns its index, the number of points before
     /// it.
@@ -169,80 +224,117 @@ impl KdTree {
         if self.dims == 2 {
             key[2] = 0.0;
         }
-        let index = self.keys.len() as u32;
+        let index = self.keys.len();
         self.keys.push(key);
-        if index == 0 {
-            self.leaf_node(vec![(key, 0)]);
-            return 0;
+        if self.nodes.is_empty() || self.keys.len() >= 2 * self.built.max(REBUILT) {
+            self.build();
+            return index;
         }
         let mut node = 0usize;
         loop {
             let n = &mut self.nodes[node];
             grow_box(&mut n.lo, &mut n.hi, &key);
-            if n.children[0] == NONE {
+            if n.a >= LEAF_BIT {
                 break;
             }
-            let side = usize::from(key[n.axis as usize] >= n.split);
-            node = n.children[side] as usize;
+            let axis = (n.b >> AXIS_SHIFT) as usize;
+            node = if key[axis] >= n.split {
+                (n.b & !(3 << AXIS_SHIFT)) as usize
+            } else {
+                n.a as usize
+            };
         }
-        let leaf = self.nodes[node].leaf as usize;
-        self.leaves[leaf].push((key, index));
-        if self.leaves[leaf].len() > LEAF {
-            self.split(node);
-        }
-        index as usize
-    }
-
-    /// Splits leaf `node` at the median of its points along the axis of
-    /// their widest spread; leaves it whole when they are all equal.
-    fn split(&mut self, node: usize) {
         let n = self.nodes[node];
-        let Some(axis) = (0..self.dims)
-            .filter(|&a| n.hi[a] > n.lo[a])
-            .max_by(|&a, &b| (n.hi[a] - n.lo[a]).total_cmp(&(n.hi[b] - n.lo[b])))
-        else {
-            return;
-        };
-        let points = std::mem::take(&mut self.leaves[n.leaf as usize]);
-        let mut values: Vec<f64> = points.iter().map(|(key, _)| key[axis]).collect();
-        values.sort_by(f64::total_cmp);
-        // The median, moved up past equal values so that both sides hold a
-        // point (the widest spread is positive: some value is larger).
-        let mut split = values[values.len() / 2];
-        if split == values[0] {
-            split = values
-                .iter()
-                .copied()
-                .find(|&v| v > values[0])
-                .unwrap_or(values[0]);
+        let count = (n.a & !LEAF_BIT) as usize;
+        let slot = n.b as usize;
+        if count < SLOT {
+            self.slots[slot * SLOT + count] = (key, index as u32);
+            self.nodes[node].a += 1;
+            return index;
         }
-        let (right, left): (Vec<_>, Vec<_>) =
-            points.iter().partition(|(key, _)| key[axis] >= split);
-        // The left half keeps the leaf's slot.
-        self.leaves[n.leaf as usize] = left;
-        self.nodes.push(Node {
-            children: [NONE; 2],
-            ..n
-        });
-        let l = (self.nodes.len() - 1) as u32;
-        self.refit(l);
-        let r = self.leaf_node(right);
-        assert!(r < UNMEASURED, "fewer than 2³¹ nodes");
-        let parent = &mut self.nodes[node];
-        parent.axis = axis as u32;
-        parent.split = split;
-        parent.children = [l, r];
+        // A full leaf: its points and the new one split at their median
+        // along the widest axis of their box (the node's, grown), the left
+        // half in its slot, the right half in a new one.
+        let mut points = [(key, index as u32); SLOT + 1];
+        points[..SLOT].copy_from_slice(&self.slots[slot * SLOT..(slot + 1) * SLOT]);
+        let axis = widest(&n.lo, &n.hi, self.dims);
+        let (mid, split) = median_split(&mut points, axis);
+        let right_slot = self.slots.len() / SLOT;
+        self.slots[slot * SLOT..slot * SLOT + mid].copy_from_slice(&points[..mid]);
+        self.slots.resize((right_slot + 1) * SLOT, ([0.0; 3], 0));
+        self.slots[right_slot * SLOT..right_slot * SLOT + SLOT + 1 - mid]
+            .copy_from_slice(&points[mid..]);
+        let left = self.nodes.len();
+        assert!(left + 1 < 1 << AXIS_SHIFT, "fewer than 2³⁰ nodes");
+        self.nodes.push(Node::leaf(&points[..mid], slot));
+        self.nodes.push(Node::leaf(&points[mid..], right_slot));
+        let n = &mut self.nodes[node];
+        n.split = split;
+        n.a = left as u32;
+        n.b = (left + 1) as u32 | (axis as u32) << AXIS_SHIFT;
+        index
     }
 
-    /// Sets a leaf's box to its points'.
-    fn refit(&mut self, node: u32) {
-        let n = &mut self.nodes[node as usize];
-        let (mut lo, mut hi) = EMPTY_BOX;
-        for (key, _) in &self.leaves[n.leaf as usize] {
+    /// Builds the tree again over every point: balanced, depth first, each
+    /// leaf at most [`LEAF`] points in the next slot.
+    fn build(&mut self) {
+        let n = self.keys.len();
+        let mut points: Vec<([f64; 3], u32)> = self
+            .keys
+            .iter()
+            .enumerate()
+            .map(|(i, &key)| (key, i as u32))
+            .collect();
+        self.nodes.clear();
+        self.slots.clear();
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for key in &self.keys {
             grow_box(&mut lo, &mut hi, key);
         }
-        n.lo = lo;
-        n.hi = hi;
+        self.build_range(&mut points, lo, hi);
+        assert!(self.nodes.len() < 1 << AXIS_SHIFT, "fewer than 2³⁰ nodes");
+        self.built = n;
+    }
+
+    /// Adds the subtree of `points` (at least one), depth first, and
+    /// returns its root. `lo`, `hi` hold the points (the parent's box cut
+    /// at its split: it chooses the axis); each leaf's box is its points',
+    /// each internal node's its children's.
+    fn build_range(&mut self, points: &mut [([f64; 3], u32)], lo: [f64; 3], hi: [f64; 3]) -> u32 {
+        let id = self.nodes.len();
+        if points.len() <= LEAF {
+            let slot = self.slots.len() / SLOT;
+            self.slots.extend_from_slice(points);
+            self.slots.resize((slot + 1) * SLOT, ([0.0; 3], 0));
+            self.nodes.push(Node::leaf(points, slot));
+            return id as u32;
+        }
+        self.nodes.push(Node {
+            lo: [0.0; 3],
+            hi: [0.0; 3],
+            split: 0.0,
+            a: 0,
+            b: 0,
+        });
+        let axis = widest(&lo, &hi, self.dims);
+        let (mid, split) = median_split(points, axis);
+        let (left_points, right_points) = points.split_at_mut(mid);
+        let (mut left_hi, mut right_lo) = (hi, lo);
+        left_hi[axis] = split;
+        right_lo[axis] = split;
+        let left = self.build_range(left_points, lo, left_hi) as usize;
+        let right = self.build_range(right_points, right_lo, hi);
+        let (l, r) = (self.nodes[left], self.nodes[right as usize]);
+        let n = &mut self.nodes[id];
+        for a in 0..3 {
+            n.lo[a] = l.lo[a].min(r.lo[a]);
+            n.hi[a] = l.hi[a].max(r.hi[a]);
+        }
+        n.split = split;
+        n.a = left as u32;
+        n.b = right | (axis as u32) << AXIS_SHIFT;
+        id as u32
     }
 
     /// The squared distance between two keys, the periodic axis the shorter
@@ -311,9 +403,9 @@ impl KdTree {
 
     /// The walk both queries share: depth first, the query's side of each
     /// split first, skipping every subtree whose box is farther than the
-    /// bound. `visit`
-    /// sees each point reached as a candidate and returns the bound after
-    /// it (the squared distance beyond which nothing is wanted).
+    /// bound. `visit` sees each point reached as a candidate and returns
+    /// the bound after it (the squared distance beyond which nothing is
+    /// wanted).
     fn walk(&mut self, q: &[f64; 3], mut visit: impl FnMut(Candidate) -> f64) {
         let mut q = *q;
         if self.dims == 2 {
@@ -323,50 +415,64 @@ impl KdTree {
         let wraps = self.wraps;
         let q4 = [q[0], q[1], q[2], 0.0];
         let plane = self.plane;
+        let nodes = &self.nodes[..];
+        // The pending subtrees, `stack[..top]`: pushed by writing past the
+        // top and moving the top only if kept (no branch); a node is
+        // pushed at most once, so the node count bounds them.
         let mut stack = std::mem::take(&mut self.stack);
-        stack.clear();
+        if stack.len() < nodes.len() {
+            stack.resize(nodes.len(), (0, 0.0));
+        }
+        let mut top = 0;
         let mut limit = f64::INFINITY;
         let mut node = 0u32;
+        // Internal node `n`'s split axis, then its near and far children
+        // for the query.
+        let split = |n: &Node| {
+            let axis = (n.b >> AXIS_SHIFT) as usize;
+            let children = [n.a, n.b & !(3 << AXIS_SHIFT)];
+            let side = usize::from(q[axis] >= n.split);
+            (axis, children[side], children[1 - side])
+        };
         // The first descent, before any candidate: nothing is pruned yet,
         // so each far side is pushed with the distance to its split plane
         // and its box is measured only if that bound is within the bound
         // when it is popped (most are beyond it by then).
         loop {
-            let n = &self.nodes[node as usize];
-            if n.children[0] == NONE {
+            let n = &nodes[node as usize];
+            if n.a >= LEAF_BIT {
                 break;
             }
-            let axis = n.axis as usize;
-            let side = usize::from(q[axis] >= n.split);
+            let (axis, near, far) = split(n);
             let d = q[axis] - n.split;
-            stack.push((n.children[1 - side] | UNMEASURED, d * d * plane[axis]));
-            node = n.children[side];
+            stack[top] = (far | UNMEASURED, d * d * plane[axis]);
+            top += 1;
+            node = near;
         }
         // Whether `node`'s box was measured against the bound (popped, or
         // the first leaf, which nothing bounds yet).
         let mut measured = true;
         loop {
-            let n = &self.nodes[node as usize];
-            if n.children[0] != NONE {
-                let axis = n.axis as usize;
-                let side = usize::from(q[axis] >= n.split);
-                let far = n.children[1 - side];
+            let n = &nodes[node as usize];
+            if n.a < LEAF_BIT {
+                let (axis, near, far) = split(n);
                 let d = q[axis] - n.split;
                 if d * d * plane[axis] <= limit {
-                    let f = &self.nodes[far as usize];
+                    let f = &nodes[far as usize];
                     let g = gap2(&q4, &f.lo, &f.hi, &wraps);
-                    if g <= limit {
-                        stack.push((far, g));
-                    }
+                    stack[top] = (far, g);
+                    top += usize::from(g <= limit);
                 }
-                node = n.children[side];
+                node = near;
                 measured = false;
                 continue;
             }
             // A leaf reached below a popped subtree may lie beyond the
             // bound: its box is measured before its points.
             if measured || gap2(&q4, &n.lo, &n.hi, &wraps) <= limit {
-                for &(key, p) in &self.leaves[n.leaf as usize] {
+                let start = n.b as usize * SLOT;
+                let end = start + (n.a & !LEAF_BIT) as usize;
+                for &(key, p) in &self.slots[start..end] {
                     let d = distance2(&q, &key, wrap);
                     if d <= limit {
                         limit = visit(Candidate(d, p));
@@ -374,14 +480,16 @@ impl KdTree {
                 }
             }
             loop {
-                let Some((next, bound)) = stack.pop() else {
+                if top == 0 {
                     self.stack = stack;
                     return;
-                };
+                }
+                top -= 1;
+                let (next, bound) = stack[top];
                 if bound <= limit {
                     node = next & !UNMEASURED;
                     if next & UNMEASURED != 0 {
-                        let n = &self.nodes[node as usize];
+                        let n = &nodes[node as usize];
                         if gap2(&q4, &n.lo, &n.hi, &wraps) > limit {
                             continue;
                         }
@@ -413,7 +521,9 @@ fn distance2(a: &[f64; 3], b: &[f64; 3], wrap: f64) -> f64 {
 /// no-op). The sum in [`distance2`]'s order, so the bound holds in floating
 /// point too.
 #[inline]
-fn gap2(q: &[f64; 4], lo: &[f64; 4], hi: &[f64; 4], wraps: &[f64; 4]) -> f64 {
+fn gap2(q: &[f64; 4], lo: &[f64; 3], hi: &[f64; 3], wraps: &[f64; 4]) -> f64 {
+    let lo = [lo[0], lo[1], lo[2], 0.0];
+    let hi = [hi[0], hi[1], hi[2], 0.0];
     let mut g = [0.0; 4];
     for a in 0..2 {
         let out = max(max(lo[a] - q[a], q[a] - hi[a]), 0.0);
@@ -427,14 +537,8 @@ fn gap2(q: &[f64; 4], lo: &[f64; 4], hi: &[f64; 4], wraps: &[f64; 4]) -> f64 {
     g[0] + g[1] + g[2] + g[3]
 }
 
-/// The box of no point (its fourth lane, unused, 0: see [`gap2`]).
-const EMPTY_BOX: ([f64; 4], [f64; 4]) = (
-    [f64::INFINITY, f64::INFINITY, f64::INFINITY, 0.0],
-    [f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY, 0.0],
-);
-
 /// Grows the box [lo, hi] to hold `key`.
-fn grow_box(lo: &mut [f64; 4], hi: &mut [f64; 4], key: &[f64; 3]) {
+fn grow_box(lo: &mut [f64; 3], hi: &mut [f64; 3], key: &[f64; 3]) {
     for axis in 0..3 {
         lo[axis] = lo[axis].min(key[axis]);
         hi[axis] = hi[axis].max(key[axis]);
@@ -573,6 +677,48 @@ mod tests {
         }
     }
 
+    proptest! {
+        /// After every insertion, through the leaf splits of full slots
+        /// and the rebuilds (the tree then holds 16, 32, 64, ... points),
+        /// the queries agree with a scan and `insert` returns the count
+        /// before it; few distinct coordinates give many equal points
+        /// (one value: all equal), which fill and split slots too.
+        #[test]
+        fn queries_agree_with_a_scan_after_every_insertion(
+            seed in 0u64..1_000_000,
+            n in 1usize..300,
+            k in 1usize..12,
+            dims in 2usize..=3,
+            period in prop_oneof![Just(0.0), 0.5f64..20.0],
+            // 0: any coordinates; otherwise this many values per axis.
+            values in prop_oneof![Just(0u32), 1u32..4],
+        ) {
+            let mut rng = SplitMix64::new(seed);
+            let mut tree = KdTree::new(dims, period);
+            let wrap = if dims == 3 && period > 0.0 { period } else { 10.0 };
+            let draw = |rng: &mut SplitMix64, hi: f64| {
+                let x = rng.range(0.0, 1.0);
+                if values == 0 {
+                    x * hi
+                } else {
+                    (x * f64::from(values)).floor() * hi / f64::from(values)
+                }
+            };
+            let mut out = Vec::new();
+            for i in 0..n {
+                let key = [draw(&mut rng, 10.0), draw(&mut rng, 10.0), draw(&mut rng, wrap) % wrap];
+                prop_assert_eq!(tree.insert(key), i);
+                for _ in 0..2 {
+                    let q = [rng.range(-1.0, 11.0), rng.range(-1.0, 11.0), rng.range(0.0, wrap)];
+                    tree.k_nearest(&q, k, &mut out);
+                    let expected = brute(&tree, &q, k);
+                    prop_assert_eq!(&out, &expected);
+                    prop_assert_eq!(tree.nearest(&q), Some((expected[0].1 as usize, expected[0].0)));
+                }
+            }
+        }
+    }
+
     #[test]
     fn the_nearest_across_the_wrap_is_found() {
         let tau = std::f64::consts::TAU;
@@ -586,7 +732,7 @@ mod tests {
     }
 
     #[test]
-    fn a_leaf_of_many_equal_points_grows_and_splits() {
+    fn many_equal_points_fill_and_split_their_slots() {
         let mut tree = KdTree::new(3, 4.0);
         for i in 0..40 {
             tree.insert([1.0, 2.0, 3.0]);
