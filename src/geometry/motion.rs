@@ -189,7 +189,7 @@ impl MotionChecker {
         self.in_bounds(c)
             && match &self.robot {
                 Robot::Round { index, radius } => index.disk_free(c.xy(), *radius),
-                Robot::Polygon(p) => p.free(&Cut::still(c), None),
+                Robot::Polygon(p) => p.body_free(c),
             }
     }
 
@@ -238,6 +238,9 @@ struct PolygonChecker {
     vertices: Vec<Point>,
     /// `|v_i|` for each vertex.
     lever: Vec<f64>,
+    /// The robot's outward unit edge normals in its own frame, each with
+    /// the body's largest projection on it (see [`Region::ensure_hull`]).
+    edge_normals: Vec<(Vector, f64)>,
     /// R, as the validator computes it ([`RobotShape::radius`]).
     radius: f64,
     pieces: Vec<Piece>,
@@ -314,6 +317,7 @@ impl PolygonChecker {
         PolygonChecker {
             vertices: robot.vertices.clone(),
             lever: robot.vertices.iter().map(|v| v.coords.norm()).collect(),
+            edge_normals: edge_normals(&robot.vertices),
             radius: shape.radius(),
             pieces,
             points,
@@ -322,21 +326,44 @@ impl PolygonChecker {
         }
     }
 
+    /// Whether the body at `c` is clear of every piece: placed once, its
+    /// vertices its own hull. The verdict of the single sub-step from `c`
+    /// to `c` (whose hull is that body: the same edges, normals and
+    /// projections, so the same verdict to the bit) at the cost of one
+    /// placement.
+    fn body_free(&self, c: Config) -> bool {
+        with_scratch(|Scratch { region, pending }| {
+            region.start();
+            self.boundary_free(&Cut::still(c), 0, pending, region)
+        })
+    }
+
+    /// Whether the body at boundary `k` of `cut` is clear of the pieces
+    /// near it; `region` is set to that body.
+    fn boundary_free(
+        &self,
+        cut: &Cut,
+        k: usize,
+        pending: &mut Vec<u32>,
+        region: &mut Region,
+    ) -> bool {
+        region.set(self, cut, k, k);
+        self.near(&region.aabb, pending);
+        pending
+            .iter()
+            .all(|&i| self.clear(&self.pieces[i as usize], region))
+    }
+
     /// Whether every validator sub-step of `cut` is clear of every piece.
     /// `fresh`: a boundary whose body a planner has not checked (a new
     /// state), tested first against the pieces near it alone.
     fn free(&self, cut: &Cut, fresh: Option<usize>) -> bool {
         with_scratch(|Scratch { region, pending }| {
             region.start();
-            if let Some(k) = fresh {
-                region.set(self, cut, k, k);
-                self.near(&region.aabb, pending);
-                if pending
-                    .iter()
-                    .any(|&i| !self.clear(&self.pieces[i as usize], region))
-                {
-                    return false;
-                }
+            if let Some(k) = fresh
+                && !self.boundary_free(cut, k, pending, region)
+            {
+                return false;
             }
             region.set(self, cut, 0, cut.steps);
             self.near(&region.aabb, pending);
@@ -438,7 +465,7 @@ impl PolygonChecker {
                 if own.iter().any(|a| region.low(a.n) - a.support >= SLACK) {
                     return true;
                 }
-                region.ensure_hull();
+                region.ensure_hull(&self.edge_normals);
                 let pts = &self.points[points.0 as usize..points.1 as usize];
                 region.normals.iter().any(|&(m, high)| {
                     let low = pts
@@ -449,7 +476,7 @@ impl PolygonChecker {
                 })
             }
             Kind::Disk { center, radius } => {
-                region.ensure_hull();
+                region.ensure_hull(&self.edge_normals);
                 let c = center.coords;
                 if region
                     .normals
@@ -616,6 +643,9 @@ struct Region {
     hull_ready: bool,
     /// The group is one configuration: its body is its own hull.
     still: bool,
+    /// That configuration and the sine and cosine of its angle, when
+    /// `still`.
+    pose: (Config, f64, f64),
     /// Scratch for the hull.
     sorted: Vec<Point>,
 }
@@ -633,6 +663,7 @@ impl Region {
             normals: Vec::new(),
             hull_ready: false,
             still: false,
+            pose: (Config::new(0.0, 0.0, 0.0), 0.0, 1.0),
             sorted: Vec::new(),
         }
     }
@@ -711,6 +742,7 @@ impl Region {
         self.aabb = Aabb { min: lo, max: hi };
         self.hull_ready = false;
         self.still = k0 == k1;
+        self.pose = (c0, s0, co0);
         #[cfg(test)]
         if k0 != k1 {
             GROUPS.set(GROUPS.get() + 1);
@@ -763,21 +795,37 @@ impl Region {
         -self.high(-u)
     }
 
-    fn ensure_hull(&mut self) {
+    /// Sets `hull` and `normals` (once per group). `edge_normals`: the
+    /// robot's ([`PolygonChecker::edge_normals`]).
+    fn ensure_hull(&mut self, edge_normals: &[(Vector, f64)]) {
         if self.hull_ready {
             return;
         }
+        self.normals.clear();
         if self.still {
             // The robot's vertices are counter-clockwise, and so is any
-            // placement of them.
+            // placement of them. Its edge normals are the robot's own
+            // rotated, and its largest projection on one is the robot's own
+            // plus the position's: `m·(R·v + t) = n·v + m·t` for `m = R·n`.
+            // The same axes and bounds as from the placed edges but for
+            // rounding (a few ulps of the coordinates, far below the
+            // `TOUCH_EPS / 2` that the verdicts keep from the validator's),
+            // without a square root and a division per edge.
             self.hull.clear();
             self.hull.extend(self.ends.iter().step_by(2));
-        } else {
-            self.sorted.clear();
-            self.sorted.extend_from_slice(&self.ends);
-            convex_hull_into(&mut self.sorted, &mut self.hull);
+            let (c, s, co) = self.pose;
+            for &(n, support) in edge_normals {
+                let m = Vector::new(co * n.x - s * n.y, s * n.x + co * n.y);
+                if m.x != 0.0 && m.y != 0.0 {
+                    self.normals.push((m, support + (m.x * c.x + m.y * c.y)));
+                }
+            }
+            self.hull_ready = true;
+            return;
         }
-        self.normals.clear();
+        self.sorted.clear();
+        self.sorted.extend_from_slice(&self.ends);
+        convex_hull_into(&mut self.sorted, &mut self.hull);
         let h = self.hull.len();
         for i in 0..h {
             let d = self.hull[(i + 1) % h] - self.hull[i];
@@ -793,6 +841,27 @@ impl Region {
         }
         self.hull_ready = true;
     }
+}
+
+/// The outward unit edge normals of the counter-clockwise convex polygon
+/// `vertices` (edges of length 0 skipped), each with the largest
+/// projection of any vertex on it.
+fn edge_normals(vertices: &[Point]) -> Vec<(Vector, f64)> {
+    let n = vertices.len();
+    (0..n)
+        .filter_map(|i| {
+            let d = vertices[(i + 1) % n] - vertices[i];
+            let len = d.norm();
+            (len > 0.0).then(|| {
+                let normal = Vector::new(d.y, -d.x) / len;
+                let support = vertices
+                    .iter()
+                    .map(|v| normal.dot(&v.coords))
+                    .fold(f64::NEG_INFINITY, max_of_numbers);
+                (normal, support)
+            })
+        })
+        .collect()
 }
 
 /// The largest value over λ ∈ [0, 1] of `(1−λ)·a + λ·b + k·λ(1−λ)`
