@@ -333,7 +333,6 @@ impl PolygonChecker {
     /// placement.
     fn body_free(&self, c: Config) -> bool {
         with_scratch(|Scratch { region, pending }| {
-            region.start();
             self.boundary_free(&Cut::still(c), 0, pending, region)
         })
     }
@@ -359,7 +358,6 @@ impl PolygonChecker {
     /// state), tested first against the pieces near it alone.
     fn free(&self, cut: &Cut, fresh: Option<usize>) -> bool {
         with_scratch(|Scratch { region, pending }| {
-            region.start();
             if let Some(k) = fresh
                 && !self.boundary_free(cut, k, pending, region)
             {
@@ -629,9 +627,13 @@ struct Region {
     /// α = 0 (a single sub-step or one configuration): every curvature is
     /// 0.
     flat: bool,
-    /// The last few boundaries set: sub-step index, configuration, and
-    /// the sine and cosine of its angle; `next_turn` is the oldest.
-    turns: [Option<(usize, Config, f64, f64)>; TURNS],
+    /// The angles of the last few boundaries placed (their bits; NaN's
+    /// at first, which no placed angle has) with their sine and cosine,
+    /// from one motion to the next: the bisection comes back to its
+    /// boundaries, and a planner's motions share their ends (PRM's new
+    /// state starts up to k motions, RRT-Connect's greedy steps each start
+    /// where the last ended). `next_turn` is the oldest.
+    turns: [(u64, f64, f64); TURNS],
     next_turn: usize,
     /// The box of every body during the group.
     aabb: Aabb,
@@ -656,7 +658,7 @@ impl Region {
             ends: Vec::new(),
             curvature: Vec::new(),
             flat: true,
-            turns: [None; TURNS],
+            turns: [(u64::MAX, f64::NAN, f64::NAN); TURNS],
             next_turn: 0,
             aabb: Aabb::around(&[]),
             hull: Vec::new(),
@@ -749,24 +751,20 @@ impl Region {
         }
     }
 
-    /// Forgets the boundaries of the previous cut.
-    fn start(&mut self) {
-        self.turns = [None; TURNS];
-    }
-
-    /// Boundary `k` of the current cut, with the sine and cosine of its
-    /// angle: kept from a recent [`Region::set`] or computed (over the
-    /// oldest).
+    /// Boundary `k` of `cut`, with the sine and cosine of its angle: kept
+    /// from a recent placement at that angle (`f64::sin_cos`'s own values,
+    /// so the same bits) or computed (over the oldest).
     #[inline]
     fn turn(&mut self, cut: &Cut, k: usize) -> (Config, f64, f64) {
-        for t in self.turns.iter().flatten() {
-            if t.0 == k {
-                return (t.1, t.2, t.3);
+        let c = cut.at(k);
+        let bits = c.theta.to_bits();
+        for &(b, s, co) in &self.turns {
+            if b == bits {
+                return (c, s, co);
             }
         }
-        let c = cut.at(k);
         let (s, co) = c.theta.sin_cos();
-        self.turns[self.next_turn] = Some((k, c, s, co));
+        self.turns[self.next_turn] = (bits, s, co);
         self.next_turn = (self.next_turn + 1) % TURNS;
         (c, s, co)
     }
