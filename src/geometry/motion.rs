@@ -120,7 +120,7 @@ use super::polygon::{closest_point_on_segment, convex_hull_into};
 use super::validator::DEFAULT_TOLERANCE;
 use super::{
     Aabb, Config, ConvexPolygon, Point, RobotShape, Shape, TOUCH_EPS, Vector, World,
-    max_of_numbers, min_of_numbers, place,
+    max_of_numbers, min_of_numbers, place, sin_cos_fast,
 };
 
 /// A gap of at least this along an axis clears a piece: an overlap of at
@@ -679,9 +679,12 @@ impl Region {
             cut.dtheta.abs() * (k1 - k0) as f64 / cut.steps as f64
         };
         let spread = alpha * alpha / 2.0;
-        // As `RobotShape::placed_vertices`, to the bit (a still body's
-        // ends are one placement); a boundary's configuration and sin_cos
-        // are taken from the last few set (the same computation).
+        // As `RobotShape::placed_vertices` (a still body's ends are one
+        // placement) but with [`sin_cos_fast`], within two ulps of libm's
+        // sine and cosine: the placed vertices move by a few ulps of their
+        // coordinates, far inside the `TOUCH_EPS / 2` that every verdict
+        // keeps from the validator's. A boundary's configuration and sine
+        // and cosine are taken from the last few placed (the same values).
         let (c0, s0, co0) = self.turn(cut, k0);
         let (c1, s1, co1) = self.turn(cut, k1);
         // The buffers keep their length from one group to the next (one
@@ -752,8 +755,8 @@ impl Region {
     }
 
     /// Boundary `k` of `cut`, with the sine and cosine of its angle: kept
-    /// from a recent placement at that angle (`f64::sin_cos`'s own values,
-    /// so the same bits) or computed (over the oldest).
+    /// from a recent placement at that angle (the same values) or computed
+    /// (over the oldest).
     #[inline]
     fn turn(&mut self, cut: &Cut, k: usize) -> (Config, f64, f64) {
         let c = cut.at(k);
@@ -763,7 +766,7 @@ impl Region {
                 return (c, s, co);
             }
         }
-        let (s, co) = c.theta.sin_cos();
+        let (s, co) = sin_cos_fast(c.theta);
         self.turns[self.next_turn] = (bits, s, co);
         self.next_turn = (self.next_turn + 1) % TURNS;
         (c, s, co)
