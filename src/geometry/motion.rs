@@ -328,9 +328,9 @@ impl PolygonChecker {
 
     /// Whether the body at `c` is clear of every piece: placed once, its
     /// vertices its own hull. The verdict of the single sub-step from `c`
-    /// to `c` (whose hull is that body: the same edges, normals and
-    /// projections, so the same verdict to the bit) at the cost of one
-    /// placement.
+    /// to `c` (whose hull is that body: the same edges and projections, the
+    /// normals rotated rather than normalised, see [`Region::ensure_hull`])
+    /// at the cost of one placement.
     fn body_free(&self, c: Config) -> bool {
         with_scratch(|Scratch { region, pending }| {
             self.boundary_free(&Cut::still(c), 0, pending, region)
