@@ -317,7 +317,7 @@ impl PolygonChecker {
         PolygonChecker {
             vertices: robot.vertices.clone(),
             lever: robot.vertices.iter().map(|v| v.coords.norm()).collect(),
-            edge_normals: edge_normals(&robot.vertices),
+            edge_normals: edge_normals(&robot.vertices).collect(),
             radius: shape.radius(),
             pieces,
             points,
@@ -525,25 +525,12 @@ fn box_gap(b: &Aabb, w: &Aabb) -> f64 {
 fn convex_piece(pts: &[Point], points: &mut Vec<Point>, axes: &mut Vec<Axis>) -> Piece {
     let (p0, a0) = (points.len() as u32, axes.len() as u32);
     points.extend_from_slice(pts);
-    let n = pts.len();
-    for i in 0..n {
-        let d = pts[(i + 1) % n] - pts[i];
-        let len = d.norm();
-        if len == 0.0 {
-            continue;
-        }
-        let normal = Vector::new(d.y, -d.x) / len;
-        if normal.x == 0.0 || normal.y == 0.0 {
-            continue;
-        }
-        // The largest projection over all points, not the edge's own: safe
-        // even if rounding made the piece slightly non-convex.
-        let support = pts
-            .iter()
-            .map(|p| normal.dot(&p.coords))
-            .fold(f64::NEG_INFINITY, max_of_numbers);
-        axes.push(Axis { n: normal, support });
-    }
+    // ±x and ±y are the piece's box's.
+    axes.extend(
+        edge_normals(pts)
+            .filter(|(n, _)| n.x != 0.0 && n.y != 0.0)
+            .map(|(n, support)| Axis { n, support }),
+    );
     Piece {
         aabb: Aabb::around(pts),
         first: (0, 0),
@@ -846,23 +833,22 @@ impl Region {
 
 /// The outward unit edge normals of the counter-clockwise convex polygon
 /// `vertices` (edges of length 0 skipped), each with the largest
-/// projection of any vertex on it.
-fn edge_normals(vertices: &[Point]) -> Vec<(Vector, f64)> {
+/// projection of any vertex on it (over all vertices, not the edge's own:
+/// safe even if rounding made the polygon slightly non-convex).
+fn edge_normals(vertices: &[Point]) -> impl Iterator<Item = (Vector, f64)> + '_ {
     let n = vertices.len();
-    (0..n)
-        .filter_map(|i| {
-            let d = vertices[(i + 1) % n] - vertices[i];
-            let len = d.norm();
-            (len > 0.0).then(|| {
-                let normal = Vector::new(d.y, -d.x) / len;
-                let support = vertices
-                    .iter()
-                    .map(|v| normal.dot(&v.coords))
-                    .fold(f64::NEG_INFINITY, max_of_numbers);
-                (normal, support)
-            })
+    (0..n).filter_map(move |i| {
+        let d = vertices[(i + 1) % n] - vertices[i];
+        let len = d.norm();
+        (len != 0.0).then(|| {
+            let normal = Vector::new(d.y, -d.x) / len;
+            let support = vertices
+                .iter()
+                .map(|v| normal.dot(&v.coords))
+                .fold(f64::NEG_INFINITY, max_of_numbers);
+            (normal, support)
         })
-        .collect()
+    })
 }
 
 /// The largest value over λ ∈ [0, 1] of `(1−λ)·a + λ·b + k·λ(1−λ)`
