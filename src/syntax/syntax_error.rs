@@ -96,13 +96,43 @@ fn last_char_span(text: &str, file: FileId, end: usize) -> Span {
     Span::new(file, end - len, end)
 }
 
-/// A help line for a word that looks like one of `keywords` misspelt.
+/// Words that users of other tools (test frameworks, other planners'
+/// configuration files) write for a statement keyword, with it.
+const STATEMENT_SYNONYMS: [(&str, &str); 12] = [
+    ("check", "expect"),
+    ("assert", "expect"),
+    ("verify", "expect"),
+    ("test", "expect"),
+    ("obstacle", "world"),
+    ("obstacles", "world"),
+    ("map", "world"),
+    ("environment", "world"),
+    ("planner", "plan"),
+    ("problem", "plan"),
+    ("import", "include"),
+    ("title", "scenario"),
+];
+
+/// A help line for a word that looks like one of `keywords` misspelt, or
+/// that another tool uses for one of them.
 fn keyword_help(word: &str, keywords: &[&str]) -> Option<String> {
     let lower = word.to_ascii_lowercase();
     if lower != word && keywords.contains(&lower.as_str()) {
         return Some(format!("keywords are lowercase: `{lower}`"));
     }
-    closest_keyword(word, keywords).map(|keyword| format!("did you mean `{keyword}`?"))
+    if let Some(keyword) = closest_keyword(word, keywords) {
+        return Some(format!("did you mean `{keyword}`?"));
+    }
+    STATEMENT_SYNONYMS
+        .iter()
+        .find(|(synonym, keyword)| *synonym == lower && keywords.contains(keyword))
+        .map(|(_, keyword)| match *keyword {
+            "expect" => "a check is written `expect CONDITION`, e.g. `expect p.found`".to_string(),
+            "world" => {
+                "obstacles go in `world { ... }`, e.g. `world { rect A (0, 0) (1, 1) }`".to_string()
+            }
+            keyword => format!("did you mean `{keyword}`?"),
+        })
 }
 
 /// Leading text that is not a statement.
@@ -707,6 +737,15 @@ mod tests {
             "did you mean `rect`?"
         );
         assert_eq!(help("robot r dsk 1"), "did you mean `disk`?");
+        // Other tools' words for a statement, first or after a statement.
+        let expect_help = "a check is written `expect CONDITION`, e.g. `expect p.found`";
+        assert_eq!(help("check p.found"), expect_help);
+        assert_eq!(help("robot r point\nassert p.found"), expect_help);
+        assert!(help("obstacles { rect A (0, 0) (1, 1) }").starts_with("obstacles go in `world"));
+        assert_eq!(
+            help("robot r point\nimport \"x.scen\""),
+            "did you mean `include`?"
+        );
         assert_eq!(help("plan p k r { x 90degrees }"), "did you mean `90deg`?");
         assert!(
             help("world { bounds (0, 0), (1, 1) }").starts_with("values are separated by blanks")
