@@ -97,8 +97,9 @@ fn last_char_span(text: &str, file: FileId, end: usize) -> Span {
 }
 
 /// Words that users of other tools (test frameworks, other planners'
-/// configuration files) write for a statement keyword, with it.
-const STATEMENT_SYNONYMS: [(&str, &str); 12] = [
+/// configuration files, drawing programs) write for a keyword, with it;
+/// offered only where that keyword is expected.
+const KEYWORD_SYNONYMS: [(&str, &str); 18] = [
     ("check", "expect"),
     ("assert", "expect"),
     ("verify", "expect"),
@@ -111,6 +112,12 @@ const STATEMENT_SYNONYMS: [(&str, &str); 12] = [
     ("problem", "plan"),
     ("import", "include"),
     ("title", "scenario"),
+    ("circle", "disk"),
+    ("sphere", "disk"),
+    ("box", "rect"),
+    ("square", "rect"),
+    ("line", "segment"),
+    ("poly", "polygon"),
 ];
 
 /// A help line for a word that looks like one of `keywords` misspelt, or
@@ -123,7 +130,7 @@ fn keyword_help(word: &str, keywords: &[&str]) -> Option<String> {
     if let Some(keyword) = closest_keyword(word, keywords) {
         return Some(format!("did you mean `{keyword}`?"));
     }
-    STATEMENT_SYNONYMS
+    KEYWORD_SYNONYMS
         .iter()
         .find(|(synonym, keyword)| *synonym == lower && keywords.contains(keyword))
         .map(|(_, keyword)| match *keyword {
