@@ -109,6 +109,40 @@ pub const MAX_EDGES: usize = 20_000_000;
 /// The most visibility edges kept in the trace for drawing.
 pub const MAX_TRACED_EDGES: usize = 200_000;
 
+/// The thinnest robot a roadmap is built for: its obstacles grown by a
+/// thinner one (a segment obstacle grown by a body a few `TOUCH_EPS` wide)
+/// would be slivers that the arrangement, whose tolerance is `TOUCH_EPS`,
+/// cannot tell from a seam or a touch, and a path could run through them.
+pub const MIN_ROBOT_WIDTH: f64 = 1e-6; // 1000 TOUCH_EPS
+
+/// The smallest width of `robot`'s body (its extent along the direction
+/// where it is thinnest: an edge normal for a convex polygon), `None` for
+/// a point.
+fn robot_width(robot: &RobotShape) -> Option<f64> {
+    match robot {
+        RobotShape::Point => None,
+        RobotShape::Disk(r) => Some(2.0 * r),
+        RobotShape::Polygon(p) => {
+            let v = &p.vertices;
+            (0..v.len())
+                .filter_map(|i| {
+                    let d = v[(i + 1) % v.len()] - v[i];
+                    let len = d.norm();
+                    (len > 0.0).then(|| {
+                        let (lo, hi) =
+                            v.iter()
+                                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                                    let s = (d.y * p.x - d.x * p.y) / len;
+                                    (lo.min(s), hi.max(s))
+                                });
+                        hi - lo
+                    })
+                })
+                .reduce(f64::min)
+        }
+    }
+}
+
 /// The obstacles grown by `robot` at orientation `theta`: convex polygons
 /// with interior, and (point robot only) walls.
 pub fn grow(
@@ -353,6 +387,14 @@ pub fn plan(task: &Task<'_>, settings: &RoadmapSettings) -> PlanOutcome {
             "the roadmap robot only translates (at the start's θ): give the goal the start's θ"
                 .into(),
         );
+        return out;
+    }
+    if let Some(width) = robot_width(robot)
+        && width < MIN_ROBOT_WIDTH
+    {
+        out.notes.push(format!(
+            "the robot is {width:e} wide, thinner than the {MIN_ROBOT_WIDTH:e} a roadmap resolves (the obstacles it grows would be slivers the visibility test cannot see): use a `point` robot, or one at least {MIN_ROBOT_WIDTH:e} wide"
+        ));
         return out;
     }
     let (polys, walls) = grow(world, robot, start.theta, arc);

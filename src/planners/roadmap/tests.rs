@@ -212,6 +212,41 @@ fn closed_chain_of_walls() {
     assert_close(l, 1.5);
 }
 
+/// A body thinner than the arrangement resolves grows segment obstacles
+/// into slivers a path could run through (a fuzzed scenario: a 1e-9 wide
+/// box slid under the top wall of a closed room, across its side walls):
+/// refused with a note. From `MIN_ROBOT_WIDTH` the paths validate, the
+/// body upright and lying, a triangle and a disk.
+#[test]
+fn robots_thinner_than_the_tolerance_are_refused() {
+    let room = vec![
+        seg(3.0, 3.0, 7.0, 3.0),
+        seg(7.0, 3.0, 7.0, 7.0),
+        seg(7.0, 7.0, 3.0, 7.0),
+        seg(3.0, 7.0, 3.0, 3.0),
+    ];
+    let w = world((0.0, 0.0, 20.0, 14.0), room);
+    for thin in [box_robot(1e-9, 0.6), RobotShape::Disk(1e-9)] {
+        let out = run(&w, &thin, &params((1.0, 5.0), (9.0, 5.0), 32));
+        assert!(out.path.is_none());
+        assert!(out.notes[0].contains("thinner than"), "{:?}", out.notes);
+    }
+    let m = MIN_ROBOT_WIDTH;
+    for robot in [
+        box_robot(m, 0.6),
+        box_robot(0.6, m),
+        RobotShape::Polygon(ConvexPolygon {
+            vertices: vec![p(0.0, 0.0), p(1.0, 0.0), p(0.5, m * 1.0001)],
+        }),
+        RobotShape::Disk(m / 2.0 * 1.0001),
+    ] {
+        assert_eq!(robot_width(&robot).map(|x| x >= m), Some(true));
+        for (start, goal) in [((1.0, 5.0), (9.0, 5.0)), ((1.0, 1.0), (19.0, 13.0))] {
+            assert!(plan_length(&w, &robot, start, goal).is_some());
+        }
+    }
+}
+
 #[test]
 fn seams_of_a_nonconvex_polygon_are_inside() {
     let outline = vec![
