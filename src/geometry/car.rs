@@ -20,17 +20,12 @@
 //! only a kind and a length.
 
 use super::steer::{Model, Segment, SteerPath, Steering, Turn};
-use super::validator::{ValidationError, Validator, usable_tolerance};
+use super::validator::{MAX_SUB_STEPS, ValidationError, Validator, usable_tolerance};
 use super::{Config, RobotShape, TOUCH_EPS, angle_diff};
 
 /// How close to the goal the integrated path must end (position, in world
 /// units, and heading, in radians; SPEC 3.0).
 pub const END_TOLERANCE: f64 = 1e-9;
-
-/// The most sub-steps a car path is swept in (24 bytes each): a longer
-/// path at this tolerance is reported as too long to validate, never
-/// accepted unchecked.
-pub const MAX_SUB_STEPS: usize = 4_000_000;
 
 /// The arc length between the poses of a car path's `"path"`, for drawing
 /// (SPEC §5: the poses at the segment ends and at most every 0.1).

@@ -72,6 +72,47 @@ pub struct ValidationError {
 /// Default sub-step tolerance.
 pub const DEFAULT_TOLERANCE: f64 = 0.01;
 
+/// The most sub-steps a path is swept in (a translation is one, a rotating
+/// motion `⌈(|Δxy| + R·|Δθ|) / tolerance⌉`; for a car, its integrated
+/// poses): a path that needs more is reported as too long to validate,
+/// never accepted unchecked, so that validating one takes seconds (a
+/// rotating motion across a world of 1e9 would need 1e11).
+pub const MAX_SUB_STEPS: usize = 4_000_000;
+
+/// The number of sub-steps `robot`'s `path` is swept in at `tolerance`
+/// (saturating), as [`Validator::validate_path`] cuts it.
+pub fn sub_step_count(robot: &RobotShape, path: &[Config], tolerance: f64) -> usize {
+    let tolerance = usable_tolerance(tolerance);
+    path.windows(2).fold(0usize, |total, pair| {
+        total.saturating_add(SubSteps::new(robot, pair[0], pair[1], tolerance).count)
+    })
+}
+
+/// `Err` when `path` needs more than [`MAX_SUB_STEPS`] sub-steps: the
+/// segment where the count passes it.
+fn check_sub_steps(
+    robot: &RobotShape,
+    path: &[Config],
+    tolerance: f64,
+) -> Result<(), ValidationError> {
+    let tolerance = usable_tolerance(tolerance);
+    let mut total = 0usize;
+    for (segment, pair) in path.windows(2).enumerate() {
+        total = total.saturating_add(SubSteps::new(robot, pair[0], pair[1], tolerance).count);
+        if total > MAX_SUB_STEPS {
+            return Err(ValidationError {
+                segment,
+                at: pair[0],
+                obstacle: None,
+                reason: format!(
+                    "the path needs more than {MAX_SUB_STEPS} sub-steps at tolerance {tolerance}: too long to validate"
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// `tolerance` when it is finite and positive, else [`DEFAULT_TOLERANCE`].
 pub fn usable_tolerance(tolerance: f64) -> f64 {
     if tolerance.is_finite() && tolerance > 0.0 {
@@ -356,6 +397,10 @@ impl<'w> Validator<'w> {
                 self.clearance(robot, path, tolerance),
             );
         }
+        if let Err(e) = check_sub_steps(robot, path, tolerance) {
+            // Too long to sweep: no verdict and no clearance.
+            return (Err(e), f64::NAN);
+        }
         let mut best = self.seed_clearance(robot, path, tolerance);
         let motions = self.check_motions(robot, path, tolerance, &mut |region, step| {
             if best > TOUCH_EPS {
@@ -412,6 +457,7 @@ impl<'w> Validator<'w> {
         tolerance: f64,
         hit: &mut dyn FnMut(&Region, f64) -> Checked,
     ) -> Result<(), ValidationError> {
+        check_sub_steps(robot, path, tolerance)?;
         let tolerance = usable_tolerance(tolerance);
         self.check_config_in_bounds(0, path[0])?;
         let mut sweep = Sweep::default();
@@ -748,6 +794,9 @@ impl<'w> Validator<'w> {
     /// obstacles or an empty path. Distances to a disk robot are measured
     /// from its boundary, to segment obstacles from the segment.
     pub fn clearance(&self, robot: &RobotShape, path: &[Config], tolerance: f64) -> f64 {
+        if check_sub_steps(robot, path, tolerance).is_err() {
+            return f64::NAN; // too long to sweep (see `MAX_SUB_STEPS`)
+        }
         let tolerance = usable_tolerance(tolerance);
         let mut best = f64::INFINITY;
         match path {
@@ -1895,6 +1944,35 @@ mod tests {
         let d = clearance(&w, &rod, &path);
         let truth = 8.5 - 65f64.sqrt();
         assert!((d - truth).abs() <= DEFAULT_TOLERANCE, "{d} vs {truth}");
+    }
+
+    /// A rotating motion across a vast world (a fuzzed scenario: bounds
+    /// from −1e9) would need ~1e10 sub-steps, hours of sweeping: it is too
+    /// long to validate, at once, with no clearance; translations of any
+    /// length are one sub-step each, and a path just within the cap is
+    /// swept.
+    #[test]
+    fn paths_of_more_sub_steps_than_the_cap_are_too_long_to_validate() {
+        let mut w = world(vec![("B", rect(4.0, 4.0, 6.0, 6.0))]);
+        w.bounds.min = p(-1e9, -10.0);
+        let v = Validator::new(&w);
+        let far = [Config::new(1.0, 1.0, 0.0), Config::new(-1e8, 1.0, 1.0)];
+        assert!(sub_step_count(&rod(), &far, DEFAULT_TOLERANCE) > MAX_SUB_STEPS);
+        let e = v
+            .validate_path(&rod(), &far, DEFAULT_TOLERANCE)
+            .unwrap_err();
+        assert!(e.reason.contains("too long to validate"), "{}", e.reason);
+        let (verdict, clearance) = v.validate_and_measure(&rod(), &far, DEFAULT_TOLERANCE);
+        assert!(verdict.is_err() && clearance.is_nan());
+        assert!(v.clearance(&rod(), &far, DEFAULT_TOLERANCE).is_nan());
+        // Translating, the same distance is one sub-step.
+        let slide = [Config::new(1.0, 1.0, 0.0), Config::new(-1e8, 1.0, 0.0)];
+        assert_eq!(sub_step_count(&rod(), &slide, DEFAULT_TOLERANCE), 1);
+        assert!(v.validate_path(&rod(), &slide, DEFAULT_TOLERANCE).is_ok());
+        // Turning in place by 1 rad: ⌈R / tolerance⌉ sub-steps, swept.
+        let turn = [Config::new(-1e3, 1.0, 0.0), Config::new(-1e3, 1.0, 1.0)];
+        assert!(sub_step_count(&rod(), &turn, DEFAULT_TOLERANCE) < 1000);
+        assert!(v.validate_path(&rod(), &turn, DEFAULT_TOLERANCE).is_ok());
     }
 
     #[test]

@@ -60,7 +60,7 @@ use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::motion::{MotionChecker, NewEnd};
 use crate::geometry::path::path_length;
 use crate::geometry::steer::Steering;
-use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
+use crate::geometry::validator::{DEFAULT_TOLERANCE, MAX_SUB_STEPS, Validator, sub_step_count};
 use crate::geometry::{Config, Point, RobotShape, angle_diff, wrap_angle};
 use crate::rng::SplitMix64;
 use crate::word_enum;
@@ -796,6 +796,16 @@ impl<'a> Run<'a> {
         out.cost = path.as_deref().map(|p| self.cost(p));
         match (self.space.steering, path) {
             (Some(steering), Some(states)) => self.car_path(steering, &states, &mut out),
+            // A path the validator would not sweep (rotating motions across
+            // a vast world) is not returned as found.
+            (None, Some(states))
+                if sub_step_count(self.task.robot, &states, DEFAULT_TOLERANCE) > MAX_SUB_STEPS =>
+            {
+                out.cost = None;
+                out.notes.push(format!(
+                    "the path found needs more than {MAX_SUB_STEPS} sub-steps to validate at tolerance {DEFAULT_TOLERANCE} (long rotating motions: the world is large for the robot); no path is returned"
+                ));
+            }
             (_, path) => out.path = path,
         }
         out

@@ -220,3 +220,32 @@ fn the_roadmap_query_agrees_with_dijkstra() {
         }
     }
 }
+
+/// In a world of 1e9 (a fuzzed scenario) PRM connects the start and the
+/// goal through states 1e8 apart: rotating motions the validator would cut
+/// into ~1e10 sub-steps. Such a path is not returned (a note says why), so
+/// that the run ends in the plan's time and never reports an unchecked
+/// path; its own motions were checked by the motion checker, which
+/// bisects.
+#[test]
+fn paths_too_long_to_validate_are_not_returned() {
+    let s = load_text(
+        "world {
+  bounds (-1e9, 0) (20, 30)
+  rect L (0, 14.5) (9.2, 15.5)
+  rect R (10.8, 14.5) (20, 15.5)
+}
+robot rod polygon [(0, 0), (8, 0), (8, 1), (0, 1)]
+plan p prm rod { start (4, 4, 0deg) goal (4, 24, 0deg) seed 1 limit iterations 2000 }
+",
+    );
+    let out = run(&s);
+    assert!(out.path.is_none() && out.cost.is_none());
+    assert!(
+        out.notes
+            .iter()
+            .any(|n| n.contains("sub-steps to validate")),
+        "{:?}",
+        out.notes
+    );
+}
