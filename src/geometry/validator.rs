@@ -1949,8 +1949,7 @@ mod tests {
     /// A rotating motion across a vast world (a fuzzed scenario: bounds
     /// from −1e9) would need ~1e10 sub-steps, hours of sweeping: it is too
     /// long to validate, at once, with no clearance; translations of any
-    /// length are one sub-step each, and a path just within the cap is
-    /// swept.
+    /// length are one sub-step each, and a short turn is swept as before.
     #[test]
     fn paths_of_more_sub_steps_than_the_cap_are_too_long_to_validate() {
         let mut w = world(vec![("B", rect(4.0, 4.0, 6.0, 6.0))]);
