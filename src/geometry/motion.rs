@@ -835,7 +835,7 @@ impl Region {
 /// `vertices` (edges of length 0 skipped), each with the largest
 /// projection of any vertex on it (over all vertices, not the edge's own:
 /// safe even if rounding made the polygon slightly non-convex).
-fn edge_normals(vertices: &[Point]) -> impl Iterator<Item = (Vector, f64)> + '_ {
+pub(crate) fn edge_normals(vertices: &[Point]) -> impl Iterator<Item = (Vector, f64)> + '_ {
     let n = vertices.len();
     (0..n).filter_map(move |i| {
         let d = vertices[(i + 1) % n] - vertices[i];

@@ -79,13 +79,22 @@ pub const DEFAULT_TOLERANCE: f64 = 0.01;
 /// rotating motion across a world of 1e9 would need 1e11).
 pub const MAX_SUB_STEPS: usize = 4_000_000;
 
-/// The number of sub-steps `robot`'s `path` is swept in at `tolerance`
-/// (saturating), as [`Validator::validate_path`] cuts it.
-pub fn sub_step_count(robot: &RobotShape, path: &[Config], tolerance: f64) -> usize {
+/// The sub-steps of each motion of `robot`'s `path` at `tolerance`, as
+/// [`Validator::validate_path`] cuts them.
+fn sub_steps_per_motion<'p>(
+    robot: &'p RobotShape,
+    path: &'p [Config],
+    tolerance: f64,
+) -> impl Iterator<Item = usize> + 'p {
     let tolerance = usable_tolerance(tolerance);
-    path.windows(2).fold(0usize, |total, pair| {
-        total.saturating_add(SubSteps::new(robot, pair[0], pair[1], tolerance).count)
-    })
+    path.windows(2)
+        .map(move |pair| SubSteps::new(robot, pair[0], pair[1], tolerance).count)
+}
+
+/// The number of sub-steps `robot`'s `path` is swept in at `tolerance`
+/// (saturating).
+pub fn sub_step_count(robot: &RobotShape, path: &[Config], tolerance: f64) -> usize {
+    sub_steps_per_motion(robot, path, tolerance).fold(0, usize::saturating_add)
 }
 
 /// `Err` when `path` needs more than [`MAX_SUB_STEPS`] sub-steps: the
@@ -95,17 +104,17 @@ fn check_sub_steps(
     path: &[Config],
     tolerance: f64,
 ) -> Result<(), ValidationError> {
-    let tolerance = usable_tolerance(tolerance);
     let mut total = 0usize;
-    for (segment, pair) in path.windows(2).enumerate() {
-        total = total.saturating_add(SubSteps::new(robot, pair[0], pair[1], tolerance).count);
+    for (segment, count) in sub_steps_per_motion(robot, path, tolerance).enumerate() {
+        total = total.saturating_add(count);
         if total > MAX_SUB_STEPS {
             return Err(ValidationError {
                 segment,
-                at: pair[0],
+                at: path[segment],
                 obstacle: None,
                 reason: format!(
-                    "the path needs more than {MAX_SUB_STEPS} sub-steps at tolerance {tolerance}: too long to validate"
+                    "the path needs more than {MAX_SUB_STEPS} sub-steps at tolerance {}: too long to validate",
+                    usable_tolerance(tolerance)
                 ),
             });
         }
@@ -368,6 +377,7 @@ impl<'w> Validator<'w> {
                 }
             }
             _ => {
+                check_sub_steps(robot, path, tolerance)?;
                 self.check_motions(robot, path, tolerance, &mut |region, _| {
                     (self.first_hit(region), 0)
                 })?;
@@ -449,7 +459,8 @@ impl<'w> Validator<'w> {
     /// ([`Validator::first_hit`], or a function that finds the same), which
     /// is also given the sub-step's [`SubSteps::step`] and may answer that
     /// the next sub-steps of the motion need no check (see
-    /// [`Validator::measure_hit_and_skip`]).
+    /// [`Validator::measure_hit_and_skip`]). Its callers have checked that
+    /// the path is not too long to sweep ([`check_sub_steps`]).
     fn check_motions(
         &self,
         robot: &RobotShape,
@@ -457,7 +468,6 @@ impl<'w> Validator<'w> {
         tolerance: f64,
         hit: &mut dyn FnMut(&Region, f64) -> Checked,
     ) -> Result<(), ValidationError> {
-        check_sub_steps(robot, path, tolerance)?;
         let tolerance = usable_tolerance(tolerance);
         self.check_config_in_bounds(0, path[0])?;
         let mut sweep = Sweep::default();

@@ -35,6 +35,7 @@ use crate::contract::{MetricValue, PlanOutcome};
 use crate::contract::{Planner, Settings, Task};
 use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::minkowski::{c_obstacle_points, disk_polygon, minkowski_sum_points};
+use crate::geometry::motion::edge_normals;
 use crate::geometry::{
     Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS, World, angle_diff,
 };
@@ -122,24 +123,17 @@ fn robot_width(robot: &RobotShape) -> Option<f64> {
     match robot {
         RobotShape::Point => None,
         RobotShape::Disk(r) => Some(2.0 * r),
-        RobotShape::Polygon(p) => {
-            let v = &p.vertices;
-            (0..v.len())
-                .filter_map(|i| {
-                    let d = v[(i + 1) % v.len()] - v[i];
-                    let len = d.norm();
-                    (len > 0.0).then(|| {
-                        let (lo, hi) =
-                            v.iter()
-                                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                                    let s = (d.y * p.x - d.x * p.y) / len;
-                                    (lo.min(s), hi.max(s))
-                                });
-                        hi - lo
-                    })
-                })
-                .reduce(f64::min)
-        }
+        // Along each edge normal, the largest projection less the smallest.
+        RobotShape::Polygon(p) => edge_normals(&p.vertices)
+            .map(|(n, high)| {
+                let low = p
+                    .vertices
+                    .iter()
+                    .map(|v| n.dot(&v.coords))
+                    .fold(f64::INFINITY, f64::min);
+                high - low
+            })
+            .reduce(f64::min),
     }
 }
 

@@ -35,6 +35,16 @@ fn seg(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
     Shape::Segment(p(x0, y0), p(x1, y1))
 }
 
+/// The four walls of the closed square room [lo, hi]², a chain round it.
+fn room_of_walls(lo: f64, hi: f64) -> Vec<Shape> {
+    vec![
+        seg(lo, lo, hi, lo),
+        seg(hi, lo, hi, hi),
+        seg(hi, hi, lo, hi),
+        seg(lo, hi, lo, lo),
+    ]
+}
+
 /// A roadmap problem: start, goal, `arc_segments` and limits.
 #[derive(Clone, Copy)]
 struct Case {
@@ -186,13 +196,7 @@ fn through_a_wall_vertex_is_crossing() {
 
 #[test]
 fn closed_chain_of_walls() {
-    let square = vec![
-        seg(1.0, 1.0, 3.0, 1.0),
-        seg(3.0, 1.0, 3.0, 3.0),
-        seg(3.0, 3.0, 1.0, 3.0),
-        seg(1.0, 3.0, 1.0, 1.0),
-    ];
-    let w = world((0.0, 0.0, 4.0, 4.0), square);
+    let w = world((0.0, 0.0, 4.0, 4.0), room_of_walls(1.0, 3.0));
     assert!(plan_length(&w, &RobotShape::Point, (0.5, 2.0), (2.0, 2.0)).is_none());
     let l = plan_length(&w, &RobotShape::Point, (1.5, 1.5), (2.5, 2.5)).unwrap();
     assert_close(l, 2f64.sqrt());
@@ -219,13 +223,7 @@ fn closed_chain_of_walls() {
 /// body upright and lying, a triangle and a disk.
 #[test]
 fn robots_thinner_than_the_tolerance_are_refused() {
-    let room = vec![
-        seg(3.0, 3.0, 7.0, 3.0),
-        seg(7.0, 3.0, 7.0, 7.0),
-        seg(7.0, 7.0, 3.0, 7.0),
-        seg(3.0, 7.0, 3.0, 3.0),
-    ];
-    let w = world((0.0, 0.0, 20.0, 14.0), room);
+    let w = world((0.0, 0.0, 20.0, 14.0), room_of_walls(3.0, 7.0));
     for thin in [box_robot(1e-9, 0.6), RobotShape::Disk(1e-9)] {
         let out = run(&w, &thin, &params((1.0, 5.0), (9.0, 5.0), 32));
         assert!(out.path.is_none());
