@@ -8,44 +8,21 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
+use common::format_oracle;
 use common::random::{Rng, scenario};
 use common::{TempDir, Test, repo};
-use scen::format::{format_text, shape};
+use scen::format::format_text;
 use scen::rng::SplitMix64;
 use serde_json::Value;
 
 /// Formats `text` and checks the properties of the module docs that need no
-/// run; returns the formatted text.
+/// run (`common::format_oracle`); returns the formatted text.
 fn check_format(text: &str, what: &str) -> String {
-    let formatted = match format_text(text) {
-        Ok(f) => f,
-        Err(e) => panic!("{what}: {e:?}"),
-    };
-    assert_eq!(
-        format_text(&formatted).unwrap(),
-        formatted,
-        "{what}: formatting twice changed it"
-    );
-    let (before, _) = scen::syntax::parse(text, 0);
-    let (after, diags) = scen::syntax::parse(&formatted, 0);
-    assert!(diags.is_empty(), "{what}: {diags:?}");
-    assert_eq!(
-        shape(&before.statements),
-        shape(&after.statements),
-        "{what}"
-    );
-    let comments = |t: &str, f: &scen::syntax::ast::File| -> Vec<String> {
-        f.comments
-            .iter()
-            .map(|c| t[c.start..c.end].trim_end().to_string())
-            .collect()
-    };
-    assert_eq!(
-        comments(text, &before),
-        comments(&formatted, &after),
-        "{what}"
-    );
-    formatted
+    match format_oracle::check_format(text) {
+        Ok(Some(formatted)) => formatted,
+        Ok(None) => panic!("{what}: {:?}", format_text(text).err()),
+        Err(broke) => panic!("{what}: {broke}"),
+    }
 }
 
 /// `scen run --json`'s document without what may change: timings, check

@@ -18,6 +18,10 @@
 //!
 //! Oracles:
 //! - no panic and no crash (a signal, `panicked`, an allocation failure);
+//! - the formatter (in this process, before the binary runs): an input it
+//!   accepts formats to a text that formats to itself, parses without a
+//!   diagnostic into the same statements and keeps every comment in order
+//!   (`common::format_oracle`, the oracle of `tests/fmt.rs`);
 //! - nothing printed of a file a scenario must not read or quote (its
 //!   environment through `/proc/self/environ`, a text file that is not a
 //!   scenario): includes and maps are pointed at such files, at FIFOs,
@@ -51,7 +55,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::thread;
 use std::time::{Duration, Instant};
 
-use common::{TempDir, repo, run_or_kill, scen_bin};
+use common::{TempDir, format_oracle, repo, run_or_kill, scen_bin};
 use scen::planners::registry::PLANNERS;
 use scen::rng::SplitMix64;
 
@@ -822,8 +826,22 @@ fn run_bounded(dir: &Path, args: &[&str]) -> Result<Ran, String> {
     }
 }
 
+/// How many inputs the formatter accepted (and its oracle passed).
+static FORMATTED: AtomicU64 = AtomicU64::new(0);
+
 /// Runs the oracles on the input file `name` in `dir`.
 fn judge(dir: &Path, name: &str) -> Result<Verdict, String> {
+    // The formatter first, in this process: what `scen fmt` (and the
+    // language server's formatting) would make of the input.
+    let bytes = std::fs::read(dir.join(name)).map_err(|e| format!("reading the input: {e}"))?;
+    if let Ok(text) = std::str::from_utf8(&bytes) {
+        let formatted = std::panic::catch_unwind(|| format_oracle::check_format(text))
+            .map_err(|_| "`scen fmt` panicked on the input".to_string())?
+            .map_err(|broke| format!("`scen fmt` broke the input: {broke}"))?;
+        if formatted.is_some() {
+            FORMATTED.fetch_add(1, Ordering::Relaxed);
+        }
+    }
     let check = run_bounded(dir, &["check", "--format", "json", name])?;
     if let Some(crash) = crashed("scen check", &check) {
         return Err(crash);
@@ -1068,13 +1086,15 @@ fn fuzzed_inputs_are_refused_with_locations_or_run_soundly() {
     let inputs = tally.refused.load(Ordering::Relaxed) + tally.ran.load(Ordering::Relaxed);
     eprintln!(
         "fuzz: {inputs} inputs in {:.1?} (seed {seed}, {} seed files, {workers} workers): \
-         {} refused with located diagnostics, {} ran ({} plans, {} found a path)",
+         {} refused with located diagnostics, {} ran ({} plans, {} found a path); \
+         {} formatted by `scen fmt`",
         began.elapsed(),
         seeds.len(),
         tally.refused.load(Ordering::Relaxed),
         tally.ran.load(Ordering::Relaxed),
         tally.plans.load(Ordering::Relaxed),
         tally.found.load(Ordering::Relaxed),
+        FORMATTED.load(Ordering::Relaxed),
     );
     let codes = tally.codes.into_inner().expect("codes");
     let mut by_count: Vec<(&String, &u64)> = codes.iter().collect();

@@ -4,6 +4,7 @@
 
 #![allow(dead_code)]
 
+pub mod format_oracle;
 pub mod lsp_client;
 pub mod planner_cases;
 pub mod random;
