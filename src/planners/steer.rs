@@ -62,7 +62,7 @@ impl Settings for SteerSettings {
         let curve = steering.shortest(task.start, goal);
         if !curve.length().is_finite() {
             return PlanOutcome {
-                notes: vec!["the goal is too far from the start for a steering path".into()],
+                notes: vec![steering.too_far_note()],
                 expanded: 1,
                 ..PlanOutcome::default()
             };

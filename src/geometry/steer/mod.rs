@@ -277,6 +277,15 @@ impl Steering {
         Steering { model, radius }
     }
 
+    /// Why no steering path joins two poses whose length is not finite,
+    /// and what to do: they lie more than [`FAR`] turning radii apart.
+    pub fn too_far_note(&self) -> String {
+        format!(
+            "the goal is more than {FAR:e} turning radii from the start (radius {:e}): no steering path is computed; use a larger radius",
+            self.radius
+        )
+    }
+
     /// The goal in the start's frame, in turning radii, and the heading
     /// change; `None` when it is farther than [`FAR`] radii (or the
     /// difference overflows).

@@ -653,6 +653,20 @@ impl<'a> Run<'a> {
         None
     }
 
+    /// Whether a loop inside one iteration (RRT-Connect's greedy
+    /// connection, which may take many steps towards a far state) must
+    /// stop at its `step`-th step: the state cap, or the time limit (read
+    /// every [`CLOCK_EVERY`] steps).
+    pub fn should_stop_within(&self, step: u64, states: usize) -> Option<Ended> {
+        if states >= MAX_STATES {
+            return Some(Ended::States);
+        }
+        if step % CLOCK_EVERY == 0 && self.deadline.passed() {
+            return Some(Ended::Time);
+        }
+        None
+    }
+
     /// The nearest-neighbour index for this space.
     pub fn index(&self) -> KdTree {
         KdTree::new(self.space.dims(), self.space.period())
@@ -774,6 +788,13 @@ impl<'a> Run<'a> {
             );
         }
         if grown.path.is_none() {
+            // Every motion of a car is a steering path: none joins poses
+            // too many turning radii apart (a radius tiny for the world).
+            if let Some(steering) = self.space.steering
+                && !self.space.distance(self.start, self.goal).is_finite()
+            {
+                out.notes.push(steering.too_far_note());
+            }
             out.gave_up = true;
             out.notes.push(match grown.ended {
                 Ended::Time => "the time limit was reached without a path".into(),

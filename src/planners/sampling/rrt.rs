@@ -203,7 +203,9 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         } else {
             run.space.steer(from, sample, range)
         };
-        if !run.extension_free(from, new, NewEnd::End) {
+        // A step that goes nowhere (a steering length that overflows, or a
+        // range below the coordinates' resolution) adds nothing.
+        if new == from || !run.extension_free(from, new, NewEnd::End) {
             continue;
         }
         let mut parent = nearest;

@@ -21,8 +21,8 @@ use crate::geometry::motion::NewEnd;
 
 use super::nn::KdTree;
 use super::{
-    Algorithm, DrawnEdge, Ended, Grown, LIMITS, MAX_STATES, METRICS, RANGE, ROTATE, Run, SAMPLER,
-    SIMPLIFY, STOP_FIRST, TURN_COST, keep_drawn,
+    Algorithm, DrawnEdge, Ended, Grown, LIMITS, METRICS, RANGE, ROTATE, Run, SAMPLER, SIMPLIFY,
+    STOP_FIRST, TURN_COST, keep_drawn,
 };
 
 /// `rrt_connect` in the registry.
@@ -118,7 +118,10 @@ fn step(
         let new = run.space.steer(a, target, range);
         (new, run.extension_free(a, new, NewEnd::End))
     };
-    if !free {
+    // A step that goes nowhere (a steering length that overflows, or a
+    // range below the coordinates' resolution) adds nothing: the state
+    // would be its parent again, and the connection would repeat it.
+    if !free || new == a {
         return Step::Trapped;
     }
     let i = tree.states.len();
@@ -184,9 +187,12 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         let meet = if d2 == 0.0 {
             Some(from)
         } else {
+            let mut steps = 0;
             loop {
-                if trees[0].states.len() + trees[1].states.len() >= MAX_STATES {
-                    break 'grow Ended::States;
+                steps += 1;
+                let states = trees[0].states.len() + trees[1].states.len();
+                if let Some(why) = run.should_stop_within(steps, states) {
+                    break 'grow why;
                 }
                 match step(run, &mut trees[b], from, target, iteration, &mut drawn) {
                     Step::Trapped => break None,

@@ -249,3 +249,61 @@ plan p prm rod { start (4, 4, 0deg) goal (4, 24, 0deg) seed 1 limit iterations 2
         out.notes
     );
 }
+
+/// A car whose turning radius is tiny for its world (fuzzer seed 777006:
+/// `steer reeds_shepp 1e-300`): every steering length overflows, so every
+/// step towards a sample goes nowhere. No planner adds a state that
+/// repeats its parent (RRT-Connect's connection used to add the same state
+/// until the cap of states, past its time limit) and each says why nothing
+/// was found.
+#[test]
+fn cars_too_small_for_the_world_add_no_motion_and_say_why() {
+    for kind in ["rrt", "rrt_connect", "rrt_star", "prm", "prm_star"] {
+        let s = load_text(&format!(
+            "world {{ bounds (0, 0) (30, 12) }}
+robot car polygon [(-1, -0.9), (3.5, -0.9), (3.5, 0.9), (-1, 0.9)] steer reeds_shepp 1e-300
+plan p {kind} car {{ start (2, 7, 0deg) goal (11.5, 2.2, 0deg) seed 1 limit iterations 500 }}
+"
+        ));
+        let out = run(&s);
+        assert!(out.path.is_none(), "{kind}");
+        let number = |name: &str| match out.extra.get(name) {
+            Some(crate::contract::MetricValue::Num(v)) => *v,
+            other => panic!("{kind}: {name} = {other:?}"),
+        };
+        assert_eq!(number("graph_edges"), 0.0, "{kind}");
+        if kind.starts_with("rrt") {
+            // The roots only: every step went nowhere.
+            let roots = if kind == "rrt_connect" { 2.0 } else { 1.0 };
+            assert_eq!(number("graph_states"), roots, "{kind}");
+        }
+        assert!(
+            out.notes.iter().any(|n| n.contains("turning radii")),
+            "{kind}: {:?}",
+            out.notes
+        );
+    }
+}
+
+/// RRT-Connect's greedy connection reads the clock as it steps: across a
+/// world 1e9 wide with a range of 1e-3 it would need ~1e12 steps (and stop
+/// only at the cap of states, seconds later), so the run ends at its time
+/// limit, inside the connection.
+#[test]
+fn a_long_connection_stops_at_the_time_limit() {
+    let s = load_text(
+        "world { bounds (0, 0) (1e9, 10) }
+robot dot point
+plan p rrt_connect dot { start (1, 5) goal (999999999, 5) range 0.001 seed 1 limit time 0.2s }
+",
+    );
+    let out = run(&s);
+    assert!(out.path.is_none());
+    assert!(
+        out.notes
+            .iter()
+            .any(|n| n == "the time limit was reached without a path"),
+        "{:?}",
+        out.notes
+    );
+}
