@@ -667,6 +667,11 @@ impl<'a> Run<'a> {
         None
     }
 
+    /// Whether the plan's `limit time` is up.
+    pub fn time_up(&self) -> bool {
+        self.deadline.passed()
+    }
+
     /// The nearest-neighbour index for this space.
     pub fn index(&self) -> KdTree {
         KdTree::new(self.space.dims(), self.space.period())
@@ -752,10 +757,12 @@ impl<'a> Run<'a> {
             (length, p.len() as f64)
         });
         let began = Instant::now();
+        let mut simplify_stopped = false;
         let path = grown.path.clone().map(|raw| match self.settings.simplify {
             Simplify::None => raw,
             how => {
-                let p = simplify::simplify(&mut self, raw, how == Simplify::Smooth);
+                let (p, stopped) = simplify::simplify(&mut self, raw, how == Simplify::Smooth);
+                simplify_stopped = stopped;
                 self.exact_ends(p)
             }
         });
@@ -785,6 +792,11 @@ impl<'a> Run<'a> {
             out.notes.push(
                 "`limit time`: where the run stopped, and so its result, depends on the machine's speed"
                     .into(),
+            );
+        }
+        if simplify_stopped {
+            out.notes.push(
+                "the time limit stopped `simplify`: the path is simplified as far as it got".into(),
             );
         }
         if grown.path.is_none() {

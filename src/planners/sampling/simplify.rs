@@ -16,6 +16,11 @@
 //!   segment is split at its midpoint (when both halves are free), then
 //!   each interior waypoint moves halfway towards the midpoint of its two
 //!   neighbours when both motions to them are free.
+//!
+//! `limit time` covers the simplification too (it is part of the plan, and
+//! of its `time_ms`): the waypoint pass, each shortcut try and each round of
+//! corner cutting first read the clock, and once the time is up the path is
+//! kept as simplified so far, with a note.
 
 use crate::geometry::Config;
 
@@ -34,11 +39,15 @@ pub const SMOOTH_ROUNDS: usize = 5;
 pub const MAX_SMOOTH_NODES: usize = 4096;
 
 /// Simplifies `path` (see the module documentation); `smooth` adds the
-/// corner cutting.
-pub fn simplify(run: &mut Run<'_>, path: Vec<Config>, smooth: bool) -> Vec<Config> {
+/// corner cutting. Each stage stops when the plan's `limit time` is up,
+/// with the path as simplified so far (every change made was checked);
+/// returns the path and whether the time limit stopped it.
+pub fn simplify(run: &mut Run<'_>, path: Vec<Config>, smooth: bool) -> (Vec<Config>, bool) {
     let path = skip_waypoints(run, path);
     let path = shortcuts(run, path);
-    if smooth { cut_corners(run, path) } else { path }
+    let path = if smooth { cut_corners(run, path) } else { path };
+    let stopped = run.time_up();
+    (path, stopped)
 }
 
 /// From each kept waypoint, on to the farthest one (within the window)
@@ -50,6 +59,10 @@ fn skip_waypoints(run: &mut Run<'_>, path: Vec<Config>) -> Vec<Config> {
     let mut out = vec![path[0]];
     let mut i = 0;
     while i + 1 < path.len() {
+        if run.time_up() {
+            out.extend_from_slice(&path[i + 1..]);
+            break;
+        }
         let mut j = (i + SKIP_WINDOW).min(path.len() - 1);
         while j > i + 1 && !run.motion_free(path[i], path[j]) {
             j -= 1;
@@ -64,7 +77,7 @@ fn skip_waypoints(run: &mut Run<'_>, path: Vec<Config>) -> Vec<Config> {
 fn shortcuts(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
     let mut idle = 0;
     for _ in 0..MAX_TRIES {
-        if idle >= PATIENCE || path.len() < 3 {
+        if idle >= PATIENCE || path.len() < 3 || run.time_up() {
             break;
         }
         idle += 1;
@@ -136,7 +149,7 @@ fn locate(lengths: &[f64], mut s: f64) -> (usize, f64) {
 /// Corner cutting (see the module documentation).
 fn cut_corners(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
     for _ in 0..SMOOTH_ROUNDS {
-        if path.len() < 2 {
+        if path.len() < 2 || run.time_up() {
             break;
         }
         if path.len() * 2 <= MAX_SMOOTH_NODES {

@@ -307,3 +307,38 @@ plan p rrt_connect dot { start (1, 5) goal (999999999, 5) range 0.001 seed 1 lim
         out.notes
     );
 }
+
+/// `limit time` covers `simplify`: with the time already up, the path comes
+/// back as it went in, and the run is told so; with time left (or no limit)
+/// the same path is simplified.
+#[test]
+fn simplify_stops_at_the_time_limit() {
+    let s = scenario("rrt", "dot", "simplify smooth");
+    let plan = &s.plans[0];
+    let settings = plan
+        .settings
+        .as_any()
+        .downcast_ref::<super::Sampling>()
+        .expect("sampling settings");
+    // A zigzag in the free lower left of the room (x up to 10.75).
+    let path: Vec<Config> = (0..40)
+        .map(|i| {
+            Config::new(
+                1.0 + 0.25 * i as f64,
+                if i % 2 == 0 { 2.0 } else { 3.0 },
+                0.0,
+            )
+        })
+        .collect();
+    let mut task = plan.task(&s);
+    task.limits.time = Some(0.0);
+    let mut run = super::Run::new(settings, &task);
+    let (kept, stopped) = super::simplify::simplify(&mut run, path.clone(), true);
+    assert!(stopped);
+    assert_eq!(kept, path);
+    let task = plan.task(&s);
+    let mut run = super::Run::new(settings, &task);
+    let (simplified, stopped) = super::simplify::simplify(&mut run, path.clone(), false);
+    assert!(!stopped);
+    assert!(simplified.len() < path.len(), "{}", simplified.len());
+}
