@@ -785,6 +785,7 @@ fn shrink(
         scatters: scatter_items(&statements, &scattered),
         gone: HashSet::new(),
     };
+    let drawn = state.drawn.clone();
     let mut runs = 0usize;
     // 1. The drawn params.
     for k in 0..state.drawn.len() {
@@ -862,7 +863,7 @@ fn shrink(
         ),
         None => (String::new(), 0),
     };
-    let header = format!(
+    let mut header = format!(
         "# Falsified by `scen falsify` (search {}, seed {}): `expect {check_text}` (line {line} of {})\n\
          # fails on candidate {sample} of the search ({}), shrunk from {before} to {after} obstacle(s).\n",
         opts.search.word(),
@@ -874,6 +875,22 @@ fn shrink(
             .collect::<Vec<_>>()
             .join(", "),
     );
+    // The values rounded while the check still failed: the file's numbers
+    // are those, not the candidate's.
+    let rounded: Vec<String> = source
+        .family
+        .drawn_names()
+        .iter()
+        .zip(drawn.iter().zip(&state.drawn))
+        .filter(|(_, (was, now))| was != now)
+        .map(|(n, (_, now))| format!("{n} = {}", checks::format_num(*now)))
+        .collect();
+    if !rounded.is_empty() {
+        header.push_str(&format!(
+            "# It still fails with the drawn values simplified to {}.\n",
+            rounded.join(", ")
+        ));
+    }
     // Numbers to 12 significant digits when the file still fails with
     // them, else exact.
     let pretty = write_standalone(source, &current, &computed, &header, true)?;

@@ -554,6 +554,16 @@ impl Family {
             .collect()
     }
 
+    /// The names of the drawn params, in the order of
+    /// [`Family::drawn_values`].
+    pub(crate) fn drawn_names(&self) -> Vec<&str> {
+        self.params
+            .iter()
+            .filter(|p| !matches!(p.source, Source::Value(_)))
+            .map(|p| p.name.value.as_str())
+            .collect()
+    }
+
     /// A sample with its drawn params and scattered items given (a
     /// shrinking one): the computed params follow from the drawn ones.
     /// `None` when a `require` rejects it.
