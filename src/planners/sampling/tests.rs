@@ -35,6 +35,15 @@ fn seeded(kind: &str, robot: &str, extra: &str, seed: u64) -> Scenario {
     ))
 }
 
+/// Asserts that one of `out`'s notes contains `part` (`what`: the case).
+fn assert_noted(out: &PlanOutcome, part: &str, what: &str) {
+    assert!(
+        out.notes.iter().any(|n| n.contains(part)),
+        "{what}: no note with {part:?} in {:?}",
+        out.notes
+    );
+}
+
 fn run(s: &Scenario) -> PlanOutcome {
     let plan = &s.plans[0];
     plan.settings.plan(&plan.task(s))
@@ -156,11 +165,7 @@ fn simplified_paths_are_valid_and_no_longer() {
 fn a_limit_time_run_is_noted() {
     let s = scenario("prm", "dot", "limit time 10s");
     let out = run(&s);
-    assert!(
-        out.notes.iter().any(|n| n.contains("machine")),
-        "{:?}",
-        out.notes
-    );
+    assert_noted(&out, "machine", "");
 }
 
 /// PRM's query (A* through the search core) against petgraph's Dijkstra on
@@ -241,13 +246,7 @@ plan p prm rod { start (4, 4, 0deg) goal (4, 24, 0deg) seed 1 limit iterations 2
     );
     let out = run(&s);
     assert!(out.path.is_none() && out.cost.is_none());
-    assert!(
-        out.notes
-            .iter()
-            .any(|n| n.contains("sub-steps to validate")),
-        "{:?}",
-        out.notes
-    );
+    assert_noted(&out, "sub-steps to validate", "");
 }
 
 /// A car whose turning radius is tiny for its world (fuzzer seed 777006:
@@ -277,11 +276,7 @@ plan p {kind} car {{ start (2, 7, 0deg) goal (11.5, 2.2, 0deg) seed 1 limit iter
             let roots = if kind == "rrt_connect" { 2.0 } else { 1.0 };
             assert_eq!(number("graph_states"), roots, "{kind}");
         }
-        assert!(
-            out.notes.iter().any(|n| n.contains("turning radii")),
-            "{kind}: {:?}",
-            out.notes
-        );
+        assert_noted(&out, "turning radii", kind);
     }
 }
 
@@ -299,13 +294,7 @@ plan p rrt_connect dot { start (1, 5) goal (999999999, 5) range 0.001 seed 1 lim
     );
     let out = run(&s);
     assert!(out.path.is_none());
-    assert!(
-        out.notes
-            .iter()
-            .any(|n| n == "the time limit was reached without a path"),
-        "{:?}",
-        out.notes
-    );
+    assert_noted(&out, "the time limit was reached without a path", "");
 }
 
 /// `limit time` covers `simplify`: with the time already up, the path comes
