@@ -661,7 +661,7 @@ impl<'a> Run<'a> {
         if states >= MAX_STATES {
             return Some(Ended::States);
         }
-        if step % CLOCK_EVERY == 0 && self.deadline.passed() {
+        if step.is_multiple_of(CLOCK_EVERY) && self.deadline.passed() {
             return Some(Ended::Time);
         }
         None

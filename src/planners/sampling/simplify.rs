@@ -43,25 +43,30 @@ pub const MAX_SMOOTH_NODES: usize = 4096;
 /// with the path as simplified so far (every change made was checked);
 /// returns the path and whether the time limit stopped it.
 pub fn simplify(run: &mut Run<'_>, path: Vec<Config>, smooth: bool) -> (Vec<Config>, bool) {
-    let path = skip_waypoints(run, path);
-    let path = shortcuts(run, path);
-    let path = if smooth { cut_corners(run, path) } else { path };
-    let stopped = run.time_up();
-    (path, stopped)
+    let (path, stopped) = skip_waypoints(run, path);
+    if stopped {
+        return (path, true);
+    }
+    let (path, stopped) = shortcuts(run, path);
+    if stopped || !smooth {
+        return (path, stopped);
+    }
+    cut_corners(run, path)
 }
 
 /// From each kept waypoint, on to the farthest one (within the window)
-/// that a free motion reaches.
-fn skip_waypoints(run: &mut Run<'_>, path: Vec<Config>) -> Vec<Config> {
+/// that a free motion reaches; and whether the time limit stopped it (the
+/// rest of the path kept as it was).
+fn skip_waypoints(run: &mut Run<'_>, path: Vec<Config>) -> (Vec<Config>, bool) {
     if path.len() < 3 {
-        return path;
+        return (path, false);
     }
     let mut out = vec![path[0]];
     let mut i = 0;
     while i + 1 < path.len() {
         if run.time_up() {
             out.extend_from_slice(&path[i + 1..]);
-            break;
+            return (out, true);
         }
         let mut j = (i + SKIP_WINDOW).min(path.len() - 1);
         while j > i + 1 && !run.motion_free(path[i], path[j]) {
@@ -70,15 +75,19 @@ fn skip_waypoints(run: &mut Run<'_>, path: Vec<Config>) -> Vec<Config> {
         out.push(path[j]);
         i = j;
     }
-    out
+    (out, false)
 }
 
-/// Random shortcuts until [`PATIENCE`] tries in a row bring nothing.
-fn shortcuts(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
+/// Random shortcuts until [`PATIENCE`] tries in a row bring nothing; and
+/// whether the time limit stopped them.
+fn shortcuts(run: &mut Run<'_>, mut path: Vec<Config>) -> (Vec<Config>, bool) {
     let mut idle = 0;
     for _ in 0..MAX_TRIES {
-        if idle >= PATIENCE || path.len() < 3 || run.time_up() {
+        if idle >= PATIENCE || path.len() < 3 {
             break;
+        }
+        if run.time_up() {
+            return (path, true);
         }
         idle += 1;
         let lengths: Vec<f64> = path
@@ -124,7 +133,7 @@ fn shortcuts(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
         path = next;
         idle = 0;
     }
-    path
+    (path, false)
 }
 
 /// The segment holding the point `s` along the path (by cost) and the
@@ -146,11 +155,15 @@ fn locate(lengths: &[f64], mut s: f64) -> (usize, f64) {
     (0, 0.0)
 }
 
-/// Corner cutting (see the module documentation).
-fn cut_corners(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
+/// Corner cutting (see the module documentation); and whether the time
+/// limit stopped it.
+fn cut_corners(run: &mut Run<'_>, mut path: Vec<Config>) -> (Vec<Config>, bool) {
     for _ in 0..SMOOTH_ROUNDS {
-        if path.len() < 2 || run.time_up() {
+        if path.len() < 2 {
             break;
+        }
+        if run.time_up() {
+            return (path, true);
         }
         if path.len() * 2 <= MAX_SMOOTH_NODES {
             let mut split = Vec::with_capacity(path.len() * 2);
@@ -181,5 +194,5 @@ fn cut_corners(run: &mut Run<'_>, mut path: Vec<Config>) -> Vec<Config> {
             break;
         }
     }
-    path
+    (path, false)
 }
