@@ -242,6 +242,17 @@ fn merge_refuses_missing_repeated_and_foreign_parts() {
         &["bench", "merge", "p1.jsonl", "p2.jsonl", "p3.jsonl"],
         "has changed",
     );
+    // A part cut short in the middle of a line (a copy between machines).
+    let whole = std::fs::read_to_string(d.join("p2.jsonl")).expect("p2.jsonl");
+    std::fs::write(d.join("cut.jsonl"), &whole[..whole.len() - 10]).expect("write");
+    refused(
+        &["bench", "merge", "p1.jsonl", "cut.jsonl", "p3.jsonl"],
+        "of the part `cut.jsonl` is not JSON",
+    );
+    refused(
+        &["bench", "merge", "p1.jsonl", "cut.jsonl", "p3.jsonl"],
+        "run shard 2/3 again",
+    );
     std::fs::write(d.join("x.jsonl"), "{\"not\": \"a part\"}\n").expect("write");
     refused(&["bench", "merge", "x.jsonl"], "is not a part");
     refused(&["bench", "merge"], "needs the parts");

@@ -35,16 +35,39 @@ pub(super) fn read_lines(
     let text = String::from_utf8(bytes).map_err(|_| bad())?;
     let mut lines = text
         .lines()
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| serde_json::from_str::<Value>(l).map_err(|_| bad()));
-    let header = lines.next().ok_or_else(bad)??;
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let (_, first) = lines.next().ok_or_else(bad)?;
+    let header: Value = serde_json::from_str(first).map_err(|_| bad())?;
     if header.get(tag).and_then(Value::as_u64) != Some(1) {
         return Err(bad());
     }
-    Ok(Lines {
-        header,
-        rest: lines.collect::<Result<_, _>>()?,
-    })
+    // A part with a good header whose later line does not parse was cut
+    // short (a copy between machines) or edited: say which line, and which
+    // shard to run again.
+    let shard = match (
+        header.get("k").and_then(Value::as_u64),
+        header.get("n").and_then(Value::as_u64),
+    ) {
+        (Some(k), Some(n)) => format!("shard {k}/{n}"),
+        _ => "its shard".into(),
+    };
+    let rest = lines
+        .map(|(i, l)| {
+            serde_json::from_str::<Value>(l).map_err(|e| {
+                // serde's message ends with its own "at line 1 column C".
+                let message = e.to_string();
+                let why = message.split(" at line ").next().unwrap_or_default();
+                format!(
+                    "line {} of the part `{}` is not JSON ({why}, column {}): the part was cut short or changed; run {shard} again",
+                    i + 1,
+                    path.display(),
+                    e.column()
+                )
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(Lines { header, rest })
 }
 
 /// At most this many missing parts are named in an error.
