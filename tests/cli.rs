@@ -352,6 +352,15 @@ fn outputs_that_cannot_be_written_are_refused_before_planning() {
         .stderr_contains("`out.svg` is a folder")
         .status(2)
         .run();
+    // A folder where the scenario is expected: `scen test` runs folders.
+    Test::new()
+        .file("suite/small.scen", SMALL)
+        .args(&["run", "suite"])
+        .stdout("")
+        .stderr_contains("`suite` is a folder, not a scenario file")
+        .stderr_contains("`scen test suite` runs every scenario under a folder")
+        .status(2)
+        .run();
     Test::new()
         .file("small.scen", SMALL)
         .args(&["test", "--junit", "missing/junit.xml", "small.scen"])

@@ -594,7 +594,15 @@ pub(crate) fn read_text(
             "scen::load::read",
             format!("`{}` is a folder, not a {what} file", path.display()),
             "a folder".to_string(),
-            "name a file".to_string(),
+            if from.is_none() {
+                // The file named on the command line.
+                format!(
+                    "name a file; `scen test {}` runs every scenario under a folder",
+                    path.display()
+                )
+            } else {
+                "name a file".to_string()
+            },
         ),
         Err(e @ ReadError::NotRegular(_)) => (
             "scen::load::not_regular",
