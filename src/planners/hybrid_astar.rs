@@ -347,7 +347,16 @@ impl<'a> Search<'a> {
                 // (and one of a vast angle is too long to validate): the
                 // search can only go straight.
                 let turn = self.s.step / self.steering.radius;
-                if turn > std::f64::consts::PI {
+                if !self
+                    .steering
+                    .distance(self.task.start, self.goal)
+                    .is_finite()
+                {
+                    // So tiny a radius that no steering length is finite:
+                    // the radius, not the step, is what to change.
+                    note.push_str("; ");
+                    note.push_str(&self.steering.too_far_note());
+                } else if turn > std::f64::consts::PI {
                     note.push_str(&format!(
                         "; an arc of `step` ({:.4}) turns {turn:.3e} rad at the turning radius {:e}, more than half a turn: lower `step` below π times the radius",
                         self.s.step, self.steering.radius
@@ -631,6 +640,12 @@ plan p hybrid_astar car {{ start (2, 5, 90deg) goal (20, 5, 270deg) limit time 2
         let (found, n) = notes("2", room);
         assert!(!found);
         assert!(n.iter().any(|n| n.starts_with("every cell reachable")), "{n:?}");
+        assert!(!n.iter().any(|n| n.contains("half a turn")), "{n:?}");
+        // So tiny a radius that no steering length is finite (fuzzer seed
+        // 777006): the note names the radius instead.
+        let (found, n) = notes("1e-300", "");
+        assert!(!found);
+        assert!(n.iter().any(|n| n.contains("radius 1e-300")), "{n:?}");
         assert!(!n.iter().any(|n| n.contains("half a turn")), "{n:?}");
     }
 }
