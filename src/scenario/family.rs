@@ -82,6 +82,13 @@ struct ParamDef {
     source: Source,
 }
 
+impl ParamDef {
+    /// Drawn (from a distribution or a `choice`), not computed.
+    fn drawn(&self) -> bool {
+        !matches!(self.source, Source::Value(_))
+    }
+}
+
 /// A family's params and constraints, checked.
 #[derive(Debug, Default)]
 pub(crate) struct Family {
@@ -511,10 +518,7 @@ impl Family {
     /// How many params are drawn (from a distribution or a `choice`): the
     /// dimension of the unit cube a search walks ([`Family::candidate`]).
     pub fn dims(&self) -> usize {
-        self.params
-            .iter()
-            .filter(|p| !matches!(p.source, Source::Value(_)))
-            .count()
+        self.params.iter().filter(|p| p.drawn()).count()
     }
 
     /// One candidate of a search: the drawn params at `unit` (one
@@ -549,7 +553,7 @@ impl Family {
         self.params
             .iter()
             .zip(params)
-            .filter(|(p, _)| !matches!(p.source, Source::Value(_)))
+            .filter(|(p, _)| p.drawn())
             .map(|(_, (_, x))| *x)
             .collect()
     }
@@ -559,7 +563,7 @@ impl Family {
     pub(crate) fn drawn_names(&self) -> Vec<&str> {
         self.params
             .iter()
-            .filter(|p| !matches!(p.source, Source::Value(_)))
+            .filter(|p| p.drawn())
             .map(|p| p.name.value.as_str())
             .collect()
     }
