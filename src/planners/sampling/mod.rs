@@ -644,24 +644,19 @@ impl<'a> Run<'a> {
         if iteration > self.max_iterations {
             return Some(Ended::Iterations);
         }
-        if states >= MAX_STATES {
-            return Some(Ended::States);
-        }
-        if iteration % CLOCK_EVERY == 1 && self.deadline.passed() {
-            return Some(Ended::Time);
-        }
-        None
+        self.should_stop_within(iteration, states)
     }
 
-    /// Whether a loop inside one iteration (RRT-Connect's greedy
-    /// connection, which may take many steps towards a far state) must
-    /// stop at its `step`-th step: the state cap, or the time limit (read
-    /// every [`CLOCK_EVERY`] steps).
+    /// Why a loop must stop before its `step`-th step (1-based), if it
+    /// must, iterations aside: the state cap, or the time limit (read at
+    /// step 1 and every [`CLOCK_EVERY`] steps after). The iterations' loop
+    /// ([`Run::should_stop`]) and a loop inside one iteration (RRT-Connect's
+    /// greedy connection, which may take many steps towards a far state).
     pub fn should_stop_within(&self, step: u64, states: usize) -> Option<Ended> {
         if states >= MAX_STATES {
             return Some(Ended::States);
         }
-        if step.is_multiple_of(CLOCK_EVERY) && self.deadline.passed() {
+        if step % CLOCK_EVERY == 1 && self.deadline.passed() {
             return Some(Ended::Time);
         }
         None

@@ -111,17 +111,23 @@ fn step(
 ) -> Step {
     let a = tree.states[from];
     let range = run.settings.range;
-    let (new, free) = if tree.towards_root {
-        let new = run.space.steer_back(target, a, range);
-        (new, run.extension_free(new, a, NewEnd::Start))
+    let new = if tree.towards_root {
+        run.space.steer_back(target, a, range)
     } else {
-        let new = run.space.steer(a, target, range);
-        (new, run.extension_free(a, new, NewEnd::End))
+        run.space.steer(a, target, range)
     };
     // A step that goes nowhere (a steering length that overflows, or a
     // range below the coordinates' resolution) adds nothing: the state
     // would be its parent again, and the connection would repeat it.
-    if !free || new == a {
+    if new == a {
+        return Step::Trapped;
+    }
+    let free = if tree.towards_root {
+        run.extension_free(new, a, NewEnd::Start)
+    } else {
+        run.extension_free(a, new, NewEnd::End)
+    };
+    if !free {
         return Step::Trapped;
     }
     let i = tree.states.len();
