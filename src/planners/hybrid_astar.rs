@@ -343,9 +343,6 @@ impl<'a> Search<'a> {
             }
             _ => {
                 let mut note = "every cell reachable from the start was expanded: no path (at this cell size and step)".to_string();
-                // Arcs of more than half a turn end near their own start
-                // (and one of a vast angle is too long to validate): the
-                // search can only go straight.
                 let turn = self.s.step / self.steering.radius;
                 if !self
                     .steering
@@ -357,6 +354,9 @@ impl<'a> Search<'a> {
                     note.push_str("; ");
                     note.push_str(&self.steering.too_far_note());
                 } else if turn > std::f64::consts::PI {
+                    // Arcs of more than half a turn end near their own
+                    // start (and one of a vast angle is too long to
+                    // validate): the search can only go straight.
                     note.push_str(&format!(
                         "; an arc of `step` ({:.4}) turns {turn:.3e} rad at the turning radius {:e}, more than half a turn: lower `step` below π times the radius",
                         self.s.step, self.steering.radius
