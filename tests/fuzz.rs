@@ -826,22 +826,23 @@ fn run_bounded(dir: &Path, args: &[&str]) -> Result<Ran, String> {
     }
 }
 
-/// How many inputs the formatter accepted (and its oracle passed).
-static FORMATTED: AtomicU64 = AtomicU64::new(0);
-
-/// Runs the oracles on the input file `name` in `dir`.
-fn judge(dir: &Path, name: &str) -> Result<Verdict, String> {
+/// Runs the oracles on the input file `name` in `dir`, whose bytes are
+/// `text`; with the verdict, whether the formatter accepted the input.
+fn judge(dir: &Path, name: &str, text: &[u8]) -> Result<(Verdict, bool), String> {
     // The formatter first, in this process: what `scen fmt` (and the
     // language server's formatting) would make of the input.
-    let bytes = std::fs::read(dir.join(name)).map_err(|e| format!("reading the input: {e}"))?;
-    if let Ok(text) = std::str::from_utf8(&bytes) {
-        let formatted = std::panic::catch_unwind(|| format_oracle::check_format(text))
+    let mut formatted = false;
+    if let Ok(text) = std::str::from_utf8(text) {
+        formatted = std::panic::catch_unwind(|| format_oracle::check_format(text))
             .map_err(|_| "`scen fmt` panicked on the input".to_string())?
-            .map_err(|broke| format!("`scen fmt` broke the input: {broke}"))?;
-        if formatted.is_some() {
-            FORMATTED.fetch_add(1, Ordering::Relaxed);
-        }
+            .map_err(|broke| format!("`scen fmt` broke the input: {broke}"))?
+            .is_some();
     }
+    judge_binary(dir, name).map(|verdict| (verdict, formatted))
+}
+
+/// The oracles on the binary's runs of the input file `name` in `dir`.
+fn judge_binary(dir: &Path, name: &str) -> Result<Verdict, String> {
     let check = run_bounded(dir, &["check", "--format", "json", name])?;
     if let Some(crash) = crashed("scen check", &check) {
         return Err(crash);
@@ -934,7 +935,7 @@ fn minimise(dir: &Path, name: &str, text: &[u8], failure: &str) -> Vec<u8> {
     let began = Instant::now();
     let still_fails = |candidate: &[u8]| -> bool {
         std::fs::write(dir.join(name), candidate).expect("writing the input");
-        matches!(judge(dir, name), Err(f) if failure_kind(&f) == kind)
+        matches!(judge(dir, name, candidate), Err(f) if failure_kind(&f) == kind)
     };
     let mut best = text.to_vec();
     for by_tokens in [false, true] {
@@ -983,6 +984,8 @@ struct Tally {
     ran: AtomicU64,
     plans: AtomicU64,
     found: AtomicU64,
+    /// Inputs the formatter accepted (and its oracle passed).
+    formatted: AtomicU64,
 }
 
 #[test]
@@ -1048,7 +1051,11 @@ fn fuzzed_inputs_are_refused_with_locations_or_run_soundly() {
                     }
                     let text = bound_plans(&text);
                     std::fs::write(origin.dir.join(&name), &text).expect("writing the input");
-                    match judge(&origin.dir, &name) {
+                    let judged = judge(&origin.dir, &name, &text);
+                    if let Ok((_, true)) = judged {
+                        tally.formatted.fetch_add(1, Ordering::Relaxed);
+                    }
+                    match judged.map(|(verdict, _)| verdict) {
                         Ok(Verdict::Refused(code)) => {
                             tally.refused.fetch_add(1, Ordering::Relaxed);
                             *tally.codes.lock().expect("codes").entry(code).or_default() += 1;
@@ -1094,7 +1101,7 @@ fn fuzzed_inputs_are_refused_with_locations_or_run_soundly() {
         tally.ran.load(Ordering::Relaxed),
         tally.plans.load(Ordering::Relaxed),
         tally.found.load(Ordering::Relaxed),
-        FORMATTED.load(Ordering::Relaxed),
+        tally.formatted.load(Ordering::Relaxed),
     );
     let codes = tally.codes.into_inner().expect("codes");
     let mut by_count: Vec<(&String, &u64)> = codes.iter().collect();
