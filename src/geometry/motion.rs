@@ -105,7 +105,12 @@
 //! sub-step before its collision cleared: when the whole motion fails, the
 //! bodies at its end, middle and quarters are tested first (a body in
 //! collision fails the sub-steps around it anyway, so this changes no
-//! verdict beyond rounding; it finds most collisions at once). Nothing is allocated per query once
+//! verdict beyond rounding; it finds most collisions at once). A hull
+//! axis's bound (every vertex's bulge) is computed only when a piece lies
+//! beyond the hull's own edge along it ([`HullAxis`]): most axes face away
+//! from the piece, and an axis skipped is only an axis not tried, so no
+//! verdict changes (a single sub-step's bound is its hull's projection,
+//! never below the edge's). Nothing is allocated per query once
 //! the calling thread has checked one motion (a thread-local scratch), and
 //! the checker itself is immutable, hence `Sync`. Figures: BENCHMARKS.md.
 
@@ -465,22 +470,24 @@ impl PolygonChecker {
                 }
                 region.ensure_hull(&self.edge_normals);
                 let pts = &self.points[points.0 as usize..points.1 as usize];
-                region.normals.iter().any(|&(m, high)| {
+                (0..region.normals.len()).any(|j| {
+                    let HullAxis { n, edge, .. } = region.normals[j];
                     let low = pts
                         .iter()
-                        .map(|p| m.dot(&p.coords))
+                        .map(|p| n.dot(&p.coords))
                         .fold(f64::INFINITY, min_of_numbers);
-                    low - high >= SLACK
+                    // `high` is at least `edge` (see `HullAxis`).
+                    low - edge >= SLACK && low - region.axis_high(j) >= SLACK
                 })
             }
             Kind::Disk { center, radius } => {
                 region.ensure_hull(&self.edge_normals);
                 let c = center.coords;
-                if region
-                    .normals
-                    .iter()
-                    .any(|&(m, high)| m.dot(&c) - radius - high >= SLACK)
-                {
+                if (0..region.normals.len()).any(|j| {
+                    let HullAxis { n, edge, .. } = region.normals[j];
+                    let low = n.dot(&c) - radius;
+                    low - edge >= SLACK && low - region.axis_high(j) >= SLACK
+                }) {
                     return true;
                 }
                 // The direction from the hull's nearest point: for a single
@@ -625,10 +632,9 @@ struct Region {
     /// The box of every body during the group.
     aabb: Aabb,
     /// The hull of `ends` (counter-clockwise), and its edge normals other
-    /// than ±x, ±y with the group's largest projection on each; valid when
-    /// `hull_ready`.
+    /// than ±x, ±y (see [`HullAxis`]); valid when `hull_ready`.
     hull: Vec<Point>,
-    normals: Vec<(Vector, f64)>,
+    normals: Vec<HullAxis>,
     hull_ready: bool,
     /// The group is one configuration: its body is its own hull.
     still: bool,
@@ -777,6 +783,18 @@ impl Region {
         }
     }
 
+    /// The largest projection of the group on hull axis `j`, computed once.
+    #[inline]
+    fn axis_high(&mut self, j: usize) -> f64 {
+        let axis = self.normals[j];
+        if !axis.high.is_nan() {
+            return axis.high;
+        }
+        let high = self.high(axis.n);
+        self.normals[j].high = high;
+        high
+    }
+
     /// The smallest projection on the unit `u` of any body during the group.
     #[inline]
     fn low(&self, u: Vector) -> f64 {
@@ -805,7 +823,12 @@ impl Region {
             for &(n, support) in edge_normals {
                 let m = Vector::new(co * n.x - s * n.y, s * n.x + co * n.y);
                 if m.x != 0.0 && m.y != 0.0 {
-                    self.normals.push((m, support + (m.x * c.x + m.y * c.y)));
+                    let high = support + (m.x * c.x + m.y * c.y);
+                    self.normals.push(HullAxis {
+                        n: m,
+                        edge: high,
+                        high,
+                    });
                 }
             }
             self.hull_ready = true;
@@ -823,12 +846,28 @@ impl Region {
             }
             let n = Vector::new(d.y, -d.x) / len;
             if n.x != 0.0 && n.y != 0.0 {
-                let high = self.high(n);
-                self.normals.push((n, high));
+                self.normals.push(HullAxis {
+                    n,
+                    edge: n.dot(&self.hull[i].coords),
+                    high: f64::NAN,
+                });
             }
         }
         self.hull_ready = true;
     }
+}
+
+/// An edge normal `n` of a region's hull, with the projection `edge` of
+/// the edge's first end on it (one of the group's end bodies' vertices: no
+/// more than the group's largest projection on `n`), and that largest
+/// projection `high` ([`Region::high`]), NaN until a piece needs it: an
+/// axis along which a piece reaches below `edge` cannot clear it, and
+/// most do.
+#[derive(Clone, Copy, Debug)]
+struct HullAxis {
+    n: Vector,
+    edge: f64,
+    high: f64,
 }
 
 /// The outward unit edge normals of the counter-clockwise convex polygon
