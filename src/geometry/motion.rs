@@ -93,7 +93,11 @@
 //! # Cost
 //! A uniform bucket grid of the pieces' boxes ([`Buckets`]) gives the
 //! pieces near the box of the whole motion; each is reported once (in the
-//! first bucket that both boxes meet). A motion to (or from) a new state
+//! first bucket that both boxes meet). A turning motion's box is first
+//! taken loosely (each vertex's parabola raised to its worst, a quarter of
+//! its curvature above its higher end: no test and no division); most
+//! motions meet no piece even by that box, and only the others compute the
+//! exact one (the pieces near it are among those found). A motion to (or from) a new state
 //! ([`MotionChecker::extension_free`]) tests the new state's body first,
 //! against the pieces near that body alone: most extensions that fail end in
 //! collision, and then neither the whole motion's bounds and hull nor the
@@ -368,8 +372,18 @@ impl PolygonChecker {
             {
                 return false;
             }
+            // Most motions meet no piece even by their loose box.
             region.set(self, cut, 0, cut.steps);
             self.near(&region.aabb, pending);
+            if pending.is_empty() {
+                return true;
+            }
+            if region.loose {
+                // The pieces near the exact box are among those near the
+                // loose one.
+                region.tighten();
+                pending.retain(|&i| box_gap(&self.pieces[i as usize].aabb, &region.aabb) < SLACK);
+            }
             self.decide(cut, 0, cut.steps, pending, region)
         })
     }
@@ -433,10 +447,12 @@ impl PolygonChecker {
         }
         let mid = k0 + (k1 - k0) / 2;
         region.set(self, cut, k0, mid);
+        region.tighten();
         if !self.decide(cut, k0, mid, pending, region) {
             return false;
         }
         region.set(self, cut, mid, k1);
+        region.tighten();
         self.decide(cut, mid, k1, pending, region)
     }
 
@@ -629,8 +645,12 @@ struct Region {
     /// where the last ended). `next_turn` is the oldest.
     turns: [(u64, f64, f64); TURNS],
     next_turn: usize,
-    /// The box of every body during the group.
+    /// The box of every body during the group: after [`Region::set`], for
+    /// a turning group, a loose one (each vertex's bound raised to its
+    /// parabola's worst), until [`Region::tighten`].
     aabb: Aabb,
+    /// `aabb` is the loose box.
+    loose: bool,
     /// The hull of `ends` (counter-clockwise), and its edge normals other
     /// than ±x, ±y (see [`HullAxis`]); valid when `hull_ready`.
     hull: Vec<Point>,
@@ -654,6 +674,7 @@ impl Region {
             turns: [(u64::MAX, f64::NAN, f64::NAN); TURNS],
             next_turn: 0,
             aabb: Aabb::around(&[]),
+            loose: false,
             hull: Vec::new(),
             normals: Vec::new(),
             hull_ready: false,
@@ -721,6 +742,9 @@ impl Region {
                 hi.y = max(hi.y, bulge(p.y, q.y, 0.0));
             }
         } else {
+            // The loose box: each parabola's top at most k/4 above its
+            // higher end (see `bulge`), without a test or a division;
+            // `tighten` gives the exact one.
             self.curvature.resize(n, 0.0);
             for ((e, v), (lever, curvature)) in
                 ends.zip(robot.lever.iter().zip(&mut self.curvature))
@@ -731,12 +755,14 @@ impl Region {
                 e[0] = p;
                 e[1] = q;
                 *curvature = k;
-                lo.x = min(lo.x, -bulge(-p.x, -q.x, k));
-                lo.y = min(lo.y, -bulge(-p.y, -q.y, k));
-                hi.x = max(hi.x, bulge(p.x, q.x, k));
-                hi.y = max(hi.y, bulge(p.y, q.y, k));
+                let top = k / 4.0;
+                lo.x = min(lo.x, min(p.x, q.x) - top);
+                lo.y = min(lo.y, min(p.y, q.y) - top);
+                hi.x = max(hi.x, max(p.x, q.x) + top);
+                hi.y = max(hi.y, max(p.y, q.y) + top);
             }
         }
+        self.loose = !self.flat;
         self.aabb = Aabb { min: lo, max: hi };
         self.hull_ready = false;
         self.still = k0 == k1;
@@ -745,6 +771,28 @@ impl Region {
         if k0 != k1 {
             GROUPS.set(GROUPS.get() + 1);
         }
+    }
+
+    /// Sets `aabb` to the exact box of the group's bodies: the largest
+    /// value of each vertex's parabola (see [`Region::set`]).
+    fn tighten(&mut self) {
+        if !self.loose {
+            return;
+        }
+        let (min, max) = (min_of_numbers, max_of_numbers);
+        let (mut lo, mut hi) = (
+            Point::new(f64::INFINITY, f64::INFINITY),
+            Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for (e, &k) in self.ends.chunks_exact(2).zip(&self.curvature) {
+            let (p, q) = (e[0], e[1]);
+            lo.x = min(lo.x, -bulge(-p.x, -q.x, k));
+            lo.y = min(lo.y, -bulge(-p.y, -q.y, k));
+            hi.x = max(hi.x, bulge(p.x, q.x, k));
+            hi.y = max(hi.y, bulge(p.y, q.y, k));
+        }
+        self.aabb = Aabb { min: lo, max: hi };
+        self.loose = false;
     }
 
     /// Boundary `k` of `cut`, with the sine and cosine of its angle: kept
