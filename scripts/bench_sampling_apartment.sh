@@ -51,5 +51,5 @@ for line in open(sys.argv[1]):
 for name, rs in runs.items():
     ok = [t for s, t in rs if s]
     med = statistics.median(ok) if ok else float('nan')
-    print(f"{name} {len(ok)}/{len(rs)} {med:.3f}")
+    print(f"{name} {len(ok)}/{len(rs)} {med:.4f}")
 PY

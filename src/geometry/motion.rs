@@ -109,7 +109,12 @@
 //! sub-step before its collision cleared: when the whole motion fails, the
 //! bodies at its end, middle and quarters are tested first (a body in
 //! collision fails the sub-steps around it anyway, so this changes no
-//! verdict beyond rounding; it finds most collisions at once). A hull
+//! verdict beyond rounding; it finds most collisions at once). An
+//! extension that meets a piece probes those bodies (its new end, already
+//! tested, excepted) before the whole motion's hull is made: growing into
+//! the unknown, most such extensions collide (94 % of them for the
+//! apartment rod's `rrt_connect`), while most motions between two roadmap
+//! states that meet a piece are free. A hull
 //! axis's bound (every vertex's bulge) is computed only when a piece lies
 //! beyond the hull's own edge along it ([`HullAxis`]): most axes face away
 //! from the piece, and an axis skipped is only an axis not tried, so no
@@ -384,7 +389,17 @@ impl PolygonChecker {
                 region.tighten();
                 pending.retain(|&i| box_gap(&self.pieces[i as usize].aabb, &region.aabb) < SLACK);
             }
-            self.decide(cut, 0, cut.steps, pending, region)
+            if let Some(k) = fresh {
+                // An extension that meets a piece mostly collides (it grows
+                // into the unknown): the bodies along it are probed before
+                // the whole motion's hull is made, its new end excepted.
+                if self.witness(cut, pending, region, Some(k)) {
+                    return false;
+                }
+                region.set(self, cut, 0, cut.steps);
+                region.tighten();
+            }
+            self.decide(cut, 0, cut.steps, pending, region, fresh.is_none())
         })
     }
 
@@ -417,6 +432,8 @@ impl PolygonChecker {
 
     /// Whether sub-steps `k0 .. k1` of `cut` are clear of the pieces
     /// `pending`; `region` is set to that group. Reorders `pending`.
+    /// `probe`: for the whole motion, whether the pieces it does not clear
+    /// are first looked for along it ([`PolygonChecker::witness`]).
     fn decide(
         &self,
         cut: &Cut,
@@ -424,6 +441,7 @@ impl PolygonChecker {
         k1: usize,
         pending: &mut [u32],
         region: &mut Region,
+        probe: bool,
     ) -> bool {
         // The pieces the group does not clear go to the front; one is enough
         // to fail a single sub-step.
@@ -442,18 +460,18 @@ impl PolygonChecker {
             return true;
         }
         let pending = &mut pending[..failing];
-        if k1 - k0 == cut.steps && self.witness(cut, pending, region) {
+        if probe && k1 - k0 == cut.steps && self.witness(cut, pending, region, None) {
             return false;
         }
         let mid = k0 + (k1 - k0) / 2;
         region.set(self, cut, k0, mid);
         region.tighten();
-        if !self.decide(cut, k0, mid, pending, region) {
+        if !self.decide(cut, k0, mid, pending, region, false) {
             return false;
         }
         region.set(self, cut, mid, k1);
         region.tighten();
-        self.decide(cut, mid, k1, pending, region)
+        self.decide(cut, mid, k1, pending, region, false)
     }
 
     /// Whether the body at one of a few sub-step boundaries (the end first,
@@ -461,10 +479,19 @@ impl PolygonChecker {
     /// pieces `pending` deeper than `TOUCH_EPS / 2`. Then the sub-steps on
     /// either side of it fail too (their hulls hold that body), but a
     /// colliding motion is found without first clearing every sub-step
-    /// before its collision.
-    fn witness(&self, cut: &Cut, pending: &[u32], region: &mut Region) -> bool {
+    /// before its collision. `known`: a boundary already found clear.
+    fn witness(
+        &self,
+        cut: &Cut,
+        pending: &[u32],
+        region: &mut Region,
+        known: Option<usize>,
+    ) -> bool {
         WITNESSES.iter().any(|&j| {
             let k = (cut.steps as u128 * j / 8) as usize;
+            if known == Some(k) {
+                return false;
+            }
             region.set(self, cut, k, k);
             pending
                 .iter()
