@@ -91,37 +91,36 @@
 //! lie on a seam without overlapping a piece (the validator's rule too).
 //!
 //! # Cost
-//! A uniform bucket grid of the pieces' boxes ([`Buckets`]) gives the
-//! pieces near the box of the whole motion; each is reported once (in the
-//! first bucket that both boxes meet). A turning motion's box is first
-//! taken loosely (each vertex's parabola raised to its worst, a quarter of
-//! its curvature above its higher end: no test and no division); most
-//! motions meet no piece even by that box, and only the others compute the
-//! exact one (the pieces near it are among those found). A motion to (or from) a new state
+//! A uniform bucket grid of the pieces' boxes ([`Buckets`]) gives the pieces
+//! near the box of the whole motion; each is reported once (in the first bucket
+//! that both boxes meet). A turning motion's box is first taken loosely (each
+//! vertex's parabola raised to its worst, a quarter of its curvature above its
+//! higher end: no test and no division); most motions meet no piece even by
+//! that box, and only the others compute the exact one (the pieces near it are
+//! among those found). A motion to (or from) a new state
 //! ([`MotionChecker::extension_free`]) tests the new state's body first,
 //! against the pieces near that body alone: most extensions that fail end in
 //! collision, and then neither the whole motion's bounds and hull nor the
 //! pieces near the whole motion are needed. It changes no verdict: a body
 //! overlapping a piece deeper than `TOUCH_EPS / 2` lies in the hull of the
-//! sub-step it ends, which overlaps the piece at least as deep, so the
-//! group search would reject the motion too. The groups are visited depth first,
-//! left half first, so a motion that collides late would first have every
-//! sub-step before its collision cleared: when the whole motion fails, the
-//! bodies at its end, middle and quarters are tested first (a body in
-//! collision fails the sub-steps around it anyway, so this changes no
-//! verdict beyond rounding; it finds most collisions at once). An
-//! extension that meets a piece probes those bodies (its new end, already
-//! tested, excepted) before the whole motion's hull is made: growing into
-//! the unknown, most such extensions collide (94 % of them for the
-//! apartment rod's `rrt_connect`), while most motions between two roadmap
-//! states that meet a piece are free. A hull
-//! axis's bound (every vertex's bulge) is computed only when a piece lies
-//! beyond the hull's own edge along it ([`HullAxis`]): most axes face away
-//! from the piece, and an axis skipped is only an axis not tried, so no
-//! verdict changes (a single sub-step's bound is its hull's projection,
-//! never below the edge's). Nothing is allocated per query once
-//! the calling thread has checked one motion (a thread-local scratch), and
-//! the checker itself is immutable, hence `Sync`. Figures: BENCHMARKS.md.
+//! sub-step it ends, which overlaps the piece at least as deep, so the group
+//! search would reject the motion too. The groups are visited depth first, left
+//! half first, so a motion that collides late would first have every sub-step
+//! before its collision cleared: when the whole motion fails, the bodies at its
+//! end, middle and quarters are tested first (a body in collision fails the
+//! sub-steps around it anyway, so this changes no verdict beyond rounding; it
+//! finds most collisions at once). An extension that meets a piece probes those
+//! bodies (its new end, already tested, excepted) before the whole motion's
+//! hull is made: growing into the unknown, most such extensions collide (94 %
+//! of them for the apartment rod's `rrt_connect`), while most motions between
+//! two roadmap states that meet a piece are free. A hull axis's bound (every
+//! vertex's bulge) is computed only when a piece lies beyond the hull's own
+//! edge along it ([`HullAxis`]): most axes face away from the piece, and an
+//! axis skipped is only an axis not tried, so no verdict changes (a single
+//! sub-step's bound is its hull's projection, never below the edge's). Nothing
+//! is allocated per query once the calling thread has checked one motion (a
+//! thread-local scratch), and the checker itself is immutable, hence `Sync`.
+//! Figures: BENCHMARKS.md.
 
 use std::cell::RefCell;
 
