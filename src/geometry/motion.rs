@@ -513,22 +513,20 @@ impl PolygonChecker {
                 region.ensure_hull(&self.edge_normals);
                 let pts = &self.points[points.0 as usize..points.1 as usize];
                 (0..region.normals.len()).any(|j| {
-                    let HullAxis { n, edge, .. } = region.normals[j];
+                    let n = region.normals[j].n;
                     let low = pts
                         .iter()
                         .map(|p| n.dot(&p.coords))
                         .fold(f64::INFINITY, min_of_numbers);
-                    // `high` is at least `edge` (see `HullAxis`).
-                    low - edge >= SLACK && low - region.axis_high(j) >= SLACK
+                    region.axis_clears(j, low)
                 })
             }
             Kind::Disk { center, radius } => {
                 region.ensure_hull(&self.edge_normals);
                 let c = center.coords;
                 if (0..region.normals.len()).any(|j| {
-                    let HullAxis { n, edge, .. } = region.normals[j];
-                    let low = n.dot(&c) - radius;
-                    low - edge >= SLACK && low - region.axis_high(j) >= SLACK
+                    let low = region.normals[j].n.dot(&c) - radius;
+                    region.axis_clears(j, low)
                 }) {
                     return true;
                 }
@@ -857,16 +855,20 @@ impl Region {
         }
     }
 
-    /// The largest projection of the group on hull axis `j`, computed once.
-    #[inline]
-    fn axis_high(&mut self, j: usize) -> f64 {
+    /// Whether hull axis `j` clears a piece whose smallest projection on
+    /// it is `low` (a gap of at least `SLACK`). The group's largest
+    /// projection is computed, once, only if the edge's does not already
+    /// rule the axis out: it is at least the edge's (see [`HullAxis`]).
+    #[inline(always)]
+    fn axis_clears(&mut self, j: usize, low: f64) -> bool {
         let axis = self.normals[j];
-        if !axis.high.is_nan() {
-            return axis.high;
+        if low - axis.edge < SLACK {
+            return false;
         }
-        let high = self.high(axis.n);
-        self.normals[j].high = high;
-        high
+        if axis.high.is_nan() {
+            self.normals[j].high = self.high(axis.n);
+        }
+        low - self.normals[j].high >= SLACK
     }
 
     /// The smallest projection on the unit `u` of any body during the group.
