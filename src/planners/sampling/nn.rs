@@ -569,7 +569,7 @@ fn distance2(a: &[f64; 3], b: &[f64; 3], wrap: f64) -> f64 {
     dx * dx + dy * dy + dt * dt
 }
 
-/// The squared distances ([`distance2`]'s formula) from `q` to the first
+/// The squared distances ([`distance2`]) from `q` to the first
 /// `count` points of `slot` (and to a few [`Slot::EMPTY`] entries after
 /// them, up to a multiple of [`LANES`]: infinite), with the smallest.
 #[inline(always)]
@@ -579,15 +579,11 @@ fn slot_distances(slot: &Slot, count: usize, q: &[f64; 3], wrap: f64) -> ([f64; 
     let groups = count.div_ceil(LANES);
     for ([x, y, t], out) in slot.keys[..groups].iter().zip(d.chunks_exact_mut(LANES)) {
         for j in 0..LANES {
-            let (dx, dy) = (q[0] - x[j], q[1] - y[j]);
-            let dt = (q[2] - t[j]).abs();
-            let dt = min(dt, wrap - dt);
-            out[j] = dx * dx + dy * dy + dt * dt;
+            out[j] = distance2(q, &[x[j], y[j], t[j]], wrap);
             nearest[j] = min(nearest[j], out[j]);
         }
     }
-    let nearest = min(min(nearest[0], nearest[1]), min(nearest[2], nearest[3]));
-    (d, nearest)
+    (d, nearest.into_iter().fold(f64::INFINITY, min))
 }
 
 /// The squared distance from `q` to the box [lo, hi] (along an axis that
