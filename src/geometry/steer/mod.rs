@@ -28,6 +28,7 @@
 //! [`FAR`] turning radii has length +∞ and no segments.
 
 pub mod dubins;
+mod lanes;
 pub mod reeds_shepp;
 
 use std::f64::consts::TAU;

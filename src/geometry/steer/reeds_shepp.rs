@@ -15,21 +15,19 @@
 //! order wins, deterministically.
 //!
 //! Speed: sin φ and cos φ are computed once (the variants only flip signs).
-//! The CSC words are bounded from below first and computed best first until
-//! one gives a word, whose length bounds the rest. Every other candidate is
-//! then bounded from below: CCSC and CCSCC first by pairs of variants (one
-//! test for both), then each coarsely, then with a polynomial arc tangent
-//! where the coarse bound is within reach (less a margin for its error). A
-//! variant and its timeflip are bounded together (they share a centre
-//! vector's norm and products);
-//! the formulas themselves run only for candidates whose bound is below the
-//! shortest length found, best first, and OMPL's order is replayed on those.
-//! A candidate skipped that way is longer than the winner by the margin, so
+//! Every candidate is first bounded from below by what its formula computes
+//! with a polynomial arc tangent, less a margin for its error; the four
+//! variants of a formula side by side in four lanes (`lanes.rs`),
+//! compiled for AVX2 where the processor has it. The formulas themselves
+//! run only for candidates whose bound is below the shortest length found,
+//! best first (about one a call), and OMPL's order is replayed on those. A
+//! candidate skipped that way is longer than the winner by the margin, so
 //! the result is the exhaustive one, bit for bit (a test compares both).
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use super::Turn;
+use super::lanes::{F4, M4};
 
 /// OMPL's tolerance on the signs of the parameters: 10 ε.
 const ZERO: f64 = 10.0 * f64::EPSILON;
@@ -293,21 +291,34 @@ fn lp_rm_s_lm_rp(g: Goal) -> Option<(f64, f64, f64)> {
 const CANDIDATES: usize = 44;
 
 /// The goal and its variants, as the candidates use them: the goal, its
-/// timeflip, reflect and both, then the same of the goal seen backwards.
-type Variants = [Goal; 8];
+/// timeflip, reflect and both (0–3), then the same of the goal seen
+/// backwards (4–7); each made when a candidate asks for it.
+#[derive(Clone, Copy)]
+struct Variants {
+    goal: Goal,
+    back: Goal,
+}
 
-fn variants(g: Goal) -> Variants {
-    let b = backwards(g);
-    [
-        g,
-        g.timeflip(),
-        g.reflect(),
-        g.both(),
-        b,
-        b.timeflip(),
-        b.reflect(),
-        b.both(),
-    ]
+impl Variants {
+    #[inline]
+    fn new(g: Goal) -> Self {
+        Variants {
+            goal: g,
+            back: backwards(g),
+        }
+    }
+
+    /// Variant `i` (0–7).
+    #[inline(always)]
+    fn get(&self, i: usize) -> Goal {
+        let g = if i < 4 { self.goal } else { self.back };
+        match i % 4 {
+            0 => g,
+            1 => g.timeflip(),
+            2 => g.reflect(),
+            _ => g.both(),
+        }
+    }
 }
 
 /// Candidate `k`'s formula (t, u, v), `k` in OMPL's order: 0–3 8.1 and
@@ -317,16 +328,16 @@ fn variants(g: Goal) -> Variants {
 #[inline]
 fn formula<const PRUNE: bool>(k: usize, v: &Variants) -> Option<(f64, f64, f64)> {
     match k {
-        0..4 => lp_sp_lp::<PRUNE>(v[k]),
-        4..8 => lp_sp_rp(v[k - 4]),
-        8..16 => lp_rm_l(v[k - 8]),
-        16..20 => lp_rup_lum_rm(v[k - 16]),
-        20..24 => lp_rum_lum_rp(v[k - 20]),
-        24..28 => lp_rm_sm_lm::<PRUNE>(v[k - 24]),
-        28..32 => lp_rm_sm_rm::<PRUNE>(v[k - 28]),
-        32..36 => lp_rm_sm_lm::<PRUNE>(v[k - 28]),
-        36..40 => lp_rm_sm_rm::<PRUNE>(v[k - 32]),
-        _ => lp_rm_s_lm_rp(v[k - 40]),
+        0..4 => lp_sp_lp::<PRUNE>(v.get(k)),
+        4..8 => lp_sp_rp(v.get(k - 4)),
+        8..16 => lp_rm_l(v.get(k - 8)),
+        16..20 => lp_rup_lum_rm(v.get(k - 16)),
+        20..24 => lp_rum_lum_rp(v.get(k - 20)),
+        24..28 => lp_rm_sm_lm::<PRUNE>(v.get(k - 24)),
+        28..32 => lp_rm_sm_rm::<PRUNE>(v.get(k - 28)),
+        32..36 => lp_rm_sm_lm::<PRUNE>(v.get(k - 28)),
+        36..40 => lp_rm_sm_rm::<PRUNE>(v.get(k - 32)),
+        _ => lp_rm_s_lm_rp(v.get(k - 40)),
     }
 }
 
@@ -449,8 +460,8 @@ fn ompl_order(mut f: impl FnMut(usize) -> Option<(f64, f64, f64)>) -> Word {
 }
 
 /// atan on [0, 1]: an odd polynomial of degree 9, |error| < 1.2e-5.
-#[inline]
-fn atan01(z: f64) -> f64 {
+#[inline(always)]
+fn atan01(z: F4) -> F4 {
     let w = z * z;
     z * (0.999_866_308_210_730_6
         + w * (-0.330_304_484_949_521_5
@@ -460,451 +471,255 @@ fn atan01(z: f64) -> f64 {
 
 /// atan2 to within 1.3e-5 rad (as an angle: the lower bounds use it only
 /// modulo 2π).
-#[inline]
-fn atan2_approx(y: f64, x: f64) -> f64 {
+#[inline(always)]
+fn atan2_approx(y: F4, x: F4) -> F4 {
+    let zero = F4::splat(0.0);
     let (ax, ay) = (x.abs(), y.abs());
-    let steep = ay > ax;
-    let (lo, hi) = if steep { (ax, ay) } else { (ay, ax) };
-    let z = if hi > 0.0 { lo / hi } else { 0.0 };
-    let mut a = atan01(z);
-    if steep {
-        a = FRAC_PI_2 - a;
-    }
-    if x < 0.0 {
-        a = PI - a;
-    }
-    if y < 0.0 { -a } else { a }
+    let (lo, hi) = (ax.min(ay), ax.max(ay));
+    let a = atan01(hi.gt(zero).select(lo / hi, zero));
+    let a = ay.gt(ax).select(FRAC_PI_2 - a, a);
+    let a = x.lt(zero).select(PI - a, a);
+    y.lt(zero).select(-a, a)
 }
 
-/// The distance of two angles on the circle, |a − b| wrapped to [0, π]
-/// (1-Lipschitz in each: an error in an angle moves it no more).
-#[inline]
-fn gap(a: f64, b: f64) -> f64 {
-    // Rounds to the nearest integer by the float format (1.5 · 2⁵²).
-    const ROUND: f64 = 6_755_399_441_055_744.0;
-    let d = a - b;
-    let k = (d * (1.0 / TAU) + ROUND) - ROUND;
-    (d - k * TAU).abs()
+/// Rounds to the nearest integer by the float format (1.5 · 2⁵²).
+const ROUND: f64 = 6_755_399_441_055_744.0;
+
+/// The angle `a` wrapped into [−π, π] (to rounding). An arc's length in a
+/// word is |wrap(a)| for the angle `a` it turns modulo 2π, which is
+/// 1-Lipschitz in `a`: an error in an angle moves it no more.
+#[inline(always)]
+fn wrap(a: F4) -> F4 {
+    a - ((a * (1.0 / TAU) + ROUND) - ROUND) * TAU
 }
 
-/// Whether the angle `a` (approximate, modulo 2π) is certainly a negative
+/// Whether the wrapped angle `w` (approximate) is certainly a negative
 /// parameter in (−π, 0): clear of both ends by far more than the error.
-#[inline]
-fn surely_negative(a: f64) -> bool {
-    const ROUND: f64 = 6_755_399_441_055_744.0;
-    let w = a - ((a * (1.0 / TAU) + ROUND) - ROUND) * TAU;
-    w < -1e-3 && w > -PI + 1e-3
+#[inline(always)]
+fn negative(w: F4) -> M4 {
+    w.lt(-1e-3).and(w.gt(-PI + 1e-3))
+}
+
+/// Whether the wrapped angle `w` is certainly in (0, π) (its negation is
+/// [`negative`]).
+#[inline(always)]
+fn positive(w: F4) -> M4 {
+    w.gt(1e-3).and(w.lt(PI - 1e-3))
 }
 
 /// What a lower bound leaves for the approximations (each formula's length
 /// moves at most 10 × 1.3e-5 with them) and for the formulas' own rounding.
-#[inline]
-fn lower(l: f64) -> f64 {
+#[inline(always)]
+fn lower(l: F4) -> F4 {
     l - 5e-4 - 1e-9 * l
 }
 
 /// The turn of an LSL word (8.1) ending at heading φ: its two arcs turn
 /// t, v ≥ 0 with t + v ≡ φ (mod 2π), so t + v is φ taken into [0, 2π).
-#[inline]
-fn lsl_arcs(phi: f64) -> f64 {
-    if phi < -1e-9 { phi + TAU } else { phi.max(0.0) }
+#[inline(always)]
+fn lsl_arcs(phi: F4) -> F4 {
+    phi.lt(-1e-9).select(phi + TAU, phi.max(F4::splat(0.0)))
 }
 
-/// The approximate arc tangents the fine bounds of one goal share,
-/// computed on first use (NaN until then).
-///
-/// Each variant has two centre vectors, A = (x − sin φ, y − 1 + cos φ)
-/// (formulas 8.1, 8.3, 8.9) and B = (x + sin φ, y − 1 − cos φ) (8.2, 8.7,
-/// 8.8, 8.10, 8.11). Timeflip negates x and sin φ, so it negates the
-/// first coordinate of both vectors exactly (IEEE negation commutes with
-/// the sums) and leaves their norms bit for bit: the timeflip's angle is
-/// π minus the variant's, and the pairs (goal, timeflip) and (reflect,
-/// both) cost one arc tangent each. Every angle here is used only modulo
-/// 2π, through [`gap`] and [`surely_negative`], and `π − a` is within one
-/// rounding of the mirrored vector's angle, far inside the margin of
-/// [`lower`]. (8.2, 8.9 and 8.11 take their t in one arc tangent of the
-/// vector their coarse bound rotates, not from these.)
-struct Angles {
-    /// The A and B vectors' angles, per pair of variants (goal, reflect,
-    /// backwards, backwards reflect).
-    a: [f64; 4],
-    b: [f64; 4],
+/// A bound for each lane where `none` is false, +∞ where it is true.
+#[inline(always)]
+fn unless(none: M4, l: F4) -> F4 {
+    none.select(F4::splat(f64::INFINITY), l)
 }
 
-impl Angles {
-    fn new() -> Self {
-        Angles {
-            a: [f64::NAN; 4],
-            b: [f64::NAN; 4],
+/// A goal's four variants side by side (as [`variants`] orders them: as
+/// it is, timeflip, reflect, both).
+#[derive(Clone, Copy)]
+struct Lanes {
+    x: F4,
+    y: F4,
+    phi: F4,
+    s: F4,
+    c: F4,
+}
+
+impl Lanes {
+    /// Negations are exact, so each lane is its variant bit for bit.
+    #[inline(always)]
+    fn new(g: Goal) -> Self {
+        Lanes {
+            x: F4([g.x, -g.x, g.x, -g.x]),
+            y: F4([g.y, g.y, -g.y, -g.y]),
+            phi: F4([g.phi, -g.phi, -g.phi, g.phi]),
+            s: F4([g.s, -g.s, -g.s, g.s]),
+            c: F4::splat(g.c),
         }
+    }
+
+    /// The centre vector A = (x − sin φ, y − 1 + cos φ) of formulas 8.1,
+    /// 8.3 and 8.9, and its norm, as they compute them.
+    #[inline(always)]
+    fn a(&self) -> (F4, F4, F4) {
+        let (xi, eta) = (self.x - self.s, self.y - 1.0 + self.c);
+        (xi, eta, (xi * xi + eta * eta).sqrt())
+    }
+
+    /// The centre vector B = (x + sin φ, y − 1 − cos φ) of formulas 8.2,
+    /// 8.7, 8.8, 8.10 and 8.11, and its squared norm.
+    #[inline(always)]
+    fn b(&self) -> (F4, F4, F4) {
+        let (xi, eta) = (self.x + self.s, self.y - 1.0 - self.c);
+        (xi, eta, xi * xi + eta * eta)
     }
 }
 
-/// `slot`, computed by `f` on first use.
+// Lower bounds on each formula's length (its fixed quarter turns included)
+// on four variants at once, +∞ where the formula certainly gives no word.
+// Quantities that decide whether a formula applies are computed exactly as
+// the formula does; the lengths are what the formula computes with an
+// approximate arc tangent (an angle's error changes the length by at most a
+// few times as much, the arcs being distances on the circle), less the
+// margin of `lower`. Lanes where a formula does not apply may compute NaN;
+// `unless` replaces them.
+
+/// 8.1 (LSL): the straight is |A| and the arcs make up φ (see `lsl_arcs`);
+/// t = atan2(eta, xi) must be in [0, π] and v = φ − t in [0, π] (sin v =
+/// (sin φ·xi − cos φ·eta) / |A| ≥ 0).
 #[inline(always)]
-fn memo(slot: &mut f64, f: impl FnOnce() -> f64) -> f64 {
-    if slot.is_nan() {
-        *slot = f();
-    }
-    *slot
+fn lsl(f: &Lanes) -> F4 {
+    let (xi, eta, an) = f.a();
+    let none = eta
+        .lt(-1e-14 * an)
+        .or((f.s * xi - f.c * eta).lt(-1e-6 * an));
+    unless(none, lower(an + lsl_arcs(f.phi)))
 }
 
-/// The approximate angle of variant `i`'s centre vector (xi, eta) from the
-/// pair's shared one in `slot`: odd variants (timeflip, both) are the even
-/// ones mirrored, xi negated.
+/// 8.2 (LSR): t's direction is B turned by atan2(2, u), whose cosine and
+/// sine are u/|B| and 2/|B|: (cos t, sin t) = (ct, st) / |B|². t and
+/// v = t − φ must be in [0, π] (sines ≥ 0, to within 1e-9 of the scale).
 #[inline(always)]
-fn centre_angle(slot: &mut f64, i: usize, xi: f64, eta: f64) -> f64 {
-    let odd = i % 2 == 1;
-    let base = memo(slot, || atan2_approx(eta, if odd { -xi } else { xi }));
-    if odd { PI - base } else { base }
+fn lsr(f: &Lanes) -> F4 {
+    let (xi, eta, b2) = f.b();
+    let u = (b2 - 4.0).sqrt();
+    let (st, ct) = (2.0 * xi + u * eta, u * xi - 2.0 * eta);
+    let tol = 1e-9 * b2;
+    let t = atan2_approx(st, ct);
+    let (t, v) = (wrap(t), wrap(t - f.phi));
+    let none = b2
+        .lt(4.0)
+        .or(st.lt(-tol))
+        .or((st * f.c - ct * f.s).lt(-tol))
+        .or(negative(t))
+        .or(negative(v));
+    unless(none, lower(u + t.abs() + v.abs()))
 }
 
-/// A lower bound on candidate `k`'s length (quarter turns included), +∞
-/// where its formula certainly gives no word. Quantities that decide
-/// whether a formula applies are computed exactly as the formula does.
-///
-/// Coarse (`FINE` false): from the distance `d` to the goal, the heading
-/// change and the word's straight, no arc tangent. Fine: what the formula
-/// computes, with an approximate arc tangent (an angle's error changes the
-/// length by at most a few times as much, the arcs being distances on the
-/// circle), less the margin of [`lower`].
+/// 8.3 (LRL): u = −2 asin(|A| / 4), t = θ + u/2 + π (θ the angle of A).
 #[inline(always)]
-fn bound<const FINE: bool>(k: usize, v: &Variants, d: f64, angles: &mut Angles) -> f64 {
-    const INF: f64 = f64::INFINITY;
-    // The variant, and its pair of variants (see [`Angles`]).
-    let i = match k {
-        12..16 | 32..40 => 4 + k % 4,
-        _ => k % 4,
-    };
-    let pair = i / 2;
-    let g = v[i];
-    let phi = g.phi;
-    let turn = phi.abs();
-    match k {
-        // The A formulas: 8.1, 8.3, 8.9.
-        0..4 | 8..16 | 24..28 | 32..36 => {
-            let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-            let an = (xi * xi + eta * eta).sqrt();
-            match k {
-                0..4 => csc_pair::<false>(k & !1, v, d)[k & 1],
-                8..16 => {
-                    if an > 4.0 {
-                        INF
-                    } else if !FINE {
-                        lower((0.5 * an).max(turn).max(d))
-                    } else {
-                        let q = 0.25 * an;
-                        let u = 2.0 * atan2_approx(q, ((1.0 - q) * (1.0 + q)).sqrt());
-                        let theta = centre_angle(&mut angles.a[pair], i, xi, eta);
-                        let t = theta - 0.5 * u + PI;
-                        if surely_negative(t) {
-                            return INF;
-                        }
-                        lower(u + gap(t, 0.0) + gap(t + u, phi))
-                    }
-                }
-                _ => {
-                    if an < 2.0 {
-                        return INF;
-                    }
-                    let r = (an * an - 4.0).sqrt();
-                    let u = 2.0 - r;
-                    if u > ZERO {
-                        INF
-                    } else if !FINE {
-                        coarse_pair(k & !1, v, d, INF)[k & 1]
-                    } else {
-                        // The angle of (ct, st) of the coarse bound: one
-                        // approximate arc tangent, not two.
-                        let t = atan2_approx(r * xi - 2.0 * eta, -2.0 * xi - r * eta);
-                        if surely_negative(t) || surely_negative(0.5 * PI - phi + t) {
-                            return INF;
-                        }
-                        lower(0.5 * PI + u.abs() + gap(t, 0.0) + gap(t, phi - 0.5 * PI))
-                    }
-                }
-            }
-        }
-        // The B formulas: 8.2, 8.7, 8.8, 8.10, 8.11.
-        _ => {
-            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-            let b2 = xi * xi + eta * eta;
-            let bn = b2.sqrt();
-            match k {
-                4..8 => csc_pair::<FINE>(k & !1, v, d)[k & 1],
-                16..20 => {
-                    let rho = 0.25 * (2.0 + bn);
-                    if rho > 1.0 {
-                        INF
-                    } else if !FINE {
-                        lower(turn.max(d))
-                    } else {
-                        // u = acos ρ; tau = θ + π/2 + u, omega = tau − 2u − φ.
-                        let u = atan2_approx(((1.0 - rho) * (1.0 + rho)).sqrt(), rho);
-                        if bn < 1e-4 {
-                            // The formula's angle is ill-conditioned here.
-                            lower(2.0 * u)
-                        } else {
-                            let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
-                            let t = theta + 0.5 * PI + u;
-                            if surely_negative(t) || surely_negative(phi - t + 2.0 * u) {
-                                return INF;
-                            }
-                            lower(2.0 * u + gap(t, 0.0) + gap(t - 2.0 * u, phi))
-                        }
-                    }
-                }
-                20..24 => {
-                    let rho = (20.0 - xi * xi - eta * eta) / 16.0;
-                    if !(0.0..=1.0).contains(&rho) {
-                        INF
-                    } else if !FINE {
-                        lower(turn.max(d))
-                    } else {
-                        // u = −acos ρ; tau = θ − angle(sin u, cos u − 2),
-                        // omega = tau − φ.
-                        let su = ((1.0 - rho) * (1.0 + rho)).sqrt();
-                        let u = atan2_approx(su, rho);
-                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
-                        let t = theta - atan2_approx(rho - 2.0, -su);
-                        if surely_negative(t) || surely_negative(t - phi) {
-                            return INF;
-                        }
-                        lower(2.0 * u + gap(t, 0.0) + gap(t, phi))
-                    }
-                }
-                28..32 | 36..40 => {
-                    if bn < 2.0 {
-                        return INF;
-                    }
-                    let u = 2.0 - bn;
-                    if u > ZERO {
-                        INF
-                    } else if !FINE {
-                        coarse_pair(k & !1, v, d, INF)[k & 1]
-                    } else {
-                        let theta = centre_angle(&mut angles.b[pair], i, xi, eta);
-                        let t = theta + 0.5 * PI;
-                        if surely_negative(t) || surely_negative(phi - t - 0.5 * PI) {
-                            return INF;
-                        }
-                        lower(0.5 * PI + u.abs() + gap(t, 0.0) + gap(t, phi - 0.5 * PI))
-                    }
-                }
-                _ => {
-                    if bn < 2.0 {
-                        return INF;
-                    }
-                    let u = 4.0 - (bn * bn - 4.0).sqrt();
-                    if u > ZERO {
-                        INF
-                    } else if !FINE {
-                        coarse_pair(k & !1, v, d, INF)[k & 1]
-                    } else {
-                        // The formula's own arc tangent, approximated.
-                        let t =
-                            atan2_approx((4.0 - u) * xi - 2.0 * eta, -2.0 * xi + (u - 4.0) * eta);
-                        if surely_negative(t) || surely_negative(t - phi) {
-                            return INF;
-                        }
-                        lower(PI + u.abs() + gap(t, 0.0) + gap(t, phi))
-                    }
-                }
-            }
-        }
-    }
+fn lrl(f: &Lanes) -> F4 {
+    let (xi, eta, an) = f.a();
+    let q = 0.25 * an;
+    let u = 2.0 * atan2_approx(q, ((1.0 - q) * (1.0 + q)).sqrt());
+    let t = atan2_approx(eta, xi) - 0.5 * u + PI;
+    let v = wrap(t + u - f.phi);
+    let t = wrap(t);
+    let none = an.gt(4.0).or(negative(t));
+    unless(none, lower(u + t.abs() + v.abs()))
 }
 
-/// The lower bounds of CSC candidates `k` and `k + 1` (`k` even, 0–6), a
-/// variant and its timeflip (see [`coarse_pair`]: the same centre vector
-/// but for the sign of its first coordinate, headings ±φ); +∞ where a
-/// formula certainly gives no word. Quantities that decide whether a
-/// formula applies are computed exactly as the formula does. LSR's fine
-/// bound (`FINE`) follows its sign tests, from the same rotated vector.
+/// 8.7: u = acos ρ; t = θ + π/2 + u, v = t − 2u − φ (θ the angle of B).
 #[inline(always)]
-fn csc_pair<const FINE: bool>(k: usize, v: &Variants, d: f64) -> [f64; 2] {
-    const INF: f64 = f64::INFINITY;
-    let (g, h) = (v[k % 4], v[k % 4 + 1]);
-    if k < 4 {
-        // 8.1: t = atan2(eta, xi) must be in [0, π] and v = φ − t in
-        // [0, π] (sin v = sin(φ − t) ≥ 0, sin φ·xi − cos φ·eta ≥ 0 over
-        // |A|); both tests are the same for the timeflip (xi and sin φ
-        // negated). The arcs make up φ (see `lsl_arcs`).
-        let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-        let an = (xi * xi + eta * eta).sqrt();
-        if eta < -1e-14 * an || g.s * xi - g.c * eta < -1e-6 * an {
-            [INF; 2]
-        } else {
-            [lower(an + lsl_arcs(g.phi)), lower(an + lsl_arcs(h.phi))]
-        }
-    } else {
-        // 8.2: t's direction is B turned by atan2(2, u), whose cosine and
-        // sine are u/|B| and 2/|B|: (cos t, sin t) = (ct, st) / |B|². t and
-        // v = t − φ must be in [0, π] (sines ≥ 0), to within the tolerance
-        // argued at `coarse_pair`. The timeflip's (ct, st) is the same of
-        // −xi.
-        let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-        let b2 = xi * xi + eta * eta;
-        if b2 < 4.0 {
-            return [INF; 2];
-        }
-        let u = (b2 - 4.0).sqrt();
-        let (ex, ue, ux, ee) = (2.0 * xi, u * eta, u * xi, 2.0 * eta);
-        let tol = 1e-9 * b2;
-        let l = lower((u + g.phi.abs()).max(d));
-        let one = |st: f64, ct: f64, g: Goal| {
-            if st < -tol || st * g.c - ct * g.s < -tol {
-                INF
-            } else if !FINE {
-                l
-            } else {
-                // The angle of (ct, st), approximated.
-                let t = atan2_approx(st, ct);
-                if surely_negative(t) || surely_negative(t - g.phi) {
-                    INF
-                } else {
-                    lower(u + gap(t, 0.0) + gap(t, g.phi))
-                }
-            }
-        };
-        [one(ex + ue, ux - ee, g), one(-ex + ue, -ux - ee, h)]
-    }
+fn lp_rup_lum_rm_bound(f: &Lanes) -> F4 {
+    let (xi, eta, b2) = f.b();
+    let bn = b2.sqrt();
+    let rho = 0.25 * (2.0 + bn);
+    let u = atan2_approx(((1.0 - rho) * (1.0 + rho)).sqrt(), rho);
+    let t = atan2_approx(eta, xi) + 0.5 * PI + u;
+    // v (the formula's omega), which must be ≤ 0.
+    let w = wrap(t - 2.0 * u - f.phi);
+    let t = wrap(t);
+    // Where B is that short, the formula's angle is ill-conditioned.
+    let small = bn.lt(1e-4);
+    let none = rho.gt(1.0).or(small.not().and(negative(t).or(positive(w))));
+    let fine = small.select(lower(2.0 * u), lower(2.0 * u + t.abs() + w.abs()));
+    unless(none, fine)
 }
 
-/// The coarse lower bounds of CCSC or CCSCC candidates `k` and `k + 1`
-/// (`k` even, 24–42), the two variants of a pair (see [`Angles`]), +∞
-/// where a formula certainly gives no word; where even the pair's common
-/// bound is above `upper`, that bound for both, without their sign tests.
-/// Quantities that decide whether a formula applies are computed exactly
-/// as the formula does.
-///
-/// Both variants have the same centre vector but for the sign of its first
-/// coordinate (timeflip negates x and sin φ), so the same norm bit for bit,
-/// and headings ±φ. Each word's length is its arcs |t| + |v|, its straight
-/// |u| and its fixed quarter turns (π/2 for CCSC, π for CCSCC). The arcs
-/// make up the heading: t + v ≡ ±φ − π/2 (8.9) or t − v ≡ ±φ − π/2 (8.10),
-/// so |t| + |v| ≥ gap(±φ, π/2) ≥ ||φ| − π/2| (φ in [−π, π]); t − v ≡ ±φ
-/// (8.11), so |t| + |v| ≥ |φ|. And any path is at least as long as the sum
-/// of its chords, which is at least the distance d: an arc of angle θ
-/// (radius 1) has chord 2 sin(θ/2) ≤ θ, and a quarter turn's chord is √2,
-/// so a CCSC word is at least d + π/2 − √2 long, a CCSCC word
-/// d + π − 2√2. [`lower`] leaves the margin for the roundings.
-///
-/// The sign tests: t and v must be in the formula's ranges; their sines
-/// are read off the centre vector (cos t and sin t without an arc tangent,
-/// v's sine from φ's), and a sine below −1e-9 of the vector's scale is an
-/// angle that far inside (−π, 0), beyond ZERO and every rounding of the
-/// formula's angles.
+/// 8.8: u = −acos ρ; t = θ − angle(cos u − 2, sin u), v = t − φ.
 #[inline(always)]
-fn coarse_pair(k: usize, v: &Variants, d: f64, upper: f64) -> [f64; 2] {
-    const INF: f64 = f64::INFINITY;
-    // The chord excess of a quarter turn: π/2 − √2.
-    const QUARTER: f64 = 0.5 * PI - std::f64::consts::SQRT_2;
-    let i = match k {
-        32..40 => 4 + k % 4,
-        _ => k % 4,
-    };
-    // The variant and its timeflip.
-    let (g, h) = (v[i], v[i + 1]);
-    let heading = (g.phi.abs() - 0.5 * PI).abs();
-    match k {
-        // 8.9: u = 2 − √(|A|² − 4).
-        24..28 | 32..36 => {
-            let (xi, eta) = (g.x - g.s, g.y - 1.0 + g.c);
-            let an = (xi * xi + eta * eta).sqrt();
-            if an < 2.0 {
-                return [INF; 2];
-            }
-            let r = (an * an - 4.0).sqrt();
-            let u = 2.0 - r;
-            if u > ZERO {
-                return [INF; 2];
-            }
-            let straight = 0.5 * PI + u.abs();
-            let pair = lower((straight + heading).max(d + QUARTER));
-            if pair > upper {
-                return [pair; 2];
-            }
-            // t's direction is A turned by atan2(r, −2), whose cosine and
-            // sine are −2/|A| and r/|A|: (cos t, sin t) = (ct, st) / |A|².
-            // The formula needs t ∈ [0, π] (sin t ≥ 0) and v = φ − π/2 − t
-            // in [−π, 0] (sin v = −cos(φ − t) ≤ 0). The timeflip's (ct, st)
-            // is the same of −xi.
-            let (rx, ey, ex, ry) = (r * xi, 2.0 * eta, 2.0 * xi, r * eta);
-            let tol = 1e-9 * (an * an);
-            let one = |st: f64, ct: f64, g: Goal| {
-                if st < -tol || g.c * ct + g.s * st < -tol {
-                    INF
-                } else {
-                    lower((straight + gap(g.phi, 0.5 * PI)).max(d)).max(pair)
-                }
-            };
-            [one(rx - ey, -ex - ry, g), one(-rx - ey, ex - ry, h)]
-        }
-        // 8.10: u = 2 − |B|.
-        28..32 | 36..40 => {
-            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-            let bn = (xi * xi + eta * eta).sqrt();
-            if bn < 2.0 {
-                return [INF; 2];
-            }
-            let u = 2.0 - bn;
-            if u > ZERO {
-                return [INF; 2];
-            }
-            let straight = 0.5 * PI + u.abs();
-            let pair = lower((straight + heading).max(d + QUARTER));
-            if pair > upper {
-                return [pair; 2];
-            }
-            // t = atan2(xi, −eta) must be in [0, π] (xi ≥ 0) and
-            // v = t + π/2 − φ in [−π, 0] (sin v = cos(t − φ) ≤ 0); the
-            // latter, sin φ·xi − cos φ·eta ≤ 0 over |B|, is the same for
-            // the timeflip (xi and sin φ negated).
-            let tol = 1e-9 * bn;
-            if g.s * xi - g.c * eta > tol {
-                return [INF; 2];
-            }
-            let one = |xi: f64, g: Goal| {
-                if xi < -tol {
-                    INF
-                } else {
-                    lower((straight + gap(g.phi, 0.5 * PI)).max(d)).max(pair)
-                }
-            };
-            [one(xi, g), one(-xi, h)]
-        }
-        // 8.11: u = 4 − √(|B|² − 4).
-        _ => {
-            let (xi, eta) = (g.x + g.s, g.y - 1.0 - g.c);
-            let bn = (xi * xi + eta * eta).sqrt();
-            if bn < 2.0 {
-                return [INF; 2];
-            }
-            let u = 4.0 - (bn * bn - 4.0).sqrt();
-            if u > ZERO {
-                return [INF; 2];
-            }
-            let pair = lower((PI + u.abs() + g.phi.abs()).max(d + 2.0 * QUARTER));
-            if pair > upper {
-                return [pair; 2];
-            }
-            // t is the angle of (ct, st), the formula's own atan2
-            // arguments, of norm √((4 − u)² + 4)·|B| ≤ (6 − u)·|B|; t and
-            // v = t − φ must be in [0, π] (sines ≥ 0). The timeflip's
-            // (ct, st) is the same of −xi.
-            let (px, ey, ex, qy) = ((4.0 - u) * xi, 2.0 * eta, 2.0 * xi, (u - 4.0) * eta);
-            let tol = 1e-9 * ((6.0 - u) * bn);
-            let one = |st: f64, ct: f64, g: Goal| {
-                if st < -tol || st * g.c - ct * g.s < -tol {
-                    INF
-                } else {
-                    pair
-                }
-            };
-            [one(px - ey, -ex + qy, g), one(-px - ey, ex + qy, h)]
-        }
+fn lp_rum_lum_rp_bound(f: &Lanes) -> F4 {
+    let (xi, eta, _) = f.b();
+    let rho = (20.0 - xi * xi - eta * eta) / 16.0;
+    let su = ((1.0 - rho) * (1.0 + rho)).sqrt();
+    let u = atan2_approx(su, rho);
+    let t = atan2_approx(eta, xi) - atan2_approx(rho - 2.0, -su);
+    let (t, v) = (wrap(t), wrap(t - f.phi));
+    let none = rho.lt(0.0).or(rho.gt(1.0)).or(negative(t)).or(negative(v));
+    unless(none, lower(2.0 * u + t.abs() + v.abs()))
+}
+
+/// 8.9: u = 2 − r with r = √(|A|² − 4); t is the angle of A turned by
+/// atan2(r, −2), one approximate arc tangent of the rotated vector; t in
+/// [0, π] and v = φ − π/2 − t in [−π, 0].
+#[inline(always)]
+fn lp_rm_sm_lm_bound(f: &Lanes) -> F4 {
+    let (xi, eta, an) = f.a();
+    let r = (an * an - 4.0).sqrt();
+    let u = 2.0 - r;
+    let t = atan2_approx(r * xi - 2.0 * eta, -2.0 * xi - r * eta);
+    // −v, as v must be ≤ 0.
+    let (t, w) = (wrap(t), wrap(t - (f.phi - 0.5 * PI)));
+    let none = an.lt(2.0).or(u.gt(ZERO)).or(negative(t)).or(negative(w));
+    unless(none, lower(0.5 * PI + u.abs() + t.abs() + w.abs()))
+}
+
+/// 8.10: u = 2 − |B|, t = θ + π/2 in [0, π], v = t + π/2 − φ in [−π, 0].
+#[inline(always)]
+fn lp_rm_sm_rm_bound(f: &Lanes) -> F4 {
+    let (xi, eta, b2) = f.b();
+    let bn = b2.sqrt();
+    let u = 2.0 - bn;
+    let t = atan2_approx(eta, xi) + 0.5 * PI;
+    // v, which must be ≤ 0.
+    let (t, v) = (wrap(t), wrap(t - (f.phi - 0.5 * PI)));
+    let none = bn.lt(2.0).or(u.gt(ZERO)).or(negative(t)).or(positive(v));
+    unless(none, lower(0.5 * PI + u.abs() + t.abs() + v.abs()))
+}
+
+/// 8.11: u = 4 − √(|B|² − 4); t the formula's own arc tangent,
+/// approximated; t and v = t − φ in [0, π].
+#[inline(always)]
+fn lp_rm_s_lm_rp_bound(f: &Lanes) -> F4 {
+    let (xi, eta, b2) = f.b();
+    let bn = b2.sqrt();
+    let u = 4.0 - (bn * bn - 4.0).sqrt();
+    let t = atan2_approx((4.0 - u) * xi - 2.0 * eta, -2.0 * xi + (u - 4.0) * eta);
+    let (t, v) = (wrap(t), wrap(t - f.phi));
+    let none = bn.lt(2.0).or(u.gt(ZERO)).or(negative(t)).or(negative(v));
+    unless(none, lower(PI + u.abs() + t.abs() + v.abs()))
+}
+
+/// Every candidate's lower bound (in `k`'s order, see [`formula`]), the
+/// goal's distance `d`; +∞ where a formula certainly gives no word.
+#[inline(always)]
+fn lower_bounds(f: &Lanes, b: &Lanes, d: f64) -> [f64; CANDIDATES] {
+    let mut lb = [f64::INFINITY; CANDIDATES];
+    let mut put = |k: usize, l: F4| lb[k..k + 4].copy_from_slice(&l.0);
+    put(0, lsl(f));
+    put(4, lsr(f));
+    // The CCC and CCCC words (8–23) need a centre vector no longer than
+    // √20 < 4.5 (8.3: A ≤ 4; 8.7: B ≤ 2; 8.8: B² ≤ 20). Both centre
+    // vectors are the goal less a point within 2 of the origin
+    // ((sin φ, 1 − cos φ) and (−sin φ, 1 + cos φ)), and the goal seen
+    // backwards is the goal rotated, so every centre vector is at least
+    // d − 2 long (to a few roundings): beyond 6.5 radii none applies.
+    if d <= CCC_REACH {
+        put(8, lrl(f));
+        put(12, lrl(b));
+        put(16, lp_rup_lum_rm_bound(f));
+        put(20, lp_rum_lum_rp_bound(f));
     }
+    put(24, lp_rm_sm_lm_bound(f));
+    put(28, lp_rm_sm_rm_bound(f));
+    put(32, lp_rm_sm_lm_bound(b));
+    put(36, lp_rm_sm_rm_bound(b));
+    put(40, lp_rm_s_lm_rp_bound(f));
+    lb
 }
 
 /// The goal seen backwards: the start reached from the goal in reverse
@@ -937,6 +752,19 @@ fn tau_omega(u: f64, v: f64, xi: f64, eta: f64, phi: f64) -> (f64, f64) {
 /// The shortest of the 48 words from the origin heading along +x to (x, y)
 /// heading `phi` (all in turning radii; `x`, `y` finite).
 pub(super) fn shortest(x: f64, y: f64, phi: f64) -> Word {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: this processor has AVX2 (checked just above).
+        return unsafe { shortest_avx2(x, y, phi) };
+    }
+    solve::<true>(x, y, phi)
+}
+
+/// [`shortest`] compiled for AVX2: the same operations (no fused
+/// multiply-adds), the lower bounds four lanes at a time.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn shortest_avx2(x: f64, y: f64, phi: f64) -> Word {
     solve::<true>(x, y, phi)
 }
 
@@ -947,32 +775,21 @@ const CCC_REACH: f64 = 6.5;
 /// goes the exhaustive way.
 const KEEP: usize = 8;
 
+#[inline(always)]
 fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     let phi = mod2pi(phi);
     let (s, c) = phi.sin_cos();
-    let v = variants(Goal { x, y, phi, s, c });
+    let goal = Goal { x, y, phi, s, c };
+    let v = Variants::new(goal);
     if !PRUNE {
         return ompl_order(|k| formula::<false>(k, &v));
     }
-    // Lower bounds, coarse then fine where the coarse one does not settle
-    // it; the CSC words first (they win far from the start, and the best of
-    // them bounds the rest), then every other candidate, its coarse bound
-    // first and its fine one only when the coarse one is below the shortest
-    // CSC length found; those whose bound is still below it are computed,
-    // best first, while their bound is below the shortest length found. A
-    // candidate left out is longer than that by the margin of `lower`, so
-    // it could not win in OMPL's order either, nor change how the others
-    // compare.
+    // Every candidate bounded from below, then computed best first while
+    // its bound is below the shortest length found. A candidate left out
+    // is longer than that by the margin of `lower`, so it could not win in
+    // OMPL's order either, nor change how the others compare.
     let d = (x * x + y * y).sqrt();
-    let mut lb = [f64::INFINITY; CANDIDATES];
-    let mut angles = Angles::new();
-    // By pairs of variants, fine (the LSL bounds are fine already). The
-    // macros below are unrolled, so that each candidate's bound is
-    // specialised (and the shared norms computed once).
-    [lb[0], lb[1]] = csc_pair::<true>(0, &v, d);
-    [lb[2], lb[3]] = csc_pair::<true>(2, &v, d);
-    [lb[4], lb[5]] = csc_pair::<true>(4, &v, d);
-    [lb[6], lb[7]] = csc_pair::<true>(6, &v, d);
+    let mut lb = lower_bounds(&Lanes::new(goal), &Lanes::new(v.back), d);
     let mut found = Found {
         kept: [(0.0, 0.0, 0.0); KEEP],
         kept_k: [0; KEEP],
@@ -980,70 +797,15 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
         kept_mask: 0,
         upper: f64::INFINITY,
     };
-    // The CSC candidates not yet computed whose bound is finite (a bit
-    // each), computed best first until one gives a word.
-    let mut csc = 0u64;
-    for (k, &l) in lb[..8].iter().enumerate() {
-        if l < f64::INFINITY {
-            csc |= 1 << k;
-        }
-    }
-    while found.upper == f64::INFINITY && csc != 0 {
-        let k = best(csc, &lb);
-        csc &= !(1 << k);
-        found.eval(k, &v);
-    }
-    // The candidates whose bound is still within reach (a bit set in
-    // `open`); `upper` is finite, so that +∞ bounds are never in reach.
-    let upper = found.upper.min(f64::MAX);
-    let mut open = 0u64;
-    let mut rest = csc;
-    while rest != 0 {
-        let k = rest.trailing_zeros() as usize;
-        rest &= rest - 1;
-        if lb[k] <= upper {
-            open |= 1 << k;
-        }
-    }
-    // Candidate `k`'s fine bound where its coarse one is within reach.
-    macro_rules! fine {
-        ($($k:literal $coarse:expr)*) => { $(
-            if $coarse <= upper {
-                let l = bound::<true>($k, &v, d, &mut angles);
-                if l <= upper {
-                    lb[$k] = l;
-                    open |= 1 << $k;
-                }
-            }
-        )* };
-    }
-    macro_rules! rest {
-        ($($k:literal)*) => { $( fine!($k bound::<false>($k, &v, d, &mut angles)); )* };
-    }
-    // CCSC and CCSCC by pairs of variants, one test first for both.
-    macro_rules! pair {
-        ($($k:literal $k1:literal)*) => { $(
-            let coarse = coarse_pair($k, &v, d, upper);
-            fine!($k coarse[0] $k1 coarse[1]);
-        )* };
-    }
-    // The CCC and CCCC words (8–23) by one test: their formulas need a
-    // centre vector no longer than √20 < 4.5 (8.3: A ≤ 4; 8.7: B ≤ 2;
-    // 8.8: B² ≤ 20). Both centre vectors are the goal less a point within
-    // 2 of the origin ((sin φ, 1 − cos φ) and (−sin φ, 1 + cos φ)), and the
-    // goal seen backwards is the goal rotated, so every centre vector is
-    // at least d − 2 long (to a few roundings): beyond 6.5 radii none
-    // applies.
-    if d <= CCC_REACH {
-        rest!(8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23);
-    }
-    pair!(24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40 41 42 43);
-    while open != 0 {
-        let k = best(open, &lb);
-        if lb[k] > found.upper {
+    loop {
+        // The least bound left, and the first candidate with it; a
+        // candidate computed is taken out by an infinite bound.
+        let least = least(&lb);
+        if least == f64::INFINITY || least > found.upper {
             break;
         }
-        open &= !(1 << k);
+        let k = within(&lb, least).trailing_zeros() as usize;
+        lb[k] = f64::INFINITY;
         if !found.eval(k, &v) {
             return ompl_order(|k| formula::<true>(k, &v));
         }
@@ -1062,20 +824,24 @@ fn solve<const PRUNE: bool>(x: f64, y: f64, phi: f64) -> Word {
     replay.best
 }
 
-/// The candidate of `set` (a bit each, not empty) with the least bound,
-/// the first of equal ones.
-#[inline]
-fn best(set: u64, lb: &[f64; CANDIDATES]) -> usize {
-    let (mut k, mut rest) = (set.trailing_zeros() as usize, set);
-    rest &= rest - 1;
-    while rest != 0 {
-        let i = rest.trailing_zeros() as usize;
-        rest &= rest - 1;
-        if lb[i] < lb[k] {
-            k = i;
-        }
+/// The candidates whose bound is at most `upper`, a bit each.
+#[inline(always)]
+fn within(lb: &[f64; CANDIDATES], upper: f64) -> u64 {
+    let mut bits = 0;
+    for (i, l) in lb.chunks_exact(4).enumerate() {
+        let l = F4([l[0], l[1], l[2], l[3]]);
+        bits |= l.gt(upper).not().bits() << (4 * i);
     }
-    k
+    bits
+}
+
+/// The least of the bounds.
+#[inline(always)]
+fn least(lb: &[f64; CANDIDATES]) -> f64 {
+    let least = lb.chunks_exact(4).fold(F4::splat(f64::INFINITY), |m, l| {
+        m.min(F4([l[0], l[1], l[2], l[3]]))
+    });
+    least.0[0].min(least.0[1]).min(least.0[2].min(least.0[3]))
 }
 
 /// The candidates computed so far that gave a word, and the shortest
@@ -1123,8 +889,9 @@ mod tests {
             let reach = [0.5, 3.0, 10.0, 100.0][k % 4];
             let (x, y) = (rng.range(-reach, reach), rng.range(-reach, reach));
             let phi = rng.range(-4.0 * PI, 4.0 * PI);
-            let (a, b) = (solve::<true>(x, y, phi), solve::<false>(x, y, phi));
+            let (a, b) = (shortest(x, y, phi), solve::<false>(x, y, phi));
             assert_eq!(a, b, "at ({x}, {y}, {phi})");
+            assert_eq!(solve::<true>(x, y, phi), b, "at ({x}, {y}, {phi})");
             assert!(a.length < f64::MAX, "no word reaches ({x}, {y}, {phi})");
         }
     }
@@ -1152,7 +919,7 @@ mod tests {
                 3 => (x, y) = (phi.sin(), 1.0 - phi.cos()),
                 4 => (x, y) = (-phi.sin(), -1.0 + phi.cos()),
                 5 => (x, y) = (ca, sa),
-                // The A and B centre vectors (see `Angles`) of that length.
+                // The A and B centre vectors (see `Lanes`) of that length.
                 6 => (x, y) = (phi.sin() + ca, 1.0 - phi.cos() + sa),
                 7 => (x, y) = (-phi.sin() + ca, 1.0 + phi.cos() + sa),
                 8 => {
@@ -1161,25 +928,30 @@ mod tests {
                 _ => {}
             }
             let (s, c) = phi.sin_cos();
-            let v = variants(Goal { x, y, phi, s, c });
+            let goal = Goal { x, y, phi, s, c };
+            let v = Variants::new(goal);
             let d = (x * x + y * y).sqrt();
-            // One goal's bounds share their angles, as in the search.
-            let mut angles = Angles::new();
-            for i in 0..CANDIDATES {
+            // The bounds as compiled for processors without AVX2 and with
+            // it: the same bits.
+            // The bounds as compiled for processors without AVX2 and with
+            // it: the same bits.
+            let (f, b) = (Lanes::new(goal), Lanes::new(v.back));
+            let lb = lower_bounds(&f, &b, d);
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                #[target_feature(enable = "avx2")]
+                fn wide(f: &Lanes, b: &Lanes, d: f64) -> [f64; CANDIDATES] {
+                    lower_bounds(f, b, d)
+                }
+                // SAFETY: this processor has AVX2 (checked just above).
+                let wide = unsafe { wide(&f, &b, d) };
+                assert_eq!(lb.map(f64::to_bits), wide.map(f64::to_bits));
+            }
+            for (i, &b) in lb.iter().enumerate() {
                 if let Some(r) = formula::<false>(i, &v) {
                     let l = total(i, r);
-                    let coarse = bound::<false>(i, &v, d, &mut angles);
-                    let fine = bound::<true>(i, &v, d, &mut angles);
-                    // CCSC and CCSCC also by their pair's common bound.
-                    let pair = if i >= 24 {
-                        coarse_pair(i & !1, &v, d, -1.0)[i & 1]
-                    } else {
-                        f64::NEG_INFINITY
-                    };
-                    for b in [coarse, fine, pair] {
-                        assert!(b <= l, "candidate {i} at ({x}, {y}, {phi}): {b} > {l}");
-                        worst = worst.min(l - b);
-                    }
+                    assert!(b <= l, "candidate {i} at ({x}, {y}, {phi}): {b} > {l}");
+                    worst = worst.min(l - b);
                 }
             }
         }

@@ -1,0 +1,169 @@
+//! Four `f64` lanes computed alike, for the Reeds–Shepp lower bounds: the
+//! four variants of a goal (as it is, timeflip, reflect, both) go through
+//! the same formula side by side. Every operation is the scalar one lane by
+//! lane (no fused multiply-add), so the lanes hold the scalar results bit
+//! for bit; compiled for AVX2 (see `reeds_shepp::lower_bounds`), the
+//! compiler turns each into one vector instruction.
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct F4(pub [f64; 4]);
+
+/// A comparison's outcome, lane by lane: all bits set where it held (the
+/// form the processor's vector comparisons give).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct M4(pub [u64; 4]);
+
+impl F4 {
+    #[inline(always)]
+    pub fn splat(a: f64) -> F4 {
+        F4([a; 4])
+    }
+
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> F4 {
+        F4(self.0.map(f))
+    }
+
+    #[inline(always)]
+    fn zip(self, o: F4, f: impl Fn(f64, f64) -> f64) -> F4 {
+        F4([
+            f(self.0[0], o.0[0]),
+            f(self.0[1], o.0[1]),
+            f(self.0[2], o.0[2]),
+            f(self.0[3], o.0[3]),
+        ])
+    }
+
+    #[inline(always)]
+    fn test(self, o: F4, f: impl Fn(f64, f64) -> bool) -> M4 {
+        let m = |a, b| if f(a, b) { u64::MAX } else { 0 };
+        M4([
+            m(self.0[0], o.0[0]),
+            m(self.0[1], o.0[1]),
+            m(self.0[2], o.0[2]),
+            m(self.0[3], o.0[3]),
+        ])
+    }
+
+    #[inline(always)]
+    pub fn sqrt(self) -> F4 {
+        self.map(f64::sqrt)
+    }
+
+    #[inline(always)]
+    pub fn abs(self) -> F4 {
+        self.map(f64::abs)
+    }
+
+    /// The larger of each pair (neither is NaN here).
+    #[inline(always)]
+    pub fn max(self, o: F4) -> F4 {
+        self.zip(o, |a, b| if a > b { a } else { b })
+    }
+
+    /// The smaller of each pair (neither is NaN here).
+    #[inline(always)]
+    pub fn min(self, o: F4) -> F4 {
+        self.zip(o, |a, b| if a < b { a } else { b })
+    }
+
+    #[inline(always)]
+    pub fn lt(self, o: impl Into<F4>) -> M4 {
+        self.test(o.into(), |a, b| a < b)
+    }
+
+    #[inline(always)]
+    pub fn gt(self, o: impl Into<F4>) -> M4 {
+        self.test(o.into(), |a, b| a > b)
+    }
+}
+
+impl From<f64> for F4 {
+    #[inline(always)]
+    fn from(a: f64) -> F4 {
+        F4::splat(a)
+    }
+}
+
+impl M4 {
+    /// `a` where the lane's test held, else `b`.
+    #[inline(always)]
+    pub fn select(self, a: F4, b: F4) -> F4 {
+        let pick = |m: u64, a: f64, b: f64| f64::from_bits((a.to_bits() & m) | (b.to_bits() & !m));
+        F4([
+            pick(self.0[0], a.0[0], b.0[0]),
+            pick(self.0[1], a.0[1], b.0[1]),
+            pick(self.0[2], a.0[2], b.0[2]),
+            pick(self.0[3], a.0[3], b.0[3]),
+        ])
+    }
+
+    /// One bit a lane, the first lane's lowest.
+    #[inline(always)]
+    pub fn bits(self) -> u64 {
+        (self.0[0] & 1) | (self.0[1] & 2) | (self.0[2] & 4) | (self.0[3] & 8)
+    }
+
+    #[inline(always)]
+    pub fn not(self) -> M4 {
+        M4(self.0.map(|a| !a))
+    }
+
+    #[inline(always)]
+    pub fn or(self, o: M4) -> M4 {
+        M4([
+            self.0[0] | o.0[0],
+            self.0[1] | o.0[1],
+            self.0[2] | o.0[2],
+            self.0[3] | o.0[3],
+        ])
+    }
+
+    #[inline(always)]
+    pub fn and(self, o: M4) -> M4 {
+        M4([
+            self.0[0] & o.0[0],
+            self.0[1] & o.0[1],
+            self.0[2] & o.0[2],
+            self.0[3] & o.0[3],
+        ])
+    }
+}
+
+macro_rules! lanewise {
+    ($($trait:ident $method:ident $op:tt)*) => { $(
+        impl $trait for F4 {
+            type Output = F4;
+            #[inline(always)]
+            fn $method(self, o: F4) -> F4 {
+                self.zip(o, |a, b| a $op b)
+            }
+        }
+        impl $trait<f64> for F4 {
+            type Output = F4;
+            #[inline(always)]
+            fn $method(self, o: f64) -> F4 {
+                self.map(|a| a $op o)
+            }
+        }
+        impl $trait<F4> for f64 {
+            type Output = F4;
+            #[inline(always)]
+            fn $method(self, o: F4) -> F4 {
+                o.map(|b| self $op b)
+            }
+        }
+    )* };
+}
+
+lanewise!(Add add + Sub sub - Mul mul * Div div /);
+
+impl Neg for F4 {
+    type Output = F4;
+    #[inline(always)]
+    fn neg(self) -> F4 {
+        self.map(|a| -a)
+    }
+}
