@@ -167,3 +167,40 @@ impl Neg for F4 {
         self.map(|a| -a)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each lane is the scalar operation's result, bit for bit, and the
+    /// masks pick lane by lane.
+    #[test]
+    fn lanes_are_the_scalar_operations() {
+        let a = F4([1.5, -0.0, 3e-300, -7.25]);
+        let b = F4([0.25, 2.0, -1e300, -7.25]);
+        for i in 0..4 {
+            let (x, y) = (a.0[i], b.0[i]);
+            assert_eq!((a + b).0[i].to_bits(), (x + y).to_bits());
+            assert_eq!((a - b).0[i].to_bits(), (x - y).to_bits());
+            assert_eq!((a * b).0[i].to_bits(), (x * y).to_bits());
+            assert_eq!((a / b).0[i].to_bits(), (x / y).to_bits());
+            assert_eq!((2.0 - a).0[i].to_bits(), (2.0 - x).to_bits());
+            assert_eq!((a * 0.5).0[i].to_bits(), (x * 0.5).to_bits());
+            assert_eq!((-a).0[i].to_bits(), (-x).to_bits());
+            assert_eq!(a.abs().0[i].to_bits(), x.abs().to_bits());
+            assert_eq!(b.abs().sqrt().0[i].to_bits(), y.abs().sqrt().to_bits());
+        }
+        assert_eq!(a.max(b), F4([1.5, 2.0, 3e-300, -7.25]));
+        assert_eq!(a.min(b), F4([0.25, -0.0, -1e300, -7.25]));
+        let m = a.lt(b);
+        assert_eq!(m.bits(), 0b0010);
+        assert_eq!(a.gt(b).bits(), 0b0101);
+        assert_eq!(a.gt(0.0).or(m).bits(), 0b0111);
+        assert_eq!(a.gt(0.0).and(m.not()).bits(), 0b0101);
+        assert_eq!(m.select(a, b), F4([0.25, -0.0, -1e300, -7.25]));
+        // NaN compares false: its lane takes the second operand.
+        let n = F4([f64::NAN, 1.0, 1.0, 1.0]);
+        assert_eq!(n.lt(2.0).bits(), 0b1110);
+        assert_eq!(n.lt(2.0).select(a, b).0[0], 0.25);
+    }
+}
