@@ -57,6 +57,14 @@ impl F4 {
         self.map(f64::abs)
     }
 
+    /// Each lane (≥ +0) given the sign of `o`'s: one bit operation, no
+    /// comparison.
+    #[inline(always)]
+    pub fn with_sign_of(self, o: F4) -> F4 {
+        const SIGN: u64 = 1 << 63;
+        self.zip(o, |a, b| f64::from_bits(a.to_bits() | (b.to_bits() & SIGN)))
+    }
+
     /// The larger of each pair (neither is NaN here).
     #[inline(always)]
     pub fn max(self, o: F4) -> F4 {

@@ -478,8 +478,7 @@ fn atan2_approx(y: F4, x: F4) -> F4 {
     let (lo, hi) = (ax.min(ay), ax.max(ay));
     let a = atan01(hi.gt(zero).select(lo / hi, zero));
     let a = ay.gt(ax).select(FRAC_PI_2 - a, a);
-    let a = x.lt(zero).select(PI - a, a);
-    y.lt(zero).select(-a, a)
+    x.lt(zero).select(PI - a, a).with_sign_of(y)
 }
 
 /// Rounds to the nearest integer by the float format (1.5 · 2⁵²).
