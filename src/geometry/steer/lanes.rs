@@ -2,7 +2,7 @@
 //! four variants of a goal (as it is, timeflip, reflect, both) go through
 //! the same formula side by side. Every operation is the scalar one lane by
 //! lane (no fused multiply-add), so the lanes hold the scalar results bit
-//! for bit; compiled for AVX2 (see `reeds_shepp::lower_bounds`), the
+//! for bit; compiled for AVX2 (see `reeds_shepp::shortest`), the
 //! compiler turns each into one vector instruction.
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -28,23 +28,14 @@ impl F4 {
 
     #[inline(always)]
     fn zip(self, o: F4, f: impl Fn(f64, f64) -> f64) -> F4 {
-        F4([
-            f(self.0[0], o.0[0]),
-            f(self.0[1], o.0[1]),
-            f(self.0[2], o.0[2]),
-            f(self.0[3], o.0[3]),
-        ])
+        F4(std::array::from_fn(|i| f(self.0[i], o.0[i])))
     }
 
     #[inline(always)]
     fn test(self, o: F4, f: impl Fn(f64, f64) -> bool) -> M4 {
-        let m = |a, b| if f(a, b) { u64::MAX } else { 0 };
-        M4([
-            m(self.0[0], o.0[0]),
-            m(self.0[1], o.0[1]),
-            m(self.0[2], o.0[2]),
-            m(self.0[3], o.0[3]),
-        ])
+        M4(std::array::from_fn(|i| {
+            if f(self.0[i], o.0[i]) { u64::MAX } else { 0 }
+        }))
     }
 
     #[inline(always)]
@@ -99,13 +90,10 @@ impl M4 {
     /// `a` where the lane's test held, else `b`.
     #[inline(always)]
     pub fn select(self, a: F4, b: F4) -> F4 {
-        let pick = |m: u64, a: f64, b: f64| f64::from_bits((a.to_bits() & m) | (b.to_bits() & !m));
-        F4([
-            pick(self.0[0], a.0[0], b.0[0]),
-            pick(self.0[1], a.0[1], b.0[1]),
-            pick(self.0[2], a.0[2], b.0[2]),
-            pick(self.0[3], a.0[3], b.0[3]),
-        ])
+        F4(std::array::from_fn(|i| {
+            let m = self.0[i];
+            f64::from_bits((a.0[i].to_bits() & m) | (b.0[i].to_bits() & !m))
+        }))
     }
 
     /// One bit a lane, the first lane's lowest.
@@ -121,22 +109,12 @@ impl M4 {
 
     #[inline(always)]
     pub fn or(self, o: M4) -> M4 {
-        M4([
-            self.0[0] | o.0[0],
-            self.0[1] | o.0[1],
-            self.0[2] | o.0[2],
-            self.0[3] | o.0[3],
-        ])
+        M4(std::array::from_fn(|i| self.0[i] | o.0[i]))
     }
 
     #[inline(always)]
     pub fn and(self, o: M4) -> M4 {
-        M4([
-            self.0[0] & o.0[0],
-            self.0[1] & o.0[1],
-            self.0[2] & o.0[2],
-            self.0[3] & o.0[3],
-        ])
+        M4(std::array::from_fn(|i| self.0[i] & o.0[i]))
     }
 }
 

@@ -526,8 +526,8 @@ fn unless(none: M4, l: F4) -> F4 {
     none.select(F4::splat(f64::INFINITY), l)
 }
 
-/// A goal's four variants side by side (as [`variants`] orders them: as
-/// it is, timeflip, reflect, both).
+/// A goal's four variants side by side, in [`Variants::get`]'s order: as
+/// it is, timeflip, reflect, both.
 #[derive(Clone, Copy)]
 struct Lanes {
     x: F4,
@@ -538,15 +538,16 @@ struct Lanes {
 }
 
 impl Lanes {
-    /// Negations are exact, so each lane is its variant bit for bit.
+    /// Each lane is its variant, made by [`Goal`]'s own flips.
     #[inline(always)]
     fn new(g: Goal) -> Self {
+        let v = [g, g.timeflip(), g.reflect(), g.both()];
         Lanes {
-            x: F4([g.x, -g.x, g.x, -g.x]),
-            y: F4([g.y, g.y, -g.y, -g.y]),
-            phi: F4([g.phi, -g.phi, -g.phi, g.phi]),
-            s: F4([g.s, -g.s, -g.s, g.s]),
-            c: F4::splat(g.c),
+            x: F4(v.map(|g| g.x)),
+            y: F4(v.map(|g| g.y)),
+            phi: F4(v.map(|g| g.phi)),
+            s: F4(v.map(|g| g.s)),
+            c: F4(v.map(|g| g.c)),
         }
     }
 
@@ -930,8 +931,6 @@ mod tests {
             let goal = Goal { x, y, phi, s, c };
             let v = Variants::new(goal);
             let d = (x * x + y * y).sqrt();
-            // The bounds as compiled for processors without AVX2 and with
-            // it: the same bits.
             // The bounds as compiled for processors without AVX2 and with
             // it: the same bits.
             let (f, b) = (Lanes::new(goal), Lanes::new(v.back));
