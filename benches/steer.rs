@@ -41,6 +41,9 @@ fn steering(c: &mut Criterion) {
         ("dubins", Model::Dubins),
     ] {
         let s = Steering::new(model, 1.0);
+        // The lengths of one pass, to set beside scripts/ompl_steer.cpp's.
+        let one: f64 = pairs.iter().map(|&(a, g)| s.distance(a, g)).sum();
+        println!("scen {name:<11} lengths of one pass {one:.6}");
         group.bench_function(format!("{name}_length"), |b| {
             b.iter(|| {
                 let mut sum = 0.0;
