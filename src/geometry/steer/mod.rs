@@ -359,6 +359,15 @@ impl Steering {
         }
     }
 
+    /// A lower bound of [`Steering::distance`] between `from` and `to`, in
+    /// either direction: every path turns by at least their heading change,
+    /// at the turning radius or wider. Less 1e-9 rad, far more than the
+    /// lengths' rounding, and than the 1e-12 within which two headings are
+    /// the same (a distance of 0).
+    pub fn turn_bound(&self, from: Config, to: Config) -> f64 {
+        self.radius * (heading_change(from.theta, to.theta).abs() - 1e-9).max(0.0)
+    }
+
     /// The length of the shortest steering path from `from` to `to`, without
     /// building its segments (equal to `shortest(from, to).length()`). Not
     /// symmetric for Dubins.

@@ -249,6 +249,21 @@ proptest! {
         prop_assert!(ab <= du * (1.0 + 1e-12) + 1e-12, "RS {} > Dubins {}", ab, du);
     }
 
+    /// The heading change bounds every length from below, both ways (the
+    /// nearest-neighbour search passes over states by it), and on a pair
+    /// that differs only in heading.
+    #[test]
+    fn the_turn_bounds_the_length((r, a, b) in pair(), same_place in any::<bool>()) {
+        let b = if same_place { c(a.x, a.y, b.theta) } else { b };
+        for s in [rs(r), dubins(r)] {
+            let bound = s.turn_bound(a, b);
+            prop_assert_eq!(bound, s.turn_bound(b, a));
+            for d in [s.distance(a, b), s.distance(b, a)] {
+                prop_assert!(bound <= d, "{:?}: bound {} > length {}", s, bound, d);
+            }
+        }
+    }
+
     #[test]
     fn triangle_inequality((r, a, b) in pair(), m in (-3.0..3.0f64, -3.0..3.0f64, -PI..PI), near in any::<bool>(), far in config(30.0)) {
         let m = if near { c(a.x + m.0 * r, a.y + m.1 * r, a.theta + m.2) } else { far };

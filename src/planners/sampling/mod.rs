@@ -595,9 +595,10 @@ impl<'a> Run<'a> {
     ///
     /// Without steering this is the index's own query. For a car the index
     /// holds the reference points: their Euclidean distance bounds every
-    /// steering length from below, so the m nearest by it (m growing) hold
-    /// the k nearest by steering length once the k-th length found is no
-    /// more than the m-th Euclidean distance.
+    /// steering length from below, so the states are measured nearest by it
+    /// first until one is farther by it than the k-th length found; a state
+    /// whose heading change alone (at the turning radius) is farther is
+    /// passed over unmeasured ([`nn::k_nearest_bounded`]).
     pub fn k_nearest(
         &self,
         index: &mut KdTree,
@@ -608,11 +609,12 @@ impl<'a> Run<'a> {
         out: &mut Vec<(f64, u32)>,
     ) {
         let key = self.space.key(q);
-        if self.space.steering.is_none() {
+        let Some(steering) = self.space.steering else {
             index.k_nearest(&key, k, out);
             return;
-        }
-        nn::k_nearest_bounded(index, &key, k, out, |i| {
+        };
+        let turn = |i: usize| steering.turn_bound(state(i), q);
+        nn::k_nearest_bounded(index, &key, k, out, turn, |i| {
             let c = state(i);
             if to_q {
                 self.space.distance(c, q)

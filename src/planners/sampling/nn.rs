@@ -687,36 +687,71 @@ impl Visit for KBest<'_> {
 /// distance of the reference points), into `out` as (squared exact
 /// distance, index), nearest first, ties to the lower index.
 ///
-/// The m nearest by the index's distance (m growing ×4) hold the k nearest
-/// by `exact` once the k-th exact distance found is no more than the m-th
-/// index distance: every point left out is at least that far by the index,
-/// so at least that far exactly.
+/// The m nearest by the index's distance (m growing ×4) are taken in that
+/// order and measured exactly until one is farther by the index than the
+/// k-th exact distance found: it and every point after it, in this round or
+/// beyond, are at least that far exactly, so the k found are the k nearest.
+/// A round that measures all m without stopping so is followed by the next,
+/// whose first m points are this round's (the m nearest by (distance,
+/// index) are the first m of the 4m nearest), measured once. A point whose
+/// `lower(i)`, a second lower bound of `exact(i)` (a car's heading change
+/// at its turning radius), is already beyond the k-th exact distance is
+/// passed over unmeasured. The bounds are compared with a relative slack of
+/// 1e-9, so that a steering length rounded below the Euclidean distance of
+/// its ends (a straight motion, to the last bit) cannot end the search early.
 pub fn k_nearest_bounded(
     index: &mut KdTree,
     q: &[f64; 3],
     k: usize,
     out: &mut Vec<(f64, u32)>,
+    lower: impl Fn(usize) -> f64,
     exact: impl Fn(usize) -> f64,
 ) {
+    out.clear();
     let n = index.len();
+    if k == 0 || n == 0 {
+        return;
+    }
     let mut m = (2 * k).max(8).min(n);
     let mut candidates = Vec::new();
+    // The exact distances measured in earlier rounds, by position (NaN:
+    // passed over).
+    let mut measured: Vec<(u32, f64)> = Vec::new();
+    let slack = 1.0 + 1e-9;
     loop {
         index.k_nearest(q, m, &mut candidates);
-        out.clear();
-        out.extend(candidates.iter().map(|&(_, i)| {
-            let d = exact(i as usize);
-            (d * d, i)
-        }));
-        out.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        out.truncate(k);
-        let reach2 = candidates.last().map_or(0.0, |&(d2, _)| d2);
-        let kth2 = if out.len() == k {
-            out[k - 1].0
-        } else {
-            f64::INFINITY
+        let mut best = KBest {
+            k,
+            out: &mut *out,
+            worst: f64::INFINITY,
         };
-        if m >= n || kth2 <= reach2 {
+        best.out.clear();
+        for (p, &(e2, i)) in candidates.iter().enumerate() {
+            if e2 > best.worst * slack {
+                return;
+            }
+            let d = match measured.get(p) {
+                Some(&(j, d)) if j == i && !d.is_nan() => d,
+                _ => {
+                    let l = lower(i as usize);
+                    if l * l > best.worst * slack {
+                        continue;
+                    }
+                    let d = exact(i as usize);
+                    if measured.len() <= p {
+                        measured.resize(p + 1, (u32::MAX, f64::NAN));
+                    }
+                    measured[p] = (i, d);
+                    d
+                }
+            };
+            let d2 = d * d;
+            if d2 <= best.worst {
+                best.visit(Candidate(d2, i));
+            }
+        }
+        let reach2 = candidates.last().map_or(0.0, |&(d2, _)| d2);
+        if m >= n || best.worst * slack <= reach2 {
             return;
         }
         m = (m * 4).min(n);
@@ -800,7 +835,8 @@ mod tests {
             for _ in 0..10 {
                 let q = draw();
                 let exact = |i: usize| if to_q { steering.distance(states[i], q) } else { steering.distance(q, states[i]) };
-                k_nearest_bounded(&mut tree, &[q.x, q.y, 0.0], k, &mut out, exact);
+                let turn = |i: usize| steering.turn_bound(states[i], q);
+                k_nearest_bounded(&mut tree, &[q.x, q.y, 0.0], k, &mut out, turn, exact);
                 let mut all: Vec<(f64, u32)> = (0..n).map(|i| (exact(i).powi(2), i as u32)).collect();
                 all.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
                 all.truncate(k);
