@@ -213,11 +213,16 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
         if star {
             let k = run.k_star(tree.states.len() + 1);
             run.k_nearest(&mut index, |i| tree.states[i], new, k, true, &mut near);
-            // Choose the parent: cheapest first, the first free one.
+            // Choose the parent: cheapest first, the first free one. One
+            // whose cost and heading change alone reach `cost` could not be
+            // chosen, and is not measured.
             order.clear();
-            order.extend(near.iter().map(|&(_, i)| {
-                let c = tree.cost[i as usize] + run.space.distance(tree.states[i as usize], new);
-                (c, i)
+            order.extend(near.iter().filter_map(|&(_, i)| {
+                let (state, before) = (tree.states[i as usize], tree.cost[i as usize]);
+                if before + run.space.turn_bound(state, new) >= cost {
+                    return None;
+                }
+                Some((before + run.space.distance(state, new), i))
             }));
             order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             for &(c, i) in &order {
@@ -237,6 +242,11 @@ pub fn grow(run: &mut Run<'_>) -> Grown {
             for &(_, i) in &near {
                 let i = i as usize;
                 if i == parent || i == 0 {
+                    continue;
+                }
+                // Not measured when the heading change alone leaves it no
+                // cheaper.
+                if cost + run.space.turn_bound(new, tree.states[i]) >= tree.cost[i] {
                     continue;
                 }
                 let through = cost + run.space.distance(new, tree.states[i]);

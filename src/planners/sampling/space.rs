@@ -63,6 +63,13 @@ impl Space {
         }
     }
 
+    /// A lower bound of [`Space::distance`] between `a` and `b` either way,
+    /// cheaper than it: a car's heading change at its turning radius
+    /// ([`Steering::turn_bound`]); 0 otherwise.
+    pub fn turn_bound(&self, a: Config, b: Config) -> f64 {
+        self.steering.map_or(0.0, |s| s.turn_bound(a, b))
+    }
+
     /// The nearest-neighbour key of `c`: (x, y, c·θ) with θ in [0, 2π),
     /// whose Euclidean distance with the last axis wrapped is
     /// [`Space::distance`].
