@@ -819,13 +819,24 @@ mod tests {
             radius in 0.3f64..5.0,
             dubins in any::<bool>(),
             to_q in any::<bool>(),
+            // Every state on one line with one heading: each length is its
+            // Euclidean distance, to rounding either way.
+            line in any::<bool>(),
         ) {
             use crate::geometry::Config;
             use crate::geometry::steer::{Model, Steering};
             let model = if dubins { Model::Dubins } else { Model::ReedsShepp };
             let steering = Steering::new(model, radius);
             let mut rng = SplitMix64::new(seed);
-            let mut draw = || Config::new(rng.range(0.0, 20.0), rng.range(0.0, 20.0), rng.range(0.0, std::f64::consts::TAU));
+            let mut draw = || {
+                if line {
+                    // On a grid of half steps: many states as far as others.
+                    let t = rng.range(0.0, 40.0).floor() / 2.0;
+                    Config::new(3.0 + 0.6 * t, 1.0 + 0.8 * t, 0.8f64.atan2(0.6))
+                } else {
+                    Config::new(rng.range(0.0, 20.0), rng.range(0.0, 20.0), rng.range(0.0, std::f64::consts::TAU))
+                }
+            };
             let states: Vec<Config> = (0..n).map(|_| draw()).collect();
             let mut tree = KdTree::new(3, 0.0);
             for c in &states {
