@@ -3,6 +3,8 @@
 //! - `docs/planners.md` is the planner registry as Markdown
 //!   (`scen::planners::registry::reference`): it fails when the committed
 //!   file is stale. `scripts/regenerate.sh` (`SCEN_BLESS=1`) rewrites it.
+//! - The planner lists of the README, the language reference, the tutorial
+//!   and the diagnostics page are generated blocks, checked the same way.
 //! - Every ```` ```scen ```` block of every `docs/**/*.md` is checked, by the
 //!   rule the manual states (docs/README.md, "Snippets"):
 //!   - a block whose opening comment lines hold `# expect-error: CODE` shows
@@ -53,6 +55,44 @@ fn the_planner_reference_is_up_to_date() {
     assert!(
         committed == generated,
         "docs/planners.md is stale: run `scripts/regenerate.sh`"
+    );
+}
+
+/// The pages whose planner lists are generated blocks
+/// (`<!-- generated: NAME -->` … `<!-- end of generated -->`, see
+/// `scen::planners::registry::refresh_generated_blocks`).
+const PAGES_WITH_GENERATED_BLOCKS: &[&str] = &[
+    "README.md",
+    "docs/language.md",
+    "docs/tutorial.md",
+    "docs/diagnostics.md",
+];
+
+#[test]
+fn the_generated_planner_lists_of_the_pages_are_up_to_date() {
+    let bless = std::env::var_os("SCEN_BLESS").is_some();
+    let mut stale = Vec::new();
+    for rel in PAGES_WITH_GENERATED_BLOCKS {
+        let path = repo().join(rel);
+        let committed = std::fs::read_to_string(&path).expect("read a page");
+        assert!(
+            committed.contains(scen::planners::registry::GENERATED_START),
+            "{rel} has no generated block"
+        );
+        let fresh = scen::planners::registry::refresh_generated_blocks(&committed)
+            .unwrap_or_else(|e| panic!("{rel}: {e}"));
+        if fresh != committed {
+            if bless {
+                std::fs::write(&path, &fresh).expect("write a page");
+            } else {
+                stale.push(*rel);
+            }
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "the planner lists of {} are stale: run `scripts/regenerate.sh`",
+        stale.join(", ")
     );
 }
 

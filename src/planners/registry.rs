@@ -165,10 +165,94 @@ pub fn reference() -> String {
     md
 }
 
+/// The marker that opens a generated block in a page of the manual or the
+/// README: `<!-- generated: NAME -->`, closed by [`GENERATED_END`].
+pub const GENERATED_START: &str = "<!-- generated: ";
+/// The marker that closes a generated block.
+pub const GENERATED_END: &str = "<!-- end of generated -->";
+
+/// The text of a generated block of a page (`scripts/regenerate.sh`
+/// rewrites them, `tests/docs.rs` checks them): `planner-list` is every kind
+/// in backticks, in the registry's order; `planner-table` a Markdown table
+/// of every kind with its robots and summary. `None` for an unknown name.
+pub fn generated_block(name: &str) -> Option<String> {
+    use std::fmt::Write as _;
+    match name {
+        "planner-list" => {
+            let kinds: Vec<String> = PLANNERS.iter().map(|p| format!("`{}`", p.kind)).collect();
+            Some(kinds.join(", "))
+        }
+        "planner-table" => {
+            let mut md = String::from("| planner | robots | what it does |\n|---|---|---|\n");
+            for p in PLANNERS {
+                let robots: Vec<&str> = p.robots.iter().map(|r| r.name()).collect();
+                let _ = writeln!(md, "| `{}` | {} | {} |", p.kind, robots.join(", "), p.summary);
+            }
+            Some(md.trim_end().to_string())
+        }
+        _ => None,
+    }
+}
+
+/// `text` with every generated block's content replaced by
+/// [`generated_block`]'s, or the name of a block that is unknown or not
+/// closed. A block's content sits between its marker line's end and the
+/// end marker, each on lines of their own for a table and inline for a list.
+pub fn refresh_generated_blocks(text: &str) -> Result<String, String> {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(GENERATED_START) {
+        let after_start = &rest[at + GENERATED_START.len()..];
+        let Some(close) = after_start.find("-->") else {
+            return Err("a generated block's marker is not closed by `-->`".into());
+        };
+        let name = after_start[..close].trim();
+        let content_from = at + GENERATED_START.len() + close + "-->".len();
+        let Some(len) = rest[content_from..].find(GENERATED_END) else {
+            return Err(format!("the generated block `{name}` has no `{GENERATED_END}`"));
+        };
+        let Some(block) = generated_block(name) else {
+            return Err(format!("no generated block is called `{name}`"));
+        };
+        let old = &rest[content_from..content_from + len];
+        out.push_str(&rest[..content_from]);
+        // A block whose marker ends its line keeps its content on lines of
+        // its own (a table); an inline one stays inline (a list in prose).
+        if old.starts_with('\n') {
+            out.push('\n');
+            out.push_str(&block);
+            out.push('\n');
+        } else {
+            out.push_str(&block);
+        }
+        out.push_str(GENERATED_END);
+        rest = &rest[content_from + len + GENERATED_END.len()..];
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::contract::schema::{DefaultValue, LIMIT_KINDS, ValueSpec};
+
+    #[test]
+    fn generated_blocks_are_refreshed_in_place_and_errors_are_named() {
+        let text = "Kinds: <!-- generated: planner-list -->`old`<!-- end of generated -->.\n\
+                    <!-- generated: planner-table -->\n| stale |\n<!-- end of generated -->\nend\n";
+        let fresh = refresh_generated_blocks(text).expect("known blocks");
+        let list = generated_block("planner-list").expect("list");
+        assert!(list.starts_with("`astar`, `online`"), "{list}");
+        assert!(fresh.starts_with(&format!("Kinds: <!-- generated: planner-list -->{list}<!--")));
+        assert!(fresh.contains("-->\n| planner | robots | what it does |\n"), "{fresh}");
+        assert!(!fresh.contains("stale") && fresh.ends_with("<!-- end of generated -->\nend\n"));
+        assert_eq!(refresh_generated_blocks(&fresh).as_deref(), Ok(fresh.as_str()));
+        let unknown = refresh_generated_blocks("<!-- generated: nope -->x<!-- end of generated -->");
+        assert_eq!(unknown, Err("no generated block is called `nope`".to_string()));
+        let open = refresh_generated_blocks("<!-- generated: planner-list -->x");
+        assert!(open.is_err_and(|e| e.contains("planner-list")));
+    }
 
     #[test]
     fn kinds_keys_and_metrics_are_unique() {
