@@ -724,19 +724,6 @@ fn an_unknown_metric_is_refused_with_a_suggestion() {
         .status(2)
         .stderr_contains("no plan of the benches has a metric `zzzzzz`; the metrics: ")
         .run();
-    // A metric of one planner only (the lattice's `expanded`) is a metric.
-    Test::new()
-        .file("b.scen", SCENARIO)
-        .args(&[
-            "bench",
-            "b.scen",
-            "--bench",
-            "weights",
-            "--metrics",
-            "length,expanded",
-        ])
-        .stdout_contains("expanded")
-        .run();
 }
 
 #[test]

@@ -99,11 +99,11 @@ fn run_refuses_an_output_onto_the_scenario_an_include_or_a_map() {
     );
     refused(
         d,
-        &["run", "fam.scen", "--svg", "_robot.scen"],
+        &["run", "fam.scen", "--csv", "_robot.scen"],
         "_robot.scen",
         "_robot.scen",
     );
-    refused(d, &["run", "fam.scen", "--png", "m.map"], "m.map", "m.map");
+    refused(d, &["run", "fam.scen", "--csv", "m.map"], "m.map", "m.map");
     // The same file by another path is the same file.
     std::fs::create_dir_all(d.join("sub")).expect("mkdir");
     refused(
@@ -148,11 +148,16 @@ fn run_refuses_a_recording_onto_the_scenario() {
 
 #[test]
 fn an_output_that_is_not_an_input_is_written() {
-    let dir = family();
+    let dir = TempDir::new("clobber-ok");
     let d = dir.path();
+    std::fs::write(
+        d.join("a.scen"),
+        "world { bounds (0, 0) (10, 10) }\nrobot r point\nplan p astar r { start (1, 1) goal (9, 9) }\n",
+    )
+    .expect("write");
     // An existing file that the run does not read is replaced, as before.
     std::fs::write(d.join("old.csv"), "stale").expect("write");
-    let out = scen(d, &["run", "fam.scen", "--csv", "old.csv"]);
+    let out = scen(d, &["run", "a.scen", "--csv", "old.csv"]);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -256,7 +261,7 @@ fn bench_refuses_an_output_onto_what_it_reads() {
     );
     refused(
         d,
-        &["bench", "fam.scen", "--svg", "m.map"],
+        &["bench", "fam.scen", "--csv", "m.map"],
         "m.map",
         "m.map",
     );
@@ -316,7 +321,7 @@ fn bench_merge_refuses_to_write_onto_a_part_or_the_scenario() {
     );
     refused(
         d,
-        &["bench", "merge", "part-1.jsonl", "--svg", "_robot.scen"],
+        &["bench", "merge", "part-1.jsonl", "--csv", "_robot.scen"],
         "_robot.scen",
         "_robot.scen",
     );
