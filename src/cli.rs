@@ -13,6 +13,7 @@ use crate::scenario::loader::LoadFailure;
 use crate::viz::{self, ViewerTarget};
 
 mod bench;
+mod clobber;
 mod falsify;
 mod fmt;
 mod parts;
@@ -186,12 +187,18 @@ impl RunArgs {
             eprintln!("error: {}", viz::ViewerError::NotBuilt);
             return false;
         }
-        outputs_writable(&[
+        outputs_writable(&self.outputs())
+    }
+
+    /// The output files, each with its option: checked to be writable
+    /// before anything runs, and never to be a file the run reads.
+    fn outputs(&self) -> [(&'static str, Option<&PathBuf>); 4] {
+        [
             ("--svg", self.svg.as_ref()),
             ("--png", self.png.as_ref()),
             ("--csv", self.csv.as_ref()),
             ("--save", self.save.as_ref()),
-        ])
+        ]
     }
 }
 
@@ -464,6 +471,12 @@ fn run_file(
         }
     };
     read.extend(scenario.sources.files.iter().map(|s| s.path.clone()));
+    if !clobber::outputs_are_not_inputs(
+        &args.outputs(),
+        &clobber::scenario_inputs(&scenario.sources),
+    ) {
+        return (EXIT_BAD_INPUT, read);
+    }
     if let Some(unknown) = args
         .plans
         .iter()
@@ -673,7 +686,8 @@ fn cmd_test(args: &TestArgs) -> i32 {
         args.paths.clone()
     };
     let shard = args.shard;
-    if !outputs_writable(&[("--junit", args.junit.as_ref())]) {
+    let outputs = [("--junit", args.junit.as_ref())];
+    if !outputs_writable(&outputs) {
         return EXIT_BAD_INPUT;
     }
     // Each file with its root: `--root`, or the folder named on the command
@@ -718,6 +732,23 @@ fn cmd_test(args: &TestArgs) -> i32 {
             .filter(|(i, _)| s.takes(*i as u64))
             .map(|(_, f)| f)
             .collect();
+    }
+    // An existing `--junit` file may be one the suite reads: every file is
+    // read (not planned) first to know.
+    if clobber::any_output_exists(&outputs) {
+        let read: Vec<crate::scenario::loader::Parsed> = files
+            .iter()
+            .map(|(f, root)| {
+                crate::scenario::loader::parse_scenario(f, Some(root.as_path()), &|_| None)
+            })
+            .collect();
+        let inputs: Vec<clobber::Input<'_>> = read
+            .iter()
+            .flat_map(|p| clobber::scenario_inputs(&p.sources))
+            .collect();
+        if !clobber::outputs_are_not_inputs(&outputs, &inputs) {
+            return EXIT_BAD_INPUT;
+        }
     }
     let results: Vec<report::junit::FileResult> = files
         .par_iter()

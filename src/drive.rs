@@ -144,6 +144,21 @@ impl DriveOutcome {
     }
 }
 
+impl DriveOutcome {
+    /// What the report says of a drive stopped at [`MAX_DRIVE_STEPS`]
+    /// before the path's end (a speed so small, or a `dt` so short, that
+    /// the path takes more steps): why `drive_time` is +∞.
+    pub fn cut_off_note(&self) -> Option<String> {
+        if self.completed {
+            return None;
+        }
+        let simulated = self.samples.last().map_or(0.0, |(t, _)| *t);
+        Some(format!(
+            "the drive was stopped after {MAX_DRIVE_STEPS} steps ({simulated:.3} s simulated) before the path's end, so `drive_time` is inf: at this speed and `dt` the path takes more steps; raise the speed (`max_speed`, `speed`) or `dt`"
+        ))
+    }
+}
+
 /// Drives `path` from its first configuration (heading = its θ).
 pub fn drive(path: &[Config], u: &Unicycle) -> DriveOutcome {
     let Some(first) = path.first() else {

@@ -129,6 +129,36 @@ pub fn read_regular_file(path: &Path, max_bytes: u64) -> Result<Vec<u8>, ReadErr
     Ok(bytes)
 }
 
+/// Which file a path names on disk, symbolic links followed: on unix its
+/// (device, inode), so that `x`, `./d/../x`, a symbolic link to `x` and a
+/// hard link to it are all the same file; elsewhere its canonical path.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FileIdentity {
+    #[cfg(unix)]
+    id: (u64, u64),
+    #[cfg(not(unix))]
+    id: std::path::PathBuf,
+}
+
+/// The identity of the file `path` names, or `None` when there is no such
+/// file (nor a folder): a path that does not exist yet is no file's.
+pub fn file_identity(path: &Path) -> Option<FileIdentity> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let meta = std::fs::metadata(path).ok()?;
+        Some(FileIdentity {
+            id: (meta.dev(), meta.ino()),
+        })
+    }
+    #[cfg(not(unix))]
+    {
+        Some(FileIdentity {
+            id: path.canonicalize().ok()?,
+        })
+    }
+}
+
 /// Where the first invalid UTF-8 byte of `bytes` is: its 1-based line and
 /// column (in characters of the valid text before it), or `None` when the
 /// bytes are UTF-8.
@@ -202,6 +232,28 @@ mod tests {
             read_regular_file(&fifo, 100),
             Err(ReadError::NotRegular("a FIFO (named pipe)"))
         ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_file_is_the_same_by_any_path_to_it() {
+        let dir = temp("identity");
+        let f = dir.join("a.scen");
+        std::fs::write(&f, "robot p point\n").unwrap();
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        let id = file_identity(&f).expect("an existing file has an identity");
+        assert_eq!(file_identity(&dir.join("sub/../a.scen")), Some(id.clone()));
+        assert_eq!(file_identity(&dir.join("./a.scen")), Some(id.clone()));
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink(&f, dir.join("link.scen")).unwrap();
+            assert_eq!(file_identity(&dir.join("link.scen")), Some(id.clone()));
+            std::fs::hard_link(&f, dir.join("hard.scen")).unwrap();
+            assert_eq!(file_identity(&dir.join("hard.scen")), Some(id.clone()));
+        }
+        std::fs::write(dir.join("b.scen"), "robot p point\n").unwrap();
+        assert_ne!(file_identity(&dir.join("b.scen")), Some(id));
+        assert_eq!(file_identity(&dir.join("missing.scen")), None);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

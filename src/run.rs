@@ -196,7 +196,7 @@ fn run_plan(scenario: &Scenario, index: usize, draw: bool) -> PlanRun {
 pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Task<'_>) -> PlanRun {
     let robot = &scenario.robots[plan.robot].shape;
     let began = Instant::now();
-    let outcome = plan.settings.plan(task);
+    let mut outcome = plan.settings.plan(task);
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
     let referee = Validator::new(&scenario.world);
     // The path, or the motion executed by a run that stopped short (SPEC 3:
@@ -268,6 +268,9 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
         })),
     );
     let drive = drive_plan(scenario, plan, &outcome, &mut metrics);
+    if let Some(note) = drive.as_ref().and_then(DriveOutcome::cut_off_note) {
+        outcome.notes.push(note);
+    }
     PlanRun {
         plan: index,
         outcome,

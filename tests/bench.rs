@@ -703,3 +703,48 @@ fn car_benches_export_their_curve_metrics_to_the_ompl_log() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// `--metrics` names metrics the benches' plans have: a misspelt one is
+/// refused before anything runs, with the closest as a suggestion and the
+/// list of those that exist (issue 39: it was silently a column of `—`).
+#[test]
+fn an_unknown_metric_is_refused_with_a_suggestion() {
+    let out = Test::new()
+        .file("b.scen", SCENARIO)
+        .args(&["bench", "b.scen", "--metrics", "time_ms,lenght"])
+        .status(2)
+        .stdout("")
+        .stderr_contains("`--metrics lenght`: no plan of the benches has a metric `lenght`; did you mean `length`?")
+        .stderr_contains("`expanded`")
+        .run();
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("panicked"));
+    Test::new()
+        .file("b.scen", SCENARIO)
+        .args(&["bench", "b.scen", "--metrics", "zzzzzz"])
+        .status(2)
+        .stderr_contains("no plan of the benches has a metric `zzzzzz`; the metrics: ")
+        .run();
+}
+
+#[test]
+fn merge_refuses_an_unknown_metric_too() {
+    let t = Test::new().file("b.scen", SCENARIO).args(&[
+        "bench",
+        "b.scen",
+        "--shard",
+        "1/1",
+        "--out",
+        "part.jsonl",
+    ]);
+    t.run();
+    let out = Command::new(scen_bin())
+        .args(["bench", "merge", "part.jsonl", "--metrics", "lenght"])
+        .current_dir(t.dir())
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("run scen");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("did you mean `length`?"), "{stderr}");
+    assert!(out.stdout.is_empty());
+}

@@ -381,6 +381,53 @@ fn the_tutorial_examples_pass_scen_test() {
     assert!(stdout.contains(" 0 failed"), "{stdout}");
 }
 
+/// Following the tutorial leaves nothing in the repository's `docs/`: no
+/// command it shows writes an output there, and a `scen falsify` of a file
+/// in `docs/` names its `--out` (without it, the failing scenario is written
+/// beside the family, where it makes `scen test docs/examples` fail).
+#[test]
+fn the_tutorials_commands_write_nothing_into_docs() {
+    const OUTPUTS: [&str; 7] = [
+        "--out",
+        "--csv",
+        "--svg",
+        "--png",
+        "--save",
+        "--junit",
+        "--ompl-log",
+    ];
+    let text = std::fs::read_to_string(docs().join("tutorial.md")).expect("docs/tutorial.md");
+    let commands: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("$ scen "))
+        .collect();
+    assert!(
+        commands.iter().any(|c| c.starts_with("falsify")),
+        "the tutorial shows `scen falsify`"
+    );
+    for command in commands {
+        let words: Vec<&str> = command.split_whitespace().collect();
+        let outputs: Vec<&str> = words
+            .windows(2)
+            .filter(|w| OUTPUTS.contains(&w[0]))
+            .map(|w| w[1])
+            .collect();
+        for out in &outputs {
+            assert!(
+                !out.starts_with("docs/"),
+                "`scen {command}` writes `{out}` into docs/"
+            );
+        }
+        let on_docs = words.iter().any(|w| w.starts_with("docs/"));
+        if words.first() == Some(&"falsify") && on_docs {
+            assert!(
+                words.contains(&"--out"),
+                "`scen {command}` writes its failure beside the family, into docs/"
+            );
+        }
+    }
+}
+
 // ------------------------------------------------------------ diagnostics
 
 /// Every `"scen::..."` string literal in the `.rs` files under `dir`.

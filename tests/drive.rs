@@ -330,3 +330,37 @@ fn pure_pursuit_is_deterministic() {
     assert_eq!(da.samples.len(), db.samples.len());
     assert!(da.samples.iter().zip(&db.samples).all(|(x, y)| x == y));
 }
+
+/// A speed so small that the path takes more than the simulation's step
+/// bound: the drive stops there, unfinished, and the report says so and
+/// why (issue 39: it used to stop silently with `drive_time` inf).
+#[test]
+fn a_drive_stopped_at_the_step_bound_says_so_in_the_report() {
+    let report = run(
+        "plan slow astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive unicycle { max_speed 0.000001 } }\n\
+         plan crawl astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive pure_pursuit { speed 0.000001 } }\n\
+         plan quick astar dot { start (0.5, 0.5) goal (7.5, 5.5) drive unicycle }",
+    );
+    for name in ["slow", "crawl"] {
+        let plan = driven(&report, name);
+        assert!(!plan.drive.as_ref().expect("a drive").completed);
+        assert_eq!(plan.metrics["drive_time"], MetricValue::Num(f64::INFINITY));
+        assert!(
+            plan.outcome
+                .notes
+                .iter()
+                .any(|n| n.contains("the drive was stopped after 2000000 steps")
+                    && n.contains("`drive_time` is inf")
+                    && n.contains("raise the speed")),
+            "{name}: {:?}",
+            plan.outcome.notes
+        );
+    }
+    assert!(driven(&report, "quick").outcome.notes.is_empty());
+    let text = scen::report::text::render(&report, false);
+    assert_eq!(
+        text.matches("note: the drive was stopped").count(),
+        2,
+        "{text}"
+    );
+}

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
+use super::clobber::{Input, outputs_are_not_inputs, scenario_inputs};
 use super::parts;
 use super::{
     BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, check_output_path, outln,
@@ -13,7 +14,7 @@ use super::{
 };
 use crate::bench::{self, RunId, Shard, TABLE_METRICS};
 use crate::contract::MetricValue;
-use crate::contract::schema::MetricType;
+use crate::contract::schema::{self, MetricType};
 use crate::report;
 use crate::run::BenchRun;
 use crate::run::RunReport;
@@ -26,12 +27,8 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     }
     // `--ompl-log DIR` is created if need be: its parent must be writable.
     let ompl_parent = args.ompl_log.as_ref().map(|d| d.join("ompl.log"));
-    if !outputs_writable(&[
-        ("--csv", args.csv.as_ref()),
-        ("--svg", args.svg.as_ref()),
-        ("--png", args.png.as_ref()),
-        ("--out", args.out.as_ref()),
-    ]) || !ompl_log_dir_ok(args.ompl_log.as_deref(), ompl_parent.as_deref())
+    if !outputs_writable(&args.outputs())
+        || !ompl_log_dir_ok(args.ompl_log.as_deref(), ompl_parent.as_deref())
     {
         return EXIT_BAD_INPUT;
     }
@@ -57,8 +54,17 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
                 continue;
             }
         };
-        if let Err(e) = known_benches(&scenario, &args.benches) {
+        if let Err(e) = known_benches(&scenario, &args.benches)
+            .and_then(|()| known_metrics(&scenario, &args.benches, &args.metrics))
+        {
             eprintln!("error: `{}`: {e}", file.display());
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
+        if !outputs_are_not_inputs(
+            &args.outputs_for(&scenario),
+            &scenario_inputs(&scenario.sources),
+        ) {
             code = code.max(EXIT_BAD_INPUT);
             continue;
         }
@@ -115,6 +121,40 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     code
 }
 
+impl BenchArgs {
+    /// The output files, each with its option (`--ompl-log`'s logs are
+    /// known only with the scenario: [`BenchArgs::outputs_for`]).
+    fn outputs(&self) -> Vec<(&'static str, Option<&PathBuf>)> {
+        vec![
+            ("--csv", self.csv.as_ref()),
+            ("--svg", self.svg.as_ref()),
+            ("--png", self.png.as_ref()),
+            ("--out", self.out.as_ref()),
+        ]
+    }
+
+    /// Every file the command would write for `scenario`: the outputs and
+    /// the `--ompl-log` file of each bench it runs.
+    fn outputs_for(&self, scenario: &Scenario) -> Vec<(&'static str, Option<PathBuf>)> {
+        let mut all: Vec<(&str, Option<PathBuf>)> = self
+            .outputs()
+            .into_iter()
+            .map(|(flag, p)| (flag, p.cloned()))
+            .collect();
+        if let Some(dir) = &self.ompl_log {
+            for (b, bench) in scenario.benches.iter().enumerate() {
+                if self.benches.is_empty() || self.benches.contains(&bench.name) {
+                    all.push((
+                        "--ompl-log",
+                        Some(dir.join(report::ompl::log_name(scenario, b))),
+                    ));
+                }
+            }
+        }
+        all
+    }
+}
+
 /// `--ompl-log DIR`: an existing folder, or one whose parent exists (it is
 /// created when the logs are written).
 fn ompl_log_dir_ok(dir: Option<&Path>, inside: Option<&Path>) -> bool {
@@ -154,6 +194,38 @@ fn known_benches(scenario: &Scenario, names: &[String]) -> Result<(), String> {
         }
         None => Ok(()),
     }
+}
+
+/// The metrics `--metrics` names are metrics of a plan that the benches
+/// (`names`; none: all) run; a misspelt one gets the closest as a
+/// suggestion.
+fn known_metrics(scenario: &Scenario, names: &[String], metrics: &[String]) -> Result<(), String> {
+    let mut known: Vec<&str> = Vec::new();
+    for bench in scenario
+        .benches
+        .iter()
+        .filter(|b| names.is_empty() || names.contains(&b.name))
+    {
+        for config in bench.plans.iter().flat_map(|p| &p.configs) {
+            let drives = config.params.get("drive").is_some();
+            let drive_metrics = schema::DRIVE_METRICS.iter().filter(|_| drives);
+            for m in config.planner.all_metrics().chain(drive_metrics) {
+                if !known.contains(&m.name) {
+                    known.push(m.name);
+                }
+            }
+        }
+    }
+    let Some(unknown) = metrics.iter().find(|m| !known.contains(&m.as_str())) else {
+        return Ok(());
+    };
+    known.sort_unstable();
+    let suggestion = schema::did_you_mean(unknown, known.iter().copied())
+        .map_or(String::new(), |m| format!("did you mean `{m}`? "));
+    Err(format!(
+        "`--metrics {unknown}`: no plan of the benches has a metric `{unknown}`; {suggestion}the metrics: {}",
+        schema::backticked(&known)
+    ))
 }
 
 /// Runs `ids`, with a progress bar and an estimate of the time left on a
@@ -345,8 +417,18 @@ fn read_part(path: &Path) -> Result<Part, String> {
 /// given twice, or made from another scenario or split, and runs that the
 /// scenario does not give (SPEC §4).
 fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
-    match merge(paths, args.root.as_deref()) {
-        Ok(report) => outputs(&report, args),
+    match merge(paths, args.root.as_deref(), &args.metrics) {
+        Ok(report) => {
+            let mut inputs = scenario_inputs(&report.scenario.sources);
+            inputs.extend(paths.iter().map(|p| Input {
+                path: p,
+                role: "a part given to `merge`",
+            }));
+            if !outputs_are_not_inputs(&args.outputs_for(&report.scenario), &inputs) {
+                return EXIT_BAD_INPUT;
+            }
+            outputs(&report, args)
+        }
         Err(e) => {
             eprintln!("error: {e}");
             EXIT_BAD_INPUT
@@ -354,7 +436,7 @@ fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
     }
 }
 
-fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
+fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<RunReport, String> {
     if paths.is_empty() {
         return Err("`scen bench merge` needs the parts: `scen bench merge part-*.jsonl`".into());
     }
@@ -418,6 +500,7 @@ fn merge(paths: &[PathBuf], root: Option<&Path>) -> Result<RunReport, String> {
         ));
     }
     known_benches(&scenario, &first.benches)?;
+    known_metrics(&scenario, &first.benches, metrics)?;
     if let Some(n) = first.runs_override {
         scenario.override_runs(n);
     }

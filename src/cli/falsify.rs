@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use serde_json::{Value, json};
 
+use super::clobber::{Input, outputs_are_not_inputs, scenario_inputs};
 use super::parts;
 use super::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, outln, outputs_writable, print_failure};
 use crate::bench::Shard;
@@ -95,6 +96,9 @@ pub(super) fn cmd_falsify(args: &FalsifyArgs) -> i32 {
         Ok(s) => s,
         Err(code) => return code,
     };
+    if !outputs_are_not_inputs(&[("--out", Some(&out))], &scenario_inputs(&source.sources)) {
+        return EXIT_BAD_INPUT;
+    }
     let opts = Options {
         budget: args.budget,
         search: args.search,
@@ -323,6 +327,17 @@ fn read_part(path: &Path) -> Result<Part, String> {
 fn cmd_merge(args: &FalsifyArgs, paths: &[PathBuf]) -> i32 {
     match merge(paths, args.root.as_deref()) {
         Ok((file, source, result)) => {
+            let out = args.out.clone().unwrap_or_else(|| default_out(&file));
+            let mut inputs = scenario_inputs(&source.sources);
+            inputs.extend(paths.iter().map(|p| Input {
+                path: p,
+                role: "a part given to `merge`",
+            }));
+            if !outputs_writable(&[("--out", Some(&out))])
+                || !outputs_are_not_inputs(&[("--out", Some(&out))], &inputs)
+            {
+                return EXIT_BAD_INPUT;
+            }
             if let Some(f) = &result.failure
                 && !falsify::still_failing(&source, &f.text)
             {
@@ -330,10 +345,6 @@ fn cmd_merge(args: &FalsifyArgs, paths: &[PathBuf]) -> i32 {
                     "error: the failing scenario of sample {} passes when run here: the parts were made by another build of `scen`, or the planners differ between the machines",
                     f.sample
                 );
-                return EXIT_BAD_INPUT;
-            }
-            let out = args.out.clone().unwrap_or_else(|| default_out(&file));
-            if !outputs_writable(&[("--out", Some(&out))]) {
                 return EXIT_BAD_INPUT;
             }
             finish(&file, &result, &out, args.json)

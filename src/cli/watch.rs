@@ -13,6 +13,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
+use super::clobber::{Input, outputs_are_not_inputs};
 use super::{EXIT_BAD_INPUT, RunArgs, run_file};
 use crate::viz::ViewerTarget;
 
@@ -32,7 +33,13 @@ pub(super) fn cmd_watch(args: &RunArgs) -> i32 {
         );
         return EXIT_BAD_INPUT;
     }
-    if !args.usable() {
+    // An output onto the watched file is refused at once; onto an include
+    // or a map, each run refuses it (until a save removes the include).
+    let watched_file = Input {
+        path: file,
+        role: "the scenario",
+    };
+    if !args.usable() || !outputs_are_not_inputs(&args.outputs(), &[watched_file]) {
         return EXIT_BAD_INPUT;
     }
     let mut target = args.viewer_target();

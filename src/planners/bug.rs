@@ -48,9 +48,7 @@ use std::any::Any;
 
 use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
 use crate::contract::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, Word};
-use crate::contract::{
-    MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Task,
-};
+use crate::contract::{MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Task};
 use crate::geometry::boundary::{BoundaryError, Curve, FreeBoundary, MAX_CURVES, Pos, drive_along};
 use crate::geometry::{Config, Point, RobotShape, Vector};
 use crate::word_enum;
@@ -150,6 +148,15 @@ pub const MAX_STEPS: u64 = 200_000;
 /// The most sensor sweeps drawn.
 const MAX_DRAWN_SWEEPS: usize = 500;
 
+/// The shortest sensor range TangentBug is simulated with, as a fraction
+/// of the world's size: the boundary is followed with a tolerance of 1e-7
+/// of it, so a point the sensor sees closer to the goal by less than that
+/// cannot be told from the point the robot stands on, and a shorter range
+/// would never let the robot leave a boundary (issue 39: `sense 1e-6`
+/// called a reachable goal unreachable). A hundred times the tolerance
+/// leaves a clear margin.
+const MIN_SENSE: f64 = 1e-5;
+
 /// Runs a `bug` plan.
 pub fn plan(settings: &Bug, task: &Task<'_>) -> PlanOutcome {
     let mut out = PlanOutcome::default();
@@ -191,9 +198,9 @@ pub fn plan(settings: &Bug, task: &Task<'_>) -> PlanOutcome {
                     out.notes
                         .push(setup_note("tracing the boundaries of the obstacles"));
                 }
-                BoundaryError::Grid(name) => out
-                    .notes
-                    .push(format!("`bug` does not plan among grid obstacles (`{name}`)")),
+                BoundaryError::Grid(name) => out.notes.push(format!(
+                    "`bug` does not plan among grid obstacles (`{name}`)"
+                )),
                 BoundaryError::TooLarge(n) => out.notes.push(format!(
                     "the obstacles make {n} curves; `bug` traces boundaries of at most {MAX_CURVES}"
                 )),
@@ -201,9 +208,17 @@ pub fn plan(settings: &Bug, task: &Task<'_>) -> PlanOutcome {
             return out;
         }
     };
+    let sense = settings.sense.max(MIN_SENSE * boundary.scale);
+    if settings.variant == Variant::Tangent && sense > settings.sense {
+        out.notes.push(format!(
+            "`sense {}` is below what the boundary follower resolves in this world ({MIN_SENSE} of its size): the sensor was simulated with range {sense}",
+            settings.sense
+        ));
+    }
     let mut run = Run {
         b: &boundary,
         settings,
+        sense,
         start: task.start.xy(),
         goal: goal.xy(),
         path: vec![task.start.xy()],
@@ -367,8 +382,11 @@ impl Trace {
         out.push(Layer::new(
             "boundary",
             Drawing::Polylines(outlines),
-            Style::new(Colour::Faint, 1.0, 14.0)
-                .svg(Svg::line(0.4).dashed().key("boundary of the grown obstacles")),
+            Style::new(Colour::Faint, 1.0, 14.0).svg(
+                Svg::line(0.4)
+                    .dashed()
+                    .key("boundary of the grown obstacles"),
+            ),
         ));
         out.push(Layer::new(
             "m_line",
@@ -423,6 +441,9 @@ impl Trace {
 struct Run<'a> {
     b: &'a FreeBoundary,
     settings: &'a Bug,
+    /// TangentBug's sensor range as simulated: `sense`, at least
+    /// [`MIN_SENSE`] of the world's size.
+    sense: f64,
     start: Point,
     goal: Point,
     /// The executed motion, from the start.
@@ -613,10 +634,8 @@ impl Run<'_> {
                 let q = self.b.moved(h, self.dir * w);
                 self.b.departs_freely(q, self.goal - self.b.point(q))
             };
-            let tied: Vec<(f64, f64)> = closest
-                .into_iter()
-                .filter(|c| c.1 <= least + eps)
-                .collect();
+            let tied: Vec<(f64, f64)> =
+                closest.into_iter().filter(|c| c.1 <= least + eps).collect();
             let best = tied
                 .iter()
                 .find(|c| free(c))
@@ -686,8 +705,7 @@ impl Run<'_> {
                 let p = self.b.point(q);
                 // As close as the hit point (not closer) only on the far
                 // side of a wall of no thickness, at the hit point itself.
-                (p - self.goal).norm() < d_hit + min_move
-                    && self.b.departs_freely(q, self.goal - p)
+                (p - self.goal).norm() < d_hit + min_move && self.b.departs_freely(q, self.goal - p)
             });
             match leave_at {
                 Some(w) => {
@@ -718,7 +736,7 @@ impl Run<'_> {
     /// goal ray is first blocked (an obstacle point within range).
     fn sense(&mut self, x: Point, at: Option<Pos>) -> (Vec<Node>, Option<Node>, bool) {
         let b = self.b;
-        let range = self.settings.sense;
+        let range = self.sense;
         let eps = b.eps();
         let min_move = 1e-7 * b.scale;
         let g = self.goal;
@@ -814,10 +832,10 @@ impl Run<'_> {
                 };
             };
             let d_block = e.t * dist;
-            if d_block > self.settings.sense + min_move {
+            if d_block > self.sense + min_move {
                 // Free as far as the sensor sees: on until the obstacle on
                 // the goal ray comes into range.
-                let to = x + (g - x) * ((d_block - self.settings.sense) / dist);
+                let to = x + (g - x) * ((d_block - self.sense) / dist);
                 if let Err(s) = self.straight(to, None) {
                     return s.into();
                 }
@@ -932,13 +950,12 @@ impl Run<'_> {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::contract::Limits;
-    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
     use crate::geometry::fixtures::world_in;
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
     use crate::geometry::{Aabb, Shape, World};
 
     fn world(shapes: Vec<Shape>) -> World {
@@ -1078,9 +1095,10 @@ mod tests {
                             };
                             let label = format!("{name} / {robot:?} / {bug:?}");
                             let out = run(&w, &robot, &bug);
-                            let path = out.path.as_ref().unwrap_or_else(|| {
-                                panic!("{label}: not found: {:?}", out.notes)
-                            });
+                            let path = out
+                                .path
+                                .as_ref()
+                                .unwrap_or_else(|| panic!("{label}: not found: {:?}", out.notes));
                             if let Err(e) = validate_path(&w, &robot, path, DEFAULT_TOLERANCE) {
                                 panic!("{label}: {e:?}");
                             }
@@ -1095,6 +1113,46 @@ mod tests {
                             assert!(traveled <= polyline + 1e-9, "{label}");
                             assert!(traveled >= 20.0 - 1e-9, "{label}");
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Issue 39: TangentBug with a sensor range far below the follower's
+    /// own resolution (`sense 1e-6`) called a reachable goal unreachable;
+    /// with any range it reaches it, in an open world and round every kind
+    /// of obstacle, and its motion is valid.
+    #[test]
+    fn a_tiny_sensor_still_reaches_a_reachable_goal() {
+        let open = ("open", world(Vec::new()));
+        for (name, w) in worlds().into_iter().chain([open]) {
+            for robot in [RobotShape::Point, RobotShape::Disk(0.3)] {
+                for follow in [Follow::Left, Follow::Right] {
+                    for sense in [1e-3, 1e-6, 1e-9, 1e-12] {
+                        let bug = Bug {
+                            variant: Variant::Tangent,
+                            follow,
+                            sense,
+                        };
+                        let label = format!("{name} / {robot:?} / {bug:?}");
+                        let out = run(&w, &robot, &bug);
+                        let path = out
+                            .path
+                            .as_ref()
+                            .unwrap_or_else(|| panic!("{label}: not found: {:?}", out.notes));
+                        if let Err(e) = validate_path(&w, &robot, path, DEFAULT_TOLERANCE) {
+                            panic!("{label}: {e:?}");
+                        }
+                        assert!(out.extra["traveled"].as_f64() >= 20.0 - 1e-9, "{label}");
+                        assert!(
+                            out.notes
+                                .iter()
+                                .any(|n| n.contains("the sensor was simulated with range"))
+                                == (sense < MIN_SENSE * 30.0),
+                            "{label}: {:?}",
+                            out.notes
+                        );
                     }
                 }
             }
@@ -1125,7 +1183,13 @@ mod tests {
             sense: f64::INFINITY,
         };
         let out = run(w, &RobotShape::Point, &bug);
-        for entity in ["boundary", "m_line", "hits/0000", "leaves/0000", "followed/0000"] {
+        for entity in [
+            "boundary",
+            "m_line",
+            "hits/0000",
+            "leaves/0000",
+            "followed/0000",
+        ] {
             assert!(out.layer(entity).is_some(), "no {entity}");
         }
     }

@@ -32,16 +32,21 @@ const OMPL_NAMES: &[(&str, &str, &str, f64)] = &[
     ("simplify_ms", "simplification time", "REAL", 1e-3),
 ];
 
+/// The file name of bench `b`'s log: `STEM.BENCH.log`.
+pub fn log_name(sc: &Scenario, b: usize) -> String {
+    let stem = sc.file.file_stem().map_or_else(
+        || "scenario".to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    );
+    format!("{stem}.{}.log", sc.benches[b].name)
+}
+
 /// The log of bench `b` of the report: its file name and its text.
 pub fn bench_log(report: &RunReport, b: usize) -> (String, String) {
     let sc = &report.scenario;
     let bench = &sc.benches[b];
     let runs: Vec<&BenchRun> = report.bench_runs.iter().filter(|r| r.bench == b).collect();
-    let stem = sc.file.file_stem().map_or_else(
-        || "scenario".to_string(),
-        |s| s.to_string_lossy().into_owned(),
-    );
-    let name = format!("{stem}.{}.log", bench.name);
+    let name = log_name(sc, b);
     // The run properties: OMPL's, then every other metric any run has.
     let mut properties: Vec<(&str, String, &str, f64)> = Vec::new();
     let has = |m: &str| runs.iter().any(|r| r.metrics.contains_key(m));
