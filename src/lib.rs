@@ -44,6 +44,7 @@ pub mod rng;
 pub mod run;
 pub mod scenario;
 pub mod syntax;
+mod stats;
 mod viz;
 
 pub use diagnostics::{Diag, SourceMap, Span};
