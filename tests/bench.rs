@@ -716,19 +716,46 @@ fn a_worlds_series_without_aggregate_is_an_analysis_error() {
         plan a astar p { start (1, 5) goal (9, 5) }\n\
         bench fam {\n  vary cell [1, 0.5]\n  worlds 3\n}\n\
         expect fam.a[cell = 1].length < 30\n";
-    let t = Test::new()
+    // The diagnostic as a user sees it: exit 2, the code.
+    Test::new()
         .file("f.scen", FAMILY)
         .args(&["check", "f.scen"])
         .status(2)
         .stderr_contains("scen::analyze::series_without_aggregate")
-        .stderr_contains("`fam.a[cell = 1].length` is a series of 3 runs over 3 worlds, not one number")
-        .stderr_contains("use an aggregate, e.g. `median(fam.a[cell = 1].length)` (also `mean`, `min`, `max`, `std`, `sum`, `count`, `quantile(S, 0.9)`, `rate`)");
-    let out = t.run();
-    let err = String::from_utf8_lossy(&out.stderr);
-    // The label is on the series, at line 11, column 8.
-    assert!(err.contains("f.scen:11:8"), "{err}");
-    // A selection cannot pick one world: the help does not offer it.
-    assert!(!err.contains("select one run"), "{err}");
+        .run();
+    // Its fields, unwrapped: the span of the series, the message, the help.
+    let out = Test::new()
+        .file("f.scen", FAMILY)
+        .args(&["check", "--format", "json", "f.scen"])
+        .status(2)
+        .run();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let diags: Vec<Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON object per line"))
+        .collect();
+    assert_eq!(diags.len(), 1, "{stdout}");
+    let d = &diags[0];
+    assert_eq!(d["code"], "scen::analyze::series_without_aggregate");
+    assert_eq!(
+        (d["line"].as_u64(), d["column"].as_u64()),
+        (Some(12), Some(8))
+    );
+    assert_eq!(
+        (d["end_line"].as_u64(), d["end_column"].as_u64()),
+        (Some(12), Some(30)),
+        "{d}"
+    );
+    assert_eq!(
+        d["message"],
+        "`fam.a[cell = 1].length` is a series of 3 runs over 3 worlds, not one number"
+    );
+    // The aggregates are named; a selection cannot pick one world, so the
+    // help does not offer one.
+    assert_eq!(
+        d["help"],
+        "use an aggregate, e.g. `median(fam.a[cell = 1].length)` (also `mean`, `min`, `max`, `std`, `sum`, `count`, `quantile(S, 0.9)`, `rate`)"
+    );
     // The same check through an aggregate passes analysis.
     Test::new()
         .file(
