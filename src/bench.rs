@@ -306,6 +306,13 @@ fn benches_used(expr: &crate::syntax::ast::Expr, out: &mut Vec<String>) {
     });
 }
 
+impl Row {
+    /// The 95 % Wilson score interval of the success rate, as fractions.
+    pub fn success_ci(&self) -> (f64, f64) {
+        crate::stats::wilson(self.successes, self.runs)
+    }
+}
+
 /// The metrics the table shows by default (SPEC 4).
 pub const TABLE_METRICS: &[&str] = &[
     "time_ms",
@@ -324,6 +331,8 @@ pub struct Row {
     pub runs: usize,
     /// The fraction of runs that found a path.
     pub found: f64,
+    /// The runs that found a path.
+    pub successes: usize,
     /// Per metric: (median, mean, std).
     pub stats: Vec<(f64, f64, f64)>,
 }
@@ -353,7 +362,12 @@ pub fn rows(scenario: &Scenario, bench: usize, runs: &[BenchRun], metrics: &[&st
                     })
                     .collect()
             };
-            let found = checks::aggregate("rate", &series("found"), None).as_f64();
+            let found_series = series("found");
+            let found = checks::aggregate("rate", &found_series, None).as_f64();
+            let successes = found_series
+                .iter()
+                .filter(|v| **v == MetricValue::Bool(true))
+                .count();
             let stats = metrics
                 .iter()
                 .map(|m| {
@@ -370,6 +384,7 @@ pub fn rows(scenario: &Scenario, bench: usize, runs: &[BenchRun], metrics: &[&st
                 config,
                 runs: these.len(),
                 found,
+                successes,
                 stats,
             });
         }

@@ -284,6 +284,10 @@ pub struct BenchArgs {
     /// The table's metric columns (default: time_ms,length,cost,expanded,clearance,smoothness).
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
     pub metrics: Vec<String>,
+    /// Compare plan A with plan B run by run: side by side, then wins,
+    /// ties and losses per metric with a sign test.
+    #[arg(long, value_name = "A,B", value_delimiter = ',')]
+    pub compare: Vec<String>,
     /// Print only the checks' failures and the summary; no progress bar.
     #[arg(short, long)]
     pub quiet: bool,

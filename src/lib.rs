@@ -43,6 +43,7 @@ pub mod report;
 pub mod rng;
 pub mod run;
 pub mod scenario;
+mod stats;
 pub mod syntax;
 mod viz;
 

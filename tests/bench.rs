@@ -748,3 +748,229 @@ fn merge_refuses_an_unknown_metric_too() {
     assert!(stderr.contains("did you mean `length`?"), "{stderr}");
     assert!(out.stdout.is_empty());
 }
+
+/// Issue 39, item 5: a check that reads a `worlds N` bench's series as
+/// one number is an analysis error at the series, naming the aggregates —
+/// not a `—` at bench time. worlds × runs > 1 makes a series even when a
+/// selection keeps one configuration.
+#[test]
+fn a_worlds_series_without_aggregate_is_an_analysis_error() {
+    const FAMILY: &str = "param gx = uniform(3, 7)\n\
+        world {\n  bounds (0, 0) (10, 10)\n  rect wall (gx, 2) (gx + 1, 10)\n}\n\
+        robot p point\n\
+        plan a astar p { start (1, 5) goal (9, 5) }\n\
+        bench fam {\n  vary cell [1, 0.5]\n  worlds 3\n}\n\
+        expect fam.a[cell = 1].length < 30\n";
+    // The diagnostic as a user sees it: exit 2, the code.
+    Test::new()
+        .file("f.scen", FAMILY)
+        .args(&["check", "f.scen"])
+        .status(2)
+        .stderr_contains("scen::analyze::series_without_aggregate")
+        .run();
+    // Its fields, unwrapped: the span of the series, the message, the help.
+    let out = Test::new()
+        .file("f.scen", FAMILY)
+        .args(&["check", "--format", "json", "f.scen"])
+        .status(2)
+        .run();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let diags: Vec<Value> = stdout
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON object per line"))
+        .collect();
+    assert_eq!(diags.len(), 1, "{stdout}");
+    let d = &diags[0];
+    assert_eq!(d["code"], "scen::analyze::series_without_aggregate");
+    assert_eq!(
+        (d["line"].as_u64(), d["column"].as_u64()),
+        (Some(12), Some(8))
+    );
+    assert_eq!(
+        (d["end_line"].as_u64(), d["end_column"].as_u64()),
+        (Some(12), Some(30)),
+        "{d}"
+    );
+    assert_eq!(
+        d["message"],
+        "`fam.a[cell = 1].length` is a series of 3 runs over 3 worlds, not one number"
+    );
+    // The aggregates are named; a selection cannot pick one world, so the
+    // help does not offer one.
+    assert_eq!(
+        d["help"],
+        "use an aggregate, e.g. `median(fam.a[cell = 1].length)` (also `mean`, `min`, `max`, `std`, `sum`, `count`, `quantile(S, 0.9)`, `rate`)"
+    );
+    // The same check through an aggregate passes analysis.
+    Test::new()
+        .file(
+            "f.scen",
+            &FAMILY.replace(
+                "expect fam.a[cell = 1].length",
+                "expect median(fam.a[cell = 1].length)",
+            ),
+        )
+        .args(&["check", "f.scen"])
+        .status(0)
+        .run();
+}
+
+/// Issue 39, item 9: the success rate with its 95 % Wilson interval in the
+/// table, the JSON (`"summary"`) and the CSV (three last columns).
+#[test]
+fn the_success_rate_comes_with_its_wilson_interval() {
+    // 11 of 11 runs found: Wilson's 95 % interval is [0.7412, 1].
+    let t = Test::new().file("b.scen", SCENARIO).args(&[
+        "bench",
+        "--metrics",
+        "length",
+        "--csv",
+        "runs.csv",
+        "b.scen",
+    ]);
+    let out = t.run();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let row = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("walk "))
+        .unwrap_or_default();
+    assert!(row.contains(" 100% [74, 100] "), "{text}");
+    // One run of A*: [21, 100].
+    assert!(text.contains(" 100% [21, 100] "), "{text}");
+    let csv = std::fs::read_to_string(t.dir().join("runs.csv")).expect("a CSV");
+    let lines: Vec<&str> = csv.lines().collect();
+    let header: Vec<&str> = lines[0].split(',').collect();
+    assert_eq!(
+        header[header.len() - 3..],
+        ["success_rate", "success_ci_lo", "success_ci_hi"]
+    );
+    let first: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(first[first.len() - 3], "1");
+    let lo: f64 = first[first.len() - 2].parse().expect("a number");
+    assert!((lo - 0.741_167_033_031_968_3).abs() < 1e-12, "{lo}");
+    assert_eq!(first[first.len() - 1], "1");
+
+    let dir = TempDir::new("bench-wilson");
+    std::fs::write(dir.path().join("b.scen"), SCENARIO).expect("write");
+    let doc = json(&scen(dir.path(), &["bench", "--json", "b.scen"]));
+    let summary = &doc["benches"][0]["summary"];
+    assert_eq!(summary.as_array().map(Vec::len), Some(2), "{summary}");
+    assert_eq!(summary[0]["plan"], "walk");
+    assert_eq!(summary[0]["config"]["jump"], 4.0);
+    assert_eq!(summary[0]["runs"], 11);
+    assert_eq!(summary[0]["successes"], 11);
+    assert_eq!(summary[0]["success_rate"], 1.0);
+    let ci = summary[0]["success_ci"].as_array().expect("[lo, hi]");
+    let lo = ci[0].as_f64().expect("lo");
+    assert!((lo - 0.741_167_033_031_968_3).abs() < 1e-12, "{lo}");
+    assert_eq!(ci[1], 1.0);
+}
+
+/// A family where plan `full` finds a path on every world and `starved`
+/// (one expansion allowed) on none.
+const PAIRED: &str = "param gx = uniform(3, 7)\n\
+    world {\n  bounds (0, 0) (10, 10)\n  rect wall (gx, 2) (gx + 1, 10)\n}\n\
+    robot p point\n\
+    plan full astar p { start (1, 5) goal (9, 5) }\n\
+    plan starved astar p { start (1, 5) goal (9, 5) limit expansions 1 }\n\
+    bench fam {\n  worlds 10\n}\n\
+    expect rate(fam.full.found) == 100%\n";
+
+/// The wins, ties, losses and p of `metric` in a `--compare` report.
+fn tally_line(text: &str, metric: &str) -> Vec<String> {
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with(&format!("{metric} (")))
+        .unwrap_or_else(|| panic!("no {metric} line in\n{text}"));
+    let after = line.split_once(')').map_or("", |(_, rest)| rest);
+    after.split_whitespace().map(str::to_string).collect()
+}
+
+/// Issue 39, item 9: `--compare A,B` sets the worlds' results side by side
+/// and counts A's wins, ties and losses with a two-sided sign test.
+#[test]
+fn compare_counts_wins_over_worlds_with_a_sign_test() {
+    let out = Test::new()
+        .file("f.scen", PAIRED)
+        .args(&[
+            "bench",
+            "--metrics",
+            "length",
+            "--compare",
+            "full,starved",
+            "f.scen",
+        ])
+        .run();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("compare full with starved in bench fam (10 pairs)"),
+        "{text}"
+    );
+    // Side by side: world, run, then per plan found and the metric.
+    let header = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("world "))
+        .unwrap_or_default();
+    assert_eq!(
+        header.split_whitespace().collect::<Vec<_>>(),
+        [
+            "world",
+            "run",
+            "full.found",
+            "full.length",
+            "starved.found",
+            "starved.length"
+        ],
+        "{text}"
+    );
+    for k in 0..10 {
+        let row = text
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{k} ")))
+            .unwrap_or_default();
+        let cells: Vec<&str> = row.split_whitespace().collect();
+        assert_eq!((cells[2], cells[4]), ("yes", "no"), "{text}");
+    }
+    // 10 wins, no tie, no loss: p = 2 / 2^10.
+    assert_eq!(
+        tally_line(&text, "length"),
+        ["10", "0", "0", "0.0020"],
+        "{text}"
+    );
+    // The other way round: 10 losses.
+    let out = Test::new()
+        .file("f.scen", PAIRED)
+        .args(&[
+            "bench",
+            "--metrics",
+            "length",
+            "--compare",
+            "starved,full",
+            "f.scen",
+        ])
+        .run();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        tally_line(&text, "length"),
+        ["0", "0", "10", "0.0020"],
+        "{text}"
+    );
+    // The checks and the summary line still close the report.
+    assert!(text.trim_end().ends_with("1 passed, 0 failed"), "{text}");
+}
+
+#[test]
+fn compare_refuses_unknown_plans_naming_the_plans() {
+    Test::new()
+        .file("f.scen", PAIRED)
+        .args(&["bench", "--compare", "full,nope", "f.scen"])
+        .status(2)
+        .stderr("error: `--compare`: no plan `nope`; the plans of `f.scen`: full, starved\n")
+        .run();
+    Test::new()
+        .file("f.scen", PAIRED)
+        .args(&["bench", "--compare", "full", "f.scen"])
+        .status(2)
+        .stderr_contains("`--compare` takes two plans, `--compare A,B`")
+        .run();
+}

@@ -395,3 +395,87 @@ bench seeds {
         ((2.0 * w) as u32, (2.0 * h) as u32)
     );
 }
+
+/// Issue 39: the success rate is a bar chart on a 0–100 % axis with the
+/// 95 % Wilson interval as an error bar, its legend off the data; and no
+/// median line by the varied key, which a rate does not have.
+#[test]
+fn the_success_rate_is_a_bar_chart_with_wilson_error_bars() {
+    let scenario = r#"world {
+  bounds (0, 0) (20, 20)
+  segment bottom (10, 2) (10, 8)
+}
+robot p point
+plan walk potential p { start (7, 5) goal (15, 5) limit steps 20000 }
+bench seeds {
+  plans [walk]
+  vary jump [2, 4, 10]
+  runs 5
+}
+"#;
+    let t = Test::new().file("b.scen", scenario).args(&[
+        "bench",
+        "-q",
+        "--metrics",
+        "found",
+        "--svg",
+        "rate.svg",
+        "b.scen",
+    ]);
+    t.run();
+    let svg = std::fs::read_to_string(t.dir().join("rate.svg")).expect("rate.svg");
+    let texts: Vec<String> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let inner = t.split_once('>')?.1;
+            Some(inner.split("</text>").next()?.trim().to_string())
+        })
+        .collect();
+    for wanted in [
+        "seeds — success rate",
+        "runs that found a path (%)",
+        "error bar: its 95 % interval",
+        "0",
+        "100",
+    ] {
+        assert!(
+            texts.iter().any(|t| t == wanted),
+            "no `{wanted}`: {texts:?}"
+        );
+    }
+    // No box-plot notes and no line panel for a rate.
+    assert!(
+        !svg.contains("whiskers") && !svg.contains("median found"),
+        "{svg}"
+    );
+    let root = svg.lines().find(|l| l.starts_with("<svg")).expect("<svg>");
+    assert_eq!(
+        num(root, "width"),
+        620.0 + 220.0,
+        "one panel and the legend"
+    );
+}
+
+/// Issue 39: a family's picture names its sample and what it drew.
+#[test]
+fn a_familys_picture_names_its_sample() {
+    let family = "param gx = uniform(3, 7)\n\
+        world {\n  bounds (0, 0) (10, 10)\n  rect wall (gx, 2) (gx + 1, 10)\n}\n\
+        robot p point\n\
+        plan a astar p { start (1, 5) goal (9, 5) }\n";
+    let t = Test::new()
+        .file("f.scen", family)
+        .args(&["run", "-q", "--sample", "3", "--svg", "f.svg", "f.scen"]);
+    t.run();
+    let svg = std::fs::read_to_string(t.dir().join("f.svg")).expect("f.svg");
+    let title = svg
+        .split("<title>")
+        .nth(1)
+        .and_then(|t| t.split("</title>").next())
+        .unwrap_or_default();
+    assert!(
+        title.starts_with("f.scen — sample 3 (family seed 0): gx = "),
+        "{title}"
+    );
+}

@@ -76,6 +76,11 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
             code = code.max(EXIT_BAD_INPUT);
             continue;
         }
+        if let Err(e) = report::compare::plans(&scenario, &args.compare) {
+            eprintln!("error: {e}");
+            code = code.max(EXIT_BAD_INPUT);
+            continue;
+        }
         if let Some(n) = args.runs {
             scenario.override_runs(n);
         }
@@ -271,8 +276,21 @@ fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
         let doc = report::bench::to_json(report);
         outln!("{}", serde_json::to_string(&doc).unwrap_or_default());
     } else {
+        // `--compare` is checked before any run: no error here.
+        let compared = report::compare::plans(&report.scenario, &args.compare)
+            .ok()
+            .flatten();
         print_report(report, args.quiet, || {
-            report::bench::render(report, &metrics)
+            let mut text = report::bench::render(report, &metrics);
+            if let Some(plans) = compared {
+                // Before the checks and the summary line, after the tables.
+                let at = text
+                    .find("\nchecks\n")
+                    .or_else(|| text.rfind("\n\n"))
+                    .unwrap_or(text.len());
+                text.insert_str(at, &report::compare::render(report, plans, &metrics));
+            }
+            text
         });
     }
     let mut failed_writes = false;
@@ -417,7 +435,11 @@ fn read_part(path: &Path) -> Result<Part, String> {
 /// given twice, or made from another scenario or split, and runs that the
 /// scenario does not give (SPEC §4).
 fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
-    match merge(paths, args.root.as_deref(), &args.metrics) {
+    let merged = merge(paths, args.root.as_deref(), &args.metrics).and_then(|report| {
+        report::compare::plans(&report.scenario, &args.compare)?;
+        Ok(report)
+    });
+    match merged {
         Ok(report) => {
             let mut inputs = scenario_inputs(&report.scenario.sources);
             inputs.extend(paths.iter().map(|p| Input {

@@ -217,7 +217,6 @@ pub fn plan(settings: &Bug, task: &Task<'_>) -> PlanOutcome {
     }
     let mut run = Run {
         b: &boundary,
-        settings,
         sense,
         start: task.start.xy(),
         goal: goal.xy(),
@@ -440,7 +439,6 @@ impl Trace {
 /// One run: the robot, where it has been and what it counted.
 struct Run<'a> {
     b: &'a FreeBoundary,
-    settings: &'a Bug,
     /// TangentBug's sensor range as simulated: `sense`, at least
     /// [`MIN_SENSE`] of the world's size.
     sense: f64,

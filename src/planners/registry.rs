@@ -186,7 +186,13 @@ pub fn generated_block(name: &str) -> Option<String> {
             let mut md = String::from("| planner | robots | what it does |\n|---|---|---|\n");
             for p in PLANNERS {
                 let robots: Vec<&str> = p.robots.iter().map(|r| r.name()).collect();
-                let _ = writeln!(md, "| `{}` | {} | {} |", p.kind, robots.join(", "), p.summary);
+                let _ = writeln!(
+                    md,
+                    "| `{}` | {} | {} |",
+                    p.kind,
+                    robots.join(", "),
+                    p.summary
+                );
             }
             Some(md.trim_end().to_string())
         }
@@ -209,7 +215,9 @@ pub fn refresh_generated_blocks(text: &str) -> Result<String, String> {
         let name = after_start[..close].trim();
         let content_from = at + GENERATED_START.len() + close + "-->".len();
         let Some(len) = rest[content_from..].find(GENERATED_END) else {
-            return Err(format!("the generated block `{name}` has no `{GENERATED_END}`"));
+            return Err(format!(
+                "the generated block `{name}` has no `{GENERATED_END}`"
+            ));
         };
         let Some(block) = generated_block(name) else {
             return Err(format!("no generated block is called `{name}`"));
@@ -244,12 +252,24 @@ mod tests {
         let fresh = refresh_generated_blocks(text).expect("known blocks");
         let list = generated_block("planner-list").expect("list");
         assert!(list.starts_with("`astar`, `online`"), "{list}");
-        assert!(fresh.starts_with(&format!("Kinds: <!-- generated: planner-list -->{list}<!--")));
-        assert!(fresh.contains("-->\n| planner | robots | what it does |\n"), "{fresh}");
+        assert!(fresh.starts_with(&format!(
+            "Kinds: <!-- generated: planner-list -->{list}<!--"
+        )));
+        assert!(
+            fresh.contains("-->\n| planner | robots | what it does |\n"),
+            "{fresh}"
+        );
         assert!(!fresh.contains("stale") && fresh.ends_with("<!-- end of generated -->\nend\n"));
-        assert_eq!(refresh_generated_blocks(&fresh).as_deref(), Ok(fresh.as_str()));
-        let unknown = refresh_generated_blocks("<!-- generated: nope -->x<!-- end of generated -->");
-        assert_eq!(unknown, Err("no generated block is called `nope`".to_string()));
+        assert_eq!(
+            refresh_generated_blocks(&fresh).as_deref(),
+            Ok(fresh.as_str())
+        );
+        let unknown =
+            refresh_generated_blocks("<!-- generated: nope -->x<!-- end of generated -->");
+        assert_eq!(
+            unknown,
+            Err("no generated block is called `nope`".to_string())
+        );
         let open = refresh_generated_blocks("<!-- generated: planner-list -->x");
         assert!(open.is_err_and(|e| e.contains("planner-list")));
     }

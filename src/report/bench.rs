@@ -99,10 +99,7 @@ pub fn table(sc: &Scenario, b: usize, runs: &[BenchRun], metrics: &[&str]) -> St
                 .map(|(v, &i)| v.values[i].text.clone()),
         );
         line.push(row.runs.to_string());
-        line.push(format!(
-            "{}%",
-            format_num((row.found * 1000.0).round() / 10.0)
-        ));
+        line.push(rate_with_ci(row));
         for &(median, mean, std) in &row.stats {
             line.push(if row.runs == 1 {
                 short(median)
@@ -148,6 +145,19 @@ pub fn table(sc: &Scenario, b: usize, runs: &[BenchRun], metrics: &[&str]) -> St
         let _ = writeln!(s, "  {}", line(l));
     }
     s
+}
+
+/// A success rate and its 95 % Wilson interval in whole percents:
+/// `85% [64, 95]`.
+fn rate_with_ci(row: &bench::Row) -> String {
+    let (lo, hi) = row.success_ci();
+    let percent = |x: f64| format_num((x * 100.0).round());
+    format!(
+        "{}% [{}, {}]",
+        format_num((row.found * 1000.0).round() / 10.0),
+        percent(lo),
+        percent(hi)
+    )
 }
 
 /// A number in a table: at most 4 significant digits after the point.
@@ -251,6 +261,7 @@ pub fn to_json(report: &RunReport) -> Value {
                 .map(|r| run_json(sc, r))
                 .collect();
             o.insert("results".into(), Value::Array(results));
+            o.insert("summary".into(), summary_json(sc, b, &report.bench_runs));
             Value::Object(o)
         })
         .collect();
@@ -267,6 +278,34 @@ pub fn to_json(report: &RunReport) -> Value {
     doc.insert("passed".into(), report.passed().into());
     doc.insert("failed".into(), report.failed().into());
     Value::Object(doc)
+}
+
+/// Per plan and configuration: its runs, how many found a path, the
+/// success rate and its 95 % Wilson interval `"success_ci": [lo, hi]`.
+fn summary_json(sc: &Scenario, b: usize, runs: &[BenchRun]) -> Value {
+    let bench = &sc.benches[b];
+    Value::Array(
+        bench::rows(sc, b, runs, &[])
+            .iter()
+            .map(|row| {
+                let (lo, hi) = row.success_ci();
+                let mut o = Map::new();
+                o.insert(
+                    "plan".into(),
+                    sc.plans[bench.plans[row.plan].plan].name.clone().into(),
+                );
+                o.insert("config".into(), config_json(bench, row.config));
+                o.insert("runs".into(), row.runs.into());
+                o.insert("successes".into(), row.successes.into());
+                o.insert("success_rate".into(), float_json(row.found));
+                o.insert(
+                    "success_ci".into(),
+                    Value::Array(vec![float_json(lo), float_json(hi)]),
+                );
+                Value::Object(o)
+            })
+            .collect(),
+    )
 }
 
 /// Every run as a CSV row: bench, plan, the varied keys (of every bench of
@@ -300,6 +339,12 @@ pub fn to_csv(report: &RunReport) -> String {
     }
     header.extend(["run".to_string(), "seed".to_string()]);
     header.extend(metrics.iter().map(|m| (*m).to_string()));
+    // The run's configuration's success rate and its 95 % Wilson interval
+    // (the same on every run of a configuration), for plotting as is.
+    header.extend(SUCCESS_COLUMNS.map(str::to_string));
+    let rows: Vec<Vec<bench::Row>> = (0..sc.benches.len())
+        .map(|b| bench::rows(sc, b, &report.bench_runs, &[]))
+        .collect();
     let _ = writeln!(
         s,
         "{}",
@@ -338,6 +383,13 @@ pub fn to_csv(report: &RunReport) -> String {
                 None => String::new(),
             });
         }
+        let stats = rows[r.bench]
+            .iter()
+            .find(|x| x.plan == r.plan && x.config == r.config);
+        if let Some(stats) = stats {
+            let (lo, hi) = stats.success_ci();
+            row.extend([stats.found, lo, hi].map(super::exact_number));
+        }
         let _ = writeln!(
             s,
             "{}",
@@ -349,6 +401,10 @@ pub fn to_csv(report: &RunReport) -> String {
     }
     s
 }
+
+/// The CSV's last columns: the configuration's success rate and the ends
+/// of its 95 % Wilson interval, as fractions.
+const SUCCESS_COLUMNS: [&str; 3] = ["success_rate", "success_ci_lo", "success_ci_hi"];
 
 /// A CSV field, quoted when it must be (RFC 4180).
 fn csv_field(f: &str) -> String {

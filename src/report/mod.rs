@@ -1,6 +1,7 @@
 //! Report sinks: the text report, JSON (SPEC 5), SVG and PNG.
 
 pub mod bench;
+pub mod compare;
 pub mod csv;
 pub mod json;
 pub mod junit;

@@ -52,7 +52,8 @@ pub fn to_svg(report: &RunReport, metrics: &[&str]) -> Result<String, String> {
         .collect();
     let rows = (benches.len() * metrics.len()).max(1) as u32;
     let numeric = |b: usize| numeric_key(sc, b);
-    let columns = if benches.iter().any(|&b| numeric(b).is_some()) {
+    let lined = metrics.iter().any(|m| *m != "found");
+    let columns = if lined && benches.iter().any(|&b| numeric(b).is_some()) {
         2
     } else {
         1
@@ -80,12 +81,14 @@ pub fn to_svg(report: &RunReport, metrics: &[&str]) -> Result<String, String> {
                 let row = &panels[k * columns as usize..(k + 1) * columns as usize];
                 boxes(&row[0], sc, b, &report.bench_runs, metric, label_area)
                     .map_err(|e| e.to_string())?;
-                let key = numeric(b);
+                // A success rate has no median to draw against a key.
+                let key = numeric(b).filter(|_| *metric != "found");
                 if let (Some(key), Some(area)) = (key, row.get(1)) {
                     lines(area, sc, b, key, &report.bench_runs, metric)
                         .map_err(|e| e.to_string())?;
                 }
-                draw_legend(&legends[k], sc, b, key.is_some()).map_err(|e| e.to_string())?;
+                draw_legend(&legends[k], sc, b, key.is_some(), *metric == "found")
+                    .map_err(|e| e.to_string())?;
                 k += 1;
             }
         }
@@ -233,27 +236,43 @@ fn boxes(
         labels.push(cut(label));
         data.push((xs, bench.plans[*p].plan));
     }
-    let (lo, hi) = axis(data.iter().flat_map(|(xs, _)| xs.iter().copied()));
-    let mut chart = ChartBuilder::on(area)
-        .caption(
-            format!("{} — {metric}", bench.name),
-            ("sans-serif", CAPTION_FONT),
+    // `found` is drawn as the success rate: a bar per configuration, in
+    // percent on a fixed 0–100 axis, with its 95 % Wilson interval.
+    let rates = metric == "found";
+    let (lo, hi) = if rates {
+        (0.0, 100.0)
+    } else {
+        axis(data.iter().flat_map(|(xs, _)| xs.iter().copied()))
+    };
+    let (caption, y_desc) = if rates {
+        (
+            format!("{} — success rate", bench.name),
+            "runs that found a path (%)",
         )
+    } else {
+        (format!("{} — {metric}", bench.name), metric)
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", CAPTION_FONT))
         .margin(8)
         .x_label_area_size(label_area)
         .y_label_area_size(70)
         .build_cartesian_2d(labels[..].into_segmented(), lo as f32..hi as f32)?;
-    chart
-        .configure_mesh()
-        .y_desc(metric)
+    let percent = |v: &f32| format!("{v:.0}");
+    let mut mesh = chart.configure_mesh();
+    mesh.y_desc(y_desc)
         .label_style(("sans-serif", TICK_FONT))
         .axis_desc_style(("sans-serif", LABEL_FONT))
         .x_labels(labels.len().max(1))
         // The boxes' labels are drawn below, turned when crowded: plotters
         // centres a turned tick label on its tick, across the axis.
         .x_label_formatter(&|_| String::new())
-        .light_line_style(WHITE)
-        .draw()?;
+        .light_line_style(WHITE);
+    if rates {
+        // Whole percents: `40`, not `40.0`.
+        mesh.y_label_formatter(&percent);
+    }
+    mesh.draw()?;
     let (bx, by) = area.get_base_pixel();
     let label_style = if turn {
         ("sans-serif", LABEL_FONT)
@@ -274,6 +293,33 @@ fn boxes(
             (x - bx, y - by + 8),
             label_style.clone(),
         ))?;
+    }
+    if rates {
+        for (label, (xs, plan)) in labels.iter().zip(&data) {
+            let successes = xs.iter().filter(|&&x| x == 1.0).count();
+            let (ci_lo, ci_hi) = crate::stats::wilson(successes, xs.len());
+            if ci_lo.is_nan() {
+                continue;
+            }
+            let rate = 100.0 * successes as f64 / xs.len() as f64;
+            let [r, g, bl] = plan_colour(*plan);
+            let at = |y: f64| (SegmentValue::CenterOf(label), y as f32);
+            let px = |y: f64| chart.backend_coord(&at(y)).1;
+            let ink = ShapeStyle::from(BLACK).stroke_width(2);
+            chart.draw_series([EmptyElement::at(at(rate))
+                + Rectangle::new(
+                    [(-16, 0), (16, px(0.0) - px(rate))],
+                    RGBColor(r, g, bl).mix(0.85).filled(),
+                )])?;
+            let (top, bottom) = (100.0 * ci_hi, 100.0 * ci_lo);
+            chart.draw_series([PathElement::new([at(bottom), at(top)], ink)])?;
+            for end in [bottom, top] {
+                chart.draw_series([
+                    EmptyElement::at(at(end)) + PathElement::new([(-7, 0), (7, 0)], ink)
+                ])?;
+            }
+        }
+        return Ok(());
     }
     for (label, (xs, plan)) in labels.iter().zip(&data) {
         if xs.is_empty() {
@@ -495,7 +541,13 @@ fn spreads(
 
 /// The legend of one row, in the column right of the plots: each plan's
 /// colour and name, then how to read the marks.
-fn draw_legend(area: &Area<'_>, sc: &Scenario, b: usize, has_lines: bool) -> Result<(), Failure> {
+fn draw_legend(
+    area: &Area<'_>,
+    sc: &Scenario,
+    b: usize,
+    has_lines: bool,
+    rates: bool,
+) -> Result<(), Failure> {
     let font = ("sans-serif", LABEL_FONT).into_font().color(&BLACK);
     let note = ("sans-serif", TICK_FONT - 1.0)
         .into_font()
@@ -511,12 +563,20 @@ fn draw_legend(area: &Area<'_>, sc: &Scenario, b: usize, has_lines: bool) -> Res
         y += 20;
     }
     y += 6;
-    let mut notes = vec![
-        "box: 25–75 % of runs",
-        "bar in a box: the median",
-        "whiskers: within 1.5 IQR",
-        "dots: runs beyond them",
-    ];
+    let mut notes = if rates {
+        vec![
+            "bar: the success rate",
+            "error bar: its 95 % interval",
+            "(Wilson score)",
+        ]
+    } else {
+        vec![
+            "box: 25–75 % of runs",
+            "bar in a box: the median",
+            "whiskers: within 1.5 IQR",
+            "dots: runs beyond them",
+        ]
+    };
     if has_lines {
         notes.push("line: the median by value");
         notes.push("band: 25–75 % of runs");

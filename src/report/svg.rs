@@ -67,7 +67,11 @@ pub fn to_svg(report: &RunReport) -> String {
     let layers = drawn_layers(&runs);
     let legend = Legend::new(report, &runs, &layers, width);
     let height = legend_top + legend.height() + PAD;
-    let title = title(scenario);
+    // A family's picture says which sample it shows, and what it drew.
+    let title = match super::text::sample_line(scenario) {
+        Some(sample) => format!("{} — {sample}", title(scenario)),
+        None => title(scenario),
+    };
 
     let mut svg = String::new();
     svg.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
@@ -722,9 +726,23 @@ fn draw_path(svg: &mut String, view: &View, run: &PlanRun) {
     let _ = writeln!(
         svg,
         "<polyline class=\"path\" points=\"{points}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2.5\" \
-         stroke-linejoin=\"round\" stroke-linecap=\"round\"/>",
-        hex(plan_colour(run.plan))
+         stroke-linejoin=\"round\" stroke-linecap=\"round\"{}/>",
+        hex(plan_colour(run.plan)),
+        dash_attr(run.plan)
     );
+}
+
+/// The dash patterns of paths, by plan (cycling): overlaid paths differ
+/// in their line as well as their colour, for readers who cannot tell the
+/// colours apart and for pictures printed in grey. The first is solid.
+const PATH_DASHES: &[&str] = &["", "9 4", "2 4", "12 3 2 3", "5 3", "1 3 6 3"];
+
+/// The `stroke-dasharray` attribute of plan `plan`'s path (none when solid).
+fn dash_attr(plan: usize) -> String {
+    match PATH_DASHES[plan % PATH_DASHES.len()] {
+        "" => String::new(),
+        dashes => format!(" stroke-dasharray=\"{dashes}\""),
+    }
 }
 
 /// The robot's body along a rotating robot's path and at start and goal,
@@ -869,8 +887,8 @@ fn draw_body_as(
 
 /// How a legend entry shows what it names.
 enum Swatch {
-    /// A plan's path: a thick line in its colour.
-    Path([u8; 3]),
+    /// A plan's path: a thick line in its colour and its dashes.
+    Path([u8; 3], usize),
     /// A layer, drawn small in its own style.
     Layer {
         colour: [u8; 3],
@@ -917,7 +935,7 @@ impl Legend {
                     None => "not found".to_string(),
                 };
                 (
-                    Swatch::Path(plan_colour(run.plan)),
+                    Swatch::Path(plan_colour(run.plan), run.plan),
                     format!("{} ({}): {status}", plan.name, plan.kind()),
                 )
             })
@@ -1076,11 +1094,12 @@ fn draw_swatch(svg: &mut String, swatch: &Swatch, x: f64, y: f64) {
         );
     };
     match swatch {
-        Swatch::Path(colour) => {
+        Swatch::Path(colour, plan) => {
             let _ = writeln!(
                 svg,
-                "<line x1=\"{x0}\" y1=\"{y}\" x2=\"{x1}\" y2=\"{y}\" stroke=\"{}\" stroke-width=\"4\" stroke-linecap=\"round\"/>",
+                "<line x1=\"{x0}\" y1=\"{y}\" x2=\"{x1}\" y2=\"{y}\" stroke=\"{}\" stroke-width=\"4\" stroke-linecap=\"round\"{}/>",
                 hex(*colour),
+                dash_attr(*plan),
                 y = num(y)
             );
         }
@@ -1441,6 +1460,31 @@ mod tests {
                 "{line}"
             );
         }
+    }
+
+    /// Issue 39: overlaid paths differ in their dashes as well as their
+    /// colours, and the legend shows each plan's line as drawn.
+    #[test]
+    fn overlaid_paths_have_distinct_dashes_and_the_legend_shows_them() {
+        let svg = to_svg(&report(Some("demo")));
+        let paths: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.starts_with("<polyline class=\"path\""))
+            .collect();
+        // Plans 0 and 2 found paths: the first solid, the other dashed.
+        assert!(!paths[0].contains("stroke-dasharray"), "{}", paths[0]);
+        let dashes = format!("stroke-dasharray=\"{}\"", PATH_DASHES[2]);
+        assert!(paths[1].contains(&dashes), "{}", paths[1]);
+        // The legend's swatch of plan 2 has the same dashes and colour.
+        let legend = svg.split("<g id=\"legend\"").nth(1).unwrap_or_default();
+        assert!(
+            legend.lines().any(|l| l.starts_with("<line")
+                && l.contains(&dashes)
+                && l.contains(&hex(plan_colour(2)))),
+            "{legend}"
+        );
+        let distinct: std::collections::BTreeSet<&str> = PATH_DASHES.iter().copied().collect();
+        assert_eq!(distinct.len(), PATH_DASHES.len());
     }
 
     #[test]

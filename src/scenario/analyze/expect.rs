@@ -45,6 +45,8 @@ struct SeriesTy {
     /// The selection, as (key, index of the value in the `vary` list).
     select: Vec<(String, usize)>,
     runs: u64,
+    /// The bench's `worlds` (1 without): a selection keeps them all.
+    worlds: u64,
     /// Filtered by `where`: its size is known only when it runs.
     filtered: bool,
     /// The series' text, for messages.
@@ -133,8 +135,16 @@ impl Analyzer {
                 };
                 let runs = if s.filtered {
                     "a filtered series".to_string()
+                } else if s.worlds > 1 {
+                    format!("a series of {} runs over {} worlds", s.runs, s.worlds)
                 } else {
                     format!("a series of {} runs", s.runs)
+                };
+                // A selection picks configurations, never one world.
+                let select = if s.worlds > 1 {
+                    ""
+                } else {
+                    ", or select one run with `[KEY = VALUE]`"
                 };
                 self.error(
                     Diag::error(
@@ -143,7 +153,7 @@ impl Analyzer {
                     )
                     .at(e.span, "a series")
                     .help(format!(
-                        "use an aggregate, e.g. `{aggregate}` (also `mean`, `min`, `max`, `std`, `sum`, `count`, `quantile(S, 0.9)`, `rate`), or select one run with `[KEY = VALUE]`"
+                        "use an aggregate, e.g. `{aggregate}` (also `mean`, `min`, `max`, `std`, `sum`, `count`, `quantile(S, 0.9)`, `rate`){select}"
                     )),
                 );
                 None
@@ -585,7 +595,9 @@ impl Analyzer {
             bench: b.name.clone(),
             plan: plan.value.clone(),
             select: picked,
-            runs: configs * bench_plan.runs,
+            // Every configuration runs on each of the bench's worlds.
+            runs: configs * bench_plan.runs * b.worlds,
+            worlds: b.worlds,
             filtered: false,
             text: self.sources.snippet(e.span).to_string(),
         })
