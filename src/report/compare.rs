@@ -78,23 +78,25 @@ pub fn outcome(a: (bool, f64), b: (bool, f64), higher_better: bool) -> i8 {
         (true, false) => 1,
         (false, true) => -1,
         (false, false) => 0,
-        (true, true) => {
-            let (x, y) = if higher_better {
-                (b.1, a.1)
-            } else {
-                (a.1, b.1)
-            };
-            // Found paths always have their lengths; a metric without a
-            // value (NaN) beats nothing.
-            match (x.is_nan(), y.is_nan()) {
-                (false, true) => 1,
-                (true, false) => -1,
-                (true, true) => 0,
-                _ if x < y => 1,
-                _ if x > y => -1,
-                _ => 0,
+        // Found paths always have their lengths; a metric without a value
+        // (NaN) beats nothing, whichever way the metric is better.
+        (true, true) => match (a.1.is_nan(), b.1.is_nan()) {
+            (false, true) => 1,
+            (true, false) => -1,
+            (true, true) => 0,
+            (false, false) => {
+                let (x, y) = if higher_better {
+                    (b.1, a.1)
+                } else {
+                    (a.1, b.1)
+                };
+                match x.partial_cmp(&y) {
+                    Some(std::cmp::Ordering::Less) => 1,
+                    Some(std::cmp::Ordering::Greater) => -1,
+                    _ => 0,
+                }
             }
-        }
+        },
     }
 }
 
