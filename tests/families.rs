@@ -157,6 +157,26 @@ fn scattered_items_keep_their_gap_inside_their_box() {
 }
 
 #[test]
+fn the_documented_cap_of_scattered_items_places() {
+    // Issue 39: placement measured every try against every placed item, so
+    // 100 000 items (MAX_SCATTER_ITEMS) did not finish in `scen check`.
+    let dir = TempDir::new("families");
+    write(
+        &dir,
+        "many.scen",
+        "world {\n  bounds (0, 0) (1010, 1010)\n  \
+         scatter rocks 100000 disk uniform(0.05, 0.2) in (0, 0) (1000, 1000) gap 0.5\n}\n\
+         robot r point\nplan p astar r { start (1005, 1005) goal (1006, 1006) }\n",
+    );
+    let out = scen(dir.path(), &["check", "many.scen"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let s = sample(&dir.path().join("many.scen"), 0, 0);
+    assert_eq!(s.world.obstacles.len(), 100_000);
+    assert_eq!(s.world.obstacles[99_999].name, "rocks_100000");
+}
+
+#[test]
 fn draws_that_break_a_require_or_block_the_start_are_drawn_again() {
     let dir = TempDir::new("families");
     let path = write(

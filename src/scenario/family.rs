@@ -34,6 +34,7 @@ use crate::syntax::ast::{
 };
 
 use super::loader::SourcedStmt;
+use super::placed::{Placed, Placements};
 
 /// How many draws of one sample may be rejected before it is an error.
 pub const MAX_ATTEMPTS: u32 = 1000;
@@ -708,7 +709,7 @@ impl Family {
     ) -> Result<Vec<SourcedStmt>, Vec<Diag>> {
         let mut out = Vec::with_capacity(statements.len());
         let mut diags = Vec::new();
-        let mut placed: Vec<Placed> = Vec::new();
+        let mut placed = Placements::default();
         let mut ctx = Ctx {
             family: self,
             draw,
@@ -870,29 +871,6 @@ impl Family {
             d
         };
         Err(vec![diag])
-    }
-}
-
-/// A scattered item already placed: its bounding shape, for the gap.
-#[derive(Clone, Copy, Debug)]
-enum Placed {
-    Disk { x: f64, y: f64, r: f64 },
-    Rect { x0: f64, y0: f64, x1: f64, y1: f64 },
-}
-
-impl Placed {
-    /// A lower bound of the distance between two items (exact for disks
-    /// and boxes).
-    fn distance(&self, other: &Placed) -> f64 {
-        let boxed = |p: &Placed| match *p {
-            Placed::Disk { x, y, r } => (x, y, x, y, r),
-            Placed::Rect { x0, y0, x1, y1 } => (x0, y0, x1, y1, 0.0),
-        };
-        let (a0, b0, a1, b1, r) = boxed(self);
-        let (c0, d0, c1, d1, s) = boxed(other);
-        let dx = (c0 - a1).max(a0 - c1).max(0.0);
-        let dy = (d0 - b1).max(b0 - d1).max(0.0);
-        dx.hypot(dy) - r - s
     }
 }
 
@@ -1063,7 +1041,7 @@ impl Ctx<'_> {
     }
 
     /// Places the items of a scatter, appending them as obstacles.
-    fn scatter(&mut self, sc: &ScatterDecl, placed: &mut Vec<Placed>, items: &mut Vec<WorldItem>) {
+    fn scatter(&mut self, sc: &ScatterDecl, placed: &mut Placements, items: &mut Vec<WorldItem>) {
         if let Some(fixed) = &self.draw.fixed {
             items.extend(fixed.get(&sc.span).cloned().unwrap_or_default());
             return;
@@ -1173,7 +1151,7 @@ impl Ctx<'_> {
                     }
                 };
                 let (here, kind, keyword) = item;
-                if placed.iter().any(|p| p.distance(&here) < gap) {
+                if placed.crowds(&here, gap) {
                     continue;
                 }
                 placed.push(here);

@@ -7,6 +7,7 @@ pub mod family;
 pub mod grouping;
 pub mod loader;
 pub mod movingai;
+mod placed;
 
 use std::path::PathBuf;
 use std::sync::Arc;
