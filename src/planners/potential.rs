@@ -13,7 +13,9 @@
 //! A position is a local minimum when
 //! - the angle between F_att and ΣF_rep is within 1° of 180° (the seed's
 //!   cos = −1 test; not when ΣF_rep is a cancellation down to rounding
-//!   noise, e.g. midway between two parallel walls),
+//!   noise, e.g. midway between two parallel walls) and |ΣF_rep| ≥ |F_att|
+//!   (a weaker opposed repulsion, e.g. at the edge of `influence` on a
+//!   head-on approach to a wall, only slows the walk: it is no minimum),
 //! - the position moved less than ε/2 over the last 8 steps (oscillation),
 //! - the step would collide or leave the bounds (SPEC: never taken), or
 //! - F = 0.
@@ -103,7 +105,10 @@ pub static PLANNER: Planner = Planner {
             "steps",
             "moves on the path: gradient steps, jumps and the landing on the goal",
         ),
-        MetricSpec::num("minima", "local minima detected"),
+        MetricSpec::num(
+            "minima",
+            "local minima detected: the repulsion opposed to the attraction within 1° and at least as strong, moving less than ε/2 in 8 steps, or a blocked step",
+        ),
         MetricSpec::num("escapes", "random-walk jumps taken"),
         MetricSpec::num(
             "traveled",
@@ -248,7 +253,8 @@ impl Run {
 /// Why a position is a local minimum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Why {
-    /// F_att and ΣF_rep within 1° of opposite.
+    /// F_att and ΣF_rep within 1° of opposite, the repulsion at least as
+    /// strong.
     Opposed,
     /// Moved less than ε/2 over the last 8 steps.
     Oscillation,
@@ -261,7 +267,9 @@ pub enum Why {
 impl Why {
     fn describe(self) -> &'static str {
         match self {
-            Why::Opposed => "attraction and repulsion opposed within 1°",
+            Why::Opposed => {
+                "attraction and repulsion opposed within 1°, the repulsion at least as strong"
+            }
             Why::Oscillation => "oscillating: moved less than ε/2 in 8 steps",
             Why::Blocked => "the next step would collide",
             Why::Balanced => "the forces cancel",
@@ -340,7 +348,10 @@ impl Descent {
         }
         let f = w.field.forces(x, w.goal);
         let (na, nr) = (f.attract.norm(), f.repulse.norm());
+        // Opposed but weaker, the repulsion only slows the walk down: it
+        // still advances until the two balance (SPEC 3.4).
         if na > 0.0
+            && nr >= na
             && nr > CANCELLED * f.repulse_sum
             && f.attract.dot(&f.repulse) <= w.cos_opposed * na * nr
         {

@@ -435,3 +435,39 @@ plan a potential p { start (1, 5) goal (99, 5) influence 3 escape none }
     assert!(outs[0].path.is_some(), "{:?}", outs[0].notes);
     assert_eq!(metric(&outs[0], "minima"), 0.0);
 }
+
+#[test]
+fn head_on_approach_to_a_wall_is_not_stuck_at_the_edge_of_influence() {
+    // Issue 39: the opposition test fired as soon as the wall's repulsion
+    // appeared, at ρ = ρ0, though the attraction was still stronger and the
+    // walk could advance. Head-on along y = 5 towards the face x = 10 of a
+    // wall, with the goal g behind the face: at distance ρ from the face,
+    // |F_att| = η (ρ + g) and |F_rep| = d (1/ρ²)(1/ρ − 1/ρ0) (SPEC 3.4). The
+    // first falls and the second rises as ρ shrinks, so they balance at one
+    // ρ*; η is chosen so that ρ* = 0.5.
+    let (d, rho0, g, rho_star, step) = (1.0, 2.0, 5.5, 0.5, 0.05);
+    let eta = d / (rho_star * rho_star) * (1.0 / rho_star - 1.0 / rho0) / (rho_star + g);
+    let outs = run(&format!(
+        "world {{
+  bounds (0, 0) (20, 10)
+  rect wall (10, 0) (11, 10)
+}}
+robot p point
+plan a potential p {{ start (1, 5) goal ({}, 5) attract {eta} repulse {d} influence {rho0} step {step} escape none }}
+",
+        10.0 + g
+    ));
+    let o = &outs[0];
+    assert!(o.path.is_none());
+    assert_eq!(metric(o, "minima"), 1.0);
+    assert!(o.notes[0].contains("opposed"), "{:?}", o.notes);
+    let m = points(o, "field/minima")[0];
+    let rho = 10.0 - m.x;
+    // Stuck at the first step that reaches the balance, not 1.5 units
+    // before it where the repulsion begins.
+    assert!((m.y - 5.0).abs() < 1e-9, "{m:?}");
+    assert!(
+        rho <= rho_star && rho > rho_star - step - 1e-9,
+        "stuck at ρ = {rho}"
+    );
+}
