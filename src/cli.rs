@@ -143,6 +143,11 @@ pub struct RunArgs {
     /// For a family of scenarios: the seed its samples are drawn from.
     #[arg(long, value_name = "S", default_value_t = 0)]
     pub family_seed: u64,
+    /// For a family of scenarios: a drawn param's value instead of its
+    /// draw (repeatable; what `scen falsify` reports). Scattered items
+    /// still come from sample K's stream.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
 }
 
 impl RunArgs {
@@ -464,8 +469,13 @@ fn run_file(
     viewer_warned: &mut bool,
 ) -> (i32, Vec<PathBuf>) {
     let mut read = vec![file.to_path_buf()];
-    let loaded =
-        crate::scenario::load_sample(file, args.root.as_deref(), &|_| None, args.sample_choice());
+    let loaded = crate::scenario::load_member(
+        file,
+        args.root.as_deref(),
+        &|_| None,
+        args.sample_choice(),
+        &args.set,
+    );
     let scenario = match loaded {
         Ok(s) => s,
         Err(f) => {

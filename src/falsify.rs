@@ -29,7 +29,9 @@ use crate::contract::Metrics;
 use crate::contract::schema::Word;
 use crate::diagnostics::{Diag, FileId, SourceMap, Span};
 use crate::rng::SplitMix64;
-use crate::scenario::family::{Family, SampleChoice, computed_spans};
+use crate::scenario::family::{
+    Family, Instance, SampleChoice, ScatterRule, computed_spans, scattered_distance,
+};
 use crate::scenario::loader::{SourcedStmt, analyze_statements};
 use crate::syntax::ast::{
     AngleUnit, ExprKind, ObstacleDecl, ObstacleShape, Selection, Stmt, Value, ValueKind, WorldItem,
@@ -109,6 +111,9 @@ pub struct Failure {
     /// The candidate's number (for `uniform`, the family's sample).
     pub sample: u64,
     pub params: Vec<(String, f64)>,
+    /// The command line that runs the failing world (`scen run FILE
+    /// --set ...` or `--sample K`).
+    pub reproduce: String,
     /// The check's source text and line.
     pub check: String,
     pub line: usize,
@@ -266,18 +271,20 @@ impl Source {
                     family_seed: opts.seed,
                 };
                 let mut kept = None;
-                let sampled = self.family.sample(&self.statements, choice, |instance| {
-                    match self.evaluate(instance.clone())? {
-                        Outcome::Rejected => Err(vec![Diag::error(
-                            "scen::analyze::pose_in_collision",
-                            "rejected",
-                        )]),
-                        outcome => {
-                            kept = Some(instance);
-                            Ok(outcome)
+                let sampled = self
+                    .family
+                    .sample(&self.statements, choice, &[], |instance| {
+                        match self.evaluate(instance.clone())? {
+                            Outcome::Rejected => Err(vec![Diag::error(
+                                "scen::analyze::pose_in_collision",
+                                "rejected",
+                            )]),
+                            outcome => {
+                                kept = Some(instance);
+                                Ok(outcome)
+                            }
                         }
-                    }
-                });
+                    });
                 match sampled {
                     Ok((outcome, drawn)) => (kept, drawn.params, outcome),
                     Err(diags)
@@ -290,10 +297,14 @@ impl Source {
                     Err(diags) => return Err(diags),
                 }
             }
-            Some(u) => match self
-                .family
-                .candidate(&self.statements, opts.seed ^ index, u)?
-            {
+            Some(u) => match self.family.candidate(
+                &self.statements,
+                SampleChoice {
+                    sample: index,
+                    family_seed: opts.seed,
+                },
+                u,
+            )? {
                 None => (None, Vec::new(), Outcome::Rejected),
                 Some((statements, params)) => {
                     let outcome = self.evaluate(statements.clone())?;
@@ -429,6 +440,19 @@ impl Proposer {
     /// The next batch's points, given every point tried so far and its
     /// margin.
     fn batch(&mut self, batch: u64, history: &[(Vec<f64>, f64)]) -> Vec<Vec<f64>> {
+        // `auto`'s second batch: the corners of the box, where many
+        // failures live (a parameter at its extreme), then the cover.
+        if self.search == Search::Auto && batch == 1 {
+            let corners = corners(
+                self.dims,
+                &mut SplitMix64::new(self.shift.len() as u64 ^ 0xC0FE),
+            );
+            let rest = BATCH - corners.len();
+            return corners
+                .into_iter()
+                .chain((0..rest).map(|_| self.cover()))
+                .collect();
+        }
         if self.search == Search::Halton || history.len() < COVER {
             return (0..BATCH).map(|_| self.cover()).collect();
         }
@@ -438,14 +462,7 @@ impl Proposer {
             _ => (true, 0.02, 1.0),
         };
         // `auto` leaves out the basins it gave up.
-        let near = |p: &[f64], c: &[f64]| {
-            p.iter()
-                .zip(c)
-                .map(|(a, b)| (a - b).powi(2))
-                .sum::<f64>()
-                .sqrt()
-                < TABU_RADIUS
-        };
+        let near = |p: &[f64], c: &[f64]| distance(p, c) < TABU_RADIUS;
         let mut sorted: Vec<&(Vec<f64>, f64)> = history
             .iter()
             .filter(|(p, _)| !auto || !self.tabu.iter().any(|c| near(p, c)))
@@ -498,13 +515,35 @@ impl Proposer {
                 ^ (self.shard.k - 1).wrapping_mul(0xD1B5_4A32_D192_ED03),
         );
         let best = &sorted[0].0;
+        // `auto`: Newton steps on the margin from the best point of each
+        // of up to four basins (best points at least 0.1 apart).
+        let mut basins: Vec<&(Vec<f64>, f64)> = Vec::new();
+        if auto {
+            for p in &sorted {
+                if basins.len() == 4 {
+                    break;
+                }
+                if basins.iter().all(|b| distance(&b.0, &p.0) >= 0.1) {
+                    basins.push(p);
+                }
+            }
+        }
         (0..BATCH)
             .map(|k| {
                 // `auto`: a quarter of every batch keeps covering the cube,
-                // a quarter searches around the best point so far, the rest
-                // follows the model; it never collapses onto one region.
+                // a quarter searches around the best point so far, a
+                // quarter steps towards where the margin's linear fit
+                // crosses zero, the rest follows the model; it never
+                // collapses onto one region.
                 if auto && k % 4 == 0 {
                     return self.cover();
+                }
+                if auto
+                    && k % 4 == 2
+                    && let Some(b) = basins.get(k / 4)
+                    && let Some(p) = newton_step(history, &b.0, b.1)
+                {
+                    return p;
                 }
                 let centre = if auto && k % 4 == 1 { best } else { &mean };
                 (0..self.dims)
@@ -520,6 +559,103 @@ impl Proposer {
             })
             .collect()
     }
+}
+
+/// The Euclidean distance of two points of the cube.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The corners of the unit cube (all of them up to 4 dimensions, else
+/// 16 drawn), just inside it.
+fn corners(dims: usize, rng: &mut SplitMix64) -> Vec<Vec<f64>> {
+    let corner = |bits: u64| -> Vec<f64> {
+        (0..dims)
+            .map(|j| {
+                if bits >> (j % 64) & 1 == 1 {
+                    1.0 - f64::EPSILON
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    };
+    if dims == 0 {
+        return Vec::new();
+    }
+    if dims <= 4 {
+        (0..1u64 << dims).map(corner).collect()
+    } else {
+        (0..BATCH).map(|_| corner(rng.next_u64())).collect()
+    }
+}
+
+/// One step of Newton's method on the margin from `p0` (margin `m0`): the
+/// margin's gradient fitted by least squares on the 2d + 2 points tried
+/// nearest `p0`, then a step to where that linear fit reaches −1 % of
+/// `m0` (a little past zero, so that a thin failure region is entered, not
+/// only touched). `None` when the fit has no slope.
+fn newton_step(history: &[(Vec<f64>, f64)], p0: &[f64], m0: f64) -> Option<Vec<f64>> {
+    let d = p0.len();
+    if d == 0 || !m0.is_finite() || m0 <= 0.0 {
+        return None;
+    }
+    let mut near: Vec<(f64, &(Vec<f64>, f64))> = history
+        .iter()
+        .map(|h| (distance(&h.0, p0), h))
+        .filter(|(r, h)| *r > 0.0 && h.1.is_finite())
+        .collect();
+    if near.len() < d + 1 {
+        return None;
+    }
+    near.sort_by(|a, b| a.0.total_cmp(&b.0));
+    near.truncate(2 * d + 2);
+    // The normal equations (AᵀA + λI) g = Aᵀb, rows p − p0, b = m − m0.
+    let mut a = vec![vec![0.0; d + 1]; d];
+    for (_, (p, m)) in &near {
+        let row: Vec<f64> = p.iter().zip(p0).map(|(x, y)| x - y).collect();
+        for i in 0..d {
+            for j in 0..d {
+                a[i][j] += row[i] * row[j];
+            }
+            a[i][d] += row[i] * (m - m0);
+        }
+    }
+    for (i, r) in a.iter_mut().enumerate() {
+        r[i] += 1e-12;
+    }
+    // Gaussian elimination with partial pivoting.
+    for c in 0..d {
+        let pivot = (c..d).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
+        a.swap(c, pivot);
+        if a[c][c].abs() < 1e-300 {
+            return None;
+        }
+        for r in 0..d {
+            if r != c {
+                let f = a[r][c] / a[c][c];
+                for k in c..=d {
+                    a[r][k] -= f * a[c][k];
+                }
+            }
+        }
+    }
+    let g: Vec<f64> = (0..d).map(|i| a[i][d] / a[i][i]).collect();
+    let norm2: f64 = g.iter().map(|x| x * x).sum();
+    if !(norm2 > 0.0 && norm2.is_finite()) {
+        return None;
+    }
+    let step = 1.01 * m0 / norm2;
+    Some(
+        p0.iter()
+            .zip(&g)
+            .map(|(x, gi)| reflect(x - step * gi))
+            .collect(),
+    )
 }
 
 /// Searches the family for a failing sample within the budget; shrinks
@@ -577,10 +713,13 @@ pub fn falsify(source: &Source, opts: Options) -> Result<Falsified, Vec<Diag>> {
                 history.push((u.clone(), margin));
             }
             if let Outcome::Failed { check, margin } = t.outcome {
-                let statements = t.statements.expect("an evaluated candidate has statements");
-                out.failure = Some(shrink(
-                    source, &opts, t.index, t.params, check, margin, statements,
-                )?);
+                let found = Found {
+                    sample: t.index,
+                    params: t.params,
+                    statements: t.statements.expect("an evaluated candidate has statements"),
+                    unit: t.unit.is_some(),
+                };
+                out.failure = Some(shrink(source, &opts, found, check, margin)?);
                 return Ok(out);
             }
         }
@@ -625,21 +764,127 @@ fn key(o: &ObstacleDecl) -> Key {
 
 /// The obstacles of the main file's world, in order.
 fn obstacle_keys(statements: &[SourcedStmt]) -> Vec<Key> {
-    let mut out = Vec::new();
-    for s in statements {
-        if let (true, Stmt::World(w)) = (s.in_main_file, &s.stmt) {
-            for item in &w.items {
-                if let WorldItem::Obstacle(o) = item {
-                    out.push(key(o));
-                }
-            }
-        }
-    }
-    out
+    main_obstacles(statements).iter().map(key).collect()
 }
 
-/// `statements` without the obstacles `gone`.
-fn without(statements: &[SourcedStmt], gone: &HashSet<Key>) -> Vec<SourcedStmt> {
+/// `x` rounded to `decimals` decimals.
+fn rounded(x: f64, decimals: i32) -> f64 {
+    let scale = 10f64.powi(decimals);
+    (x * scale).round() / scale
+}
+
+/// What shrinking works on: the failing candidate and the family member
+/// it is.
+struct Shrinker<'a> {
+    source: &'a Source,
+    /// The check that must still fail (its index among the plain checks).
+    check: usize,
+    /// The sample whose stream places the scattered items.
+    choice: SampleChoice,
+    /// The failing candidate's statements and params, as drawn.
+    original: Instance,
+}
+
+/// What shrinking varies: the drawn params, the scattered items'
+/// numbers, the obstacles removed.
+#[derive(Clone)]
+struct Shrinking {
+    /// The drawn params' values, as `scen run --set` gives them; `None`:
+    /// the candidate as drawn (a `uniform` sample, whose accepted draw may
+    /// not be its first).
+    drawn: Option<Vec<f64>>,
+    /// Scattered items whose numbers were simplified.
+    items: HashMap<Key, ObstacleDecl>,
+    gone: HashSet<Key>,
+}
+
+impl Shrinker<'_> {
+    /// The state's statements and every param's value; `None` when the
+    /// params name no family member (outside a support, against a
+    /// `require`, every draw rejected).
+    fn build(&self, state: &Shrinking) -> Option<(Vec<SourcedStmt>, Vec<f64>)> {
+        let (statements, params) = match &state.drawn {
+            None => self.original.clone(),
+            Some(drawn) => self.source.member(self.choice, drawn)?,
+        };
+        Some((
+            edited(&statements, &state.items, &state.gone),
+            params.iter().map(|(_, x)| *x).collect(),
+        ))
+    }
+
+    fn fails(&self, state: &Shrinking) -> bool {
+        self.build(state)
+            .is_some_and(|(s, _)| fails(self.source, &s, self.check))
+    }
+}
+
+impl Source {
+    /// The family member with these drawn params' values and sample
+    /// `choice`'s scattered items: what `scen run --sample K --set ...`
+    /// runs.
+    fn member(&self, choice: SampleChoice, drawn: &[f64]) -> Option<Instance> {
+        let set = self.family.set_of_drawn(drawn);
+        self.family
+            .sample(&self.statements, choice, &set, |instance| {
+                analyze_statements(
+                    &self.path,
+                    instance.clone(),
+                    self.sources.clone(),
+                    self.maps.clone(),
+                )
+                .map(|_| instance)
+                .map_err(|f| f.diags)
+            })
+            .ok()
+            .map(|(statements, d)| (statements, d.params))
+    }
+
+    /// The command line that runs a candidate's world: its sample
+    /// (`drawn` = `None`), or its drawn params' values, with the sample
+    /// whose stream places the scattered items when there are any.
+    fn reproduce(&self, opts: &Options, sample: u64, drawn: Option<&[f64]>) -> String {
+        let mut args = vec![
+            "scen".to_string(),
+            "run".to_string(),
+            shell_word(&self.path.display().to_string()),
+        ];
+        if let Some(drawn) = drawn {
+            for (name, x) in self.family.drawn_names().iter().zip(drawn) {
+                // `{}` of an f64 is its shortest exact form.
+                args.push(format!("--set {name}={x}"));
+            }
+        }
+        if drawn.is_none() || self.family.scatters() {
+            args.push(format!("--sample {sample}"));
+            if opts.seed != 0 {
+                args.push(format!("--family-seed {}", opts.seed));
+            }
+        }
+        args.join(" ")
+    }
+}
+
+/// A word as a shell reads it: quoted when it holds anything but plain
+/// characters.
+fn shell_word(w: &str) -> String {
+    if !w.is_empty()
+        && w.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./+=:,@".contains(c))
+    {
+        w.to_string()
+    } else {
+        format!("'{}'", w.replace('\'', "'\\''"))
+    }
+}
+
+/// `statements` with the scattered items `items` in place of theirs and
+/// without the obstacles `gone`.
+fn edited(
+    statements: &[SourcedStmt],
+    items: &HashMap<Key, ObstacleDecl>,
+    gone: &HashSet<Key>,
+) -> Vec<SourcedStmt> {
     statements
         .iter()
         .map(|stmt| match &stmt.stmt {
@@ -648,6 +893,13 @@ fn without(statements: &[SourcedStmt], gone: &HashSet<Key>) -> Vec<SourcedStmt> 
                 w.items.retain(
                     |item| !matches!(item, WorldItem::Obstacle(o) if gone.contains(&key(o))),
                 );
+                for item in &mut w.items {
+                    if let WorldItem::Obstacle(o) = item
+                        && let Some(simpler) = items.get(&key(o))
+                    {
+                        *o = simpler.clone();
+                    }
+                }
                 SourcedStmt {
                     stmt: Stmt::World(w),
                     in_main_file: stmt.in_main_file,
@@ -658,60 +910,82 @@ fn without(statements: &[SourcedStmt], gone: &HashSet<Key>) -> Vec<SourcedStmt> 
         .collect()
 }
 
-/// The scattered obstacles of a sample, by their scatter's span.
-fn scatter_items(
-    statements: &[SourcedStmt],
-    spans: &HashSet<Span>,
-) -> HashMap<Span, Vec<WorldItem>> {
-    let mut out: HashMap<Span, Vec<WorldItem>> = HashMap::new();
-    for s in statements {
-        if let Stmt::World(w) = &s.stmt {
-            for item in &w.items {
-                if let WorldItem::Obstacle(o) = item
-                    && spans.contains(&o.span)
-                {
-                    out.entry(o.span).or_default().push(item.clone());
-                }
-            }
+/// A scattered item's numbers as its scatter drew them: a disk's centre
+/// and radius, a rect's centre, width and height.
+fn item_numbers(o: &ObstacleDecl) -> Option<Vec<f64>> {
+    let num = |v: &Value| match v.kind {
+        ValueKind::Number(x) => Some(x),
+        _ => None,
+    };
+    let point = |v: &Value| match &v.kind {
+        ValueKind::Tuple(p) if p.len() == 2 => Some((num(&p[0])?, num(&p[1])?)),
+        _ => None,
+    };
+    match &o.shape {
+        ObstacleShape::Disk(c, r) => {
+            let (x, y) = point(c)?;
+            Some(vec![x, y, num(r)?])
         }
+        ObstacleShape::Rect(a, b) => {
+            let ((x0, y0), (x1, y1)) = (point(a)?, point(b)?);
+            Some(vec![(x0 + x1) / 2.0, (y0 + y1) / 2.0, x1 - x0, y1 - y0])
+        }
+        _ => None,
     }
-    out
 }
 
-/// `x` rounded to `decimals` decimals.
-fn rounded(x: f64, decimals: i32) -> f64 {
-    let scale = 10f64.powi(decimals);
-    (x * scale).round() / scale
+/// The scattered item `o` with the numbers `n` (of [`item_numbers`]).
+fn with_numbers(o: &ObstacleDecl, n: &[f64]) -> ObstacleDecl {
+    let mut o = o.clone();
+    let set = |v: &mut Value, x: f64| v.kind = ValueKind::Number(x);
+    let set_point = |v: &mut Value, x: f64, y: f64| {
+        if let ValueKind::Tuple(p) = &mut v.kind {
+            set(&mut p[0], x);
+            set(&mut p[1], y);
+        }
+    };
+    match (&mut o.shape, n) {
+        (ObstacleShape::Disk(c, r), [x, y, radius]) => {
+            set_point(c, *x, *y);
+            set(r, *radius);
+        }
+        (ObstacleShape::Rect(a, b), [x, y, w, h]) => {
+            set_point(a, x - w / 2.0, y - h / 2.0);
+            set_point(b, x + w / 2.0, y + h / 2.0);
+        }
+        _ => {}
+    }
+    o
 }
 
-/// What shrinking varies: the drawn params, the scattered items, the
-/// obstacles removed.
-#[derive(Clone)]
-struct Shrinking {
-    drawn: Vec<f64>,
-    scatters: HashMap<Span, Vec<WorldItem>>,
-    gone: HashSet<Key>,
-}
-
-impl Shrinking {
-    /// The sample's statements, or `None` when a `require` rejects them.
-    fn build(&self, source: &Source) -> Option<Vec<SourcedStmt>> {
-        let (statements, _) = source
-            .family
-            .instantiate_fixed(&source.statements, &self.drawn, &self.scatters)
-            .ok()??;
-        Some(without(&statements, &self.gone))
-    }
-
-    fn fails(&self, source: &Source, check: usize) -> bool {
-        self.build(source).is_some_and(|s| fails(source, &s, check))
-    }
+/// Whether a scattered item with the numbers `n` is one its scatter could
+/// have placed: its centre in the box, its sizes in their supports, at
+/// least the gap from every other scattered item kept.
+fn placeable(
+    rule: &ScatterRule,
+    n: &[f64],
+    was: &[f64],
+    item: &ObstacleDecl,
+    others: &[(&ObstacleDecl, f64)],
+) -> bool {
+    let inside =
+        rule.min.0 <= n[0] && n[0] <= rule.max.0 && rule.min.1 <= n[1] && n[1] <= rule.max.1;
+    let sizes = rule
+        .sizes
+        .iter()
+        .zip(n[2..].iter().zip(&was[2..]))
+        .all(|(s, (&x, &w))| x == w || s.holds(x));
+    inside
+        && sizes
+        && others
+            .iter()
+            .all(|(o, gap)| scattered_distance(item, o).is_some_and(|d| d >= rule.gap.max(*gap)))
 }
 
 /// Removes obstacles while the check still fails: chunks of halving size,
 /// then one at a time until removing any one makes it pass (1-minimal).
-fn remove_obstacles(source: &Source, state: &mut Shrinking, check: usize, runs: &mut usize) {
-    let Some(statements) = state.build(source) else {
+fn remove_obstacles(shrinker: &Shrinker, state: &mut Shrinking, runs: &mut usize) {
+    let Some((statements, _)) = shrinker.build(state) else {
         return;
     };
     let all = obstacle_keys(&statements);
@@ -729,7 +1003,7 @@ fn remove_obstacles(source: &Source, state: &mut Shrinking, check: usize, runs: 
             let mut trial = state.clone();
             trial.gone.extend(part.iter().cloned());
             *runs += 1;
-            if trial.fails(source, check) {
+            if shrinker.fails(&trial) {
                 *state = trial;
             }
         }
@@ -752,7 +1026,7 @@ fn remove_obstacles(source: &Source, state: &mut Shrinking, check: usize, runs: 
             .map(|k| {
                 let mut trial = state.clone();
                 trial.gone.insert(k.clone());
-                trial.fails(source, check)
+                shrinker.fails(&trial)
             })
             .collect();
         match keeps.iter().position(|&k| k) {
@@ -765,94 +1039,119 @@ fn remove_obstacles(source: &Source, state: &mut Shrinking, check: usize, runs: 
 }
 
 /// Shrinks the failing sample and writes the standalone scenario: first
-/// the drawn params to the fewest decimals that still fail (the computed
-/// values follow them, so the world keeps its shape), then the obstacles
-/// to a 1-minimal set, then the scattered items' numbers, and a last
-/// check that no obstacle became removable.
+/// the drawn params to the fewest decimals that still fail, each value
+/// inside its distribution's support and every `require` holding (the
+/// world is then the family member `scen run --set ...` runs, computed
+/// values following the params so that it keeps its shape), then the
+/// obstacles to a 1-minimal set, then the scattered items' numbers (each
+/// item one its scatter could have placed), and a last check that no
+/// obstacle became removable.
 fn shrink(
     source: &Source,
     opts: &Options,
-    sample: u64,
-    params: Vec<(String, f64)>,
+    found: Found,
     check: usize,
     margin: f64,
-    statements: Vec<SourcedStmt>,
 ) -> Result<Failure, Vec<Diag>> {
+    let Found {
+        sample,
+        params,
+        statements,
+        unit,
+    } = found;
     let before = obstacle_keys(&statements).len();
     let scattered = scatter_spans(&source.statements);
+    let drawn = source.family.drawn_values(&params);
+    let shrinker = Shrinker {
+        source,
+        check,
+        choice: SampleChoice {
+            sample,
+            family_seed: opts.seed,
+        },
+        original: (statements.clone(), params.clone()),
+    };
+    // A `uniform` sample is the candidate as drawn; a point of the cube
+    // is the member of its params' values.
     let mut state = Shrinking {
-        drawn: source.family.drawn_values(&params),
-        scatters: scatter_items(&statements, &scattered),
+        drawn: unit.then(|| drawn.clone()),
+        items: HashMap::new(),
         gone: HashSet::new(),
     };
-    let drawn = state.drawn.clone();
+    let reproduce = source.reproduce(opts, sample, state.drawn.as_deref());
     let mut runs = 0usize;
     // 1. The drawn params.
-    for k in 0..state.drawn.len() {
+    let mut values = drawn.clone();
+    for k in 0..values.len() {
         for decimals in 0..=6 {
-            let x = rounded(state.drawn[k], decimals);
-            if x == state.drawn[k] || runs >= SHRINK_RUNS {
+            let x = rounded(values[k], decimals);
+            if x == values[k] || runs >= SHRINK_RUNS {
                 break;
             }
             let mut trial = state.clone();
-            trial.drawn[k] = x;
+            let mut v = values.clone();
+            v[k] = x;
+            trial.drawn = Some(v.clone());
             runs += 1;
-            if trial.fails(source, check) {
+            if shrinker.fails(&trial) {
                 state = trial;
+                values = v;
                 break;
             }
         }
     }
+    let member = source.reproduce(opts, sample, state.drawn.as_deref());
     // 2. The obstacles.
-    remove_obstacles(source, &mut state, check, &mut runs);
-    // 3. The numbers of the scattered items that remain.
-    let spans: Vec<Span> = {
-        let mut v: Vec<Span> = state.scatters.keys().copied().collect();
-        v.sort_by_key(|s| s.start);
-        v
-    };
-    for span in spans {
-        let n = state.scatters[&span].len();
-        for i in 0..n {
-            let gone = match &state.scatters[&span][i] {
-                WorldItem::Obstacle(o) => state.gone.contains(&key(o)),
-                _ => true,
-            };
-            if gone {
+    remove_obstacles(&shrinker, &mut state, &mut runs);
+    // 3. The numbers of the scattered items that remain, each kept one
+    // its scatter could have placed.
+    let mut simplified = false;
+    if let Some((current, all_values)) = shrinker.build(&state) {
+        let rules = source.family.scatter_rules(&source.statements, &all_values);
+        let scattered_items: Vec<ObstacleDecl> = main_obstacles(&current)
+            .into_iter()
+            .filter(|o| scattered.contains(&o.span))
+            .collect();
+        for (i, item) in scattered_items.iter().enumerate() {
+            let (Some(rule), Some(mut numbers)) = (rules.get(&item.span), item_numbers(item))
+            else {
                 continue;
-            }
-            let mut slot = 0;
-            loop {
-                let mut item = state.scatters[&span][i].clone();
-                let Some(original) = nth_number(&mut item, slot).map(|x| *x) else {
-                    break;
-                };
+            };
+            let was = numbers.clone();
+            let others: Vec<(&ObstacleDecl, f64)> = scattered_items
+                .iter()
+                .enumerate()
+                .filter(|(j, _)| *j != i)
+                .map(|(_, o)| (o, rules.get(&o.span).map_or(f64::INFINITY, |r| r.gap)))
+                .collect();
+            for slot in 0..numbers.len() {
                 for decimals in 0..=6 {
-                    let x = rounded(original, decimals);
-                    if x == original || runs >= SHRINK_RUNS {
+                    let x = rounded(numbers[slot], decimals);
+                    if x == numbers[slot] || runs >= SHRINK_RUNS {
                         break;
                     }
+                    let mut n = numbers.clone();
+                    n[slot] = x;
+                    let changed = with_numbers(item, &n);
+                    if !placeable(rule, &n, &was, &changed, &others) {
+                        continue;
+                    }
                     let mut trial = state.clone();
-                    let mut changed = item.clone();
-                    if let Some(v) = nth_number(&mut changed, slot) {
-                        *v = x;
-                    }
-                    if let Some(items) = trial.scatters.get_mut(&span) {
-                        items[i] = changed;
-                    }
+                    trial.items.insert(key(item), changed);
                     runs += 1;
-                    if trial.fails(source, check) {
+                    if shrinker.fails(&trial) {
                         state = trial;
+                        numbers = n;
+                        simplified = true;
                         break;
                     }
                 }
-                slot += 1;
             }
         }
     }
     // 4. Rounding may have made another obstacle removable.
-    remove_obstacles(source, &mut state, check, &mut runs);
-    let current = state.build(source).unwrap_or(statements);
+    remove_obstacles(&shrinker, &mut state, &mut runs);
+    let current = shrinker.build(&state).map_or(statements, |(s, _)| s);
     let after = obstacle_keys(&current).len();
     let computed = computed_spans(&source.statements, source.family.index());
     let check_span = source.checks[check];
@@ -865,7 +1164,7 @@ fn shrink(
     };
     let mut header = format!(
         "# Falsified by `scen falsify` (search {}, seed {}): `expect {check_text}` (line {line} of {})\n\
-         # fails on candidate {sample} of the search ({}), shrunk from {before} to {after} obstacle(s).\n",
+         # fails on candidate {sample} of the search ({}), which `{reproduce}` runs.\n",
         opts.search.word(),
         opts.seed,
         source.path.display(),
@@ -875,22 +1174,19 @@ fn shrink(
             .collect::<Vec<_>>()
             .join(", "),
     );
-    // The values rounded while the check still failed: the file's numbers
-    // are those, not the candidate's.
-    let rounded: Vec<String> = source
-        .family
-        .drawn_names()
-        .iter()
-        .zip(drawn.iter().zip(&state.drawn))
-        .filter(|(_, (was, now))| was != now)
-        .map(|(n, (_, now))| format!("{n} = {}", checks::format_num(*now)))
-        .collect();
-    if !rounded.is_empty() {
-        header.push_str(&format!(
-            "# It still fails with the drawn values simplified to {}.\n",
-            rounded.join(", ")
-        ));
-    }
+    header.push_str(&format!(
+        "# This file is the family member `{member}`{}, shrunk from {before} to {after} obstacle(s){}.\n",
+        if state.drawn.is_some() && values != drawn {
+            " (its params simplified; it fails too)"
+        } else {
+            ""
+        },
+        if simplified {
+            ", the scattered items' numbers simplified inside their scatter's box, sizes and gap"
+        } else {
+            ""
+        },
+    ));
     // Numbers to 12 significant digits when the file still fails with
     // them, else exact.
     let pretty = write_standalone(source, &current, &computed, &header, true)?;
@@ -902,6 +1198,7 @@ fn shrink(
     Ok(Failure {
         sample,
         params,
+        reproduce,
         check: check_text,
         line,
         margin,
@@ -909,6 +1206,30 @@ fn shrink(
         shrink_runs: runs,
         text,
     })
+}
+
+/// The obstacles of the main file's world, in order.
+fn main_obstacles(statements: &[SourcedStmt]) -> Vec<ObstacleDecl> {
+    let mut out = Vec::new();
+    for s in statements {
+        if let (true, Stmt::World(w)) = (s.in_main_file, &s.stmt) {
+            for item in &w.items {
+                if let WorldItem::Obstacle(o) = item {
+                    out.push(o.clone());
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The failing candidate, as the search found it.
+struct Found {
+    sample: u64,
+    params: Vec<(String, f64)>,
+    statements: Vec<SourcedStmt>,
+    /// A point of the cube (else a `uniform` sample).
+    unit: bool,
 }
 
 /// The spans of the scatters (their items' declarations carry them).
@@ -924,30 +1245,6 @@ fn scatter_spans(statements: &[SourcedStmt]) -> HashSet<Span> {
         }
     }
     out
-}
-
-/// The `slot`-th number of a scattered obstacle (its centre or corners,
-/// then its size).
-fn nth_number(item: &mut WorldItem, slot: usize) -> Option<&mut f64> {
-    fn walk<'v>(v: &'v mut Value, all: &mut Vec<&'v mut f64>) {
-        match &mut v.kind {
-            ValueKind::Number(x) => all.push(x),
-            ValueKind::Tuple(items) => items.iter_mut().for_each(|i| walk(i, all)),
-            _ => {}
-        }
-    }
-    let WorldItem::Obstacle(o) = item else {
-        return None;
-    };
-    let mut all: Vec<&mut f64> = Vec::new();
-    match &mut o.shape {
-        ObstacleShape::Rect(a, b) | ObstacleShape::Disk(a, b) | ObstacleShape::Segment(a, b) => {
-            walk(a, &mut all);
-            walk(b, &mut all);
-        }
-        _ => {}
-    }
-    all.into_iter().nth(slot)
 }
 
 /// Whether `text`, read as the scenario file itself (its includes and

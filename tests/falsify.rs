@@ -185,17 +185,14 @@ fn shrunk_files_are_standalone_failing_and_one_minimal() {
     assert_shrunk_and_one_minimal(dir.path(), &text);
 
     // The committed example: regenerated identically, and still failing.
-    let family = repo().join("scenarios/family_narrow_rrt.scen");
+    // Run from the repository with the path as the docs give it, so that
+    // the header's reproducing commands are the committed ones too.
+    let family = "scenarios/family_narrow_rrt.scen";
     let committed = repo().join("tests/falsified/family_narrow_rrt_fail.scen");
     let out_path = dir.path().join("narrow_fail.scen");
     let out = scen(
         &repo(),
-        &[
-            "falsify",
-            family.to_str().unwrap(),
-            "--out",
-            out_path.to_str().unwrap(),
-        ],
+        &["falsify", family, "--out", out_path.to_str().unwrap()],
         None,
     );
     assert_eq!(
@@ -206,11 +203,8 @@ fn shrunk_files_are_standalone_failing_and_one_minimal() {
     );
     let fresh = std::fs::read_to_string(&out_path).expect("written");
     let kept = std::fs::read_to_string(&committed).expect("committed");
-    // The header names the family's path as given; the rest is the same.
-    let body = |t: &str| t.lines().skip(2).collect::<Vec<_>>().join("\n");
     assert_eq!(
-        body(&fresh),
-        body(&kept),
+        fresh, kept,
         "regenerate it: scen falsify scenarios/family_narrow_rrt.scen --out tests/falsified/family_narrow_rrt_fail.scen"
     );
     assert_shrunk_and_one_minimal(dir.path(), &kept);
@@ -311,7 +305,13 @@ fn sharded_searches_merge_to_the_failure_of_the_whole_search() {
         let out = scen(dir.path(), args, None);
         let err = String::from_utf8_lossy(&out.stderr).into_owned();
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(err.contains(why), "{args:?}: {err}");
+        // miette wraps long messages: compare the words.
+        let flat = err
+            .split_whitespace()
+            .filter(|w| *w != "│")
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert!(flat.contains(why), "{args:?}: {err}");
     };
     refused(&["falsify", "merge", &parts[0]], "1 part(s) missing: 2/2");
     refused(&["falsify", "merge", &parts[0], &parts[0]], "given twice");
@@ -355,4 +355,230 @@ fn sharded_searches_merge_to_the_failure_of_the_whole_search() {
         &["falsify", "merge", &parts[0], &parts[1]],
         "has changed since the parts were made",
     );
+}
+
+/// Runs the command line `scen falsify` printed (`scen run FILE ...`)
+/// with the real binary.
+fn run_printed(dir: &Path, command: &str, extra: &[&str]) -> std::process::Output {
+    let words: Vec<&str> = command.split_whitespace().collect();
+    assert_eq!(&words[..2], ["scen", "run"], "{command}");
+    let mut args: Vec<&str> = words[1..].to_vec();
+    args.extend_from_slice(extra);
+    scen(dir, &args, None)
+}
+
+/// The falsified check fails again (exit 1) when the printed command runs:
+/// for a family of params only (`--set` alone) and for one that scatters
+/// (`--set` with the sample whose stream places the items).
+#[test]
+fn the_printed_command_reproduces_the_failing_world() {
+    let dir = TempDir::new("falsify-reproduce");
+    for (name, text, scatters) in [("needle.scen", NEEDLE, false), ("rocks.scen", ROCKS, true)] {
+        std::fs::write(dir.path().join(name), text).expect("write");
+        let out = scen(
+            dir.path(),
+            &["falsify", name, "--seed", "3", "--json"],
+            None,
+        );
+        assert_eq!(out.status.code(), Some(1), "{name}");
+        let doc = json(&out);
+        let command = doc["reproduce"]
+            .as_str()
+            .expect("a reproduce line")
+            .to_string();
+        assert!(command.contains("--set "), "{command}");
+        assert_eq!(command.contains("--sample "), scatters, "{command}");
+        if scatters {
+            assert!(command.contains("--family-seed 3"), "{command}");
+        }
+        // The text report prints the same line.
+        let text = scen(dir.path(), &["falsify", name, "--seed", "3"], None);
+        let stdout = String::from_utf8_lossy(&text.stdout);
+        assert!(stdout.contains(&format!("run it: {command}")), "{stdout}");
+        // Run as printed: the same check fails, on the same params, exactly.
+        let run = run_printed(dir.path(), &command, &[]);
+        let report = String::from_utf8_lossy(&run.stdout);
+        assert_eq!(run.status.code(), Some(1), "{command}:\n{report}");
+        assert!(report.contains("FAIL"), "{report}");
+        let run = json(&run_printed(dir.path(), &command, &["--json"]));
+        assert_eq!(run["params"], doc["params"], "{command}");
+        let failed: Vec<&serde_json::Value> = run["checks"]
+            .as_array()
+            .expect("checks")
+            .iter()
+            .filter(|c| c["passed"] == false)
+            .collect();
+        assert_eq!(failed.len(), 1, "{run}");
+        assert_eq!(failed[0]["line"], doc["line"], "{run}");
+        // The written file's comment says the same.
+        let stem = name.trim_end_matches(".scen");
+        let written =
+            std::fs::read_to_string(dir.path().join(format!("{stem}_fail.scen"))).expect("written");
+        assert!(written.contains(&command), "{written}");
+    }
+}
+
+/// `--set` names a family member, or is refused with a diagnostic (exit 2).
+#[test]
+fn run_set_refuses_what_is_no_family_member() {
+    let dir = TempDir::new("run-set");
+    let family = "param a = uniform(1, 3)\nparam n = int(2, 5)\nparam c = choice [0.5, 1.5]\n\
+        param b = a + 1\nrequire a + n < 7\n\
+        world {\n  bounds (0, 0) (10, 10)\n}\nrobot r point\n\
+        plan p astar r { start (1, 1) goal (a, b) }\nexpect p.found\n";
+    std::fs::write(dir.path().join("f.scen"), family).expect("write");
+    // A member: exit 0, the values given.
+    let out = scen(
+        dir.path(),
+        &[
+            "run", "f.scen", "--set", "a=2.5", "--set", "n=3", "--set", "c=1.5", "--json",
+        ],
+        None,
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc = json(&out);
+    assert_eq!(doc["params"]["a"], 2.5);
+    assert_eq!(doc["params"]["b"], 3.5);
+    assert_eq!(doc["params"]["n"], 3.0);
+    let refused = |args: &[&str], why: &str| {
+        let mut all = vec!["run", "f.scen"];
+        all.extend_from_slice(args);
+        let out = scen(dir.path(), &all, None);
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("scen::family::bad_set"), "{args:?}: {err}");
+        // miette wraps long messages: compare the words.
+        let flat = err
+            .split_whitespace()
+            .filter(|w| *w != "│")
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert!(flat.contains(why), "{args:?}: {err}");
+        // A diagnostic with its place in the file.
+        assert!(err.contains("f.scen:"), "{args:?}: {err}");
+    };
+    refused(&["--set", "aa=2"], "the drawn params are `a`, `n`, `c`");
+    refused(&["--set", "a=3.5"], "from 1 to 3");
+    refused(&["--set", "n=2.5"], "whole numbers from 2 to 5");
+    refused(&["--set", "c=1"], "one of 0.5, 1.5");
+    refused(&["--set", "a=two"], "`two` is not a number");
+    refused(&["--set", "a"], "is not `NAME=VALUE`");
+    refused(&["--set", "b=2"], "computed from others");
+    refused(
+        &["--set", "a=2.9", "--set", "n=5", "--set", "c=0.5"],
+        "violate a `require`",
+    );
+}
+
+/// Shrinking keeps every value in the family: the drawn param rounded only
+/// where its `require` still holds, the scattered radii inside their
+/// distribution's support (rounding 0.31–0.38 to one decimal leaves it),
+/// the centres inside the scatter's box.
+#[test]
+fn shrunk_values_stay_inside_the_family() {
+    let dir = TempDir::new("falsify-support");
+    let family = "param a = uniform(0.6, 1.4)\nrequire a > 1.04\n\
+        world {\n  bounds (0, 0) (12, 10)\n  \
+        scatter rocks 25 disk uniform(0.31, 0.38) in (2, 1) (10, 9) gap 0.1\n}\n\
+        robot r disk 0.2\n\
+        plan p astar r { start (0.55, 5.05) goal (11.45, 5.05) cell 0.1 connect 8 }\n\
+        expect p.length < 9.9 + a\n";
+    std::fs::write(dir.path().join("support.scen"), family).expect("write");
+    let out = scen(dir.path(), &["falsify", "support.scen", "--json"], None);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.path().join("support_fail.scen")).expect("written");
+    // The member it names: its `a` satisfies the require, and it fails.
+    let member = text
+        .lines()
+        .find_map(|l| l.strip_prefix("# This file is the family member `"))
+        .and_then(|l| l.split('`').next())
+        .unwrap_or_else(|| panic!("no member named:\n{text}"))
+        .to_string();
+    let a: f64 = member
+        .split_whitespace()
+        .find_map(|w| w.strip_prefix("a="))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("{member}"));
+    assert!((1.04..=1.4).contains(&a) && a > 1.04, "a = {a}: {text}");
+    assert_eq!(
+        run_printed(dir.path(), &member, &[]).status.code(),
+        Some(1),
+        "{member}"
+    );
+    // The rocks kept: radius in [0.31, 0.38], centre in the box.
+    let mut rocks = 0;
+    for l in text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("disk rocks_"))
+    {
+        let nums: Vec<f64> = l
+            .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+            .filter(|w| !w.is_empty() && w.parse::<f64>().is_ok())
+            .map(|w| w.parse().unwrap())
+            .collect();
+        // `disk rocks_K (x, y) r`: the name's number first.
+        let (x, y, r) = (nums[1], nums[2], nums[3]);
+        assert!((0.31..=0.38).contains(&r), "radius {r}: {l}");
+        assert!((2.0..=10.0).contains(&x) && (1.0..=9.0).contains(&y), "{l}");
+        rocks += 1;
+    }
+    assert!(rocks > 0, "{text}");
+    assert_eq!(
+        test_exit(dir.path(), "shrunk.scen", &text),
+        Some(1),
+        "{text}"
+    );
+}
+
+/// The held-out families of `scripts/bench_falsify.sh` parse and analyse
+/// (they fail on purpose, so they live outside `scenarios/`), and each one
+/// does fail somewhere: its failure region is not empty.
+#[test]
+fn the_benchmark_families_load_and_can_fail() {
+    let dir = repo().join("benches/falsify");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("benches/falsify")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "scen"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 4, "{files:?}");
+    for file in &files {
+        let out = scen(&repo(), &["check", file.to_str().unwrap()], None);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}: {}",
+            file.display(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    // A point inside each failure region fails (exit 1).
+    let inside: [(&str, &[&str]); 6] = [
+        ("corner.scen", &["x=0.99", "y=0.01"]),
+        ("band.scen", &["x=0.6", "y=0.4"]),
+        ("band_decoy.scen", &["x=0.4422", "y=0.9"]),
+        ("product.scen", &["a=0.6", "b=0.5001"]),
+        ("ring.scen", &["x=0.8002", "y=0.5"]),
+        ("three_params.scen", &["a=0.95", "b=0.95", "c=0.95"]),
+    ];
+    assert_eq!(files.len(), inside.len(), "a point inside each: {files:?}");
+    for (name, set) in inside {
+        let mut args = vec!["run".to_string(), dir.join(name).display().to_string()];
+        for s in set {
+            args.extend(["--set".to_string(), s.to_string()]);
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        assert_eq!(scen(&repo(), &args, None).status.code(), Some(1), "{name}");
+    }
 }

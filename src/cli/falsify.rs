@@ -210,6 +210,7 @@ fn write_part(
         json!({
             "sample": f.sample,
             "params": params_json(&f.params),
+            "reproduce": f.reproduce,
             "check": f.check,
             "line": f.line,
             "margin": margin_json(f.margin),
@@ -278,6 +279,7 @@ fn read_part(path: &Path) -> Result<Part, String> {
                 Some(Failure {
                     sample: num(f, "sample")?,
                     params: params_of(f.get("params")?)?,
+                    reproduce: word(f, "reproduce")?,
                     check: word(f, "check")?,
                     line: usize::try_from(num(f, "line")?).ok()?,
                     margin: margin_of(f.get("margin")?)?,
@@ -481,7 +483,15 @@ fn print_text(file: &Path, r: &Falsified, out: &Path) {
     );
     match &r.failure {
         Some(f) => {
-            outln!("FAIL  sample {}: {}", f.sample, params_text(&f.params));
+            // A `uniform` sample is the family's own; the other searches'
+            // candidates are points of their own.
+            let what = if r.search == falsify::Search::Uniform {
+                "sample"
+            } else {
+                "candidate"
+            };
+            outln!("FAIL  {what} {}: {}", f.sample, params_text(&f.params));
+            outln!("      run it: {}", f.reproduce);
             outln!(
                 "      line {}: expect {}   (margin {})",
                 f.line,
@@ -524,6 +534,7 @@ fn json(file: &Path, r: &Falsified, out: &Path) -> serde_json::Value {
         Some(f) => {
             o.insert("sample".into(), f.sample.into());
             o.insert("params".into(), params(&f.params).into());
+            o.insert("reproduce".into(), f.reproduce.clone().into());
             o.insert("check".into(), f.check.clone().into());
             o.insert("line".into(), f.line.into());
             o.insert("margin".into(), crate::report::json::float_json(f.margin));

@@ -74,6 +74,7 @@ impl Analysis {
                 sources.clone(),
                 maps,
                 crate::scenario::SampleChoice::default(),
+                &[],
             );
             if let Err(failure) = analysed {
                 diags = failure.diags;

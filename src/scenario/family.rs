@@ -110,9 +110,22 @@ pub(crate) type Instance = (Vec<SourcedStmt>, Vec<(String, f64)>);
 struct Draw {
     values: Vec<f64>,
     rng: SplitMix64,
-    /// The items of each scatter (by its span), when they are given rather
-    /// than drawn (a shrinking sample).
-    fixed: Option<HashMap<Span, Vec<WorldItem>>>,
+}
+
+/// What the drawn params take instead of the stream's draws.
+#[derive(Clone, Copy)]
+enum Given<'a> {
+    /// A search's point of the unit cube.
+    Unit(&'a [f64]),
+    /// `--set`'s values, by param index (empty or `None`: the draw).
+    Set(&'a [Option<f64>]),
+}
+
+/// A `--set` that names no family member (exit 2).
+fn bad_set(message: String, span: Span, label: &str, help: impl Into<String>) -> Diag {
+    Diag::error("scen::family::bad_set", message)
+        .at(span, label.to_string())
+        .help(help.into())
 }
 
 /// SplitMix64's finaliser, to derive independent stream seeds.
@@ -511,9 +524,18 @@ impl Family {
         .help(help)
     }
 
-    /// Draws the params of one attempt at one sample.
-    fn draw_params(&self, choice: SampleChoice, attempt: u32) -> Result<Draw, Diag> {
-        self.draw_params_with(SplitMix64::new(stream_seed(choice, attempt)), None)
+    /// Draws the params of one attempt at one sample, those `set` gives
+    /// taking its values.
+    fn draw_params(
+        &self,
+        choice: SampleChoice,
+        attempt: u32,
+        set: &[Option<f64>],
+    ) -> Result<Draw, Diag> {
+        self.draw_params_with(
+            SplitMix64::new(stream_seed(choice, attempt)),
+            Given::Set(set),
+        )
     }
 
     /// How many params are drawn (from a distribution or a `choice`): the
@@ -522,30 +544,147 @@ impl Family {
         self.params.iter().filter(|p| p.drawn()).count()
     }
 
-    /// One candidate of a search: the drawn params at `unit` (one
-    /// coordinate in [0, 1) per drawn param, through each distribution's
-    /// inverse distribution function), the scattered items from the stream
-    /// of `seed`. Its statements and params; `None` when a `require`
+    /// One candidate of a search: attempt 0 of sample `choice` with its
+    /// drawn params at `unit` instead (one coordinate in [0, 1) per drawn
+    /// param, through each distribution's inverse distribution function).
+    /// The stream is consumed as the sample's is, so the scattered items
+    /// are those of `scen run --sample K --set NAME=VALUE...` with these
+    /// params' values. Its statements and params; `None` when a `require`
     /// rejects it.
     pub(crate) fn candidate(
         &self,
         statements: &[SourcedStmt],
-        seed: u64,
+        choice: SampleChoice,
         unit: &[f64],
     ) -> Result<Option<Instance>, Vec<Diag>> {
         let mut draw = self
-            .draw_params_with(SplitMix64::new(mix(seed)), Some(unit))
+            .draw_params_with(SplitMix64::new(stream_seed(choice, 0)), Given::Unit(unit))
             .map_err(|d| vec![d])?;
         if self.violated(&draw.values).map_err(|d| vec![d])?.is_some() {
             return Ok(None);
         }
-        let params = self
-            .params
-            .iter()
-            .zip(&draw.values)
-            .map(|(p, &x)| (p.name.value.clone(), x))
-            .collect();
+        let params = self.named(&draw.values);
         Ok(Some((self.instantiate(statements, &mut draw)?, params)))
+    }
+
+    /// Every param's value with its name, in declaration order.
+    fn named(&self, values: &[f64]) -> Vec<(String, f64)> {
+        self.params
+            .iter()
+            .zip(values)
+            .map(|(p, &x)| (p.name.value.clone(), x))
+            .collect()
+    }
+
+    /// The drawn params' values given as `NAME=VALUE` (`scen run --set`),
+    /// by param index (`None`: drawn as usual). Errors: not `NAME=VALUE`,
+    /// an unknown or computed param, not a number, a family that draws
+    /// nothing. Whether a value is in its distribution's support is
+    /// checked at the draw (bounds may read earlier params).
+    pub(crate) fn resolve_set(&self, set: &[String]) -> Result<Vec<Option<f64>>, Vec<Diag>> {
+        if set.is_empty() {
+            return Ok(Vec::new());
+        }
+        let anchor = self
+            .params
+            .first()
+            .map_or(Span::new(0, 0, 0), |p| p.name.span);
+        let mut out = vec![None; self.params.len()];
+        let mut diags = Vec::new();
+        for given in set {
+            let Some((name, value)) = given.split_once('=') else {
+                diags.push(bad_set(
+                    format!("`--set {given}` is not `NAME=VALUE`"),
+                    anchor,
+                    "the family's params are declared from here",
+                    "give a param's value as `--set NAME=VALUE`, e.g. `--set gap=1.25`",
+                ));
+                continue;
+            };
+            let name = name.trim();
+            let Some(&k) = self.index.get(name) else {
+                let known: Vec<&str> = self.drawn_names();
+                let help = match schema::did_you_mean(name, known.iter().copied()) {
+                    Some(s) => format!("did you mean `{s}`?"),
+                    None if known.is_empty() => {
+                        "this scenario draws no param: run it without `--set`".to_string()
+                    }
+                    None => format!("the drawn params are {}", schema::backticked(&known)),
+                };
+                diags.push(bad_set(
+                    format!("`--set {given}`: the scenario has no param `{name}`"),
+                    anchor,
+                    "the family's params are declared from here",
+                    help,
+                ));
+                continue;
+            };
+            let p = &self.params[k];
+            if !p.drawn() {
+                diags.push(bad_set(
+                    format!(
+                        "`--set {given}`: the param `{name}` is computed from others, not drawn"
+                    ),
+                    p.name.span,
+                    "computed here",
+                    "set the drawn params it is computed from",
+                ));
+                continue;
+            }
+            match value.trim().parse::<f64>() {
+                Ok(x) if x.is_finite() => out[k] = Some(x),
+                _ => diags.push(bad_set(
+                    format!("`--set {given}`: `{}` is not a number", value.trim()),
+                    p.name.span,
+                    "the param set",
+                    "write a finite number, e.g. `--set gap=1.25` (what `scen falsify` prints)",
+                )),
+            }
+        }
+        if diags.is_empty() {
+            Ok(out)
+        } else {
+            Err(diags)
+        }
+    }
+
+    /// Why `x` is not a value param `p` can draw (its support), given the
+    /// earlier params' values; `None` when it is one.
+    fn outside_support(
+        &self,
+        p: &ParamDef,
+        x: f64,
+        values: &[f64],
+    ) -> Result<Option<String>, Diag> {
+        let bound = |e: &Expr| eval(e, values, &self.index).map_err(|e| e.diag(self, values));
+        Ok(match &p.source {
+            Source::Uniform(a, b) => {
+                let (lo, hi) = (bound(a)?, bound(b)?);
+                (!(lo <= x && x <= hi))
+                    .then(|| format!("`uniform({lo}, {hi})` draws from {lo} to {hi}"))
+            }
+            Source::Int(a, b) => {
+                let (lo, hi) = (bound(a)?.ceil(), bound(b)?.floor());
+                (!(lo <= x && x <= hi && x.fract() == 0.0))
+                    .then(|| format!("`int` draws the whole numbers from {lo} to {hi}"))
+            }
+            Source::Choice(items) => {
+                let mut all = Vec::new();
+                for item in items {
+                    all.push(self.number(item, values)?);
+                }
+                (!all.contains(&x)).then(|| {
+                    format!(
+                        "`choice` draws one of {}",
+                        all.iter()
+                            .map(|v| format!("{v}"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )
+                })
+            }
+            Source::Normal(..) | Source::Value(_) => None,
+        })
     }
 
     /// The values of the drawn params (those of a distribution or a
@@ -569,73 +708,22 @@ impl Family {
             .collect()
     }
 
-    /// A sample with its drawn params and scattered items given (a
-    /// shrinking one): the computed params follow from the drawn ones.
-    /// `None` when a `require` rejects it.
-    pub(crate) fn instantiate_fixed(
-        &self,
-        statements: &[SourcedStmt],
-        drawn: &[f64],
-        scatters: &HashMap<Span, Vec<WorldItem>>,
-    ) -> Result<Option<Instance>, Vec<Diag>> {
+    /// Draws the params from `rng`; the drawn ones then take the value
+    /// `given` (a search's point, or `--set`'s values), the stream
+    /// consumed all the same so that the scattered items after them come
+    /// from the same place of it.
+    fn draw_params_with(&self, mut rng: SplitMix64, given: Given<'_>) -> Result<Draw, Diag> {
         let mut values: Vec<f64> = Vec::with_capacity(self.params.len());
-        let mut given = drawn.iter().copied();
-        for p in &self.params {
-            let x = match &p.source {
-                Source::Value(v) => self.number(v, &values).map_err(|d| vec![d])?,
-                _ => given.next().unwrap_or(0.0),
-            };
-            // A value the distribution cannot draw is not a sample.
-            let inside = match &p.source {
-                Source::Uniform(a, b) | Source::Int(a, b) => {
-                    let lo =
-                        eval(a, &values, &self.index).map_err(|e| vec![e.diag(self, &values)])?;
-                    let hi =
-                        eval(b, &values, &self.index).map_err(|e| vec![e.diag(self, &values)])?;
-                    lo <= x
-                        && x <= hi
-                        && (matches!(p.source, Source::Uniform(..)) || x.fract() == 0.0)
-                }
-                Source::Choice(items) => {
-                    let mut any = false;
-                    for item in items {
-                        any |= self.number(item, &values).map_err(|d| vec![d])? == x;
-                    }
-                    any
-                }
-                Source::Normal(..) | Source::Value(_) => true,
-            };
-            if !inside {
-                return Ok(None);
-            }
-            values.push(x);
-        }
-        if self.violated(&values).map_err(|d| vec![d])?.is_some() {
-            return Ok(None);
-        }
-        let params = self
-            .params
-            .iter()
-            .zip(&values)
-            .map(|(p, &x)| (p.name.value.clone(), x))
-            .collect();
-        let mut draw = Draw {
-            values,
-            rng: SplitMix64::new(0),
-            fixed: Some(scatters.clone()),
+        let mut coordinates = match given {
+            Given::Unit(u) => Some(u.iter().copied()),
+            Given::Set(_) => None,
         };
-        Ok(Some((self.instantiate(statements, &mut draw)?, params)))
-    }
-
-    /// Draws the params from `rng`, or at `unit` for the drawn ones.
-    fn draw_params_with(&self, mut rng: SplitMix64, unit: Option<&[f64]>) -> Result<Draw, Diag> {
-        let mut values: Vec<f64> = Vec::with_capacity(self.params.len());
-        let mut coordinates = unit.map(|u| u.iter().copied());
-        let mut next_u = |rng: &mut SplitMix64| match &mut coordinates {
-            Some(it) => it.next().unwrap_or(0.5).clamp(0.0, 1.0 - f64::EPSILON),
-            None => rng.next_f64(),
+        let mut next_u = || {
+            coordinates
+                .as_mut()
+                .map(|it| it.next().unwrap_or(0.5).clamp(0.0, 1.0 - f64::EPSILON))
         };
-        for p in &self.params {
+        for (i, p) in self.params.iter().enumerate() {
             let x = match &p.source {
                 Source::Uniform(a, b) | Source::Normal(a, b) | Source::Int(a, b) => {
                     let x = eval(a, &values, &self.index).map_err(|e| e.diag(self, &values))?;
@@ -646,29 +734,45 @@ impl Family {
                         _ => "int",
                     };
                     check_distribution(f, x, y, a.span.to(b.span))?;
-                    if unit.is_some() {
-                        inverse(f, x, y, next_u(&mut rng))
-                    } else {
-                        sample(f, x, y, &mut rng)
+                    let drawn = sample(f, x, y, &mut rng);
+                    match next_u() {
+                        Some(u) => inverse(f, x, y, u),
+                        None => drawn,
                     }
                 }
                 Source::Choice(items) => {
-                    let k = if unit.is_some() {
-                        ((next_u(&mut rng) * items.len() as f64) as usize).min(items.len() - 1)
-                    } else {
-                        (rng.next_u64() % items.len() as u64) as usize
+                    let drawn = (rng.next_u64() % items.len() as u64) as usize;
+                    let k = match next_u() {
+                        Some(u) => ((u * items.len() as f64) as usize).min(items.len() - 1),
+                        None => drawn,
                     };
                     self.number(&items[k], &values)?
                 }
                 Source::Value(v) => self.number(v, &values)?,
             };
+            let x = match given {
+                Given::Set(set) if p.drawn() => match set.get(i).copied().flatten() {
+                    Some(v) => {
+                        if let Some(support) = self.outside_support(p, v, &values)? {
+                            return Err(bad_set(
+                                format!(
+                                    "`--set {}={v}` is outside what the param draws: {support}",
+                                    p.name.value
+                                ),
+                                p.name.span,
+                                "the param set",
+                                "give a value the family can draw (a family member)",
+                            ));
+                        }
+                        v
+                    }
+                    None => x,
+                },
+                _ => x,
+            };
             values.push(x);
         }
-        Ok(Draw {
-            values,
-            rng,
-            fixed: None,
-        })
+        Ok(Draw { values, rng })
     }
 
     /// The number of a value that must be one (a choice's item, a
@@ -781,19 +885,49 @@ impl Family {
     }
 
     /// Sample `choice` of the family: its statements and what it drew.
-    /// `analyze` analyses an instance; a failure whose errors are all a
-    /// start or goal outside `bounds` or in collision is a rejection.
+    /// `set` gives some drawn params' values ([`Family::resolve_set`];
+    /// empty: none), the rest is drawn as usual. `analyze` analyses an
+    /// instance; a failure whose errors are all a start or goal outside
+    /// `bounds` or in collision is a rejection.
     pub fn sample<T>(
         &self,
         statements: &[SourcedStmt],
         choice: SampleChoice,
+        set: &[Option<f64>],
         mut analyze: impl FnMut(Vec<SourcedStmt>) -> Result<T, Vec<Diag>>,
     ) -> Result<(T, Drawn), Vec<Diag>> {
         let mut by_require = vec![0u32; self.requires.len()];
         let mut by_pose: Option<(u32, Diag)> = None;
+        // Every drawn param given: no draw can satisfy a `require` they
+        // violate.
+        let all_set = !set.is_empty()
+            && self
+                .params
+                .iter()
+                .zip(set)
+                .all(|(p, v)| !p.drawn() || v.is_some());
         for attempt in 0..MAX_ATTEMPTS {
-            let mut draw = self.draw_params(choice, attempt).map_err(|d| vec![d])?;
+            let mut draw = self
+                .draw_params(choice, attempt, set)
+                .map_err(|d| vec![d])?;
             if let Some(k) = self.violated(&draw.values).map_err(|d| vec![d])? {
+                if all_set {
+                    return Err(vec![bad_set(
+                        format!(
+                            "the values given with `--set` ({}) violate a `require`",
+                            self.named(&draw.values)
+                                .iter()
+                                .zip(&self.params)
+                                .filter(|(_, p)| p.drawn())
+                                .map(|((n, x), _)| format!("{n} = {x}"))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                        self.requires[k].1,
+                        "violated",
+                        "give values that satisfy every `require` (a family member)",
+                    )]);
+                }
                 by_require[k] += 1;
                 continue;
             }
@@ -1042,10 +1176,6 @@ impl Ctx<'_> {
 
     /// Places the items of a scatter, appending them as obstacles.
     fn scatter(&mut self, sc: &ScatterDecl, placed: &mut Placements, items: &mut Vec<WorldItem>) {
-        if let Some(fixed) = &self.draw.fixed {
-            items.extend(fixed.get(&sc.span).cloned().unwrap_or_default());
-            return;
-        }
         let Some(count) = self.scatter_number(&sc.count, "count", sc) else {
             return;
         };
@@ -1537,4 +1667,178 @@ fn eval_condition(
         }
         _ => return Err(EvalError::Static(e.span)),
     })
+}
+
+/// What a scattered item's numbers may be for the scatter to have placed
+/// it (with the params' values of one member): its centre inside the box,
+/// each size in its distribution's support, at least the gap from the
+/// other items. Shrinking keeps a simplified item inside it.
+#[derive(Clone, Debug)]
+pub(crate) struct ScatterRule {
+    pub min: (f64, f64),
+    pub max: (f64, f64),
+    pub gap: f64,
+    /// Per size (a disk's radius; a rect's width and height).
+    pub sizes: Vec<Support>,
+}
+
+/// The values a scattered size may take.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Support {
+    /// A constant or a computed size: only the value placed.
+    Fixed,
+    /// `uniform(lo, hi)`, or `int(lo, hi)` (`whole`).
+    Range { lo: f64, hi: f64, whole: bool },
+    /// `normal(m, s)`: any positive number.
+    Any,
+}
+
+impl Support {
+    /// Whether a size of `x` is one this support may draw (`x` positive).
+    pub fn holds(self, x: f64) -> bool {
+        x > 0.0
+            && match self {
+                Support::Fixed => false,
+                Support::Range { lo, hi, whole } => {
+                    lo <= x && x <= hi && (!whole || x.fract() == 0.0)
+                }
+                Support::Any => true,
+            }
+    }
+}
+
+impl Family {
+    /// The rules of every scatter (by its span) with the params' values
+    /// `values` (all params, in order); a scatter whose box or gap is not a
+    /// number here is left out (its items are not simplified).
+    pub(crate) fn scatter_rules(
+        &self,
+        statements: &[SourcedStmt],
+        values: &[f64],
+    ) -> HashMap<Span, ScatterRule> {
+        let number = |v: &Value| -> Option<f64> {
+            match &v.kind {
+                ValueKind::Number(x) => Some(*x),
+                ValueKind::Calc { expr, unit: None } => eval(expr, values, &self.index).ok(),
+                ValueKind::Word(w) => self
+                    .index
+                    .get(w.as_str())
+                    .and_then(|&k| values.get(k).copied()),
+                _ => None,
+            }
+        };
+        let point = |v: &Value| match &v.kind {
+            ValueKind::Tuple(items) if items.len() == 2 => {
+                Some((number(&items[0])?, number(&items[1])?))
+            }
+            _ => None,
+        };
+        let support = |v: &Value| -> Support {
+            let ValueKind::Calc { expr, unit: None } = &v.kind else {
+                return Support::Fixed;
+            };
+            let ExprKind::Call { function, args } = &expr.kind else {
+                return Support::Fixed;
+            };
+            let bounds = match args.as_slice() {
+                [a, b] => eval(a, values, &self.index)
+                    .ok()
+                    .zip(eval(b, values, &self.index).ok()),
+                _ => None,
+            };
+            match (function.value.as_str(), bounds) {
+                ("uniform", Some((lo, hi))) => Support::Range {
+                    lo,
+                    hi,
+                    whole: false,
+                },
+                ("int", Some((lo, hi))) => Support::Range {
+                    lo: lo.ceil(),
+                    hi: hi.floor(),
+                    whole: true,
+                },
+                ("normal", Some(_)) => Support::Any,
+                _ => Support::Fixed,
+            }
+        };
+        let mut out = HashMap::new();
+        for s in statements {
+            let Stmt::World(w) = &s.stmt else { continue };
+            for item in &w.items {
+                let WorldItem::Scatter(sc) = item else {
+                    continue;
+                };
+                let gap = match &sc.gap {
+                    Some(g) => number(g),
+                    None => Some(0.0),
+                };
+                let (Some(min), Some(max), Some(gap)) = (point(&sc.min), point(&sc.max), gap)
+                else {
+                    continue;
+                };
+                let sizes = match &sc.shape {
+                    ScatterShape::Disk { radius, .. } => vec![support(radius)],
+                    ScatterShape::Rect { width, height, .. } => {
+                        vec![support(width), support(height)]
+                    }
+                };
+                out.insert(
+                    sc.span,
+                    ScatterRule {
+                        min,
+                        max,
+                        gap,
+                        sizes,
+                    },
+                );
+            }
+        }
+        out
+    }
+
+    /// The drawn params' values (in the order of [`Family::drawn_values`])
+    /// as what `--set` gives, by param index.
+    pub(crate) fn set_of_drawn(&self, drawn: &[f64]) -> Vec<Option<f64>> {
+        let mut given = drawn.iter().copied();
+        self.params
+            .iter()
+            .map(|p| if p.drawn() { given.next() } else { None })
+            .collect()
+    }
+
+    /// Whether a `scatter` draws obstacles (whose places come from a
+    /// sample's stream, not from the params).
+    pub(crate) fn scatters(&self) -> bool {
+        self.scatters
+    }
+}
+
+/// The distance between two scattered items as their scatter measures it
+/// for its gap (`None`: not a scattered disk or rect).
+pub(crate) fn scattered_distance(a: &ObstacleDecl, b: &ObstacleDecl) -> Option<f64> {
+    Some(Placed::of(a)?.distance(&Placed::of(b)?))
+}
+
+impl Placed {
+    fn of(o: &ObstacleDecl) -> Option<Placed> {
+        let num = |v: &Value| match &v.kind {
+            ValueKind::Number(x) => Some(*x),
+            _ => None,
+        };
+        let point = |v: &Value| match &v.kind {
+            ValueKind::Tuple(items) if items.len() == 2 => Some((num(&items[0])?, num(&items[1])?)),
+            _ => None,
+        };
+        match &o.shape {
+            ObstacleShape::Disk(c, r) => {
+                let (x, y) = point(c)?;
+                Some(Placed::Disk { x, y, r: num(r)? })
+            }
+            ObstacleShape::Rect(a, b) => {
+                let ((x0, y0), (x1, y1)) = (point(a)?, point(b)?);
+                Some(Placed::Rect { x0, y0, x1, y1 })
+            }
+            _ => None,
+        }
+    }
 }

@@ -94,6 +94,19 @@ pub fn load_sample(
     overlay: Overlay<'_>,
     choice: SampleChoice,
 ) -> Result<Scenario, LoadFailure> {
+    load_member(path, root, overlay, choice, &[])
+}
+
+/// [`load_sample`] with some drawn params' values given as `NAME=VALUE`
+/// (`scen run --set`, what `scen falsify` reports): the scattered items
+/// still come from sample `choice`'s stream.
+pub fn load_member(
+    path: &Path,
+    root: Option<&Path>,
+    overlay: Overlay<'_>,
+    choice: SampleChoice,
+    set: &[String],
+) -> Result<Scenario, LoadFailure> {
     let mut parsed = parse_scenario(path, root, overlay);
     if parsed.diags.iter().any(Diag::is_error) {
         crate::diagnostics::sort_diags(&mut parsed.diags);
@@ -102,7 +115,14 @@ pub fn load_sample(
             diags: parsed.diags,
         });
     }
-    analyze_sample(path, parsed.statements, parsed.sources, parsed.maps, choice)
+    analyze_sample(
+        path,
+        parsed.statements,
+        parsed.sources,
+        parsed.maps,
+        choice,
+        set,
+    )
 }
 
 /// Analyses statements with nothing left to draw (a family's sample).
@@ -123,6 +143,7 @@ pub(crate) fn analyze_sample(
     sources: SourceMap,
     maps: HashMap<Span, Result<FileId, Diag>>,
     choice: SampleChoice,
+    set: &[String],
 ) -> Result<Scenario, LoadFailure> {
     let family = match Family::of(&statements) {
         Ok(f) => f,
@@ -131,9 +152,16 @@ pub(crate) fn analyze_sample(
             return Err(LoadFailure { sources, diags });
         }
     };
+    let set = match family.resolve_set(set) {
+        Ok(s) => s,
+        Err(mut diags) => {
+            crate::diagnostics::sort_diags(&mut diags);
+            return Err(LoadFailure { sources, diags });
+        }
+    };
     let result = if family.is_active() {
         family
-            .sample(&statements, choice, |instance| {
+            .sample(&statements, choice, &set, |instance| {
                 super::analyze(path, instance, sources.clone(), maps.clone()).map_err(|f| f.diags)
             })
             .map(|(mut scenario, drawn)| {
@@ -206,6 +234,7 @@ impl Scenario {
                 sample: k,
                 family_seed: t.family_seed,
             },
+            &[],
         )
     }
 }

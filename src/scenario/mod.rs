@@ -20,7 +20,7 @@ use crate::syntax::ast::Expr;
 pub(crate) use analyze::analyze;
 pub use analyze::{AGGREGATES, BENCH_KEYS};
 pub use family::SampleChoice;
-pub use loader::{load, load_sample, load_with};
+pub use loader::{load, load_member, load_sample, load_with};
 
 /// A fully analysed scenario, ready to run.
 #[derive(Clone, Debug)]
