@@ -458,55 +458,44 @@ fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
     }
 }
 
+impl parts::Part for Part {
+    const COMMAND: &'static str = "scen bench";
+    fn read(path: &Path) -> Result<Self, String> {
+        read_part(path)
+    }
+    fn path(&self) -> &Path {
+        &self.path
+    }
+    fn k(&self) -> u64 {
+        self.k
+    }
+    fn n(&self) -> u64 {
+        self.n
+    }
+    fn file(&self) -> &str {
+        &self.file
+    }
+    fn hash(&self) -> &str {
+        &self.hash
+    }
+    fn origin(&self) -> String {
+        let runs = self
+            .runs_override
+            .map_or("as written".to_string(), |n| format!("--runs {n}"));
+        let runs = match self.worlds_override {
+            Some(w) => format!("{runs}, --worlds {w}"),
+            None => runs,
+        };
+        format!(
+            "{} (hash {}), shards of {}, benches {:?}, runs {runs}",
+            self.file, self.hash, self.n, self.benches
+        )
+    }
+}
+
 fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<RunReport, String> {
-    if paths.is_empty() {
-        return Err("`scen bench merge` needs the parts: `scen bench merge part-*.jsonl`".into());
-    }
-    let parts = paths
-        .iter()
-        .map(|p| read_part(p))
-        .collect::<Result<Vec<_>, _>>()?;
+    let parts: Vec<Part> = parts::read_parts(paths)?;
     let first = &parts[0];
-    for p in &parts[1..] {
-        if (
-            &p.file,
-            &p.hash,
-            p.n,
-            &p.benches,
-            p.runs_override,
-            p.worlds_override,
-        ) != (
-            &first.file,
-            &first.hash,
-            first.n,
-            &first.benches,
-            first.runs_override,
-            first.worlds_override,
-        ) {
-            let runs = |r: Option<u64>, w: Option<u64>| {
-                let r = r.map_or("as written".to_string(), |n| format!("--runs {n}"));
-                match w {
-                    Some(w) => format!("{r}, --worlds {w}"),
-                    None => r,
-                }
-            };
-            return Err(format!(
-                "`{}` does not belong with `{}`: it was made from {} (hash {}), shards of {}, benches {:?}, runs {}; the other from {} (hash {}), shards of {}, benches {:?}, runs {}",
-                p.path.display(),
-                first.path.display(),
-                p.file,
-                p.hash,
-                p.n,
-                p.benches,
-                runs(p.runs_override, p.worlds_override),
-                first.file,
-                first.hash,
-                first.n,
-                first.benches,
-                runs(first.runs_override, first.worlds_override)
-            ));
-        }
-    }
     let mut scenario = super::load(Path::new(&first.file), root).map_err(|f| {
         format!(
             "cannot load `{}`, the scenario the parts were made from:\n{}",
@@ -514,13 +503,7 @@ fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<R
             render_diags(&f.diags, &f.sources)
         )
     })?;
-    let hash = scenario.sources.content_hash();
-    if hash != first.hash {
-        return Err(format!(
-            "`{}` has changed since the parts were made (hash {hash}, the parts say {})",
-            first.file, first.hash
-        ));
-    }
+    parts::unchanged(first, &scenario.sources.content_hash())?;
     known_benches(&scenario, &first.benches)?;
     known_metrics(&scenario, &first.benches, metrics)?;
     if let Some(n) = first.runs_override {
@@ -537,7 +520,7 @@ fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<R
             ids.len()
         ));
     }
-    parts::check_whole(parts.iter().map(|p| (p.k, p.path.as_path())), first.n)?;
+    parts::whole(&parts)?;
     let at: HashMap<RunKey, usize> = ids
         .iter()
         .enumerate()

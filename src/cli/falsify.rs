@@ -259,6 +259,35 @@ struct Part {
     result: Falsified,
 }
 
+impl parts::Part for Part {
+    const COMMAND: &'static str = "scen falsify";
+    fn read(path: &Path) -> Result<Self, String> {
+        read_part(path)
+    }
+    fn path(&self) -> &Path {
+        &self.path
+    }
+    fn k(&self) -> u64 {
+        self.k
+    }
+    fn n(&self) -> u64 {
+        self.key.5
+    }
+    fn file(&self) -> &str {
+        &self.key.0
+    }
+    fn hash(&self) -> &str {
+        &self.key.1
+    }
+    fn origin(&self) -> String {
+        let k = &self.key;
+        format!(
+            "{} (hash {}), --search {}, --seed {}, --budget {}, {} part(s)",
+            k.0, k.1, k.2, k.3, k.4, k.5
+        )
+    }
+}
+
 /// The largest part `merge` reads (a part holds one shrunk scenario).
 const MAX_PART_BYTES: u64 = 64 << 20;
 
@@ -362,40 +391,15 @@ fn merge(
     paths: &[PathBuf],
     root: Option<&Path>,
 ) -> Result<(PathBuf, falsify::Source, Falsified), String> {
-    if paths.is_empty() {
-        return Err(
-            "`scen falsify merge` needs the parts: `scen falsify merge part-*.jsonl`".into(),
-        );
-    }
-    let parts = paths
-        .iter()
-        .map(|p| read_part(p))
-        .collect::<Result<Vec<_>, _>>()?;
+    let parts: Vec<Part> = parts::read_parts(paths)?;
     let first = &parts[0];
-    for p in &parts[1..] {
-        if p.key != first.key {
-            let says = |k: &(String, String, String, u64, u64, u64)| {
-                format!(
-                    "{} (hash {}), --search {}, --seed {}, --budget {}, {} part(s)",
-                    k.0, k.1, k.2, k.3, k.4, k.5
-                )
-            };
-            return Err(format!(
-                "`{}` does not belong with `{}`: it was made from {}; the other from {}",
-                p.path.display(),
-                first.path.display(),
-                says(&p.key),
-                says(&first.key)
-            ));
-        }
-    }
-    let (file, hash, _, _, budget, n) = first.key.clone();
+    let (file, _, _, _, budget, n) = first.key.clone();
     if n > budget {
         return Err(format!(
             "the parts say {n} shards of a budget of {budget}: a split `scen falsify --shard` does not make"
         ));
     }
-    parts::check_whole(parts.iter().map(|p| (p.k, p.path.as_path())), n)?;
+    parts::whole(&parts)?;
     let file = PathBuf::from(file);
     let source = load_source(&file, root).map_err(|_| {
         format!(
@@ -403,13 +407,7 @@ fn merge(
             file.display()
         )
     })?;
-    let now = source.sources.content_hash();
-    if now != hash {
-        return Err(format!(
-            "`{}` has changed since the parts were made (hash {now}, the parts say {hash})",
-            file.display()
-        ));
-    }
+    parts::unchanged(first, &source.sources.content_hash())?;
     for p in &parts {
         let shard = Shard { k: p.k, n };
         let share = shard.share(budget);

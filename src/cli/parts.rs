@@ -74,10 +74,7 @@ pub(super) fn read_lines(
 const MISSING_SHOWN: usize = 10;
 
 /// Whether the parts (their K and file) are each K of 1 … `n` once.
-pub(super) fn check_whole<'a>(
-    parts: impl IntoIterator<Item = (u64, &'a Path)>,
-    n: u64,
-) -> Result<(), String> {
+fn check_whole<'a>(parts: impl IntoIterator<Item = (u64, &'a Path)>, n: u64) -> Result<(), String> {
     let mut seen = BTreeSet::new();
     for (k, path) in parts {
         if k == 0 || k > n {
@@ -105,6 +102,73 @@ pub(super) fn check_whole<'a>(
             } else {
                 ""
             }
+        ));
+    }
+    Ok(())
+}
+
+/// A part of a sharded command, read: what the merge of either command
+/// needs to know of it.
+pub(super) trait Part: Sized {
+    /// The command that writes it: `scen bench` or `scen falsify`.
+    const COMMAND: &'static str;
+    /// Reads the part at `path`.
+    fn read(path: &Path) -> Result<Self, String>;
+    fn path(&self) -> &Path;
+    /// Its shard: part `k` of `n`.
+    fn k(&self) -> u64;
+    fn n(&self) -> u64;
+    /// The scenario file the parts were made from and its content hash.
+    fn file(&self) -> &str;
+    fn hash(&self) -> &str;
+    /// What every part of one split shares (file, hash, N and the
+    /// command's options), as an error names it: parts whose origins
+    /// differ do not belong together.
+    fn origin(&self) -> String;
+}
+
+/// The first step of `merge`, the same for both commands: the parts read
+/// and shown to come from one split of one scenario.
+pub(super) fn read_parts<P: Part>(paths: &[std::path::PathBuf]) -> Result<Vec<P>, String> {
+    if paths.is_empty() {
+        return Err(format!(
+            "`{0} merge` needs the parts: `{0} merge part-*.jsonl`",
+            P::COMMAND
+        ));
+    }
+    let parts = paths
+        .iter()
+        .map(|p| P::read(p))
+        .collect::<Result<Vec<P>, _>>()?;
+    let first = &parts[0];
+    for p in &parts[1..] {
+        if p.origin() != first.origin() {
+            return Err(format!(
+                "`{}` does not belong with `{}`: it was made from {}; the other from {}",
+                p.path().display(),
+                first.path().display(),
+                p.origin(),
+                first.origin()
+            ));
+        }
+    }
+    Ok(parts)
+}
+
+/// Whether the parts are each K of 1 … N once (after the command's own
+/// checks that N is a split it makes).
+pub(super) fn whole<P: Part>(parts: &[P]) -> Result<(), String> {
+    check_whole(parts.iter().map(|p| (p.k(), p.path())), parts[0].n())
+}
+
+/// Whether the scenario the parts were made from is unchanged: its content
+/// hash `now` is the one the parts recorded.
+pub(super) fn unchanged<P: Part>(first: &P, now: &str) -> Result<(), String> {
+    if now != first.hash() {
+        return Err(format!(
+            "`{}` has changed since the parts were made (hash {now}, the parts say {})",
+            first.file(),
+            first.hash()
         ));
     }
     Ok(())

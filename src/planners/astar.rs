@@ -19,13 +19,12 @@ use crate::contract::{MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Tas
 use crate::geometry::collide::ObstacleIndex;
 use crate::geometry::{Point, RobotShape};
 
+pub use super::astar_settings::Astar;
 use super::deadline::{Deadline, setup_note};
 use super::grid_lattice::{
     GridLattice, SearchBuffers, SearchConfig, grown_obstacles, lattice_path, search, snap_ends,
 };
-use super::lattice::{
-    CostMetric, Heuristic, LATTICE_PARAMS, LatticeSpec, check_connect, check_lattice,
-};
+use super::lattice::{CostMetric, Heuristic, LATTICE_PARAMS, check_connect, check_lattice};
 
 /// `astar` in the registry.
 pub static PLANNER: Planner = Planner {
@@ -86,23 +85,6 @@ pub static PLANNER: Planner = Planner {
     grids: true,
     check,
 };
-
-/// The settings of an `astar` plan.
-#[derive(Clone, Debug)]
-pub struct Astar {
-    /// The lattice (θ layers included for a rotating robot).
-    pub lattice: LatticeSpec,
-    /// Whether the lattice has θ layers: a polygon robot without `rotate no`.
-    pub rotating: bool,
-    /// 4 or 8 on an (x, y) lattice, 6 or 26 on an (x, y, θ) lattice.
-    pub connect: u8,
-    pub cost: CostMetric,
-    /// Cost of one radian of rotation.
-    pub turn_cost: f64,
-    /// Heuristic inflation w ≥ 1.
-    pub weight: f64,
-    pub heuristic: Heuristic,
-}
 
 fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
     let robot = &args.robot.shape;

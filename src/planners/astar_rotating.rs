@@ -34,7 +34,7 @@
 use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
-use super::astar::Astar;
+use super::astar_settings::Astar;
 use super::deadline::{Deadline, setup_note};
 use super::lattice::{BitSet, LatticeDistance, LatticeSpec};
 use super::lattice::{CostMetric, Heuristic};

@@ -6,6 +6,7 @@
 
 pub mod astar;
 pub mod astar_rotating;
+mod astar_settings;
 pub mod coverage;
 pub mod deadline;
 pub mod grid_lattice;

@@ -13,7 +13,7 @@ use crate::planners::registry::PLANNERS;
 use crate::syntax::ast;
 
 use super::Scenario;
-use super::loader::{LoadFailure, SourcedStmt};
+use super::statements::{LoadFailure, SourcedStmt};
 
 mod bench;
 mod expect;
@@ -25,20 +25,22 @@ mod world;
 pub use bench::BENCH_KEYS;
 pub use expect::AGGREGATES;
 
-/// The world of a scenario's text alone (no robot or plan needed), for
-/// tests that probe a world before they write its plans; panics on
+/// The world of a scenario's statements alone (no robot or plan needed),
+/// for tests that probe a world before they write its plans; panics on
 /// diagnostics.
 #[cfg(test)]
-pub(crate) fn world_of(path: &Path) -> crate::geometry::World {
-    let parsed = super::loader::parse_scenario(path, None, &|_| None);
-    assert!(parsed.diags.is_empty(), "{:?}", parsed.diags);
+pub(crate) fn world_of(
+    statements: &[SourcedStmt],
+    sources: SourceMap,
+    maps: HashMap<Span, Result<FileId, Diag>>,
+) -> crate::geometry::World {
     let mut a = Analyzer {
-        sources: parsed.sources,
-        maps: parsed.maps,
+        sources,
+        maps,
         diags: Vec::new(),
         invalid_robots: Vec::new(),
     };
-    let (world, _) = a.world(&parsed.statements);
+    let (world, _) = a.world(statements);
     assert!(a.diags.is_empty(), "{:?}", a.diags);
     world.expect("a world")
 }

@@ -33,8 +33,8 @@ use crate::syntax::ast::{
     ValueKind, WorldItem,
 };
 
-use super::loader::SourcedStmt;
 use super::placed::{Placed, Placements};
+use super::statements::SourcedStmt;
 
 /// How many draws of one sample may be rejected before it is an error.
 pub const MAX_ATTEMPTS: u32 = 1000;

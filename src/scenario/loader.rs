@@ -34,20 +34,8 @@ pub const MAX_MAP_BYTES: u64 = 64 << 20;
 /// How deep includes may nest.
 const MAX_INCLUDE_DEPTH: usize = 32;
 
-/// A scenario that could not be loaded: all its diagnostics and the sources
-/// they point into.
-#[derive(Debug)]
-pub struct LoadFailure {
-    pub sources: SourceMap,
-    pub diags: Vec<Diag>,
-}
-
-/// A statement and whether it comes from the main file.
-#[derive(Clone, Debug)]
-pub(crate) struct SourcedStmt {
-    pub stmt: ast::Stmt,
-    pub in_main_file: bool,
-}
+pub use super::statements::LoadFailure;
+pub(crate) use super::statements::SourcedStmt;
 
 /// The text of `.scen` files that are not (only) on disk: the language
 /// server's open documents, by canonical path. The loader asks it first,

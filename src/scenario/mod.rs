@@ -8,6 +8,7 @@ pub mod grouping;
 pub mod loader;
 pub mod movingai;
 mod placed;
+mod statements;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -251,7 +252,11 @@ pub(crate) fn load_text(text: &str) -> Scenario {
 /// For tests that probe a world before they write its plans.
 #[cfg(test)]
 pub(crate) fn world_of_text(text: &str) -> World {
-    with_temp_file(text, analyze::world_of)
+    with_temp_file(text, |path| {
+        let parsed = loader::parse_scenario(path, None, &|_| None);
+        assert!(parsed.diags.is_empty(), "{:?}", parsed.diags);
+        analyze::world_of(&parsed.statements, parsed.sources, parsed.maps)
+    })
 }
 
 #[cfg(test)]

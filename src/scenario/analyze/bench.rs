@@ -13,7 +13,7 @@ use crate::contract::{Limits, Robot};
 use crate::diagnostics::{Diag, Span, Spanned};
 use crate::geometry::World;
 use crate::planners::registry;
-use crate::scenario::loader::SourcedStmt;
+use crate::scenario::statements::SourcedStmt;
 use crate::scenario::{Bench, BenchPlan, Plan, Vary, VaryValue};
 use crate::syntax::ast::{self, Ident, ParamToken, Value, ValueKind};
 

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use crate::contract::schema::{self, MetricType, did_you_mean};
 use crate::diagnostics::Diag;
 use crate::planners::registry;
-use crate::scenario::loader::SourcedStmt;
+use crate::scenario::statements::SourcedStmt;
 use crate::scenario::{Bench, Check, Plan};
 use crate::syntax::ast::{self, Expr, ExprKind, ParamToken, Selection};
 

@@ -15,7 +15,7 @@ use crate::contract::Planner;
 use crate::contract::schema::{self, MAX_MAGNITUDE, ValueSpec, did_you_mean};
 use crate::contract::{Limits, Param, ParamValue, Params, PlanArgs, Robot};
 use crate::scenario::Plan;
-use crate::scenario::loader::SourcedStmt;
+use crate::scenario::statements::SourcedStmt;
 
 use super::*;
 

@@ -9,7 +9,7 @@ use crate::geometry::{ConvexPolygon, Point, RobotShape};
 use crate::syntax::ast::{self, Value};
 
 use crate::contract::Robot;
-use crate::scenario::loader::SourcedStmt;
+use crate::scenario::statements::SourcedStmt;
 
 use super::*;
 
