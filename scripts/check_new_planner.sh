@@ -13,9 +13,10 @@
 #    the new planner;
 # 5. checks that `git status` lists only the new file, the registry line and
 #    the regenerated files.
-# Not part of CI: it builds the crate (in target/check_new_planner, apart
-# from target/release, whose dependencies it copies the first time) and runs
-# slow tests. Extra arguments go to cargo, e.g.
+# CI runs it after the tests (.ci/run): it builds the crate (in
+# target/check_new_planner, apart from target/release, whose dependencies it
+# copies the first time; about 2.5 minutes on 2 cores) and runs the tests
+# that list planners. Extra arguments go to cargo, e.g.
 # `scripts/check_new_planner.sh --no-default-features` (no viewer).
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/.." && pwd)"
