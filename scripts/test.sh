@@ -29,7 +29,7 @@ export SCEN_OMPL_STATS="$PWD/$venv/bin/ompl_benchmark_statistics"
 # reproducible; unset PROPTEST_RNG_SEED (or set another) to explore new cases.
 export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}"
 
-cargo test --release --no-fail-fast "$@"
+cargo test --release --workspace --no-fail-fast "$@"
 
 # The wheel, from the release build cargo test just made (maturin finds the
 # crate up to date and only packages it), installed into a fresh venv: the

@@ -635,11 +635,12 @@ fn newton_step(history: &[(Vec<f64>, f64)], p0: &[f64], m0: f64) -> Option<Vec<f
         if a[c][c].abs() < 1e-300 {
             return None;
         }
-        for r in 0..d {
+        let pivot_row = a[c].clone();
+        for (r, row) in a.iter_mut().enumerate() {
             if r != c {
-                let f = a[r][c] / a[c][c];
-                for k in c..=d {
-                    a[r][k] -= f * a[c][k];
+                let f = row[c] / pivot_row[c];
+                for (x, p) in row[c..].iter_mut().zip(&pivot_row[c..]) {
+                    *x -= f * p;
                 }
             }
         }

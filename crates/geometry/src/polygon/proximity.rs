@@ -233,7 +233,7 @@ pub(super) fn close_vertices(
 /// `outline[i + 1]`): a distance from a point to a segment, for callers that
 /// compute it their own way. O((n + m) log(n + m)) for `n` vertices and `m`
 /// points.
-pub(crate) fn points_near_outline(
+pub fn points_near_outline(
     outline: &[Point],
     points: &[Point],
     r: f64,
@@ -273,14 +273,14 @@ pub(crate) fn points_near_outline(
 
 /// A polygon's vertices by exact position (−0 and +0 alike, as `==` has
 /// them): the first index of each.
-pub(crate) struct VertexIndex(HashMap<(u64, u64), usize>);
+pub struct VertexIndex(HashMap<(u64, u64), usize>);
 
 impl VertexIndex {
     fn key(p: Point) -> (u64, u64) {
         ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits())
     }
 
-    pub(crate) fn new(outline: &[Point]) -> Self {
+    pub fn new(outline: &[Point]) -> Self {
         let mut at = HashMap::with_capacity(outline.len());
         for (k, &v) in outline.iter().enumerate() {
             at.entry(Self::key(v)).or_insert(k);
@@ -289,7 +289,7 @@ impl VertexIndex {
     }
 
     /// The index of the first vertex at `p`.
-    pub(crate) fn of(&self, p: Point) -> Option<usize> {
+    pub fn of(&self, p: Point) -> Option<usize> {
         self.0.get(&Self::key(p)).copied()
     }
 }
@@ -302,7 +302,7 @@ impl VertexIndex {
 /// O(n log n) in the outline's and the pieces' vertices: an outline edge
 /// is known by its ends ([`VertexIndex`]), the other midpoints are tested
 /// together, edges already taken are in a hash set.
-pub(crate) fn shared_edges<'a>(
+pub fn shared_edges<'a>(
     outline: &[Point],
     vertices: &VertexIndex,
     pieces: impl Iterator<Item = &'a [Point]>,

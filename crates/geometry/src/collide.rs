@@ -691,7 +691,7 @@ fn thin_wall_distance(a: Point, b: Point, probe: &Probe) -> f64 {
 /// Whether the closed segment `pq` (a point when `p == q`) meets the open
 /// box `(lo, hi)`: Liang–Barsky clipping with strict inequalities.
 #[inline]
-pub(crate) fn segment_meets_open_box(p: Point, q: Point, lo: Point, hi: Point) -> bool {
+pub fn segment_meets_open_box(p: Point, q: Point, lo: Point, hi: Point) -> bool {
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
     for (s, d, l, h) in [(p.x, q.x - p.x, lo.x, hi.x), (p.y, q.y - p.y, lo.y, hi.y)] {
         if d == 0.0 {
@@ -819,9 +819,10 @@ fn grow(b: Aabb, by: f64) -> Aabb {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::fixtures::{grid, polygon_shape, random_world, rect, world};
-    use crate::geometry::validator::{Validator, config_collision};
-    use crate::geometry::{Config, Grid, RobotShape};
+    use crate::fixtures::random::random_world;
+    use crate::fixtures::{grid, polygon_shape, rect, world};
+    use crate::validator::{Validator, config_collision};
+    use crate::{Config, Grid, RobotShape};
     use proptest::prelude::*;
 
     fn p(x: f64, y: f64) -> Point {
@@ -1021,10 +1022,7 @@ mod tests {
     /// `seams` as it was: every outline edge against every piece edge's
     /// midpoint, every seam against those taken. The oracle of the test
     /// below.
-    fn all_pairs_seams(
-        outline: &[Point],
-        pieces: &[crate::geometry::ConvexPolygon],
-    ) -> Vec<(Point, Point)> {
+    fn all_pairs_seams(outline: &[Point], pieces: &[crate::ConvexPolygon]) -> Vec<(Point, Point)> {
         let n = outline.len();
         let b = Aabb::around(outline);
         let tol = 1e-9 * b.width().max(b.height());

@@ -350,7 +350,7 @@ fn extremes(points: &[Point], tol: f64) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::polygon::{convex_hull, is_convex, signed_area2};
+    use crate::polygon::{convex_hull, is_convex, signed_area2};
     use proptest::prelude::*;
     use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -380,9 +380,7 @@ mod tests {
             return (q - ring[0]).norm();
         }
         (0..n)
-            .map(|i| {
-                crate::geometry::polygon::distance_point_segment(q, ring[i], ring[(i + 1) % n])
-            })
+            .map(|i| crate::polygon::distance_point_segment(q, ring[i], ring[(i + 1) % n]))
             .fold(f64::INFINITY, f64::min)
     }
 

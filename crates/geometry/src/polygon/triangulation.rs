@@ -430,7 +430,7 @@ mod tests {
     #[test]
     fn a_hundred_thousand_vertices() {
         let n = 100_000;
-        let star = crate::geometry::fixtures::star(n, 4.0, 1.0);
+        let star = crate::fixtures::star(n, 4.0, 1.0);
         partition_is_monotone_and_tiles(&star).unwrap();
         partition_is_monotone_and_tiles(&normalize_simple_polygon(&comb(n / 4)).unwrap()).unwrap();
     }

@@ -207,7 +207,7 @@ mod tests {
     #[test]
     fn a_hundred_thousand_vertices() {
         // A star: long spikes whose boxes overlap many others'.
-        let star = crate::geometry::fixtures::star(100_000, 4.0, 0.5);
+        let star = crate::fixtures::star(100_000, 4.0, 0.5);
         assert_eq!(meeting_edges(&star, tol_of(&star)), None);
         // One spike bent across its neighbour.
         let mut bent = star.clone();

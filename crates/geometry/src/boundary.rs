@@ -1011,7 +1011,7 @@ pub fn drive_along(curve: &Curve, s0: f64, s1: f64, out: &mut Vec<Point>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::fixtures::world_in;
+    use crate::fixtures::world_in;
 
     fn world(obstacles: Vec<Shape>) -> World {
         world_in(

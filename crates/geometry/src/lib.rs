@@ -1,5 +1,7 @@
-//! Geometry core: world shapes, polygons and their convex pieces, the
+//! scen's geometry: world shapes, polygons and their convex pieces, the
 //! planners' collision queries and the independent validator (SPEC 3.0).
+//! The lowest crate of the workspace: it knows nothing of the language,
+//! the planners or the command line.
 //!
 //! Everything is in f64 world units; angles are radians, counter-clockwise.
 
@@ -8,12 +10,15 @@ mod buckets;
 pub mod car;
 pub mod collide;
 pub mod cspace;
-#[cfg(test)]
-pub(crate) mod fixtures;
+/// Small worlds for tests, here and in the crates above (they build worlds
+/// with these, never by parsing a scenario).
+#[doc(hidden)]
+pub mod fixtures;
 pub mod minkowski;
 pub mod motion;
 pub mod path;
 pub mod polygon;
+pub mod rng;
 pub mod steer;
 pub mod union;
 pub mod validator;
@@ -280,7 +285,7 @@ pub struct World {
 /// cosine `co`: the one formula of every placement, so that placements
 /// agree to the bit.
 #[inline(always)]
-pub(crate) fn place(c: Config, s: f64, co: f64, v: &Point) -> Point {
+pub fn place(c: Config, s: f64, co: f64, v: &Point) -> Point {
     Point::new(c.x + co * v.x - s * v.y, c.y + s * v.x + co * v.y)
 }
 
@@ -289,14 +294,14 @@ pub(crate) fn place(c: Config, s: f64, co: f64, v: &Point) -> Point {
 /// the hot loops (the sign of a zero result may differ from `f64::max`'s,
 /// which comparisons do not see).
 #[inline(always)]
-pub(crate) fn max_of_numbers(a: f64, b: f64) -> f64 {
+pub fn max_of_numbers(a: f64, b: f64) -> f64 {
     if a > b { a } else { b }
 }
 
 /// The smaller of `a` and `b` for values that are never NaN (see
 /// [`max_of_numbers`]).
 #[inline(always)]
-pub(crate) fn min_of_numbers(a: f64, b: f64) -> f64 {
+pub fn min_of_numbers(a: f64, b: f64) -> f64 {
     if a < b { a } else { b }
 }
 
@@ -322,7 +327,7 @@ fn rem_tau(x: f64) -> f64 {
 /// Shortest signed angular difference `b - a`, in (-π, π].
 ///
 /// ```
-/// use scen::geometry::angle_diff;
+/// use scen_geometry::angle_diff;
 /// use std::f64::consts::PI;
 /// // From 350° to 10° is +20°, the shorter way round.
 /// let d = angle_diff(350f64.to_radians(), 10f64.to_radians());
@@ -346,7 +351,7 @@ pub fn angle_diff(a: f64, b: f64) -> f64 {
 /// 33 bits, so that its product with the multiple is exact); beyond
 /// |x| = 2²⁰ and for non-finite `x`, libm's.
 #[inline]
-pub(crate) fn sin_cos_fast(x: f64) -> (f64, f64) {
+pub fn sin_cos_fast(x: f64) -> (f64, f64) {
     const PIO2_1: f64 = 1.570_796_326_734_125_6; // the first 33 bits of π/2
     const PIO2_1T: f64 = 6.077_100_506_506_192e-11; // π/2 − PIO2_1
     const SHIFT: f64 = 6_755_399_441_055_744.0; // 1.5·2⁵²: rounds to an integer

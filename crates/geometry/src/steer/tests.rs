@@ -3,7 +3,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use proptest::prelude::*;
 
 use super::*;
-use crate::geometry::angle_diff;
+use crate::angle_diff;
 
 fn rs(radius: f64) -> Steering {
     Steering::new(Model::ReedsShepp, radius)

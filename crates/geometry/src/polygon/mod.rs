@@ -4,7 +4,7 @@
 //! the input (its bounding box), so that a polygon given in millimetres and
 //! the same polygon given in metres are treated alike.
 
-pub(crate) mod proximity;
+pub mod proximity;
 mod simplicity;
 mod sweep_status;
 mod triangulation;

@@ -40,7 +40,7 @@ pub fn smoothness(path: &[Config]) -> f64 {
 
 /// The term of [`smoothness`] at the corner `q` of the polyline
 /// `p → q → r` (consecutive points, each different from the next): k².
-pub(crate) fn corner_smoothness(p: Point, q: Point, r: Point) -> f64 {
+pub fn corner_smoothness(p: Point, q: Point, r: Point) -> f64 {
     let (a, b, c) = ((q - p).norm(), (r - q).norm(), (r - p).norm());
     let cos = (a * a + b * b - c * c) / (2.0 * a * b);
     if cos > -1.0 && cos < 1.0 {

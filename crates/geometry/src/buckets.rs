@@ -7,14 +7,14 @@ use super::{Aabb, Point};
 /// (k from the bottom) holds `items[start[i] .. start[i + 1]]`,
 /// i = k·nx + col. A box is listed in every bucket it meets; boxes outside
 /// the grid are listed in the buckets of its border.
-pub(crate) struct Buckets {
-    pub(crate) origin: Point,
+pub struct Buckets {
+    pub origin: Point,
     /// Side of a bucket, in world units.
-    pub(crate) cell: f64,
+    pub cell: f64,
     /// 1 / `cell`.
-    pub(crate) inv: f64,
-    pub(crate) nx: usize,
-    pub(crate) ny: usize,
+    pub inv: f64,
+    pub nx: usize,
+    pub ny: usize,
     start: Vec<u32>,
     items: Vec<u32>,
 }
@@ -22,7 +22,7 @@ pub(crate) struct Buckets {
 impl Buckets {
     /// About four buckets per box, at most `max_side` × `max_side`, over
     /// `bounds` grown to hold every box; item `j` is `boxes[j]`.
-    pub(crate) fn new(bounds: Aabb, boxes: &[Aabb], max_side: usize) -> Self {
+    pub fn new(bounds: Aabb, boxes: &[Aabb], max_side: usize) -> Self {
         let max_side = max_side.max(1);
         let ext = boxes.iter().fold(bounds, |e, b| union(&e, b));
         let side = ext.width().max(ext.height());
@@ -72,7 +72,7 @@ impl Buckets {
 
     /// Inclusive column and row ranges of the buckets that `b` meets
     /// (clamped to the grid).
-    pub(crate) fn range(&self, b: &Aabb) -> ((usize, usize), (usize, usize)) {
+    pub fn range(&self, b: &Aabb) -> ((usize, usize), (usize, usize)) {
         // `as usize` is `floor` for the non-negative, 0 below (and for NaN):
         // `floor().max(0.0) as usize` without libm's floor.
         let index = |v: f64, o: f64, n: usize| (((v - o) / self.cell) as usize).min(n - 1);
@@ -89,14 +89,14 @@ impl Buckets {
 
     /// The items of bucket (col, k), k counted from the bottom.
     #[inline]
-    pub(crate) fn items(&self, col: usize, k: usize) -> &[u32] {
+    pub fn items(&self, col: usize, k: usize) -> &[u32] {
         let i = k * self.nx + col;
         &self.items[self.start[i] as usize..self.start[i + 1] as usize]
     }
 }
 
 /// The smallest box holding both.
-pub(crate) fn union(a: &Aabb, b: &Aabb) -> Aabb {
+pub fn union(a: &Aabb, b: &Aabb) -> Aabb {
     Aabb {
         min: Point::new(a.min.x.min(b.min.x), a.min.y.min(b.min.y)),
         max: Point::new(a.max.x.max(b.max.x), a.max.y.max(b.max.y)),

@@ -1717,8 +1717,8 @@ fn aabbs_meet(a: &Aabb, b: &Aabb) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::fixtures::{grid, rect};
-    use crate::geometry::{ConvexPolygon, Obstacle};
+    use crate::fixtures::{grid, rect};
+    use crate::{ConvexPolygon, Obstacle};
     use proptest::prelude::*;
 
     fn p(x: f64, y: f64) -> Point {
@@ -1769,10 +1769,7 @@ mod tests {
     /// `seam_zones` as it was: every piece edge's midpoint against every
     /// outline edge, every seam against those taken, every end against
     /// every outline vertex. The oracle of the test below.
-    fn all_pairs_seam_zones(
-        outline: &[Point],
-        pieces: &[crate::geometry::ConvexPolygon],
-    ) -> Vec<Core> {
+    fn all_pairs_seam_zones(outline: &[Point], pieces: &[crate::ConvexPolygon]) -> Vec<Core> {
         let n = outline.len();
         let bounds = aabb_of(outline);
         let scale = bounds.width().max(bounds.height());

@@ -400,11 +400,31 @@ mod tests {
     use std::f64::consts::PI;
 
     use super::*;
-    use crate::geometry::steer::Model;
-    use crate::geometry::validator::DEFAULT_TOLERANCE;
-    use crate::geometry::validator::validate_path;
-    use crate::geometry::{ConvexPolygon, Point};
-    use crate::scenario::world_of_text;
+    use crate::fixtures::world_in;
+    use crate::steer::Model;
+    use crate::validator::DEFAULT_TOLERANCE;
+    use crate::validator::validate_path;
+    use crate::{Aabb, Shape};
+    use crate::{ConvexPolygon, Point};
+
+    /// A world within (0, 0) … (w, h) of `shapes`.
+    fn world_of(w: f64, h: f64, shapes: Vec<Shape>) -> crate::World {
+        world_in(
+            Aabb::from_corners(Point::new(0.0, 0.0), Point::new(w, h)),
+            shapes,
+        )
+    }
+
+    fn disk(x: f64, y: f64, r: f64) -> Shape {
+        Shape::Disk {
+            center: Point::new(x, y),
+            radius: r,
+        }
+    }
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+        Shape::Rect(Aabb::from_corners(Point::new(x0, y0), Point::new(x1, y1)))
+    }
 
     fn cart() -> RobotShape {
         RobotShape::Polygon(ConvexPolygon {
@@ -434,7 +454,7 @@ mod tests {
     fn the_arc_is_swept_where_the_chord_is_not() {
         // A disk beside the arc's bulge: the straight motion from start to
         // end passes far from it, the arc through it.
-        let world = world_of_text("world { bounds (0, 0) (30, 30)\ndisk (8.6, 23) 0.4 }");
+        let world = world_of(30.0, 30.0, vec![disk(8.6, 23.0, 0.4)]);
         let referee = Validator::new(&world);
         let path = half_turn(Model::Dubins);
         let goal = Config::new(5.0, 26.0, PI);
@@ -445,14 +465,14 @@ mod tests {
         assert_eq!(e.segment, 0);
         assert!(e.at.x > 7.0, "{e:?}");
         // Away from the bulge, the same arc is free.
-        let far = world_of_text("world { bounds (0, 0) (30, 30)\ndisk (9.7, 23) 0.4 }");
+        let far = world_of(30.0, 30.0, vec![disk(9.7, 23.0, 0.4)]);
         let referee = Validator::new(&far);
         assert!(validate_car_path(&referee, &cart(), &path, Some(goal), DEFAULT_TOLERANCE).is_ok());
     }
 
     #[test]
     fn the_end_must_be_the_goal_and_a_dubins_car_never_reverses() {
-        let world = world_of_text("world { bounds (0, 0) (30, 30) }");
+        let world = world_of(30.0, 30.0, Vec::new());
         let referee = Validator::new(&world);
         let path = half_turn(Model::ReedsShepp);
         let goal = Config::new(5.0, 26.0, PI);
@@ -496,7 +516,7 @@ mod tests {
     fn the_reference_point_stays_in_bounds_along_the_arc() {
         // The half-turn's bulge reaches x = 8; bounds up to x = 7.5 contain
         // both ends but not the arc.
-        let world = world_of_text("world { bounds (0, 0) (7.5, 30) }");
+        let world = world_of(7.5, 30.0, Vec::new());
         let referee = Validator::new(&world);
         let goal = Config::new(5.0, 26.0, PI);
         assert!(
@@ -556,7 +576,7 @@ mod tests {
 
     /// A random world of rects and disks in (0, 0) (20, 20), a car body and
     /// steering, and the steering path between two random poses.
-    fn case() -> impl proptest::strategy::Strategy<Value = (String, RobotShape, CarPath)> {
+    fn case() -> impl proptest::strategy::Strategy<Value = (crate::World, RobotShape, CarPath)> {
         use proptest::prelude::*;
         let obstacle = (
             0.0..18.0f64,
@@ -565,11 +585,11 @@ mod tests {
             0.2..4.0f64,
             any::<bool>(),
         )
-            .prop_map(|(x, y, w, h, disk)| {
-                if disk {
-                    format!("disk ({x}, {y}) {}", w / 2.0)
+            .prop_map(|(x, y, w, h, is_disk)| {
+                if is_disk {
+                    disk(x, y, w / 2.0)
                 } else {
-                    format!("rect ({x}, {y}) ({}, {})", x + w, y + h)
+                    rect(x, y, x + w, y + h)
                 }
             });
         let pose = (0.0..20.0f64, 0.0..20.0f64, -PI..PI).prop_map(|(x, y, t)| Config::new(x, y, t));
@@ -581,10 +601,7 @@ mod tests {
             pose,
         )
             .prop_map(|(obstacles, (half, front, disk), (radius, rs), a, b)| {
-                let world = format!(
-                    "world {{ bounds (0, 0) (20, 20)\n{} }}",
-                    obstacles.join("\n")
-                );
+                let world = world_of(20.0, 20.0, obstacles);
                 let robot = if disk {
                     RobotShape::Disk(half)
                 } else {
@@ -611,7 +628,6 @@ mod tests {
         /// rejects.
         #[test]
         fn the_motion_checker_never_accepts_what_the_validator_rejects((world, robot, path) in case()) {
-            let world = world_of_text(&world);
             let referee = Validator::new(&world);
             if car_path_free(&referee, &robot, &path, DEFAULT_TOLERANCE) {
                 let verdict = validate_car_path(&referee, &robot, &path, None, DEFAULT_TOLERANCE);
@@ -633,7 +649,6 @@ mod tests {
         let (mut free, mut blocked, mut stricter) = (0, 0, 0);
         for _ in 0..400 {
             let (world, robot, path) = case().new_tree(&mut runner).unwrap().current();
-            let world = world_of_text(&world);
             let referee = Validator::new(&world);
             let ours = car_path_free(&referee, &robot, &path, DEFAULT_TOLERANCE);
             let theirs =
@@ -662,7 +677,7 @@ mod tests {
     /// touches a disk at one point, are what the validator says.
     #[test]
     fn grazing_paths_get_the_validators_verdict() {
-        let world = world_of_text("world { bounds (0, 0) (30, 30)\nrect w (0, 0) (30, 9.5) }");
+        let world = world_of(30.0, 30.0, vec![rect(0.0, 0.0, 30.0, 9.5)]);
         let referee = Validator::new(&world);
         // The cart's body spans y ± 0.5: at y = 10 it touches the wall.
         for (y, free) in [(10.0, true), (10.0 - 1e-6, false), (10.0 + 1e-6, true)] {

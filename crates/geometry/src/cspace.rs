@@ -114,7 +114,7 @@ impl ObstaclePieces {
 /// Calls `push` with each convex piece of `shape`, as in
 /// [`ObstaclePieces::with_disk_sides`]: counter-clockwise points (2 for a
 /// segment, 1 for a point).
-pub(crate) fn shape_pieces(shape: &Shape, disk_sides: usize, mut push: impl FnMut(Vec<Point>)) {
+pub fn shape_pieces(shape: &Shape, disk_sides: usize, mut push: impl FnMut(Vec<Point>)) {
     match shape {
         Shape::Polygon { outline, pieces } => {
             if pieces.is_empty() {
@@ -446,11 +446,11 @@ impl Index {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::fixtures::world_in;
-    use crate::geometry::minkowski::c_obstacle;
-    use crate::geometry::polygon::{convex_hull, normalize_simple_polygon, signed_area2};
-    use crate::geometry::validator::{Validator, config_collision};
-    use crate::geometry::{Config, Obstacle, RobotShape};
+    use crate::fixtures::world_in;
+    use crate::minkowski::c_obstacle;
+    use crate::polygon::{convex_hull, normalize_simple_polygon, signed_area2};
+    use crate::validator::{Validator, config_collision};
+    use crate::{Config, Obstacle, RobotShape};
     use parry2d_f64::math::Isometry;
     use parry2d_f64::query;
     use parry2d_f64::shape::{
@@ -790,7 +790,7 @@ mod tests {
         let line = |i: usize| {
             let (a, b) = (v[i], v[(i + 1) % n]);
             let d = (b - a).normalize();
-            (a + crate::geometry::Vector::new(-d.y, d.x) * m, d)
+            (a + crate::Vector::new(-d.y, d.x) * m, d)
         };
         let out: Vec<Point> = (0..n)
             .map(|i| {
@@ -1010,8 +1010,8 @@ mod tests {
                     grow(*b);
                 }
                 Shape::Disk { center, radius } => {
-                    grow(center - crate::geometry::Vector::new(*radius, *radius));
-                    grow(center + crate::geometry::Vector::new(*radius, *radius));
+                    grow(center - crate::Vector::new(*radius, *radius));
+                    grow(center + crate::Vector::new(*radius, *radius));
                 }
                 Shape::Grid(g) => {
                     let e = g.extent();
@@ -1065,7 +1065,7 @@ mod tests {
                 let (a, b) = (c.vertices[i], c.vertices[(i + 1) % n]);
                 let mid = Point::from((a.coords + b.coords) / 2.0);
                 let d = (b - a).normalize();
-                let out = crate::geometry::Vector::new(d.y, -d.x);
+                let out = crate::Vector::new(d.y, -d.x);
                 extra.push(a);
                 extra.push(mid);
                 for off in [3e-9, -3e-9, 1e-6, -1e-6] {

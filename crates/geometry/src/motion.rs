@@ -950,7 +950,7 @@ struct HullAxis {
 /// `vertices` (edges of length 0 skipped), each with the largest
 /// projection of any vertex on it (over all vertices, not the edge's own:
 /// safe even if rounding made the polygon slightly non-convex).
-pub(crate) fn edge_normals(vertices: &[Point]) -> impl Iterator<Item = (Vector, f64)> + '_ {
+pub fn edge_normals(vertices: &[Point]) -> impl Iterator<Item = (Vector, f64)> + '_ {
     let n = vertices.len();
     (0..n).filter_map(move |i| {
         let d = vertices[(i + 1) % n] - vertices[i];
@@ -1060,10 +1060,11 @@ mod tests {
     use proptest::test_runner::TestRunner;
 
     use super::*;
-    use crate::geometry::fixtures::{grid, polygon_shape, random_world, rect, world};
-    use crate::geometry::validator::{Validator, config_collision};
-    use crate::geometry::{Grid, polygon};
+    use crate::fixtures::random::random_world;
+    use crate::fixtures::{grid, polygon_shape, rect, world};
     use crate::rng::SplitMix64;
+    use crate::validator::{Validator, config_collision};
+    use crate::{Grid, polygon};
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)
