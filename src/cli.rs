@@ -16,6 +16,7 @@ mod bench;
 mod clobber;
 mod falsify;
 mod fmt;
+mod outputs;
 mod parts;
 mod watch;
 
@@ -122,15 +123,9 @@ pub struct RunArgs {
     /// Stream to a running Rerun viewer (default address of Rerun 0.36).
     #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "")]
     pub connect: Option<String>,
-    /// Write an SVG picture of the world and the paths.
-    #[arg(long, value_name = "OUT.svg")]
-    pub svg: Option<PathBuf>,
-    /// Write the same picture as a PNG.
-    #[arg(long, value_name = "OUT.png")]
-    pub png: Option<PathBuf>,
-    /// Write every plan's path (and driven trajectory) as CSV rows.
-    #[arg(long, value_name = "OUT.csv")]
-    pub csv: Option<PathBuf>,
+    /// The file outputs (`--svg`, `--png`, `--csv`: the sink registry).
+    #[command(flatten)]
+    pub outputs: outputs::Outputs<outputs::RunSinks>,
     /// Print only the summary and failures.
     #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,
@@ -176,15 +171,22 @@ impl RunArgs {
     /// with a single-file output, an output that cannot be written, a
     /// viewer this build does not have. Prints the problem.
     fn usable(&self) -> bool {
-        if let Err(e) = report::png::check_paths(self.svg.as_deref(), self.png.as_deref()) {
-            eprintln!("error: {e}");
+        if !self.outputs.usable() {
             return false;
         }
-        let single =
-            self.save.is_some() || self.svg.is_some() || self.png.is_some() || self.csv.is_some();
-        if self.files.len() > 1 && single {
+        let mut single = self.outputs.options();
+        if self.save.is_some() {
+            single.push("--save");
+        }
+        if self.files.len() > 1 && !single.is_empty() {
             eprintln!(
-                "error: `--save`, `--svg`, `--png` and `--csv` take one scenario file; run the files one at a time"
+                "error: {} take{} one scenario file; run the files one at a time",
+                single
+                    .iter()
+                    .map(|o| format!("`{o}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                if single.len() == 1 { "s" } else { "" }
             );
             return false;
         }
@@ -192,18 +194,33 @@ impl RunArgs {
             eprintln!("error: {}", viz::ViewerError::NotBuilt);
             return false;
         }
-        outputs_writable(&self.outputs())
+        outputs_writable(&[("--save", self.save.as_ref())])
     }
 
-    /// The output files, each with its option: checked to be writable
-    /// before anything runs, and never to be a file the run reads.
-    fn outputs(&self) -> [(&'static str, Option<&PathBuf>); 4] {
-        [
-            ("--svg", self.svg.as_ref()),
-            ("--png", self.png.as_ref()),
-            ("--csv", self.csv.as_ref()),
-            ("--save", self.save.as_ref()),
-        ]
+    /// The output files, each with its option: never a file the run
+    /// reads.
+    fn output_files(&self, scenario: &crate::Scenario) -> Vec<(&'static str, Option<PathBuf>)> {
+        let mut all: Vec<(&'static str, Option<PathBuf>)> = self
+            .outputs
+            .files(scenario, &[])
+            .into_iter()
+            .map(|(o, p)| (o, Some(p)))
+            .collect();
+        all.push(("--save", self.save.clone()));
+        all
+    }
+
+    /// The paths given to the outputs, before a scenario is loaded (`scen
+    /// watch` refuses one that is the watched file at once).
+    fn output_paths(&self) -> Vec<(&'static str, Option<PathBuf>)> {
+        let mut all: Vec<(&'static str, Option<PathBuf>)> = self
+            .outputs
+            .given
+            .iter()
+            .map(|(s, p)| (s.option, Some(p.clone())))
+            .collect();
+        all.push(("--save", self.save.clone()));
+        all
     }
 }
 
@@ -259,19 +276,10 @@ pub struct BenchArgs {
     /// Print one JSON document per file instead of the tables.
     #[arg(long)]
     pub json: bool,
-    /// Write every run as a CSV row.
-    #[arg(long, value_name = "OUT.csv")]
-    pub csv: Option<PathBuf>,
-    /// Write box plots of the metrics per configuration.
-    #[arg(long, value_name = "OUT.svg")]
-    pub svg: Option<PathBuf>,
-    /// Write the same plots as a PNG.
-    #[arg(long, value_name = "OUT.png")]
-    pub png: Option<PathBuf>,
-    /// Write one OMPL benchmark log per bench into DIR (for
-    /// `ompl_benchmark_statistics.py` and Planner Arena).
-    #[arg(long = "ompl-log", value_name = "DIR")]
-    pub ompl_log: Option<PathBuf>,
+    /// The file outputs (`--svg`, `--png`, `--csv`, `--ompl-log`: the sink
+    /// registry).
+    #[command(flatten)]
+    pub outputs: outputs::Outputs<outputs::BenchSinks>,
     /// Runs per configuration, for every bench (overrides each bench's
     /// `runs`).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
@@ -404,6 +412,18 @@ pub(crate) fn check_output_path(flag: &str, path: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// An existing folder an output writes its files into: writable.
+pub(crate) fn check_output_folder(flag: &str, dir: &Path) -> Result<(), String> {
+    if writable(dir) {
+        Ok(())
+    } else {
+        Err(format!(
+            "`{flag} {0}`: the folder `{0}` is not writable",
+            dir.display()
+        ))
+    }
+}
+
 #[cfg(unix)]
 fn writable(folder: &Path) -> bool {
     use std::os::unix::ffi::OsStrExt;
@@ -486,7 +506,7 @@ fn run_file(
     };
     read.extend(scenario.sources.files.iter().map(|s| s.path.clone()));
     if !clobber::outputs_are_not_inputs(
-        &args.outputs(),
+        &args.output_files(&scenario),
         &clobber::scenario_inputs(&scenario.sources),
     ) {
         return (EXIT_BAD_INPUT, read);
@@ -506,7 +526,7 @@ fn run_file(
     }
     let spinner = progress(args, file);
     // Layers only for a sink that draws them (a picture, the viewer).
-    let draw = args.svg.is_some() || args.png.is_some() || target.is_some();
+    let draw = args.outputs.draws() || target.is_some();
     let report = run_scenario_drawing(scenario, &args.plans, draw);
     if let Some(p) = spinner {
         p.finish_and_clear();
@@ -518,34 +538,8 @@ fn run_file(
         print_text(&report, args);
     }
     let mut code = EXIT_OK;
-    if (args.svg.is_some() || args.png.is_some())
-        && let Err(errors) = report::png::write_pictures(
-            &report::svg::to_svg(&report),
-            args.svg.as_deref(),
-            args.png.as_deref(),
-        )
-    {
-        for e in errors {
-            eprintln!("error: {e}");
-        }
+    if !args.outputs.write(report::sink::Product::Run(&report)) {
         code = code.max(EXIT_BAD_INPUT);
-    }
-    if let Some(csv) = &args.csv {
-        match report::csv::paths_csv(&report) {
-            Some(text) => {
-                if let Err(e) = std::fs::write(csv, text) {
-                    eprintln!("error: cannot write `{}`: {e}", csv.display());
-                    code = code.max(EXIT_BAD_INPUT);
-                }
-            }
-            None => {
-                eprintln!(
-                    "error: `--csv {}`: no plan found a path or moved the robot; nothing was written",
-                    csv.display()
-                );
-                code = code.max(EXIT_BAD_INPUT);
-            }
-        }
     }
     if let Some(target) = target
         && let Err(e) = viz::stream(&report, target)

@@ -9,8 +9,8 @@ use serde_json::Value;
 use super::clobber::{Input, outputs_are_not_inputs, scenario_inputs};
 use super::parts;
 use super::{
-    BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, check_output_path, outln,
-    outputs_writable, print_failure, print_report, render_diags,
+    BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, outln, outputs_writable, print_failure,
+    print_report, render_diags,
 };
 use crate::bench::{self, RunId, Shard, TABLE_METRICS};
 use crate::contract::MetricValue;
@@ -21,25 +21,33 @@ use crate::run::RunReport;
 use crate::scenario::Scenario;
 
 pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
-    if let Err(e) = report::png::check_paths(args.svg.as_deref(), args.png.as_deref()) {
-        eprintln!("error: {e}");
-        return EXIT_BAD_INPUT;
-    }
-    // `--ompl-log DIR` is created if need be: its parent must be writable.
-    let ompl_parent = args.ompl_log.as_ref().map(|d| d.join("ompl.log"));
-    if !outputs_writable(&args.outputs())
-        || !ompl_log_dir_ok(args.ompl_log.as_deref(), ompl_parent.as_deref())
-    {
+    if !args.outputs.usable() || !outputs_writable(&[("--out", args.out.as_ref())]) {
         return EXIT_BAD_INPUT;
     }
     if args.files.first().is_some_and(|f| f == Path::new("merge")) {
         return cmd_merge(args, &args.files[1..]);
     }
-    let single =
-        args.csv.is_some() || args.svg.is_some() || args.png.is_some() || args.out.is_some();
-    if args.files.len() > 1 && single {
+    // Every file output but the OMPL logs (named after the scenario) takes
+    // one scenario.
+    let mut single: Vec<&str> = args
+        .outputs
+        .given
+        .iter()
+        .filter(|(s, _)| !s.folder)
+        .map(|(s, _)| s.option)
+        .collect();
+    if args.out.is_some() {
+        single.push("--out");
+    }
+    if args.files.len() > 1 && !single.is_empty() {
         eprintln!(
-            "error: `--csv`, `--svg`, `--png` and `--out` take one scenario file; run the files one at a time"
+            "error: {} take{} one scenario file; run the files one at a time",
+            single
+                .iter()
+                .map(|o| format!("`{o}`"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            if single.len() == 1 { "s" } else { "" }
         );
         return EXIT_BAD_INPUT;
     }
@@ -127,56 +135,17 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
 }
 
 impl BenchArgs {
-    /// The output files, each with its option (`--ompl-log`'s logs are
-    /// known only with the scenario: [`BenchArgs::outputs_for`]).
-    fn outputs(&self) -> Vec<(&'static str, Option<&PathBuf>)> {
-        vec![
-            ("--csv", self.csv.as_ref()),
-            ("--svg", self.svg.as_ref()),
-            ("--png", self.png.as_ref()),
-            ("--out", self.out.as_ref()),
-        ]
-    }
-
-    /// Every file the command would write for `scenario`: the outputs and
-    /// the `--ompl-log` file of each bench it runs.
+    /// Every file the command would write for `scenario`: the outputs
+    /// (each log of `--ompl-log`) and the part of `--shard`.
     fn outputs_for(&self, scenario: &Scenario) -> Vec<(&'static str, Option<PathBuf>)> {
-        let mut all: Vec<(&str, Option<PathBuf>)> = self
-            .outputs()
+        let mut all: Vec<(&'static str, Option<PathBuf>)> = self
+            .outputs
+            .files(scenario, &self.benches)
             .into_iter()
-            .map(|(flag, p)| (flag, p.cloned()))
+            .map(|(o, p)| (o, Some(p)))
             .collect();
-        if let Some(dir) = &self.ompl_log {
-            for (b, bench) in scenario.benches.iter().enumerate() {
-                if self.benches.is_empty() || self.benches.contains(&bench.name) {
-                    all.push((
-                        "--ompl-log",
-                        Some(dir.join(report::ompl::log_name(scenario, b))),
-                    ));
-                }
-            }
-        }
+        all.push(("--out", self.out.clone()));
         all
-    }
-}
-
-/// `--ompl-log DIR`: an existing folder, or one whose parent exists (it is
-/// created when the logs are written).
-fn ompl_log_dir_ok(dir: Option<&Path>, inside: Option<&Path>) -> bool {
-    let (Some(dir), Some(inside)) = (dir, inside) else {
-        return true;
-    };
-    let probe = if dir.is_dir() {
-        check_output_path("--ompl-log", inside)
-    } else {
-        check_output_path("--ompl-log", dir)
-    };
-    match probe {
-        Ok(()) => true,
-        Err(e) => {
-            eprintln!("error: {e}");
-            false
-        }
     }
 }
 
@@ -293,43 +262,9 @@ fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
             text
         });
     }
-    let mut failed_writes = false;
-    let write = |path: &Path, text: String| -> bool {
-        let written = std::fs::write(path, text);
-        if let Err(e) = &written {
-            eprintln!("error: cannot write `{}`: {e}", path.display());
-        }
-        written.is_err()
-    };
-    if let Some(csv) = &args.csv {
-        failed_writes |= write(csv, report::bench::to_csv(report));
-    }
-    if let Some(picture) = args.svg.as_ref().or(args.png.as_ref()) {
-        let written = report::plot::to_svg(report, &metrics)
-            .map_err(|e| vec![format!("cannot draw `{}`: {e}", picture.display())])
-            .and_then(|text| {
-                report::png::write_pictures(&text, args.svg.as_deref(), args.png.as_deref())
-            });
-        if let Err(errors) = written {
-            for e in errors {
-                eprintln!("error: {e}");
-            }
-            failed_writes = true;
-        }
-    }
-    if let Some(dir) = &args.ompl_log {
-        if let Err(e) = std::fs::create_dir_all(dir) {
-            eprintln!("error: cannot create `{}`: {e}", dir.display());
-            failed_writes = true;
-        } else {
-            for b in 0..report.scenario.benches.len() {
-                if report.bench_runs.iter().any(|r| r.bench == b) {
-                    let (name, text) = report::ompl::bench_log(report, b);
-                    failed_writes |= write(&dir.join(name), text);
-                }
-            }
-        }
-    }
+    let failed_writes = !args
+        .outputs
+        .write(report::sink::Product::Bench(report, &metrics));
     if failed_writes {
         code = EXIT_BAD_INPUT;
     }

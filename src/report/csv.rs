@@ -12,9 +12,39 @@
 
 use std::fmt::Write as _;
 
+use super::sink::{Command, Product, Sink, any_path, the_file, write_file};
+
 use super::exact_number;
 use crate::geometry::Config;
 use crate::run::RunReport;
+
+/// `--csv OUT.csv`: a run's paths as rows (this module), or every run of a
+/// bench as a row ([`super::bench::to_csv`]).
+pub static SINK: Sink = Sink {
+    option: "--csv",
+    value_name: "OUT.csv",
+    help: &[
+        (
+            Command::Run,
+            "Write every plan's path (and driven trajectory) as CSV rows",
+        ),
+        (Command::Bench, "Write every run as a CSV row"),
+    ],
+    draws: false,
+    folder: false,
+    check: any_path,
+    files: the_file,
+    write: |product, path| match product {
+        Product::Run(report) => match paths_csv(report) {
+            Some(text) => write_file(path, text),
+            None => Err(vec![format!(
+                "`--csv {}`: no plan found a path or moved the robot; nothing was written",
+                path.display()
+            )]),
+        },
+        Product::Bench(report, _) => write_file(path, super::bench::to_csv(report)),
+    },
+};
 
 /// The header line.
 pub const HEADER: &str = "plan,what,index,t,x,y,theta,length";

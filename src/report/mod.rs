@@ -1,4 +1,5 @@
-//! Report sinks: the text report, JSON (SPEC 5), SVG and PNG.
+//! Reports: the text report, JSON (SPEC 5), SVG and PNG, CSV, bench tables
+//! and plots, OMPL logs, JUnit; the file outputs are sinks ([`sink`]).
 
 pub mod bench;
 pub mod compare;
@@ -8,6 +9,7 @@ pub mod junit;
 pub mod ompl;
 pub mod plot;
 pub mod png;
+pub mod sink;
 pub mod svg;
 pub mod text;
 

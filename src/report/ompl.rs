@@ -14,11 +14,61 @@
 //! turns back into underscores for the database's columns).
 
 use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use super::sink::{Command, Product, Sink, any_path, write_file};
 
 use crate::contract::MetricValue;
 use crate::run::BenchRun;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
+
+/// `--ompl-log DIR`: one log per bench that ran, in DIR (created if need
+/// be).
+pub static SINK: Sink = Sink {
+    option: "--ompl-log",
+    value_name: "DIR",
+    help: &[(
+        Command::Bench,
+        "Write one OMPL benchmark log per bench into DIR (for `ompl_benchmark_statistics.py` and Planner Arena)",
+    )],
+    draws: false,
+    folder: true,
+    check: any_path,
+    files: log_files,
+    write: write_logs,
+};
+
+/// The logs `--ompl-log DIR` writes: one per bench chosen (all when
+/// `chosen` is empty).
+fn log_files(dir: &Path, sc: &Scenario, chosen: &[String]) -> Vec<PathBuf> {
+    (0..sc.benches.len())
+        .filter(|&b| chosen.is_empty() || chosen.contains(&sc.benches[b].name))
+        .map(|b| dir.join(log_name(sc, b)))
+        .collect()
+}
+
+fn write_logs(product: Product<'_>, dir: &Path) -> Result<(), Vec<String>> {
+    let Product::Bench(report, _) = product else {
+        return Ok(());
+    };
+    std::fs::create_dir_all(dir)
+        .map_err(|e| vec![format!("cannot create `{}`: {e}", dir.display())])?;
+    let mut errors = Vec::new();
+    for b in 0..report.scenario.benches.len() {
+        if report.bench_runs.iter().any(|r| r.bench == b) {
+            let (name, text) = bench_log(report, b);
+            if let Err(e) = write_file(&dir.join(name), text) {
+                errors.extend(e);
+            }
+        }
+    }
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(errors)
+    }
+}
 
 /// A metric logged under OMPL's name, with its type and a scale (scen's
 /// milliseconds are OMPL's seconds).

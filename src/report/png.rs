@@ -4,8 +4,9 @@
 //! same picture gives the same pixels on every machine, fonts installed or
 //! not.
 
-use std::path::Path;
 use std::sync::{Arc, OnceLock};
+
+use super::sink::{Command, Sink, has_extension, the_file, write_file};
 
 use resvg::tiny_skia::{Pixmap, Transform};
 use resvg::usvg::{self, fontdb};
@@ -69,61 +70,34 @@ pub fn to_png(svg: &str) -> Result<Vec<u8>, String> {
     pixmap.encode_png().map_err(|e| e.to_string())
 }
 
-/// Refuses a picture file whose extension is not its format's (`--svg
-/// x.png` would write SVG text into a `.png`): checked before anything
-/// runs.
-pub fn check_paths(svg: Option<&Path>, png: Option<&Path>) -> Result<(), String> {
-    let ext = |p: &Path| {
-        p.extension()
-            .map(|e| e.to_string_lossy().to_lowercase())
-            .unwrap_or_default()
-    };
-    if let Some(p) = svg.filter(|p| ext(p) != "svg") {
-        return Err(format!(
-            "`--svg {}` writes an SVG picture: give it a file ending in `.svg` \
-             (`--png OUT.png` writes a PNG)",
-            p.display()
-        ));
-    }
-    if let Some(p) = png.filter(|p| ext(p) != "png") {
-        return Err(format!(
-            "`--png {}` writes a PNG picture: give it a file ending in `.png` \
-             (`--svg OUT.svg` writes an SVG)",
-            p.display()
-        ));
-    }
-    Ok(())
-}
-
-/// Writes the picture `svg` as SVG to `svg_path` and rasterised to
-/// `png_path`, those given; each failure as an error message.
-pub fn write_pictures(
-    svg: &str,
-    svg_path: Option<&Path>,
-    png_path: Option<&Path>,
-) -> Result<(), Vec<String>> {
-    let mut errors = Vec::new();
-    if let Some(path) = svg_path
-        && let Err(e) = std::fs::write(path, svg)
-    {
-        errors.push(format!("cannot write `{}`: {e}", path.display()));
-    }
-    if let Some(path) = png_path {
-        match to_png(svg) {
-            Ok(bytes) => {
-                if let Err(e) = std::fs::write(path, bytes) {
-                    errors.push(format!("cannot write `{}`: {e}", path.display()));
-                }
-            }
-            Err(e) => errors.push(format!("cannot draw `{}`: {e}", path.display())),
+/// `--png OUT.png`: the same picture as `--svg`, rasterised.
+pub static SINK: Sink = Sink {
+    option: "--png",
+    value_name: "OUT.png",
+    help: &[
+        (Command::Run, "Write the same picture as a PNG"),
+        (Command::Bench, "Write the same plots as a PNG"),
+    ],
+    draws: true,
+    folder: false,
+    check: |path| {
+        if has_extension(path, "png") {
+            Ok(())
+        } else {
+            Err(format!(
+                "`--png {}` writes a PNG picture: give it a file ending in `.png` (`--svg OUT.svg` writes an SVG)",
+                path.display()
+            ))
         }
-    }
-    if errors.is_empty() {
-        Ok(())
-    } else {
-        Err(errors)
-    }
-}
+    },
+    files: the_file,
+    write: |product, path| {
+        let svg = super::svg::picture(product, path)?;
+        let bytes =
+            to_png(&svg).map_err(|e| vec![format!("cannot draw `{}`: {e}", path.display())])?;
+        write_file(path, bytes)
+    },
+};
 
 #[cfg(test)]
 mod tests {
@@ -196,13 +170,14 @@ mod tests {
 
     #[test]
     fn picture_files_need_their_extension() {
-        let p = |s: &str| Some(Path::new(s).to_path_buf());
-        assert!(check_paths(p("a.svg").as_deref(), p("b.PNG").as_deref()).is_ok());
-        assert!(check_paths(None, None).is_ok());
-        let e = check_paths(p("out.png").as_deref(), None).expect_err("refused");
+        use std::path::Path;
+        let svg = super::super::svg::SINK.check;
+        let png = SINK.check;
+        assert!(svg(Path::new("a.svg")).is_ok() && png(Path::new("b.PNG")).is_ok());
+        let e = svg(Path::new("out.png")).expect_err("refused");
         assert!(e.contains("`--svg out.png`") && e.contains(".svg"), "{e}");
-        let e = check_paths(None, p("out.svg").as_deref()).expect_err("refused");
+        let e = png(Path::new("out.svg")).expect_err("refused");
         assert!(e.contains("`--png out.svg`"), "{e}");
-        assert!(check_paths(None, p("noext").as_deref()).is_err());
+        assert!(png(Path::new("noext")).is_err());
     }
 }

@@ -1,0 +1,152 @@
+//! The file outputs of a command, as options built from the sink registry
+//! ([`crate::report::sink::SINKS`]): `#[command(flatten)] outputs:
+//! Outputs<RunSinks>` gives `scen run` every sink it offers, with no line
+//! per sink here or in the command.
+
+use std::marker::PhantomData;
+use std::path::PathBuf;
+
+use clap::{Arg, ArgMatches, Args, FromArgMatches};
+
+use super::{check_output_folder, check_output_path};
+use crate::report::sink::{Command, Product, SINKS, Sink};
+use crate::scenario::Scenario;
+
+/// Which command's sinks an [`Outputs`] holds.
+pub trait OfCommand {
+    const COMMAND: Command;
+}
+
+#[derive(Debug)]
+pub struct RunSinks;
+impl OfCommand for RunSinks {
+    const COMMAND: Command = Command::Run;
+}
+
+#[derive(Debug)]
+pub struct BenchSinks;
+impl OfCommand for BenchSinks {
+    const COMMAND: Command = Command::Bench;
+}
+
+/// The sinks a command was given, each with its path, in the registry's
+/// order.
+#[derive(Debug)]
+pub struct Outputs<K> {
+    pub given: Vec<(&'static Sink, PathBuf)>,
+    command: PhantomData<K>,
+}
+
+impl<K> Default for Outputs<K> {
+    fn default() -> Self {
+        Outputs {
+            given: Vec::new(),
+            command: PhantomData,
+        }
+    }
+}
+
+fn offered<K: OfCommand>() -> impl Iterator<Item = (&'static Sink, &'static str)> {
+    SINKS
+        .iter()
+        .filter_map(|s| s.help_for(K::COMMAND).map(|h| (*s, h)))
+}
+
+impl<K: OfCommand> FromArgMatches for Outputs<K> {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let mut outputs = Self::default();
+        outputs.update_from_arg_matches(matches)?;
+        Ok(outputs)
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        for (sink, _) in offered::<K>() {
+            if let Some(path) = matches.get_one::<PathBuf>(sink.name()) {
+                self.given.retain(|(s, _)| !std::ptr::eq(*s, sink));
+                self.given.push((sink, path.clone()));
+            }
+        }
+        let order = |s: &Sink| SINKS.iter().position(|t| std::ptr::eq(*t, s));
+        self.given.sort_by_key(|(s, _)| order(s));
+        Ok(())
+    }
+}
+
+impl<K: OfCommand> Args for Outputs<K> {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        offered::<K>().fold(cmd, |cmd, (sink, help)| {
+            cmd.arg(
+                Arg::new(sink.name())
+                    .long(sink.name())
+                    .value_name(sink.value_name)
+                    .value_parser(clap::value_parser!(PathBuf))
+                    .help(help),
+            )
+        })
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
+}
+
+impl<K> Outputs<K> {
+    /// Whether a given sink draws (the planners then record their layers).
+    pub fn draws(&self) -> bool {
+        self.given.iter().any(|(s, _)| s.draws)
+    }
+
+    /// The options given, for a message (`--svg`, `--csv`).
+    pub fn options(&self) -> Vec<&'static str> {
+        self.given.iter().map(|(s, _)| s.option).collect()
+    }
+
+    /// Checked before anything runs: each sink's own rule for its path,
+    /// and that it can be written (a folder sink: its folder, or the
+    /// folder it would be created in). Prints the first problem.
+    pub fn usable(&self) -> bool {
+        for (sink, path) in &self.given {
+            let checked = (sink.check)(path).and_then(|()| {
+                if sink.folder && path.is_dir() {
+                    check_output_folder(sink.option, path)
+                } else {
+                    check_output_path(sink.option, path)
+                }
+            });
+            if let Err(e) = checked {
+                eprintln!("error: {e}");
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Every file the sinks would write for `scenario`, each with its
+    /// option (a folder sink: each of its files); `benches` are the
+    /// benches chosen (empty: all).
+    pub fn files(&self, scenario: &Scenario, benches: &[String]) -> Vec<(&'static str, PathBuf)> {
+        self.given
+            .iter()
+            .flat_map(|(sink, path)| {
+                (sink.files)(path, scenario, benches)
+                    .into_iter()
+                    .map(|f| (sink.option, f))
+            })
+            .collect()
+    }
+
+    /// Writes every sink given; prints each failure. Whether all were
+    /// written.
+    pub fn write(&self, product: Product<'_>) -> bool {
+        let mut ok = true;
+        for (sink, path) in &self.given {
+            if let Err(errors) = (sink.write)(product, path) {
+                for e in errors {
+                    eprintln!("error: {e}");
+                }
+                ok = false;
+            }
+        }
+        ok
+    }
+}

@@ -1,0 +1,111 @@
+//! The file outputs of `scen run` and `scen bench` (`--svg`, `--png`,
+//! `--csv`, `--ompl-log`): one [`Sink`] each, defined in its own module
+//! beside what it renders, listed once in [`SINKS`]. The command line
+//! builds its options from the list, checks their paths before anything
+//! runs, refuses an output that would replace an input, and writes each
+//! one. A new output is its sink (in its file) and one line here.
+
+use std::path::{Path, PathBuf};
+
+use crate::run::RunReport;
+use crate::scenario::Scenario;
+
+/// Every file output, in the order `--help` lists them.
+pub static SINKS: &[&Sink] = &[
+    &super::svg::SINK,
+    &super::png::SINK,
+    &super::csv::SINK,
+    &super::ompl::SINK,
+];
+
+/// A command that writes sinks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command {
+    Run,
+    Bench,
+}
+
+/// What a sink writes from.
+#[derive(Clone, Copy, Debug)]
+pub enum Product<'a> {
+    /// `scen run`'s report of one scenario.
+    Run(&'a RunReport),
+    /// `scen bench`'s report and the metrics of its table (`--metrics`).
+    Bench(&'a RunReport, &'a [&'a str]),
+}
+
+/// One file output.
+#[derive(Debug)]
+pub struct Sink {
+    /// The option, `--NAME`.
+    pub option: &'static str,
+    /// What its value is, for `--help` (`OUT.svg`, `DIR`).
+    pub value_name: &'static str,
+    /// The commands that offer it, each with its help line.
+    pub help: &'static [(Command, &'static str)],
+    /// Whether the planners record their drawable layers for it (a
+    /// picture).
+    pub draws: bool,
+    /// Whether the path names a folder the sink writes its files into
+    /// (created when they are written; its parent must exist).
+    pub folder: bool,
+    /// Refuses a path before anything runs (e.g. a picture's extension).
+    pub check: fn(&Path) -> Result<(), String>,
+    /// The files it would write at `path` for a scenario (one, or a folder
+    /// sink's several), for the check that no output replaces an input;
+    /// `benches` are the benches `--bench` chose (empty: all).
+    pub files: fn(&Path, &Scenario, &[String]) -> Vec<PathBuf>,
+    /// Writes it; each failure as an error message.
+    pub write: fn(Product<'_>, &Path) -> Result<(), Vec<String>>,
+}
+
+impl Sink {
+    /// Its help line for `command`, when the command offers it.
+    pub fn help_for(&self, command: Command) -> Option<&'static str> {
+        self.help
+            .iter()
+            .find(|(c, _)| *c == command)
+            .map(|(_, h)| *h)
+    }
+
+    /// The option's name without its dashes (`svg`).
+    pub fn name(&self) -> &'static str {
+        self.option.trim_start_matches('-')
+    }
+}
+
+/// [`Sink::files`] of a sink that writes the one file it is given.
+pub fn the_file(path: &Path, _: &Scenario, _: &[String]) -> Vec<PathBuf> {
+    vec![path.to_path_buf()]
+}
+
+/// [`Sink::check`] of a sink that takes any path.
+pub fn any_path(_: &Path) -> Result<(), String> {
+    Ok(())
+}
+
+/// Whether `path` ends in `.EXT` (any case).
+pub fn has_extension(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case(ext))
+}
+
+/// Writes `bytes` to `path`, the failure as an error message.
+pub fn write_file(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), Vec<String>> {
+    std::fs::write(path, bytes).map_err(|e| vec![format!("cannot write `{}`: {e}", path.display())])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sinks_have_distinct_options_and_are_offered_somewhere() {
+        let mut seen = std::collections::HashSet::new();
+        for s in SINKS {
+            assert!(s.option.starts_with("--"), "{}", s.option);
+            assert!(seen.insert(s.option), "{} twice", s.option);
+            assert!(!s.help.is_empty(), "{} is offered by no command", s.option);
+        }
+    }
+}
