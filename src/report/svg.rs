@@ -1240,6 +1240,46 @@ fn escape(text: &str) -> String {
     out
 }
 
+/// `--svg OUT.svg`: the picture of a run (the world, the paths, the
+/// planners' layers), or a bench's box plots.
+pub static SINK: Sink = Sink {
+    option: "--svg",
+    value_name: "OUT.svg",
+    help: &[
+        (
+            Command::Run,
+            "Write an SVG picture of the world and the paths",
+        ),
+        (
+            Command::Bench,
+            "Write box plots of the metrics per configuration",
+        ),
+    ],
+    draws: true,
+    folder: false,
+    check: |path| {
+        if has_extension(path, "svg") {
+            Ok(())
+        } else {
+            Err(format!(
+                "`--svg {}` writes an SVG picture: give it a file ending in `.svg` (`--png OUT.png` writes a PNG)",
+                path.display()
+            ))
+        }
+    },
+    files: the_file,
+    write: |product, path| write_file(path, picture(product, path)?),
+};
+
+/// The SVG text of a run's picture or a bench's plots (`--svg`, `--png`).
+pub fn picture(product: Product<'_>, path: &Path) -> Result<String, Vec<String>> {
+    match product {
+        Product::Run(report) => Ok(to_svg(report)),
+        Product::Bench(report, metrics) => super::plot::to_svg(report, metrics)
+            .map_err(|e| vec![format!("cannot draw `{}`: {e}", path.display())]),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::collections::BTreeMap;
@@ -1733,45 +1773,5 @@ mod tests {
         assert_eq!(num(12.5), "12.5");
         assert_eq!(num(-0.001), "0");
         assert_eq!(num(1.23456), "1.23");
-    }
-}
-
-/// `--svg OUT.svg`: the picture of a run (the world, the paths, the
-/// planners' layers), or a bench's box plots.
-pub static SINK: Sink = Sink {
-    option: "--svg",
-    value_name: "OUT.svg",
-    help: &[
-        (
-            Command::Run,
-            "Write an SVG picture of the world and the paths",
-        ),
-        (
-            Command::Bench,
-            "Write box plots of the metrics per configuration",
-        ),
-    ],
-    draws: true,
-    folder: false,
-    check: |path| {
-        if has_extension(path, "svg") {
-            Ok(())
-        } else {
-            Err(format!(
-                "`--svg {}` writes an SVG picture: give it a file ending in `.svg` (`--png OUT.png` writes a PNG)",
-                path.display()
-            ))
-        }
-    },
-    files: the_file,
-    write: |product, path| write_file(path, picture(product, path)?),
-};
-
-/// The SVG text of a run's picture or a bench's plots (`--svg`, `--png`).
-pub fn picture(product: Product<'_>, path: &Path) -> Result<String, Vec<String>> {
-    match product {
-        Product::Run(report) => Ok(to_svg(report)),
-        Product::Bench(report, metrics) => super::plot::to_svg(report, metrics)
-            .map_err(|e| vec![format!("cannot draw `{}`: {e}", path.display())]),
     }
 }
