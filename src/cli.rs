@@ -179,15 +179,7 @@ impl RunArgs {
             single.push("--save");
         }
         if self.files.len() > 1 && !single.is_empty() {
-            eprintln!(
-                "error: {} take{} one scenario file; run the files one at a time",
-                single
-                    .iter()
-                    .map(|o| format!("`{o}`"))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                if single.len() == 1 { "s" } else { "" }
-            );
+            eprintln!("error: {}", one_file_only(&single));
             return false;
         }
         if self.viewer_target().is_some() && !viz::VIEWER_BUILT {
@@ -410,6 +402,17 @@ pub(crate) fn check_output_path(flag: &str, path: &Path) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// The error for options that write one file per scenario, given with
+/// several scenario files.
+pub(crate) fn one_file_only(options: &[&str]) -> String {
+    let named: Vec<String> = options.iter().map(|o| format!("`{o}`")).collect();
+    format!(
+        "{} take{} one scenario file; run the files one at a time",
+        named.join(", "),
+        if named.len() == 1 { "s" } else { "" }
+    )
 }
 
 /// An existing folder an output writes its files into: writable.

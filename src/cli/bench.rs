@@ -40,15 +40,7 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
         single.push("--out");
     }
     if args.files.len() > 1 && !single.is_empty() {
-        eprintln!(
-            "error: {} take{} one scenario file; run the files one at a time",
-            single
-                .iter()
-                .map(|o| format!("`{o}`"))
-                .collect::<Vec<_>>()
-                .join(", "),
-            if single.len() == 1 { "s" } else { "" }
-        );
+        eprintln!("error: {}", super::one_file_only(&single));
         return EXIT_BAD_INPUT;
     }
     let shard = args.shard;
@@ -320,12 +312,8 @@ fn write_part(
 
 /// One part, read.
 struct Part {
-    path: PathBuf,
-    file: String,
-    hash: String,
+    header: parts::Header,
     benches: Vec<String>,
-    k: u64,
-    n: u64,
     /// `--runs N` and `--worlds N`, when the parts were made with them.
     runs_override: Option<u64>,
     worlds_override: Option<u64>,
@@ -337,22 +325,21 @@ const MAX_PART_BYTES: u64 = 1 << 30;
 
 fn read_part(path: &Path) -> Result<Part, String> {
     let command = "scen bench";
-    let parts::Lines { header, rest: runs } =
-        parts::read_lines(path, MAX_PART_BYTES, command, "scen_part")?;
+    let parts::Lines {
+        header,
+        common,
+        rest: runs,
+    } = parts::read_lines(path, MAX_PART_BYTES, command, "scen_part")?;
     let not_a_part = || parts::not_a_part(path, command);
     let field = |k: &str| header.get(k).cloned().ok_or_else(not_a_part);
     Ok(Part {
-        path: path.to_path_buf(),
-        file: field("file")?.as_str().ok_or_else(not_a_part)?.to_string(),
-        hash: field("hash")?.as_str().ok_or_else(not_a_part)?.to_string(),
+        header: common,
         benches: field("benches")?
             .as_array()
             .ok_or_else(not_a_part)?
             .iter()
             .filter_map(|b| b.as_str().map(str::to_string))
             .collect(),
-        k: field("k")?.as_u64().ok_or_else(not_a_part)?,
-        n: field("n")?.as_u64().ok_or_else(not_a_part)?,
         runs_override: match header.get("runs") {
             None => None,
             Some(v) => Some(v.as_u64().filter(|&n| n >= 1).ok_or_else(not_a_part)?),
@@ -398,20 +385,8 @@ impl parts::Part for Part {
     fn read(path: &Path) -> Result<Self, String> {
         read_part(path)
     }
-    fn path(&self) -> &Path {
-        &self.path
-    }
-    fn k(&self) -> u64 {
-        self.k
-    }
-    fn n(&self) -> u64 {
-        self.n
-    }
-    fn file(&self) -> &str {
-        &self.file
-    }
-    fn hash(&self) -> &str {
-        &self.hash
+    fn header(&self) -> &parts::Header {
+        &self.header
     }
     fn origin(&self) -> String {
         let runs = self
@@ -421,9 +396,10 @@ impl parts::Part for Part {
             Some(w) => format!("{runs}, --worlds {w}"),
             None => runs,
         };
+        let h = &self.header;
         format!(
             "{} (hash {}), shards of {}, benches {:?}, runs {runs}",
-            self.file, self.hash, self.n, self.benches
+            h.file, h.hash, h.n, self.benches
         )
     }
 }
@@ -431,10 +407,11 @@ impl parts::Part for Part {
 fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<RunReport, String> {
     let parts: Vec<Part> = parts::read_parts(paths)?;
     let first = &parts[0];
-    let mut scenario = super::load(Path::new(&first.file), root).map_err(|f| {
+    let head = &first.header;
+    let mut scenario = super::load(Path::new(&head.file), root).map_err(|f| {
         format!(
             "cannot load `{}`, the scenario the parts were made from:\n{}",
-            first.file,
+            head.file,
             render_diags(&f.diags, &f.sources)
         )
     })?;
@@ -448,10 +425,10 @@ fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<R
         scenario.override_worlds(n)?;
     }
     let ids = bench::run_ids(&scenario, &first.benches);
-    if first.n > ids.len() as u64 {
+    if head.n > ids.len() as u64 {
         return Err(format!(
             "the parts say {} shards, but the benches have only {} run(s): a split into more parts than runs is not one `scen bench --shard` makes",
-            first.n,
+            head.n,
             ids.len()
         ));
     }
@@ -463,19 +440,20 @@ fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<R
         .collect();
     let mut runs: Vec<Option<BenchRun>> = vec![None; ids.len()];
     for p in &parts {
+        let h = &p.header;
         for v in &p.runs {
             let (id_at, run) = decode_run(&scenario, &at, v)
-                .map_err(|why| format!("`{}` holds a run that {why}: {v}", p.path.display()))?;
-            if !(Shard { k: p.k, n: p.n }).takes(ids[id_at].index) {
+                .map_err(|why| format!("`{}` holds a run that {why}: {v}", h.path.display()))?;
+            if !(Shard { k: h.k, n: h.n }).takes(ids[id_at].index) {
                 return Err(format!(
                     "`{}` (part {}/{}) holds a run of another part: {v}",
-                    p.path.display(),
-                    p.k,
-                    p.n
+                    h.path.display(),
+                    h.k,
+                    h.n
                 ));
             }
             if runs[id_at].is_some() {
-                return Err(format!("`{}` repeats a run: {v}", p.path.display()));
+                return Err(format!("`{}` repeats a run: {v}", h.path.display()));
             }
             runs[id_at] = Some(run);
         }

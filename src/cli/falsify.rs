@@ -251,11 +251,10 @@ fn write_part(
 
 /// One part, read.
 struct Part {
-    path: PathBuf,
-    /// What the parts of one search share: file, hash, search, seed,
-    /// budget, N.
-    key: (String, String, String, u64, u64, u64),
-    k: u64,
+    header: parts::Header,
+    /// What the parts of one search share beside the scenario and N: the
+    /// search, its seed and budget.
+    key: (String, u64, u64),
     result: Falsified,
 }
 
@@ -264,26 +263,14 @@ impl parts::Part for Part {
     fn read(path: &Path) -> Result<Self, String> {
         read_part(path)
     }
-    fn path(&self) -> &Path {
-        &self.path
-    }
-    fn k(&self) -> u64 {
-        self.k
-    }
-    fn n(&self) -> u64 {
-        self.key.5
-    }
-    fn file(&self) -> &str {
-        &self.key.0
-    }
-    fn hash(&self) -> &str {
-        &self.key.1
+    fn header(&self) -> &parts::Header {
+        &self.header
     }
     fn origin(&self) -> String {
-        let k = &self.key;
+        let (h, k) = (&self.header, &self.key);
         format!(
             "{} (hash {}), --search {}, --seed {}, --budget {}, {} part(s)",
-            k.0, k.1, k.2, k.3, k.4, k.5
+            h.file, h.hash, k.0, k.1, k.2, h.n
         )
     }
 }
@@ -293,8 +280,11 @@ const MAX_PART_BYTES: u64 = 64 << 20;
 
 fn read_part(path: &Path) -> Result<Part, String> {
     let command = "scen falsify";
-    let parts::Lines { header: h, rest } =
-        parts::read_lines(path, MAX_PART_BYTES, command, "scen_falsify_part")?;
+    let parts::Lines {
+        header: h,
+        common,
+        rest,
+    } = parts::read_lines(path, MAX_PART_BYTES, command, "scen_falsify_part")?;
     let not_a_part = || parts::not_a_part(path, command);
     let r = rest.into_iter().next().ok_or_else(not_a_part)?;
     let read = || -> Option<Part> {
@@ -330,16 +320,8 @@ fn read_part(path: &Path) -> Result<Part, String> {
             )),
         };
         Some(Part {
-            path: path.to_path_buf(),
-            key: (
-                word(&h, "file")?,
-                word(&h, "hash")?,
-                word(&h, "search")?,
-                num(&h, "seed")?,
-                num(&h, "budget")?,
-                num(&h, "n")?,
-            ),
-            k: num(&h, "k")?,
+            header: common,
+            key: (word(&h, "search")?, num(&h, "seed")?, num(&h, "budget")?),
             result: Falsified {
                 tried: num(&r, "tried")?,
                 rejected: num(&r, "rejected")?,
@@ -393,7 +375,7 @@ fn merge(
 ) -> Result<(PathBuf, falsify::Source, Falsified), String> {
     let parts: Vec<Part> = parts::read_parts(paths)?;
     let first = &parts[0];
-    let (file, _, _, _, budget, n) = first.key.clone();
+    let (file, budget, n) = (first.header.file.clone(), first.key.2, first.header.n);
     if n > budget {
         return Err(format!(
             "the parts say {n} shards of a budget of {budget}: a split `scen falsify --shard` does not make"
@@ -409,7 +391,7 @@ fn merge(
     })?;
     parts::unchanged(first, &source.sources.content_hash())?;
     for p in &parts {
-        let shard = Shard { k: p.k, n };
+        let shard = Shard { k: p.header.k, n };
         let share = shard.share(budget);
         let theirs = |sample: u64| sample < budget && shard.takes(sample);
         let r = &p.result;
@@ -420,8 +402,8 @@ fn merge(
         {
             return Err(format!(
                 "`{}` (part {}/{n}) holds samples that are not its own or more than its {share}",
-                p.path.display(),
-                p.k
+                p.header.path.display(),
+                p.header.k
             ));
         }
     }
@@ -429,7 +411,7 @@ fn merge(
     // sample number: for `uniform` and `halton`, the failure the whole
     // search finds first.
     let mut parts = parts;
-    parts.sort_by_key(|p| p.k);
+    parts.sort_by_key(|p| p.header.k);
     let mut merged = Falsified {
         tried: parts.iter().map(|p| p.result.tried).sum(),
         rejected: parts.iter().map(|p| p.result.rejected).sum(),

@@ -7,9 +7,11 @@ use std::path::Path;
 
 use serde_json::Value;
 
-/// The lines of a part: its header (whose `tag` field is 1) and the rest.
+/// The lines of a part: its header line (whose `tag` field is 1), its
+/// common fields, and the rest.
 pub(super) struct Lines {
     pub header: Value,
+    pub common: Header,
     pub rest: Vec<Value>,
 }
 
@@ -42,6 +44,7 @@ pub(super) fn read_lines(
     if header.get(tag).and_then(Value::as_u64) != Some(1) {
         return Err(bad());
     }
+    let common = Header::of(path, &header).ok_or_else(bad)?;
     // A part with a good header whose later line does not parse was cut
     // short (a copy between machines) or edited: say which line, and which
     // shard to run again.
@@ -67,7 +70,11 @@ pub(super) fn read_lines(
             })
         })
         .collect::<Result<_, _>>()?;
-    Ok(Lines { header, rest })
+    Ok(Lines {
+        header,
+        common,
+        rest,
+    })
 }
 
 /// At most this many missing parts are named in an error.
@@ -107,6 +114,31 @@ fn check_whole<'a>(parts: impl IntoIterator<Item = (u64, &'a Path)>, n: u64) -> 
     Ok(())
 }
 
+/// What every part's first line says, whichever command wrote it: the
+/// scenario it was made from (its path as given and its content hash) and
+/// its shard; with the path the part was read from.
+#[derive(Debug)]
+pub(super) struct Header {
+    pub path: std::path::PathBuf,
+    pub file: String,
+    pub hash: String,
+    pub k: u64,
+    pub n: u64,
+}
+
+impl Header {
+    /// The common fields of a part's header line, or `None`.
+    fn of(path: &Path, v: &Value) -> Option<Header> {
+        Some(Header {
+            path: path.to_path_buf(),
+            file: v.get("file")?.as_str()?.to_string(),
+            hash: v.get("hash")?.as_str()?.to_string(),
+            k: v.get("k")?.as_u64()?,
+            n: v.get("n")?.as_u64()?,
+        })
+    }
+}
+
 /// A part of a sharded command, read: what the merge of either command
 /// needs to know of it.
 pub(super) trait Part: Sized {
@@ -114,13 +146,7 @@ pub(super) trait Part: Sized {
     const COMMAND: &'static str;
     /// Reads the part at `path`.
     fn read(path: &Path) -> Result<Self, String>;
-    fn path(&self) -> &Path;
-    /// Its shard: part `k` of `n`.
-    fn k(&self) -> u64;
-    fn n(&self) -> u64;
-    /// The scenario file the parts were made from and its content hash.
-    fn file(&self) -> &str;
-    fn hash(&self) -> &str;
+    fn header(&self) -> &Header;
     /// What every part of one split shares (file, hash, N and the
     /// command's options), as an error names it: parts whose origins
     /// differ do not belong together.
@@ -145,8 +171,8 @@ pub(super) fn read_parts<P: Part>(paths: &[std::path::PathBuf]) -> Result<Vec<P>
         if p.origin() != first.origin() {
             return Err(format!(
                 "`{}` does not belong with `{}`: it was made from {}; the other from {}",
-                p.path().display(),
-                first.path().display(),
+                p.header().path.display(),
+                first.header().path.display(),
                 p.origin(),
                 first.origin()
             ));
@@ -158,17 +184,22 @@ pub(super) fn read_parts<P: Part>(paths: &[std::path::PathBuf]) -> Result<Vec<P>
 /// Whether the parts are each K of 1 … N once (after the command's own
 /// checks that N is a split it makes).
 pub(super) fn whole<P: Part>(parts: &[P]) -> Result<(), String> {
-    check_whole(parts.iter().map(|p| (p.k(), p.path())), parts[0].n())
+    check_whole(
+        parts
+            .iter()
+            .map(|p| (p.header().k, p.header().path.as_path())),
+        parts[0].header().n,
+    )
 }
 
 /// Whether the scenario the parts were made from is unchanged: its content
 /// hash `now` is the one the parts recorded.
 pub(super) fn unchanged<P: Part>(first: &P, now: &str) -> Result<(), String> {
-    if now != first.hash() {
+    let h = first.header();
+    if now != h.hash {
         return Err(format!(
             "`{}` has changed since the parts were made (hash {now}, the parts say {})",
-            first.file(),
-            first.hash()
+            h.file, h.hash
         ));
     }
     Ok(())
