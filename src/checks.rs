@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use crate::contract::{MetricValue, Metrics};
-use crate::syntax::ast::{ArithOp, CompareOp, Expr, ExprKind, Selection, Value, ValueKind};
+use crate::syntax::ast::{CompareOp, Expr, ExprKind, Selection, Value, ValueKind};
 
 /// What an expression reads: plans' metrics, and benches' series.
 pub trait Values {
@@ -44,85 +44,73 @@ pub struct Used {
 /// expressions it accepted. An aggregate of no runs is NaN too, except
 /// `count` (0) and `sum` (0).
 pub fn eval(expr: &Expr, values: &dyn Values, used: &mut Used) -> MetricValue {
-    use MetricValue::{Bool, Num};
-    let num = |v: MetricValue| v.as_f64();
-    let truth = |v: MetricValue| match v {
-        Bool(b) => b,
-        Num(x) => x != 0.0 && !x.is_nan(),
-    };
-    match &expr.kind {
-        ExprKind::Number(x) | ExprKind::Percent(x) => Num(*x),
-        ExprKind::Bool(b) => Bool(*b),
-        // A sample replaces every param's name by its value before analysis.
-        ExprKind::Name(_) => Num(f64::NAN),
-        ExprKind::Metric { plan, metric } => {
-            let v = values
-                .metrics(&plan.value)
-                .and_then(|m| m.get(&metric.value).copied())
-                .unwrap_or(Num(f64::NAN));
-            used.values
-                .insert(format!("{}.{}", plan.value, metric.value), v);
-            v
-        }
-        // A series of one run used as a plain value (analysis allowed it).
-        ExprKind::Series { .. } | ExprKind::Where(..) => {
-            let s = eval_series(expr, values, used, false);
-            let v = match s.as_slice() {
-                [one] => *one,
-                _ => Num(f64::NAN),
-            };
-            used.values.insert(describe(expr), v);
-            v
-        }
-        ExprKind::Call { function, args } => {
-            let series = args
-                .first()
-                .map(|a| eval_series(a, values, used, true))
-                .unwrap_or_default();
-            let q = args.get(1).map(|q| num(eval(q, values, used)));
-            let v = aggregate(&function.value, &series, q);
-            used.values.insert(describe(expr), v);
-            v
-        }
-        ExprKind::Neg(x) => Num(-num(eval(x, values, used))),
-        ExprKind::Not(x) => Bool(!truth(eval(x, values, used))),
-        ExprKind::Arith { op, lhs, rhs } => {
-            let (a, b) = (num(eval(lhs, values, used)), num(eval(rhs, values, used)));
-            Num(match op {
-                ArithOp::Add => a + b,
-                ArithOp::Sub => a - b,
-                ArithOp::Mul => a * b,
-                ArithOp::Div => a / b,
-            })
-        }
-        ExprKind::Compare { op, lhs, rhs } => {
-            let (a, b) = (eval(lhs, values, used), eval(rhs, values, used));
-            let (a, b) = (num(a), num(b));
-            Bool(match op {
-                CompareOp::Lt => a < b,
-                CompareOp::Le => a <= b,
-                CompareOp::Gt => a > b,
-                CompareOp::Ge => a >= b,
-                CompareOp::Eq => a == b,
-                CompareOp::Ne => a != b,
-            })
-        }
-        ExprKind::Approx { lhs, rhs, tol } => {
-            let a = num(eval(lhs, values, used));
-            let b = num(eval(rhs, values, used));
-            let t = num(eval(tol, values, used));
-            Bool((a - b).abs() <= t)
-        }
-        // Both sides are always evaluated, so that every value a check
-        // used is reported.
-        ExprKind::And(a, b) => {
-            let (x, y) = (truth(eval(a, values, used)), truth(eval(b, values, used)));
-            Bool(x && y)
-        }
-        ExprKind::Or(a, b) => {
-            let (x, y) = (truth(eval(a, values, used)), truth(eval(b, values, used)));
-            Bool(x || y)
-        }
+    match crate::eval::eval(expr, &mut CheckScope { values, used }) {
+        Ok(v) => v,
+        Err(never) => match never {},
+    }
+}
+
+/// A check's leaves: the plans' metrics and the benches' series, every
+/// value read recorded; a number is true when it is neither 0 nor NaN.
+struct CheckScope<'a, 'u> {
+    values: &'a dyn Values,
+    used: &'u mut Used,
+}
+
+impl crate::eval::Scope for CheckScope<'_, '_> {
+    type Error = std::convert::Infallible;
+    /// Both sides, so that every value a check used is reported.
+    const BOTH_SIDES: bool = true;
+
+    fn leaf(&mut self, expr: &Expr) -> Result<MetricValue, Self::Error> {
+        use MetricValue::Num;
+        let (values, used) = (self.values, &mut *self.used);
+        Ok(match &expr.kind {
+            ExprKind::Metric { plan, metric } => {
+                let v = values
+                    .metrics(&plan.value)
+                    .and_then(|m| m.get(&metric.value).copied())
+                    .unwrap_or(Num(f64::NAN));
+                used.values
+                    .insert(format!("{}.{}", plan.value, metric.value), v);
+                v
+            }
+            // A series of one run used as a plain value (analysis allowed
+            // it).
+            ExprKind::Series { .. } | ExprKind::Where(..) => {
+                let s = eval_series(expr, values, used, false);
+                let v = match s.as_slice() {
+                    [one] => *one,
+                    _ => Num(f64::NAN),
+                };
+                used.values.insert(describe(expr), v);
+                v
+            }
+            ExprKind::Call { function, args } => {
+                let series = args
+                    .first()
+                    .map(|a| eval_series(a, values, used, true))
+                    .unwrap_or_default();
+                let q = args.get(1).map(|q| eval(q, values, used).as_f64());
+                let v = aggregate(&function.value, &series, q);
+                used.values.insert(describe(expr), v);
+                v
+            }
+            // A sample replaces every param's name by its value before
+            // analysis.
+            _ => Num(f64::NAN),
+        })
+    }
+
+    fn number(&mut self, _: &Expr, v: MetricValue) -> Result<f64, Self::Error> {
+        Ok(v.as_f64())
+    }
+
+    fn truth(&mut self, _: &Expr, v: MetricValue) -> Result<bool, Self::Error> {
+        Ok(match v {
+            MetricValue::Bool(b) => b,
+            MetricValue::Num(x) => x != 0.0 && !x.is_nan(),
+        })
     }
 }
 

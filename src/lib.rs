@@ -32,6 +32,7 @@ mod cli;
 pub mod contract;
 pub mod diagnostics;
 mod drive;
+mod eval;
 mod falsify;
 mod files;
 pub mod format;

@@ -24,13 +24,13 @@
 
 use std::collections::{HashMap, HashSet};
 
+use crate::contract::MetricValue;
 use crate::contract::schema;
 use crate::diagnostics::{Diag, Span, Spanned};
 use crate::rng::SplitMix64;
 use crate::syntax::ast::{
-    Angle, ArithOp, BenchDecl, CompareOp, Expr, ExprKind, ObstacleDecl, ObstacleKind,
-    ObstacleShape, ParamSource, ParamToken, PlanDecl, ScatterDecl, ScatterShape, Stmt, Value,
-    ValueKind, WorldItem,
+    Angle, BenchDecl, Expr, ExprKind, ObstacleDecl, ObstacleKind, ObstacleShape, ParamSource,
+    ParamToken, PlanDecl, ScatterDecl, ScatterShape, Stmt, Value, ValueKind, WorldItem,
 };
 
 use super::placed::{Placed, Placements};
@@ -1569,53 +1569,80 @@ fn eval_with(
     index: &HashMap<String, usize>,
     rng: &mut Option<&mut SplitMix64>,
 ) -> Result<f64, EvalError> {
-    let x = match &e.kind {
-        ExprKind::Number(x) => *x,
-        ExprKind::Percent(x) => *x,
-        ExprKind::Name(n) => match index.get(&n.value).and_then(|&k| values.get(k)) {
-            Some(&x) => x,
-            None => return Err(EvalError::Static(e.span)),
-        },
-        ExprKind::Neg(x) => -eval_with(x, values, index, rng)?,
-        ExprKind::Arith { op, lhs, rhs } => {
-            let (a, b) = (
-                eval_with(lhs, values, index, rng)?,
-                eval_with(rhs, values, index, rng)?,
-            );
-            match op {
-                ArithOp::Add => a + b,
-                ArithOp::Sub => a - b,
-                ArithOp::Mul => a * b,
-                ArithOp::Div => a / b,
-            }
-        }
-        ExprKind::Call { function, args } => {
-            let f = function.value.as_str();
-            let mut xs = Vec::with_capacity(args.len());
-            for a in args {
-                xs.push(eval_with(a, values, index, rng)?);
-            }
-            match (f, xs.as_slice()) {
-                ("min", [_, ..]) => xs.iter().copied().fold(f64::INFINITY, f64::min),
-                ("max", [_, ..]) => xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                ("abs", [x]) => x.abs(),
-                ("sqrt", [x]) => x.sqrt(),
-                (f, [a, b]) if DISTRIBUTIONS.contains(&f) => {
-                    let Some(rng) = rng.as_deref_mut() else {
-                        return Err(EvalError::Static(e.span));
-                    };
-                    check_distribution(f, *a, *b, e.span).map_err(EvalError::Distribution)?;
-                    sample(f, *a, *b, rng)
+    let mut scope = ParamScope { values, index, rng };
+    let v = crate::eval::eval(e, &mut scope)?;
+    crate::eval::Scope::number(&mut scope, e, v)
+}
+
+/// A family's leaves: its params' values (by name), the functions `min`,
+/// `max`, `abs`, `sqrt` and, when drawing, the distributions. Numbers and
+/// conditions do not mix, every value is finite, and `and`/`or` stop at the
+/// side that decides.
+struct ParamScope<'a, 'r, 's> {
+    values: &'a [f64],
+    index: &'a HashMap<String, usize>,
+    rng: &'r mut Option<&'s mut SplitMix64>,
+}
+
+impl crate::eval::Scope for ParamScope<'_, '_, '_> {
+    type Error = EvalError;
+    const BOTH_SIDES: bool = false;
+
+    fn leaf(&mut self, e: &Expr) -> Result<MetricValue, EvalError> {
+        let x = match &e.kind {
+            ExprKind::Name(n) => match self.index.get(&n.value).and_then(|&k| self.values.get(k)) {
+                Some(&x) => x,
+                None => return Err(EvalError::Static(e.span)),
+            },
+            ExprKind::Call { function, args } => {
+                let f = function.value.as_str();
+                let mut xs = Vec::with_capacity(args.len());
+                for a in args {
+                    let v = crate::eval::eval(a, self)?;
+                    xs.push(self.number(a, v)?);
                 }
-                _ => return Err(EvalError::Static(e.span)),
+                match (f, xs.as_slice()) {
+                    ("min", [_, ..]) => xs.iter().copied().fold(f64::INFINITY, f64::min),
+                    ("max", [_, ..]) => xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                    ("abs", [x]) => x.abs(),
+                    ("sqrt", [x]) => x.sqrt(),
+                    (f, [a, b]) if DISTRIBUTIONS.contains(&f) => {
+                        let Some(rng) = self.rng.as_deref_mut() else {
+                            return Err(EvalError::Static(e.span));
+                        };
+                        check_distribution(f, *a, *b, e.span).map_err(EvalError::Distribution)?;
+                        sample(f, *a, *b, rng)
+                    }
+                    _ => return Err(EvalError::Static(e.span)),
+                }
             }
+            // Metrics and series: reported by the static checks.
+            _ => return Err(EvalError::Static(e.span)),
+        };
+        self.computed(e, x).map(MetricValue::Num)
+    }
+
+    fn number(&mut self, e: &Expr, v: MetricValue) -> Result<f64, EvalError> {
+        match v {
+            // A literal too large for a number (`1e999`) included.
+            MetricValue::Num(x) => self.computed(e, x),
+            MetricValue::Bool(_) => Err(EvalError::Static(e.span)),
         }
-        _ => return Err(EvalError::Static(e.span)),
-    };
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(EvalError::NotFinite(e.span))
+    }
+
+    fn truth(&mut self, e: &Expr, v: MetricValue) -> Result<bool, EvalError> {
+        match v {
+            MetricValue::Bool(b) => Ok(b),
+            MetricValue::Num(_) => Err(EvalError::Static(e.span)),
+        }
+    }
+
+    fn computed(&mut self, e: &Expr, x: f64) -> Result<f64, EvalError> {
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(EvalError::NotFinite(e.span))
+        }
     }
 }
 
@@ -1637,36 +1664,13 @@ fn eval_condition(
     values: &[f64],
     index: &HashMap<String, usize>,
 ) -> Result<bool, EvalError> {
-    Ok(match &e.kind {
-        ExprKind::Bool(b) => *b,
-        ExprKind::Not(x) => !eval_condition(x, values, index)?,
-        ExprKind::And(a, b) => {
-            eval_condition(a, values, index)? && eval_condition(b, values, index)?
-        }
-        ExprKind::Or(a, b) => {
-            eval_condition(a, values, index)? || eval_condition(b, values, index)?
-        }
-        ExprKind::Compare { op, lhs, rhs } => {
-            let (a, b) = (eval(lhs, values, index)?, eval(rhs, values, index)?);
-            match op {
-                CompareOp::Lt => a < b,
-                CompareOp::Le => a <= b,
-                CompareOp::Gt => a > b,
-                CompareOp::Ge => a >= b,
-                CompareOp::Eq => a == b,
-                CompareOp::Ne => a != b,
-            }
-        }
-        ExprKind::Approx { lhs, rhs, tol } => {
-            let (a, b, t) = (
-                eval(lhs, values, index)?,
-                eval(rhs, values, index)?,
-                eval(tol, values, index)?,
-            );
-            (a - b).abs() <= t
-        }
-        _ => return Err(EvalError::Static(e.span)),
-    })
+    let mut scope = ParamScope {
+        values,
+        index,
+        rng: &mut None,
+    };
+    let v = crate::eval::eval(e, &mut scope)?;
+    crate::eval::Scope::truth(&mut scope, e, v)
 }
 
 /// What a scattered item's numbers may be for the scatter to have placed
