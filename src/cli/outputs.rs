@@ -1,5 +1,5 @@
 //! The file outputs of a command, as options built from the sink registry
-//! ([`crate::report::sink::SINKS`]): `#[command(flatten)] outputs:
+//! ([`crate::report::sinks::SINKS`]): `#[command(flatten)] outputs:
 //! Outputs<RunSinks>` gives `scen run` every sink it offers, with no line
 //! per sink here or in the command.
 
@@ -9,7 +9,8 @@ use std::path::PathBuf;
 use clap::{Arg, ArgMatches, Args, FromArgMatches};
 
 use super::{check_output_folder, check_output_path};
-use crate::report::sink::{Command, Product, SINKS, Sink};
+use crate::report::sink::{Command, Product, Sink};
+use crate::report::sinks::SINKS;
 use crate::scenario::Scenario;
 
 /// Which command's sinks an [`Outputs`] holds.

@@ -10,6 +10,7 @@ pub mod ompl;
 pub mod plot;
 pub mod png;
 pub mod sink;
+pub mod sinks;
 pub mod svg;
 pub mod text;
 

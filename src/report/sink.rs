@@ -1,6 +1,6 @@
 //! The file outputs of `scen run` and `scen bench` (`--svg`, `--png`,
 //! `--csv`, `--ompl-log`): one [`Sink`] each, defined in its own module
-//! beside what it renders, listed once in [`SINKS`]. The command line
+//! beside what it renders, listed once in [`super::sinks::SINKS`]. The command line
 //! builds its options from the list, checks their paths before anything
 //! runs, refuses an output that would replace an input, and writes each
 //! one. A new output is its sink (in its file) and one line here.
@@ -9,14 +9,6 @@ use std::path::{Path, PathBuf};
 
 use crate::run::RunReport;
 use crate::scenario::Scenario;
-
-/// Every file output, in the order `--help` lists them.
-pub static SINKS: &[&Sink] = &[
-    &super::svg::SINK,
-    &super::png::SINK,
-    &super::csv::SINK,
-    &super::ompl::SINK,
-];
 
 /// A command that writes sinks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,19 +85,4 @@ pub fn has_extension(path: &Path, ext: &str) -> bool {
 /// Writes `bytes` to `path`, the failure as an error message.
 pub fn write_file(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), Vec<String>> {
     std::fs::write(path, bytes).map_err(|e| vec![format!("cannot write `{}`: {e}", path.display())])
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sinks_have_distinct_options_and_are_offered_somewhere() {
-        let mut seen = std::collections::HashSet::new();
-        for s in SINKS {
-            assert!(s.option.starts_with("--"), "{}", s.option);
-            assert!(seen.insert(s.option), "{} twice", s.option);
-            assert!(!s.help.is_empty(), "{} is offered by no command", s.option);
-        }
-    }
 }
