@@ -799,6 +799,14 @@ impl FreeBoundary {
         self.pieces[p].curve.point_at(s)
     }
 
+    /// The unit normal at `pos` pointing into the free space: the side of
+    /// the boundary `pos` is on (a wall of no thickness has a position on
+    /// each side of each of its points, with opposite normals).
+    pub fn free_normal(&self, pos: Pos) -> Vector {
+        let (p, s) = self.piece_at(pos);
+        unit(right(self.pieces[p].curve.tangent_at(s)))
+    }
+
     /// `pos` moved by `by` along its cycle (negative: backward), wrapped.
     pub fn moved(&self, pos: Pos, by: f64) -> Pos {
         let len = self.cycles[pos.cycle].length();
