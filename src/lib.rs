@@ -39,6 +39,8 @@ pub mod format;
 pub use scen_geometry as geometry;
 mod import;
 mod lsp;
+#[cfg(test)]
+mod planner_tests;
 pub mod planners;
 pub mod report;
 pub use scen_geometry::rng;
