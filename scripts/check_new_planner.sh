@@ -3,8 +3,8 @@
 # command to regenerate what is generated (issue 22). In a copy of HEAD (a
 # fresh git repository in a temporary folder), it
 # 1. adds a trivial planner `straight` (the straight line from the start to
-#    the goal, found when the validator accepts it) in src/planners/straight.rs
-#    and its one line in src/planners/registry.rs;
+#    the goal, found when the validator accepts it) in crates/planners/src/planners/straight.rs
+#    and its one line in crates/planners/src/planners/registry.rs;
 # 2. shows that the tests of generated files now fail, naming the command;
 # 3. runs that command, scripts/regenerate.sh;
 # 4. runs the tests that list planners (the registry's own, docs, editors,
@@ -42,7 +42,7 @@ git add -A
 git -c user.name=check -c user.email=check@localhost commit -qm "HEAD of $repo"
 
 step "1. the planner's file and its registry line"
-cat > src/planners/straight.rs <<'EOF'
+cat > crates/planners/src/planners/straight.rs <<'EOF'
 //! `straight`: the straight line from the start to the goal, found when
 //! the validator accepts it (scripts/check_new_planner.sh adds it).
 
@@ -106,10 +106,10 @@ EOF
 # The one line, last in the `planners! { ... }` list.
 awk '/^planners! \{/ { inside = 1 }
      inside && /^\}/ { print "    #[path = \"straight.rs\"] straight::PLANNER,"; inside = 0 }
-     { print }' src/planners/registry.rs > "$work/registry.rs"
-cp "$work/registry.rs" src/planners/registry.rs
-git diff src/planners/registry.rs
-[ "$(git diff --numstat src/planners/registry.rs)" = "$(printf '1\t0\tsrc/planners/registry.rs')" ] \
+     { print }' crates/planners/src/planners/registry.rs > "$work/registry.rs"
+cp "$work/registry.rs" crates/planners/src/planners/registry.rs
+git diff crates/planners/src/planners/registry.rs
+[ "$(git diff --numstat crates/planners/src/planners/registry.rs)" = "$(printf '1\t0\tcrates/planners/src/planners/registry.rs')" ] \
   || { echo "the registry change is not one added line" >&2; exit 1; }
 
 step "2. before regenerating, the generated files are stale"
@@ -172,8 +172,8 @@ expected=' M README.md
  M editors/vim/syntax/scen.vim
  M editors/vscode/snippets/plans.generated.json
  M editors/vscode/syntaxes/scen.tmLanguage.json
- M src/planners/registry.rs
-?? src/planners/straight.rs'
+ M crates/planners/src/planners/registry.rs
+?? crates/planners/src/planners/straight.rs'
 if [ "$(git status --porcelain | sort)" != "$expected" ]; then
   echo "git status lists other changes; expected:" >&2
   echo "$expected" >&2

@@ -2,7 +2,7 @@
 """Import circles between the crate's modules (issue 40: at most one, the
 parser's own).
 
-Each file under src/ is a module; an edge A -> B when A names a path into B
+Each file under src/ and crates/*/src/ is a module of its crate; an edge A -> B when A names a path into B
 (`use crate::x::y`, `crate::x::y::f(..)`, `super::y`). A module naming its
 own ancestor or descendant is nesting, not an import, and is left out; so
 is an inline `#[cfg(test)] mod tests`, a child module of its own.
@@ -18,12 +18,15 @@ ROOT = Path(__file__).resolve().parent.parent
 SRC = ROOT / "src"
 
 
-def module_of(path: Path) -> tuple:
-    rel = path.relative_to(SRC).with_suffix("")
+def module_of(src: Path, path: Path) -> tuple:
+    """A module as (crate, its path...): `crate::` paths resolve within
+    their own crate."""
+    rel = path.relative_to(src).with_suffix("")
     parts = list(rel.parts)
     if parts[-1] in ("mod", "lib", "main"):
         parts = parts[:-1]
-    return tuple(parts)
+    crate = "scen" if src == SRC else src.parent.name
+    return (crate, *parts)
 
 
 def strip_comments(text: str) -> str:
@@ -67,18 +70,19 @@ def main() -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("--allow", type=int, default=1)
     args = ap.parse_args()
-    files = {module_of(p): p for p in SRC.rglob("*.rs")}
+    roots = [SRC, *sorted((ROOT / "crates").glob("*/src"))]
+    files = {module_of(src, p): p for src in roots for p in src.rglob("*.rs")}
     modules = set(files)
     edges = {m: set() for m in modules}
     for m, p in files.items():
         # A file `a/b.rs` or `a/b/mod.rs` is module (a, b); `super` is (a,).
         for path in paths_in(strip_test_modules(strip_comments(p.read_text()))):
             if path[0] == "crate":
-                resolved = []
+                resolved = [m[0]]
                 rest = path[1:]
             else:
                 ups = path[0].count("super")
-                if ups > len(m):
+                if ups > len(m) - 1:
                     continue
                 resolved = list(m[: len(m) - ups])
                 rest = path[1:]
@@ -89,7 +93,7 @@ def main() -> int:
                     target = target + (part,)
                 else:
                     break
-            if target == m or target == () or m[: len(target)] == target or target[: len(m)] == m:
+            if target == m or len(target) <= 1 or m[: len(target)] == target or target[: len(m)] == m:
                 continue
             edges[m].add(target)
     # Tarjan's strongly connected components.
@@ -123,7 +127,7 @@ def main() -> int:
         if v not in index:
             visit(v)
     for comp in sccs:
-        print("circle: " + " <-> ".join("::".join(c) for c in comp))
+        print("circle: " + " <-> ".join("::".join(c[1:]) + f" ({c[0]})" for c in comp))
     print(f"{len(sccs)} circle(s), {args.allow} allowed")
     return 1 if len(sccs) > args.allow else 0
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates every file generated from the planner registry
-# (src/planners/registry.rs) and the analyser's lists:
+# (crates/planners/src/planners/registry.rs) and the analyser's lists:
 # - docs/planners.md, the planner reference (tests/docs.rs);
 # - editors/vim/syntax/scen.vim and editors/vscode/syntaxes/scen.tmLanguage.json:
 #   their lists of planner kinds, keys, words, limit kinds, metrics,

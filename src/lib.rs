@@ -29,8 +29,8 @@
 pub mod bench;
 mod checks;
 mod cli;
-pub mod contract;
-pub mod diagnostics;
+pub use scen_planners::contract;
+pub use scen_planners::diagnostics;
 mod drive;
 mod eval;
 mod falsify;
@@ -41,7 +41,8 @@ mod import;
 mod lsp;
 #[cfg(test)]
 mod planner_tests;
-pub mod planners;
+pub use scen_planners::planners;
+pub use scen_planners::word_enum;
 pub mod report;
 pub use scen_geometry::rng;
 pub mod run;

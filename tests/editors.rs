@@ -1,7 +1,7 @@
 //! The editor support (editors/) knows the whole language: every keyword of
 //! the pest grammar and every planner kind, parameter key, word value,
 //! limit kind and metric that the planner registry
-//! (src/planners/registry.rs) and the common schemas (src/scenario/schema.rs) accept
+//! (crates/planners/src/planners/registry.rs) and the common schemas (src/scenario/schema.rs) accept
 //! is coloured by the VS Code grammar and by the Vim syntax, in the right
 //! class, as are the keys of a `bench` and the aggregates of `expect`
 //! (src/scenario/analyze/), and every planner kind and `bench` have a

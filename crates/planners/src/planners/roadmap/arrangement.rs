@@ -109,7 +109,7 @@ pub fn same_dir(a: Vector, b: Vector) -> bool {
 
 /// A uniform grid of buckets over a box, each listing the items whose
 /// bounding boxes meet it.
-pub(crate) struct Buckets {
+pub struct Buckets {
     min: Point,
     cell: f64,
     nx: usize,
@@ -119,7 +119,7 @@ pub(crate) struct Buckets {
 
 impl Buckets {
     /// About `n` buckets over `extent`.
-    pub(crate) fn new(extent: Aabb, n: usize) -> Self {
+    pub fn new(extent: Aabb, n: usize) -> Self {
         let side = (n.max(1) as f64).sqrt().ceil().clamp(1.0, 1024.0);
         let size = extent.width().max(extent.height()).max(1e-9);
         let cell = size / side;
@@ -150,7 +150,7 @@ impl Buckets {
         )
     }
 
-    pub(crate) fn insert(&mut self, item: u32, b: &Aabb) {
+    pub fn insert(&mut self, item: u32, b: &Aabb) {
         let (x0, y0) = self.cell_of(b.min);
         let (x1, y1) = self.cell_of(b.max);
         for y in y0..=y1 {
@@ -161,7 +161,7 @@ impl Buckets {
     }
 
     /// The items whose boxes may contain `p`.
-    pub(crate) fn at(&self, p: Point) -> &[u32] {
+    pub fn at(&self, p: Point) -> &[u32] {
         let (x, y) = self.cell_of(p);
         &self.items[y * self.nx + x]
     }
@@ -169,7 +169,7 @@ impl Buckets {
     /// Every pair of items sharing a bucket, each pair once: a pair is
     /// reported by the bucket holding the lower-left corner of the
     /// intersection of their boxes.
-    pub(crate) fn pairs(&self, boxes: &[Aabb], mut f: impl FnMut(u32, u32)) {
+    pub fn pairs(&self, boxes: &[Aabb], mut f: impl FnMut(u32, u32)) {
         for y in 0..self.ny {
             for x in 0..self.nx {
                 let list = &self.items[y * self.nx + x];
@@ -201,7 +201,7 @@ fn key(p: Point) -> (u64, u64) {
 
 /// The polygons with their bounding boxes and a bucket index, for "strictly
 /// inside" queries.
-pub(crate) struct PolygonIndex<'a> {
+pub struct PolygonIndex<'a> {
     polys: &'a [Grown],
     buckets: Buckets,
     /// A distance below which a point counts as on an edge's line.
@@ -209,7 +209,7 @@ pub(crate) struct PolygonIndex<'a> {
 }
 
 impl<'a> PolygonIndex<'a> {
-    pub(crate) fn new(polys: &'a [Grown], extent: Aabb, tol: f64) -> Self {
+    pub fn new(polys: &'a [Grown], extent: Aabb, tol: f64) -> Self {
         let mut buckets = Buckets::new(extent, polys.len());
         for (i, p) in polys.iter().enumerate() {
             buckets.insert(i as u32, &Aabb::around(&p.vertices));
@@ -223,7 +223,7 @@ impl<'a> PolygonIndex<'a> {
 
     /// The first polygon (other than `skip`) whose interior contains `p`
     /// farther than the tolerance from its boundary.
-    pub(crate) fn inside(&self, p: Point, skip: Option<usize>) -> Option<usize> {
+    pub fn inside(&self, p: Point, skip: Option<usize>) -> Option<usize> {
         self.buckets
             .at(p)
             .iter()

@@ -134,7 +134,7 @@ pub struct SearchResult {
 /// `total_cmp`'s order, so that the heap's comparisons need no float
 /// handling; a max-heap pops the greatest.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub(crate) struct Entry {
+pub struct Entry {
     /// `!key(f)`.
     f: u64,
     /// `key(g)`.
@@ -159,7 +159,7 @@ fn unkey(k: u64) -> f64 {
 
 impl Entry {
     #[inline]
-    pub(crate) fn new(f: f64, g: f64, node: usize) -> Self {
+    pub fn new(f: f64, g: f64, node: usize) -> Self {
         Entry {
             f: !key(f),
             g: key(g),
@@ -168,17 +168,17 @@ impl Entry {
     }
 
     #[inline]
-    pub(crate) fn f(&self) -> f64 {
+    pub fn f(&self) -> f64 {
         unkey(!self.f)
     }
 
     #[inline]
-    pub(crate) fn g(&self) -> f64 {
+    pub fn g(&self) -> f64 {
         unkey(self.g)
     }
 
     #[inline]
-    pub(crate) fn node(&self) -> usize {
+    pub fn node(&self) -> usize {
         !self.node as usize
     }
 }

@@ -202,7 +202,7 @@ pub fn navigate(task: &Task<'_>, settings: &Online, options: Options) -> PlanOut
 /// What an online robot knew and intended at each step. Step `k` is the
 /// robot standing at `path[k]` (the executed trajectory).
 #[derive(Clone, Debug, Default)]
-pub(crate) struct OnlineTrace {
+pub struct OnlineTrace {
     /// Side of a lattice cell: sensed cells are drawn as squares this size
     /// centred on their lattice points.
     pub cell: f64,
@@ -280,7 +280,7 @@ fn knowledge_layers(log: &OnlineTrace) -> Vec<Layer> {
 
 /// [`navigate`], returning what the robot knew step by step instead of
 /// drawing it (when `options.traced`).
-pub(crate) fn navigate_logged(
+pub fn navigate_logged(
     task: &Task<'_>,
     settings: &Online,
     options: Options,

@@ -458,7 +458,7 @@ pub fn lattice_path(
 /// Obstacles grown by a disk robot's radius, for drawing: each convex
 /// piece exactly (a disk grown by a disk is a disk of the summed radii);
 /// grids excluded, their cells are drawn as they are.
-pub(crate) fn grown_obstacles(world: &World, radius: f64) -> Vec<Rounded> {
+pub fn grown_obstacles(world: &World, radius: f64) -> Vec<Rounded> {
     if radius <= 0.0 {
         return Vec::new();
     }

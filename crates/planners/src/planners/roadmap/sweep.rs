@@ -36,7 +36,7 @@ pub struct Visible {
 }
 
 /// A straight motion from `v` in direction `d`, met point by point.
-pub(crate) struct Chain {
+pub struct Chain {
     /// Per starting sector at `v`: the sides still open.
     starts: Vec<(u32, Sides)>,
     d: Vector,
@@ -44,7 +44,7 @@ pub(crate) struct Chain {
 }
 
 impl Chain {
-    pub(crate) fn new(arr: &Arrangement, v: u32, d: Vector) -> Self {
+    pub fn new(arr: &Arrangement, v: u32, d: Vector) -> Self {
         let n = arr.sector_count(v);
         let starts = match arr.classify(v, d) {
             Way::Sector(m) => vec![(m as u32, Sides::BOTH)],
@@ -74,7 +74,7 @@ impl Chain {
 
     /// Reaching point `p`: the sector pairs linked, if `p` can be reached
     /// (and `wanted`); then moves on past `p` (which may block the chain).
-    pub(crate) fn reach(&mut self, arr: &Arrangement, p: u32, wanted: bool) -> Vec<(u32, u32)> {
+    pub fn reach(&mut self, arr: &Arrangement, p: u32, wanted: bool) -> Vec<(u32, u32)> {
         let mut links = Vec::new();
         if self.blocked {
             return links;
@@ -113,11 +113,11 @@ impl Chain {
         links
     }
 
-    pub(crate) fn block(&mut self) {
+    pub fn block(&mut self) {
         self.blocked = true;
     }
 
-    pub(crate) fn is_blocked(&self) -> bool {
+    pub fn is_blocked(&self) -> bool {
         self.blocked
     }
 }
@@ -172,7 +172,7 @@ impl Status {
 // ------------------------------------------------------------------ sweep
 
 /// Reusable buffers of one sweeping thread.
-pub(crate) struct SweepBuffers {
+pub struct SweepBuffers {
     keyed: Vec<(u64, u32)>,
     group_of: Vec<u32>,
     groups: Vec<(usize, usize)>,
@@ -207,7 +207,7 @@ struct Line {
 }
 
 impl SweepBuffers {
-    pub(crate) fn new(arr: &Arrangement) -> Self {
+    pub fn new(arr: &Arrangement) -> Self {
         SweepBuffers {
             keyed: Vec::with_capacity(arr.points.len()),
             group_of: Vec::with_capacity(arr.points.len()),
@@ -390,7 +390,7 @@ fn seg_cmp(
 }
 
 /// The visibility edges from node `v` to the nodes of higher index.
-pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut Vec<Visible>) {
+pub fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut Vec<Visible>) {
     let pv = arr.points[v as usize];
     let x_axis = Vector::new(1.0, 0.0);
     let angle_cmp = |a: &u32, b: &u32| {
@@ -578,7 +578,7 @@ pub(crate) fn sweep(arr: &Arrangement, v: u32, buf: &mut SweepBuffers, out: &mut
 /// The same edges as [`sweep`] over all nodes, by testing every pair of
 /// nodes against every segment and point: O(n³), for tests.
 #[cfg(test)]
-pub(crate) fn brute_force(arr: &Arrangement) -> Vec<Visible> {
+pub fn brute_force(arr: &Arrangement) -> Vec<Visible> {
     let n = arr.points.len() as u32;
     let mut out = Vec::new();
     for v in 0..n {

@@ -11,7 +11,7 @@
 //! none of them names a planner.
 //!
 //! # Adding a planner
-//! 1. Write `src/planners/KIND.rs` with `pub static PLANNER: Planner`, its
+//! 1. Write `crates/planners/src/planners/KIND.rs` with `pub static PLANNER: Planner`, its
 //!    settings struct (word values as [`word_enum!`](crate::word_enum)
 //!    enums, defaults only in the schema) and `impl Settings`. Its module
 //!    is `planners::registry::KIND`: reach other modules by `crate::` paths.
@@ -34,10 +34,10 @@ use crate::contract::Planner;
 use crate::contract::schema::{COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec};
 
 /// Declares [`PLANNERS`] from its lines, in their order. A line is
-/// `module::ITEM,` for a planner whose module `src/planners/mod.rs`
+/// `module::ITEM,` for a planner whose module `crates/planners/src/planners/mod.rs`
 /// declares (those that are several files, or libraries for others too),
 /// or `#[path = "KIND.rs"] KIND::ITEM,` for a one-file planner: the line
-/// declares its module, from that file of `src/planners/`.
+/// declares its module, from that file of `crates/planners/src/planners/`.
 macro_rules! planners {
     (@lines [$($done:expr,)*]) => {
         /// Every planner kind, in the order the docs list them.
@@ -45,7 +45,7 @@ macro_rules! planners {
     };
     (@lines [$($done:expr,)*] #[path = $file:literal] $module:ident :: $item:ident, $($rest:tt)*) => {
         #[path = $file]
-        pub(crate) mod $module;
+        pub mod $module;
         planners!(@lines [$($done,)* &$module::$item,] $($rest)*);
     };
     (@lines [$($done:expr,)*] $module:ident :: $item:ident, $($rest:tt)*) => {
@@ -90,7 +90,7 @@ pub fn reference() -> String {
     use std::fmt::Write as _;
     let mut md = String::from(
         "# Planners\n\n\
-         Generated from the planner registry (`src/planners/registry.rs`) by\n\
+         Generated from the planner registry (`crates/planners/src/planners/registry.rs`) by\n\
          `scripts/regenerate.sh`; do not edit by hand.\n",
     );
     let params = |md: &mut String, specs: &mut dyn Iterator<Item = &ParamSpec>| {

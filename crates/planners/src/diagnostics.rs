@@ -340,7 +340,7 @@ pub fn sort_diags(diags: &mut [Diag]) {
 /// The Levenshtein distance between two sequences, for "did you mean"
 /// suggestions. Callers choose the unit: the parser compares the bytes of
 /// keywords, the analyzer the characters of names.
-pub(crate) fn edit_distance<T: PartialEq>(a: &[T], b: &[T]) -> usize {
+pub fn edit_distance<T: PartialEq>(a: &[T], b: &[T]) -> usize {
     let mut row: Vec<usize> = (0..=b.len()).collect();
     for (i, ca) in a.iter().enumerate() {
         let mut diagonal = row[0];
