@@ -165,6 +165,7 @@ fi
 step "5. git status: the new file, the registry line and the regenerated files only"
 git status --porcelain
 expected=' M README.md
+ M crates/planners/src/planners/registry.rs
  M docs/diagnostics.md
  M docs/language.md
  M docs/planners.md
@@ -172,7 +173,6 @@ expected=' M README.md
  M editors/vim/syntax/scen.vim
  M editors/vscode/snippets/plans.generated.json
  M editors/vscode/syntaxes/scen.tmLanguage.json
- M crates/planners/src/planners/registry.rs
 ?? crates/planners/src/planners/straight.rs'
 if [ "$(git status --porcelain | sort)" != "$expected" ]; then
   echo "git status lists other changes; expected:" >&2
