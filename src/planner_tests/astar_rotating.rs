@@ -2,9 +2,7 @@
 //! written as text.
 
 use crate::contract::{MetricValue, PlanOutcome};
-use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use crate::geometry::{RobotShape, angle_diff};
-use crate::scenario::Scenario;
 
 const APARTMENT: &str = "world {
   bounds (0, 0) (32, 30)
@@ -23,29 +21,17 @@ const APARTMENT: &str = "world {
 robot rod polygon [(0,0), (8,0), (8,1), (0,1)]
 ";
 
-fn load(text: &str) -> Scenario {
-    crate::scenario::load_text(text)
-}
-
-/// Runs every plan of the scenario; every path must pass the validator.
+/// Runs every plan of the scenario (each for a polygon robot); every path
+/// must pass the validator.
 fn run(text: &str) -> Vec<PlanOutcome> {
-    let s = load(text);
-    s.plans
-        .iter()
-        .map(|p| {
-            let robot = &s.robots[p.robot].shape;
-            assert!(matches!(robot, RobotShape::Polygon(_)), "a polygon robot");
-            let out = p.settings.plan(&p.task(&s));
-            if let Some(path) = &out.path {
-                assert_eq!(path.first(), Some(&p.params.start));
-                assert_eq!(path.last(), p.params.goal.as_ref());
-                if let Err(e) = validate_path(&s.world, robot, path, DEFAULT_TOLERANCE) {
-                    panic!("plan {}: the path fails the validator: {e:?}", p.name);
-                }
-            }
-            out
-        })
-        .collect()
+    let s = crate::scenario::load_text(text);
+    for p in &s.plans {
+        assert!(
+            matches!(s.robots[p.robot].shape, RobotShape::Polygon(_)),
+            "a polygon robot"
+        );
+    }
+    super::run_checked(&s)
 }
 
 fn apartment_plan(name: &str, extra: &str) -> String {

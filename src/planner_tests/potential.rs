@@ -2,34 +2,13 @@
 
 use crate::contract::PlanOutcome;
 use crate::contract::layers::Drawing;
-use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
 use crate::geometry::{Config, Point, RobotShape};
-use crate::scenario::Scenario;
 use proptest::prelude::*;
-
-fn load(text: &str) -> Scenario {
-    crate::scenario::load_text(text)
-}
 
 /// Runs every plan; a found path must start at the start, end at the goal
 /// and pass the validator.
 fn run(text: &str) -> Vec<PlanOutcome> {
-    let s = load(text);
-    s.plans
-        .iter()
-        .map(|p| {
-            let robot = &s.robots[p.robot].shape;
-            let out = p.settings.plan(&p.task(&s));
-            if let Some(path) = &out.path {
-                assert_eq!(path.first(), Some(&p.params.start));
-                assert_eq!(path.last(), p.params.goal.as_ref());
-                if let Err(e) = validate_path(&s.world, robot, path, DEFAULT_TOLERANCE) {
-                    panic!("plan {}: the path fails the validator: {e:?}", p.name);
-                }
-            }
-            out
-        })
-        .collect()
+    super::run_checked(&crate::scenario::load_text(text))
 }
 
 /// The points of a `Points` layer.
