@@ -174,7 +174,7 @@ impl RunArgs {
         if !self.outputs.usable() {
             return false;
         }
-        let mut single = self.outputs.options();
+        let mut single = self.outputs.one_per_scenario();
         if self.save.is_some() {
             single.push("--save");
         }
@@ -190,26 +190,17 @@ impl RunArgs {
     }
 
     /// The output files, each with its option: never a file the run
-    /// reads.
-    fn output_files(&self, scenario: &crate::Scenario) -> Vec<(&'static str, Option<PathBuf>)> {
+    /// reads. Before the scenario is loaded (`scen watch` refuses an
+    /// output onto the watched file at once), the paths as given.
+    fn output_files(
+        &self,
+        scenario: Option<&crate::Scenario>,
+    ) -> Vec<(&'static str, Option<PathBuf>)> {
         let mut all: Vec<(&'static str, Option<PathBuf>)> = self
             .outputs
             .files(scenario, &[])
             .into_iter()
             .map(|(o, p)| (o, Some(p)))
-            .collect();
-        all.push(("--save", self.save.clone()));
-        all
-    }
-
-    /// The paths given to the outputs, before a scenario is loaded (`scen
-    /// watch` refuses one that is the watched file at once).
-    fn output_paths(&self) -> Vec<(&'static str, Option<PathBuf>)> {
-        let mut all: Vec<(&'static str, Option<PathBuf>)> = self
-            .outputs
-            .given
-            .iter()
-            .map(|(s, p)| (s.option, Some(p.clone())))
             .collect();
         all.push(("--save", self.save.clone()));
         all
@@ -509,7 +500,7 @@ fn run_file(
     };
     read.extend(scenario.sources.files.iter().map(|s| s.path.clone()));
     if !clobber::outputs_are_not_inputs(
-        &args.output_files(&scenario),
+        &args.output_files(Some(&scenario)),
         &clobber::scenario_inputs(&scenario.sources),
     ) {
         return (EXIT_BAD_INPUT, read);

@@ -27,15 +27,7 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     if args.files.first().is_some_and(|f| f == Path::new("merge")) {
         return cmd_merge(args, &args.files[1..]);
     }
-    // Every file output but the OMPL logs (named after the scenario) takes
-    // one scenario.
-    let mut single: Vec<&str> = args
-        .outputs
-        .given
-        .iter()
-        .filter(|(s, _)| !s.folder)
-        .map(|(s, _)| s.option)
-        .collect();
+    let mut single = args.outputs.one_per_scenario();
     if args.out.is_some() {
         single.push("--out");
     }
@@ -132,7 +124,7 @@ impl BenchArgs {
     fn outputs_for(&self, scenario: &Scenario) -> Vec<(&'static str, Option<PathBuf>)> {
         let mut all: Vec<(&'static str, Option<PathBuf>)> = self
             .outputs
-            .files(scenario, &self.benches)
+            .files(Some(scenario), &self.benches)
             .into_iter()
             .map(|(o, p)| (o, Some(p)))
             .collect();

@@ -97,9 +97,15 @@ impl<K> Outputs<K> {
         self.given.iter().any(|(s, _)| s.draws)
     }
 
-    /// The options given, for a message (`--svg`, `--csv`).
-    pub fn options(&self) -> Vec<&'static str> {
-        self.given.iter().map(|(s, _)| s.option).collect()
+    /// The options given that write one file per run, named by the user
+    /// (`--svg`, `--csv`): they take one scenario file. A folder sink names
+    /// its files after the scenario.
+    pub fn one_per_scenario(&self) -> Vec<&'static str> {
+        self.given
+            .iter()
+            .filter(|(s, _)| !s.folder)
+            .map(|(s, _)| s.option)
+            .collect()
     }
 
     /// Checked before anything runs: each sink's own rule for its path,
@@ -123,15 +129,22 @@ impl<K> Outputs<K> {
     }
 
     /// Every file the sinks would write for `scenario`, each with its
-    /// option (a folder sink: each of its files); `benches` are the
-    /// benches chosen (empty: all).
-    pub fn files(&self, scenario: &Scenario, benches: &[String]) -> Vec<(&'static str, PathBuf)> {
+    /// option (a folder sink: each of its files; before a scenario is
+    /// loaded, the paths as given); `benches` are the benches chosen
+    /// (empty: all).
+    pub fn files(
+        &self,
+        scenario: Option<&Scenario>,
+        benches: &[String],
+    ) -> Vec<(&'static str, PathBuf)> {
         self.given
             .iter()
             .flat_map(|(sink, path)| {
-                (sink.files)(path, scenario, benches)
-                    .into_iter()
-                    .map(|f| (sink.option, f))
+                let files = match scenario {
+                    Some(s) => (sink.files)(path, s, benches),
+                    None => vec![path.clone()],
+                };
+                files.into_iter().map(|f| (sink.option, f))
             })
             .collect()
     }

@@ -39,7 +39,7 @@ pub(super) fn cmd_watch(args: &RunArgs) -> i32 {
         path: file,
         role: "the scenario",
     };
-    if !args.usable() || !outputs_are_not_inputs(&args.output_paths(), &[watched_file]) {
+    if !args.usable() || !outputs_are_not_inputs(&args.output_files(None), &[watched_file]) {
         return EXIT_BAD_INPUT;
     }
     let mut target = args.viewer_target();
