@@ -21,22 +21,22 @@
 //!   [`contract`] (schemas, settings, tasks, outcomes).
 //! - [`main`]: the `scen` command line itself.
 //!
-//! The geometry, the planners' own entry points and the random numbers are
-//! public for the benchmarks and the tests that measure and check them
-//! directly; the command line, the language server, file reading, the
+//! The lower crates of the workspace are re-exported whole: `scen-geometry`
+//! ([`geometry`], [`rng`]), `scen-planners` ([`contract`], [`planners`],
+//! [`diagnostics`]) and `scen-language` ([`syntax`], [`scenario`],
+//! [`format`]); the command line, the language server, file reading, the
 //! viewer sink and the driving simulator are private to the crate.
 
 pub mod bench;
-mod checks;
+use scen_language::checks;
 mod cli;
 pub use scen_planners::contract;
 pub use scen_planners::diagnostics;
 mod drive;
-mod eval;
 mod falsify;
-mod files;
-pub mod format;
 pub use scen_geometry as geometry;
+use scen_language::files;
+pub use scen_language::format;
 mod import;
 mod lsp;
 #[cfg(test)]
@@ -46,9 +46,9 @@ pub use scen_planners::word_enum;
 pub mod report;
 pub use scen_geometry::rng;
 pub mod run;
-pub mod scenario;
+pub use scen_language::scenario;
 mod stats;
-pub mod syntax;
+pub use scen_language::syntax;
 mod viz;
 
 pub use diagnostics::{Diag, SourceMap, Span};

@@ -1,10 +1,10 @@
 //! The editor support (editors/) knows the whole language: every keyword of
 //! the pest grammar and every planner kind, parameter key, word value,
 //! limit kind and metric that the planner registry
-//! (crates/planners/src/planners/registry.rs) and the common schemas (src/scenario/schema.rs) accept
+//! (crates/planners/src/planners/registry.rs) and the common schemas (crates/planners/src/contract/schema.rs) accept
 //! is coloured by the VS Code grammar and by the Vim syntax, in the right
 //! class, as are the keys of a `bench` and the aggregates of `expect`
-//! (src/scenario/analyze/), and every planner kind and `bench` have a
+//! (crates/language/src/scenario/analyze/), and every planner kind and `bench` have a
 //! snippet listing their parameters.
 //!
 //! Those lists and the `plan-KIND` snippets are generated from the registry
@@ -223,7 +223,7 @@ fn metrics() -> BTreeSet<&'static str> {
 /// The keywords of the pest grammar: every quoted word of two letters or
 /// more (`"scenario"`, `"and"`; the exponent's `"e"` is not a keyword).
 fn pest_keywords() -> BTreeSet<String> {
-    let text = read("grammar/scen.pest");
+    let text = read("crates/language/grammar/scen.pest");
     let mut words = BTreeSet::new();
     for line in text.lines() {
         let code = line.split("//").next().unwrap_or("");

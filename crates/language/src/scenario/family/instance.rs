@@ -152,7 +152,7 @@ pub(super) fn point_value(x: f64, y: f64, span: Span) -> Value {
 /// The spans of everything a sample computes: expressions, params' names
 /// in bodies, lists and expectations. A standalone file of a sample writes
 /// each one's number in its place.
-pub(crate) fn computed_spans(
+pub fn computed_spans(
     statements: &[SourcedStmt],
     params: &HashMap<String, usize>,
 ) -> HashSet<Span> {

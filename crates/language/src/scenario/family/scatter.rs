@@ -21,7 +21,7 @@ use super::*;
 /// each size in its distribution's support, at least the gap from the
 /// other items. Shrinking keeps a simplified item inside it.
 #[derive(Clone, Debug)]
-pub(crate) struct ScatterRule {
+pub struct ScatterRule {
     pub min: (f64, f64),
     pub max: (f64, f64),
     pub gap: f64,
@@ -31,7 +31,7 @@ pub(crate) struct ScatterRule {
 
 /// The values a scattered size may take.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Support {
+pub enum Support {
     /// A constant or a computed size: only the value placed.
     Fixed,
     /// `uniform(lo, hi)`, or `int(lo, hi)` (`whole`).
@@ -56,7 +56,7 @@ impl Support {
 
 /// The distance between two scattered items as their scatter measures it
 /// for its gap (`None`: not a scattered disk or rect).
-pub(crate) fn scattered_distance(a: &ObstacleDecl, b: &ObstacleDecl) -> Option<f64> {
+pub fn scattered_distance(a: &ObstacleDecl, b: &ObstacleDecl) -> Option<f64> {
     Some(Placed::of(a)?.distance(&Placed::of(b)?))
 }
 
@@ -88,7 +88,7 @@ impl Family {
     /// The rules of every scatter (by its span) with the params' values
     /// `values` (all params, in order); a scatter whose box or gap is not a
     /// number here is left out (its items are not simplified).
-    pub(crate) fn scatter_rules(
+    pub fn scatter_rules(
         &self,
         statements: &[SourcedStmt],
         values: &[f64],
@@ -175,7 +175,7 @@ impl Family {
 
     /// Whether a `scatter` draws obstacles (whose places come from a
     /// sample's stream, not from the params).
-    pub(crate) fn scatters(&self) -> bool {
+    pub fn scatters(&self) -> bool {
         self.scatters
     }
 }

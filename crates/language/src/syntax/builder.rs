@@ -18,7 +18,7 @@ use super::syntax_error::{closest_keyword, show};
 use crate::diagnostics::{Diag, FileId, Span, Spanned};
 
 /// Words that are units when written right after a number.
-pub(crate) const UNIT_WORDS: [&str; 4] = ["deg", "rad", "ms", "s"];
+pub const UNIT_WORDS: [&str; 4] = ["deg", "rad", "ms", "s"];
 
 const UNITS_HELP: &str = "units are `deg` and `rad` for angles, `%` for percentages, `ms` and `s` \
                           for durations, written right after the number: `90deg`";

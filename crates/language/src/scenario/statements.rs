@@ -15,7 +15,7 @@ pub struct LoadFailure {
 
 /// A statement and whether it comes from the main file.
 #[derive(Clone, Debug)]
-pub(crate) struct SourcedStmt {
+pub struct SourcedStmt {
     pub stmt: ast::Stmt,
     pub in_main_file: bool,
 }

@@ -242,7 +242,7 @@ pub fn aggregate(function: &str, series: &[MetricValue], q: Option<f64>) -> Metr
 
 /// The `q`-quantile of sorted values, interpolating linearly between the
 /// two nearest ranks (NaN for no values or `q` outside [0, 1]).
-pub(crate) fn quantile(sorted: &[f64], q: f64) -> f64 {
+pub fn quantile(sorted: &[f64], q: f64) -> f64 {
     if sorted.is_empty() || !(0.0..=1.0).contains(&q) {
         return f64::NAN;
     }

@@ -185,11 +185,11 @@ impl Plan {
     }
 }
 
-#[cfg(test)]
+#[cfg(any(test, feature = "testing"))]
 impl Plan {
     /// A plan of `planner` from `start` to `goal` with no parameters, for
     /// tests of the sinks: its settings cannot run (they panic if asked).
-    pub(crate) fn fixture(
+    pub fn fixture(
         name: &str,
         planner: &'static Planner,
         robot: usize,
@@ -240,8 +240,8 @@ pub struct Check {
 
 /// Loads a scenario from text (written to a fresh temporary file, so
 /// includes and spans work as for a file); panics on diagnostics. For tests.
-#[cfg(test)]
-pub(crate) fn load_text(text: &str) -> Scenario {
+#[cfg(any(test, feature = "testing"))]
+pub fn load_text(text: &str) -> Scenario {
     with_temp_file(text, |path| match loader::load(path) {
         Ok(s) => s,
         Err(f) => panic!("{:?}", f.diags),
@@ -250,8 +250,8 @@ pub(crate) fn load_text(text: &str) -> Scenario {
 
 /// The world of a text that may have no plan yet; panics on diagnostics.
 /// For tests that probe a world before they write its plans.
-#[cfg(test)]
-pub(crate) fn world_of_text(text: &str) -> World {
+#[cfg(any(test, feature = "testing"))]
+pub fn world_of_text(text: &str) -> World {
     with_temp_file(text, |path| {
         let parsed = loader::parse_scenario(path, None, &|_| None);
         assert!(parsed.diags.is_empty(), "{:?}", parsed.diags);
@@ -259,7 +259,7 @@ pub(crate) fn world_of_text(text: &str) -> World {
     })
 }
 
-#[cfg(test)]
+#[cfg(any(test, feature = "testing"))]
 fn with_temp_file<T>(text: &str, f: impl FnOnce(&std::path::Path) -> T) -> T {
     use std::sync::atomic::{AtomicUsize, Ordering};
     static COUNTER: AtomicUsize = AtomicUsize::new(0);

@@ -130,7 +130,7 @@ impl Family {
 
     /// The drawn params' values (in the order of [`Family::drawn_values`])
     /// as what `--set` gives, by param index.
-    pub(crate) fn set_of_drawn(&self, drawn: &[f64]) -> Vec<Option<f64>> {
+    pub fn set_of_drawn(&self, drawn: &[f64]) -> Vec<Option<f64>> {
         let mut given = drawn.iter().copied();
         self.params
             .iter()

@@ -40,9 +40,9 @@ mod set;
 use check::*;
 use compute::*;
 use distributions::*;
-pub(crate) use instance::computed_spans;
+pub use instance::computed_spans;
 use instance::*;
-pub(crate) use scatter::{ScatterRule, scattered_distance};
+pub use scatter::{ScatterRule, scattered_distance};
 use set::*;
 
 /// How many draws of one sample may be rejected before it is an error.
@@ -101,7 +101,7 @@ impl ParamDef {
 
 /// A family's params and constraints, checked.
 #[derive(Debug, Default)]
-pub(crate) struct Family {
+pub struct Family {
     params: Vec<ParamDef>,
     index: HashMap<String, usize>,
     requires: Vec<(Expr, Span)>,
@@ -113,7 +113,7 @@ pub(crate) struct Family {
 }
 
 /// A sample's statements and its params' values, by name.
-pub(crate) type Instance = (Vec<SourcedStmt>, Vec<(String, f64)>);
+pub type Instance = (Vec<SourcedStmt>, Vec<(String, f64)>);
 
 /// One draw: the params' values and the rng, positioned after them.
 struct Draw {
@@ -227,7 +227,7 @@ impl Family {
     }
 
     /// The params' indices by name.
-    pub(crate) fn index(&self) -> &HashMap<String, usize> {
+    pub fn index(&self) -> &HashMap<String, usize> {
         &self.index
     }
 
@@ -269,7 +269,7 @@ impl Family {
     /// are those of `scen run --sample K --set NAME=VALUE...` with these
     /// params' values. Its statements and params; `None` when a `require`
     /// rejects it.
-    pub(crate) fn candidate(
+    pub fn candidate(
         &self,
         statements: &[SourcedStmt],
         choice: SampleChoice,
@@ -296,7 +296,7 @@ impl Family {
 
     /// The values of the drawn params (those of a distribution or a
     /// `choice`) among all params' values, in order.
-    pub(crate) fn drawn_values(&self, params: &[(String, f64)]) -> Vec<f64> {
+    pub fn drawn_values(&self, params: &[(String, f64)]) -> Vec<f64> {
         self.params
             .iter()
             .zip(params)
@@ -307,7 +307,7 @@ impl Family {
 
     /// The names of the drawn params, in the order of
     /// [`Family::drawn_values`].
-    pub(crate) fn drawn_names(&self) -> Vec<&str> {
+    pub fn drawn_names(&self) -> Vec<&str> {
         self.params
             .iter()
             .filter(|p| p.drawn())

@@ -15,9 +15,9 @@ mod syntax_error;
 #[cfg(test)]
 mod testing;
 
-pub(crate) use builder::UNIT_WORDS;
+pub use builder::UNIT_WORDS;
 pub use parser::parse;
-pub(crate) use scanner::{
+pub use scanner::{
     EXPRESSION_WORDS, FAMILY_VALUE_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS,
     ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
 };

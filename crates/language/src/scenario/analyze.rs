@@ -28,7 +28,7 @@ pub use expect::AGGREGATES;
 /// The world of a scenario's statements alone (no robot or plan needed),
 /// for tests that probe a world before they write its plans; panics on
 /// diagnostics.
-#[cfg(test)]
+#[cfg(any(test, feature = "testing"))]
 pub(crate) fn world_of(
     statements: &[SourcedStmt],
     sources: SourceMap,

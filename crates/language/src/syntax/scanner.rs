@@ -13,12 +13,12 @@ use crate::diagnostics::{Diag, FileId, Span};
 const MAX_NESTING: usize = 64;
 
 /// The keywords that start a statement, as the grammar names them.
-pub(crate) const STATEMENT_KEYWORDS: [&str; 9] = [
+pub const STATEMENT_KEYWORDS: [&str; 9] = [
     "scenario", "include", "world", "robot", "plan", "expect", "bench", "param", "require",
 ];
 
 /// The keywords that start an item of a `world` block.
-pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 7] = [
+pub const WORLD_ITEM_KEYWORDS: [&str; 7] = [
     "bounds", "rect", "polygon", "segment", "disk", "grid", "scatter",
 ];
 
@@ -27,21 +27,21 @@ pub(crate) const WORLD_ITEM_KEYWORDS: [&str; 7] = [
 pub(crate) const FAMILY_KEYWORDS: [&str; 3] = ["in", "gap", "choice"];
 
 /// What may follow `param NAME =`: the distributions and `choice`.
-pub(crate) const FAMILY_VALUE_WORDS: [&str; 4] = ["uniform", "normal", "int", "choice"];
+pub const FAMILY_VALUE_WORDS: [&str; 4] = ["uniform", "normal", "int", "choice"];
 
 /// A robot's shapes (`robot NAME SHAPE`), a grid's options, and the words
 /// of `expect` expressions: with the two lists above, every keyword of
 /// grammar/scen.pest (a test checks it), for the language server.
-pub(crate) const ROBOT_SHAPE_KEYWORDS: [&str; 4] = ["point", "disk", "rect", "polygon"];
+pub const ROBOT_SHAPE_KEYWORDS: [&str; 4] = ["point", "disk", "rect", "polygon"];
 
 /// The keyword of the clause that may follow a robot's shape (`steer`).
-pub(crate) const ROBOT_CLAUSE_KEYWORDS: [&str; 1] = ["steer"];
-pub(crate) const GRID_OPTION_KEYWORDS: [&str; 2] = ["cell", "origin"];
-pub(crate) const EXPRESSION_WORDS: [&str; 5] = ["and", "or", "not", "true", "false"];
+pub const ROBOT_CLAUSE_KEYWORDS: [&str; 1] = ["steer"];
+pub const GRID_OPTION_KEYWORDS: [&str; 2] = ["cell", "origin"];
+pub const EXPRESSION_WORDS: [&str; 5] = ["and", "or", "not", "true", "false"];
 
 /// The statement chunk of `text` that `offset` lies in or after: its start
 /// and keyword (`None` before the first statement).
-pub(crate) fn statement_at(text: &str, offset: usize) -> Option<(usize, &'static str)> {
+pub fn statement_at(text: &str, offset: usize) -> Option<(usize, &'static str)> {
     let scan = split_statements(text, 0);
     let chunk = scan
         .chunks
@@ -292,7 +292,7 @@ pub(super) fn split_statements(text: &str, file: FileId) -> Scan {
 /// `Word` when it starts with a digit and runs of digits and letters
 /// (`1e`, `-`, `3` are three tokens of `1e-3`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum TokenKind {
+pub enum TokenKind {
     /// A run of `[A-Za-z0-9_]`.
     Word,
     /// A string literal; `closed` is false when its line ends first.
@@ -309,30 +309,30 @@ pub(crate) enum TokenKind {
 
 /// A token of the scanner's [`Lexer`]: a byte range of the text.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Token {
-    pub(crate) kind: TokenKind,
-    pub(crate) start: usize,
-    pub(crate) end: usize,
+pub struct Token {
+    pub kind: TokenKind,
+    pub start: usize,
+    pub end: usize,
     /// A newline lies between the previous token (or the start) and this one.
-    pub(crate) after_newline: bool,
+    pub after_newline: bool,
 }
 
 /// The tokens of a text, blanks skipped, comments included: the lexical
 /// rules of the grammar (strings with escapes ending at their line, `#`
 /// comments, a byte order mark ignored at the start), shared by the
 /// statement splitter and the language server's cursor context.
-pub(crate) struct Lexer<'t> {
+pub struct Lexer<'t> {
     text: &'t str,
     at: usize,
 }
 
 impl<'t> Lexer<'t> {
-    pub(crate) fn new(text: &'t str) -> Self {
+    pub fn new(text: &'t str) -> Self {
         Lexer { text, at: 0 }
     }
 
     /// The tokens of `text[from..]`; `from` must start a token or a blank.
-    pub(crate) fn starting_at(text: &'t str, from: usize) -> Self {
+    pub fn starting_at(text: &'t str, from: usize) -> Self {
         Lexer { text, at: from }
     }
 }

@@ -35,7 +35,7 @@ pub const MAX_MAP_BYTES: u64 = 64 << 20;
 const MAX_INCLUDE_DEPTH: usize = 32;
 
 pub use super::statements::LoadFailure;
-pub(crate) use super::statements::SourcedStmt;
+pub use super::statements::SourcedStmt;
 
 /// The text of `.scen` files that are not (only) on disk: the language
 /// server's open documents, by canonical path. The loader asks it first,
@@ -45,7 +45,7 @@ pub type Overlay<'a> = &'a dyn Fn(&Path) -> Option<Arc<str>>;
 /// A scenario's files read and parsed, includes spliced in, maps read,
 /// before analysis.
 #[derive(Debug, Default)]
-pub(crate) struct Parsed {
+pub struct Parsed {
     pub sources: SourceMap,
     pub statements: Vec<SourcedStmt>,
     /// Every `include` that was followed: the span of its path string and
@@ -114,7 +114,7 @@ pub fn load_member(
 }
 
 /// Analyses statements with nothing left to draw (a family's sample).
-pub(crate) fn analyze_statements(
+pub fn analyze_statements(
     path: &Path,
     statements: Vec<SourcedStmt>,
     sources: SourceMap,
@@ -125,7 +125,7 @@ pub(crate) fn analyze_statements(
 
 /// Analyses sample `choice` of the parsed statements: a plain scenario
 /// directly, a family's sample drawn (and drawn again when rejected) first.
-pub(crate) fn analyze_sample(
+pub fn analyze_sample(
     path: &Path,
     statements: Vec<SourcedStmt>,
     sources: SourceMap,
@@ -230,7 +230,7 @@ impl Scenario {
 /// Reads and parses a scenario file, its includes and its maps (the first
 /// half of [`load_with`]); the main file is [`FileId`] 0 when it could be
 /// read.
-pub(crate) fn parse_scenario(path: &Path, root: Option<&Path>, overlay: Overlay<'_>) -> Parsed {
+pub fn parse_scenario(path: &Path, root: Option<&Path>, overlay: Overlay<'_>) -> Parsed {
     let root = canonical(root.unwrap_or_else(|| match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -275,7 +275,7 @@ pub(crate) fn parse_scenario(path: &Path, root: Option<&Path>, overlay: Overlay<
 /// The path with symbolic links resolved where it exists; otherwise made
 /// absolute and free of `.` and `..` by its text alone, so that a missing
 /// file is still placed inside or outside the root.
-pub(crate) fn canonical(path: &Path) -> PathBuf {
+pub fn canonical(path: &Path) -> PathBuf {
     if let Ok(p) = path.canonicalize() {
         return p;
     }
