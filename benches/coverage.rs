@@ -92,6 +92,7 @@ fn bench(c: &mut Criterion) {
             seed: 0,
             steering: None,
             draw: true,
+            referee: None,
         };
         let settings = Coverage {
             on: 0,

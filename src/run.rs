@@ -9,13 +9,13 @@ use rayon::prelude::*;
 
 use crate::checks;
 use crate::contract::ParamValue;
-use crate::contract::Task;
 use crate::contract::schema::RobotKind;
 use crate::contract::{MetricValue, Metrics, PlanOutcome};
+use crate::contract::{Task, ValidatorReferee};
 use crate::drive::{self, DriveOutcome};
 use crate::geometry::car::{CarPath, swept_poses, validate_car_path};
 use crate::geometry::path::{path_length, path_turn, smoothness};
-use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError, Validator};
+use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
 use crate::geometry::{Config, RobotShape, angle_diff};
 use crate::scenario::{Check, Plan, Scenario};
 use crate::syntax::ast::Selection;
@@ -195,10 +195,17 @@ fn run_plan(scenario: &Scenario, index: usize, draw: bool) -> PlanRun {
 /// returned.
 pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Task<'_>) -> PlanRun {
     let robot = &scenario.robots[plan.robot].shape;
+    // The runner holds the validator; it lends it to the planner only for
+    // what the validator alone may say (`contract::referee`).
+    let lent = ValidatorReferee::new(&scenario.world, robot);
+    let task = Task {
+        referee: Some(&lent),
+        ..*task
+    };
     let began = Instant::now();
-    let mut outcome = plan.settings.plan(task);
+    let mut outcome = plan.settings.plan(&task);
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
-    let referee = Validator::new(&scenario.world);
+    let referee = lent.validator();
     // The path, or the motion executed by a run that stopped short (SPEC 3:
     // `collision_free` validates it too).
     let motion = match &outcome.path {

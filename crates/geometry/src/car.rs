@@ -19,9 +19,13 @@
 //! radius ρ and the heading is continuous by construction: a segment is
 //! only a kind and a length.
 
+use super::motion::MotionChecker;
+use super::proximity::Proximity;
 use super::steer::{Model, Segment, SteerPath, Steering, Turn};
-use super::validator::{MAX_SUB_STEPS, ValidationError, Validator, usable_tolerance};
-use super::{Config, RobotShape, TOUCH_EPS, angle_diff};
+use super::validator::{
+    DEFAULT_TOLERANCE, MAX_SUB_STEPS, ValidationError, Validator, usable_tolerance,
+};
+use super::{Config, RobotShape, TOUCH_EPS, World, angle_diff};
 
 /// How close to the goal the integrated path must end (position, in world
 /// units, and heading, in radians; SPEC 3.0).
@@ -115,6 +119,14 @@ impl CarPath {
     /// Where the path ends (the start without segments).
     pub fn end(&self) -> Config {
         self.ends().last().copied().unwrap_or(self.start)
+    }
+
+    /// Whether the path, integrated from its start in closed form, ends on
+    /// `goal`: within [`END_TOLERANCE`] in position and in heading.
+    pub fn ends_on(&self, goal: Config) -> bool {
+        let end = self.end();
+        let off = (end.x - goal.x).hypot(end.y - goal.y);
+        off <= END_TOLERANCE && angle_diff(end.theta, goal.theta).abs() <= END_TOLERANCE
     }
 
     /// The poses at the start, at the segment ends and at most every `step`
@@ -273,118 +285,170 @@ fn sub_steps(robot: &RobotShape, path: &CarPath, tolerance: f64) -> (Vec<usize>,
     (counts, total)
 }
 
-/// The motion checker for curves: whether the car path is free, never
-/// accepting what [`validate_car_path`] rejects at `tolerance` (without a
-/// goal), and deciding most paths far faster.
-///
-/// The validator cuts each segment into sub-steps (at most `tolerance` of
-/// any body point's motion on an arc; pieces of the body's size on a
-/// straight, whose sweep is exact) and checks the hull of the bodies at the
-/// two ends of each. Here:
-/// 1. the body at poses every [`QUICK_STEP`] of arc: one that collides
-///    ends the check, "not free" (stricter than the validator only by the
-///    hull's rounding of a rotation);
-/// 2. conservative advancement: at a pose whose body is `d` from every
-///    obstacle, no body point moves more than `s · (1 + R/ρ)` along an arc
-///    of length `s` (R the body's reach; `s` along a straight). On an arc
-///    each validator hull lies within `tolerance` of the body at its first
-///    end, so every sub-step starting in the stretch
-///    `(d − tolerance − ε) / (1 + R/ρ)` is free; on a straight the hull is
-///    the swept body, free over `d − ε`; the reference point stays inside
-///    the bounds over its distance to their edge;
-/// 3. where a stretch would be shorter than one sub-step (the body within
-///    [`NEAR`] tolerances of an obstacle, or the reference point near the
-///    bounds), the validator's own sub-steps there, [`BATCH`] at a time,
-///    with the validator's rule: the same verdict as the whole path's.
-pub fn car_path_free(
-    referee: &Validator<'_>,
-    robot: &RobotShape,
-    path: &CarPath,
-    tolerance: f64,
-) -> bool {
-    let tolerance = usable_tolerance(tolerance);
-    let rho = path.steering.radius;
-    if !(rho.is_finite() && rho > 0.0) || path.segments.iter().any(|s| !s.length.is_finite()) {
-        return false;
+/// The planners' motion checker for curves: the straight-motion checker
+/// ([`MotionChecker`]) and the distance query ([`Proximity`]) of one robot
+/// in one world. Build it once per plan; queries take `&self`.
+pub struct CarChecker {
+    robot: RobotShape,
+    motion: MotionChecker,
+    proximity: Proximity,
+}
+
+impl CarChecker {
+    pub fn new(world: &World, robot: &RobotShape) -> Self {
+        CarChecker {
+            robot: robot.clone(),
+            motion: MotionChecker::new(world, robot),
+            proximity: Proximity::new(world),
+        }
     }
-    if path.steering.model == Model::Dubins && path.segments.iter().any(|s| s.length < 0.0) {
-        return false;
+
+    /// The checker of straight motions it holds.
+    pub fn motion(&self) -> &MotionChecker {
+        &self.motion
     }
-    // Too long for the validator: rejected there, so here.
-    let (counts, total) = sub_steps(robot, path, tolerance);
-    if total > MAX_SUB_STEPS {
-        return false;
-    }
-    if path
-        .poses(QUICK_STEP)
-        .into_iter()
-        .skip(1)
-        .any(|c| referee.config_collision(robot, c).is_some())
-    {
-        return false;
-    }
-    let bounds = referee.bounds();
-    let reach = robot.radius();
-    let margin = 4.0 * TOUCH_EPS;
-    let ends = path.ends();
-    let mut from = path.start;
-    for (k, s) in path.segments.iter().enumerate() {
-        let n = counts[k];
-        let length = s.length.abs();
-        let h = length / n as f64;
-        // The validator's sub-step ends on this segment.
-        let pose = |j: usize| {
-            if j == n {
-                ends[k]
-            } else {
-                Segment::advance(from, s.turn, s.length * j as f64 / n as f64, rho)
-            }
-        };
-        let (factor, slack) = match s.turn {
-            Turn::S => (1.0, 0.0),
-            Turn::L | Turn::R => (1.0 + reach / rho, tolerance),
-        };
-        let mut at = 0.0;
-        loop {
-            let c = Segment::advance(from, s.turn, s.length.signum() * at, rho);
-            let d = referee.body_clearance(robot, c);
-            let inside = (c.x - bounds.min.x)
-                .min(bounds.max.x - c.x)
-                .min(c.y - bounds.min.y)
-                .min(bounds.max.y - c.y);
-            let advance = ((d - slack - margin) / factor).min(inside);
-            if d >= NEAR * tolerance && advance >= h && length > 0.0 {
-                at += advance;
-            } else {
-                // The validator's own sub-steps from the one holding `at`.
-                let j0 = ((at / h).floor() as usize).min(n - 1);
-                let j1 = (j0 + BATCH).min(n);
-                let window: Vec<Config> = (j0..=j1).map(pose).collect();
-                if referee.validate_path(robot, &window, tolerance).is_err() {
-                    return false;
+
+    /// Where the car path is first blocked: the segment and the pose that
+    /// starts the first of the validator's sub-steps that
+    /// [`MotionChecker::motion_free`] refuses (every sub-step is checked:
+    /// for a planner's note, not for a search). `None` when the path is
+    /// free by that check (or not drivable at all: see
+    /// [`CarChecker::path_free`]).
+    pub fn first_blocked(&self, path: &CarPath) -> Option<(usize, Config)> {
+        let rho = path.steering.radius;
+        let (counts, total) = sub_steps(&self.robot, path, DEFAULT_TOLERANCE);
+        if !(rho.is_finite() && rho > 0.0) || total > MAX_SUB_STEPS {
+            return None;
+        }
+        let ends = path.ends();
+        let mut from = path.start;
+        for (k, s) in path.segments.iter().enumerate() {
+            let n = counts[k];
+            let pose = |j: usize| {
+                if j == n {
+                    ends[k]
+                } else {
+                    Segment::advance(from, s.turn, s.length * j as f64 / n as f64, rho)
                 }
-                at = j1 as f64 * h;
-                if j1 == n {
+            };
+            if let Some(j) = (0..n).find(|&j| !self.motion.motion_free(pose(j), pose(j + 1))) {
+                return Some((k, pose(j)));
+            }
+            from = ends[k];
+        }
+        None
+    }
+
+    /// Whether the car path is free: it never accepts what
+    /// [`validate_car_path`] rejects at [`DEFAULT_TOLERANCE`] (without a
+    /// goal), and decides most paths far faster. It is the planners' own
+    /// code: the validator judges the path afterwards.
+    ///
+    /// The validator cuts each segment into sub-steps (at most the tolerance
+    /// of any body point's motion on an arc; pieces of the body's size on a
+    /// straight, whose sweep is exact) and checks the hull of the bodies at
+    /// the two ends of each. Here:
+    /// 1. the body at poses every [`QUICK_STEP`] of arc: one that is not
+    ///    free ([`MotionChecker::config_free`]) ends the check, "not free";
+    /// 2. conservative advancement: at a pose whose body is `d` from every
+    ///    obstacle ([`Proximity::distance`]), no body point moves more than
+    ///    `s · (1 + R/ρ)` along an arc of length `s` (R the body's reach;
+    ///    `s` along a straight). On an arc each validator hull lies within
+    ///    the tolerance of the body at its first end, so every sub-step
+    ///    starting in the stretch `(d − tolerance − ε) / (1 + R/ρ)` is free;
+    ///    on a straight the hull is the swept body, free over `d − ε`; the
+    ///    reference point stays inside the bounds over its distance to their
+    ///    edge;
+    /// 3. where a stretch would be shorter than one sub-step (the body within
+    ///    [`NEAR`] tolerances of an obstacle, or the reference point near the
+    ///    bounds), the validator's sub-steps there, [`BATCH`] at a time, each
+    ///    through [`MotionChecker::motion_free`], which cuts a motion at the
+    ///    validator's configurations and applies its rule with half its
+    ///    contact threshold.
+    pub fn path_free(&self, path: &CarPath) -> bool {
+        let tolerance = DEFAULT_TOLERANCE;
+        let robot = &self.robot;
+        let rho = path.steering.radius;
+        if !(rho.is_finite() && rho > 0.0) || path.segments.iter().any(|s| !s.length.is_finite()) {
+            return false;
+        }
+        if path.steering.model == Model::Dubins && path.segments.iter().any(|s| s.length < 0.0) {
+            return false;
+        }
+        // Too long for the validator: rejected there, so here.
+        let (counts, total) = sub_steps(robot, path, tolerance);
+        if total > MAX_SUB_STEPS {
+            return false;
+        }
+        if path
+            .poses(QUICK_STEP)
+            .into_iter()
+            .any(|c| !self.motion.config_free(c))
+        {
+            return false;
+        }
+        let bounds = self.motion.bounds();
+        let reach = robot.radius();
+        let margin = 4.0 * TOUCH_EPS;
+        let ends = path.ends();
+        let mut from = path.start;
+        for (k, s) in path.segments.iter().enumerate() {
+            let n = counts[k];
+            let length = s.length.abs();
+            let h = length / n as f64;
+            // The validator's sub-step ends on this segment.
+            let pose = |j: usize| {
+                if j == n {
+                    ends[k]
+                } else {
+                    Segment::advance(from, s.turn, s.length * j as f64 / n as f64, rho)
+                }
+            };
+            let (factor, slack) = match s.turn {
+                Turn::S => (1.0, 0.0),
+                Turn::L | Turn::R => (1.0 + reach / rho, tolerance),
+            };
+            let mut at = 0.0;
+            loop {
+                let c = Segment::advance(from, s.turn, s.length.signum() * at, rho);
+                let d = self.proximity.distance(robot, c);
+                let inside = (c.x - bounds.min.x)
+                    .min(bounds.max.x - c.x)
+                    .min(c.y - bounds.min.y)
+                    .min(bounds.max.y - c.y);
+                let advance = ((d - slack - margin) / factor).min(inside);
+                if d >= NEAR * tolerance && advance >= h && length > 0.0 {
+                    at += advance;
+                } else {
+                    // The validator's own sub-steps from the one holding `at`.
+                    let j0 = ((at / h).floor() as usize).min(n - 1);
+                    let j1 = (j0 + BATCH).min(n);
+                    if (j0..j1).any(|j| !self.motion.motion_free(pose(j), pose(j + 1))) {
+                        return false;
+                    }
+                    at = j1 as f64 * h;
+                    if j1 == n {
+                        break;
+                    }
+                }
+                if at >= length {
                     break;
                 }
             }
-            if at >= length {
-                break;
-            }
+            from = ends[k];
         }
-        from = ends[k];
+        true
     }
-    true
 }
 
-/// The arc length between the poses [`car_path_free`] checks first.
+/// The arc length between the poses [`CarChecker::path_free`] checks first.
 pub const QUICK_STEP: f64 = 0.25;
 
-/// Below this many tolerances of clearance [`car_path_free`] checks the
+/// Below this many tolerances of clearance [`CarChecker::path_free`] checks the
 /// validator's own sub-steps.
 pub const NEAR: f64 = 2.0;
 
-/// The validator's sub-steps [`car_path_free`] checks at a time.
+/// The validator's sub-steps [`CarChecker::path_free`] checks at a time.
 pub const BATCH: usize = 16;
 
 /// The poses the validator sweeps, for measuring clearance along the same
@@ -402,7 +466,6 @@ mod tests {
     use super::*;
     use crate::fixtures::world_in;
     use crate::steer::Model;
-    use crate::validator::DEFAULT_TOLERANCE;
     use crate::validator::validate_path;
     use crate::{Aabb, Shape};
     use crate::{ConvexPolygon, Point};
@@ -629,7 +692,7 @@ mod tests {
         #[test]
         fn the_motion_checker_never_accepts_what_the_validator_rejects((world, robot, path) in case()) {
             let referee = Validator::new(&world);
-            if car_path_free(&referee, &robot, &path, DEFAULT_TOLERANCE) {
+            if CarChecker::new(&world, &robot).path_free(&path) {
                 let verdict = validate_car_path(&referee, &robot, &path, None, DEFAULT_TOLERANCE);
                 proptest::prop_assert!(verdict.is_ok(), "accepted, the validator says {verdict:?}");
             }
@@ -650,7 +713,7 @@ mod tests {
         for _ in 0..400 {
             let (world, robot, path) = case().new_tree(&mut runner).unwrap().current();
             let referee = Validator::new(&world);
-            let ours = car_path_free(&referee, &robot, &path, DEFAULT_TOLERANCE);
+            let ours = CarChecker::new(&world, &robot).path_free(&path);
             let theirs =
                 validate_car_path(&referee, &robot, &path, None, DEFAULT_TOLERANCE).is_ok();
             assert!(
@@ -693,7 +756,7 @@ mod tests {
                 validate_car_path(&referee, &cart(), &path, None, DEFAULT_TOLERANCE).is_ok();
             assert_eq!(theirs, free, "validator at y = {y}");
             assert_eq!(
-                car_path_free(&referee, &cart(), &path, DEFAULT_TOLERANCE),
+                CarChecker::new(&world, &cart()).path_free(&path),
                 free,
                 "checker at y = {y}"
             );

@@ -18,6 +18,7 @@ pub mod minkowski;
 pub mod motion;
 pub mod path;
 pub mod polygon;
+pub mod proximity;
 pub mod rng;
 pub mod steer;
 pub mod union;

@@ -238,6 +238,11 @@ impl MotionChecker {
             }
     }
 
+    /// The world's bounds, where the robot's reference point must stay.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
     fn in_bounds(&self, c: Config) -> bool {
         c.theta.is_finite() && c.x.is_finite() && c.y.is_finite() && self.bounds.contains(c.xy())
     }

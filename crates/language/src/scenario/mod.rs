@@ -181,6 +181,7 @@ impl Plan {
             seed: self.params.seed,
             steering: scenario.robots[self.robot].steering,
             draw: true,
+            referee: None,
         }
     }
 }

@@ -14,6 +14,7 @@ pub mod layers;
 mod outcome;
 mod params;
 mod planner;
+mod referee;
 pub mod schema;
 
 pub use args::PlanArgs;
@@ -21,3 +22,4 @@ pub use layers::Layer;
 pub use outcome::{MeasuredMotion, MetricValue, Metrics, PlanOutcome};
 pub use params::{DEFAULT_CELL_CAP, Limits, Param, ParamValue, Params, Robot};
 pub use planner::{Planner, Settings, Task};
+pub use referee::{Referee, ValidatorReferee};

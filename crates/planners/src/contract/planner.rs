@@ -103,6 +103,10 @@ pub struct Task<'a> {
     /// its layers empty and skips recording what only they would show
     /// (expansions, tree edges, forces): that work is timed with the plan.
     pub draw: bool,
+    /// The runner's referee, lent for what only the validator may say
+    /// ([`super::referee`]: a motion too long to return, where a simulated
+    /// robot's motion first fails); `None` when the caller lends none.
+    pub referee: Option<&'a dyn super::Referee>,
 }
 
 impl Task<'_> {

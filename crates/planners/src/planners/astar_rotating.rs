@@ -44,7 +44,6 @@ use crate::contract::{MetricValue, PlanOutcome};
 use crate::geometry::angle_diff;
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
 use crate::geometry::motion::{MotionChecker, segment_depth};
-use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
 use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS};
 use rayon::prelude::*;
 
@@ -127,7 +126,7 @@ pub struct Profile {
 
 /// The (x, y, θ) lattice of one plan and its free configurations (a bit
 /// each).
-struct Lattice<'w> {
+struct Lattice {
     spec: LatticeSpec,
     thetas: Vec<f64>,
     layers: Vec<CLayer>,
@@ -137,14 +136,12 @@ struct Lattice<'w> {
     motion: MotionChecker,
     free: BitSet,
     moves: Vec<Move>,
-    shape: RobotShape,
-    validator: Validator<'w>,
     /// Measure edge validation into `profile` (see [`plan_profiled`]).
     profiling: bool,
     profile: Profile,
 }
 
-impl Lattice<'_> {
+impl Lattice {
     fn layer_len(&self) -> usize {
         self.spec.layer_len()
     }
@@ -351,8 +348,6 @@ fn run(
         motion,
         free,
         moves,
-        shape,
-        validator: Validator::new(world),
         profiling,
         profile: Profile::default(),
     };
@@ -372,11 +367,7 @@ fn run(
     let s_node = nearest_layer(start.theta) * n + spec.index(s.0, s.1);
     let g_node = nearest_layer(goal.theta) * n + spec.index(g.0, g.1);
     let (s_cfg, g_cfg) = (lat.config(s_node), lat.config(g_node));
-    let connects = |lat: &Lattice, a: Config, b: Config| {
-        lat.validator
-            .validate_path(&lat.shape, &[a, b], DEFAULT_TOLERANCE)
-            .is_ok()
-    };
+    let connects = |lat: &Lattice, a: Config, b: Config| lat.motion.motion_free(a, b);
     let mut blocked_end = None;
     if !lat.free.get(s_node) || !connects(&lat, start, s_cfg) {
         blocked_end = Some("start");
@@ -500,13 +491,13 @@ impl RotHeuristic {
 }
 
 /// The (x, y, θ) lattice as a graph for the search core.
-struct RotGraph<'l, 'w> {
-    lat: &'l mut Lattice<'w>,
+struct RotGraph<'l> {
+    lat: &'l mut Lattice,
     goal: usize,
     h: RotHeuristic,
 }
 
-impl Graph for RotGraph<'_, '_> {
+impl Graph for RotGraph<'_> {
     fn node_count(&self) -> usize {
         self.lat.free.len()
     }
@@ -563,7 +554,7 @@ impl Graph for RotGraph<'_, '_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::validator::validate_path;
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
     use crate::geometry::{Obstacle, Shape, World};
     use proptest::prelude::*;
 
@@ -594,7 +585,7 @@ mod tests {
         }
     }
 
-    fn lattice_for<'w>(world: &'w World, robot: &ConvexPolygon, thetas: &[f64]) -> Lattice<'w> {
+    fn lattice_for(world: &World, robot: &ConvexPolygon, thetas: &[f64]) -> Lattice {
         let shape = RobotShape::Polygon(robot.clone());
         let pieces = ObstaclePieces::new(world);
         let layers: Vec<CLayer> = thetas.iter().map(|&t| pieces.layer(robot, t)).collect();
@@ -615,8 +606,6 @@ mod tests {
             motion: MotionChecker::new(world, &shape),
             free: BitSet::default(),
             moves: Vec::new(),
-            shape,
-            validator: Validator::new(world),
             profiling: false,
             profile: Profile::default(),
         }
@@ -655,7 +644,7 @@ mod tests {
             let lat = lattice_for(&world, &robot, &[theta]);
             let (a, b) = (Config::new(x0, y0, theta), Config::new(x1, y1, theta));
             let ours = lat.translation_free(0, a.xy(), b.xy());
-            let valid = validate_path(&world, &lat.shape, &[a, b], DEFAULT_TOLERANCE).is_ok();
+            let valid = validate_path(&world, &RobotShape::Polygon(robot.clone()), &[a, b], DEFAULT_TOLERANCE).is_ok();
             if ours {
                 prop_assert!(valid, "free by the segment test, invalid: {a:?} {b:?}");
             } else if valid {
@@ -681,7 +670,7 @@ mod tests {
             let lat = lattice_for(&world, &robot, &[theta]);
             let (a, b) = (Config::new(x0, y0, theta), Config::new(x0 + dx, y0 + dy, theta + dtheta));
             if lat.motion.motion_free(a, b) {
-                prop_assert!(validate_path(&world, &lat.shape, &[a, b], DEFAULT_TOLERANCE).is_ok());
+                prop_assert!(validate_path(&world, &RobotShape::Polygon(robot.clone()), &[a, b], DEFAULT_TOLERANCE).is_ok());
             }
         }
     }

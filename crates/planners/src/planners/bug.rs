@@ -248,14 +248,12 @@ pub fn plan(settings: &Bug, task: &Task<'_>) -> PlanOutcome {
     // (1e-9 to 1e-6 of it), the validator is exact: where two obstacles
     // nearly touch (closer than the tracer can tell), a motion along one of
     // them may overlap the other by less than that. The run then stops
-    // before that motion and says why, rather than claim a path.
+    // before that motion and says why, rather than claim a path (a robot
+    // would stop there).
+    // The runner's referee says where (a caller that lends none judges the
+    // whole motion itself).
     let mut end = end;
-    if let Err(e) = crate::geometry::validator::validate_path(
-        task.world,
-        task.robot,
-        &poses,
-        crate::geometry::validator::DEFAULT_TOLERANCE,
-    ) {
+    if let Some(Err(e)) = task.referee.map(|r| r.validate(&poses)) {
         poses.truncate(e.segment + 1);
         // What was executed: the motions before the cut.
         run.traveled = poses
@@ -963,7 +961,7 @@ impl Run<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contract::Limits;
+    use crate::contract::{Limits, ValidatorReferee};
     use crate::geometry::fixtures::world_in;
     use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
     use crate::geometry::{Aabb, Shape, World};
@@ -1030,6 +1028,7 @@ mod tests {
     }
 
     fn run(w: &World, robot: &RobotShape, bug: &Bug) -> PlanOutcome {
+        let referee = ValidatorReferee::new(w, robot);
         let task = Task {
             world: w,
             robot,
@@ -1039,6 +1038,7 @@ mod tests {
             seed: 0,
             steering: None,
             draw: true,
+            referee: Some(&referee),
         };
         plan(bug, &task)
     }
@@ -1062,6 +1062,7 @@ mod tests {
                 follow: Follow::Left,
                 sense: f64::INFINITY,
             };
+            let referee = ValidatorReferee::new(&w, &RobotShape::Point);
             let task = Task {
                 world: &w,
                 robot: &RobotShape::Point,
@@ -1071,6 +1072,7 @@ mod tests {
                 seed: 0,
                 steering: None,
                 draw: false,
+                referee: Some(&referee),
             };
             let out = plan(&bug, &task);
             let motion = out.path.as_ref().unwrap_or(&out.trajectory);

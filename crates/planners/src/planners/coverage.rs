@@ -1043,6 +1043,7 @@ mod tests {
             seed: 0,
             steering: None,
             draw: true,
+            referee: None,
         };
         let k = cells_per_tool(grid, tool);
         plan(&task, &Coverage { on, k, weights })

@@ -41,10 +41,10 @@ use crate::contract::schema::{
     DefaultValue, MetricSpec, ParamSpec, RobotKind, ValueSpec, at_least, num, positive,
 };
 use crate::contract::{MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Task};
-use crate::geometry::car::{CarPath, DRAW_STEP, car_path_free, validate_car_path};
+use crate::geometry::car::{CarChecker, CarPath, DRAW_STEP};
 use crate::geometry::steer::{Model, Segment, Steering, Turn};
-use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
-use crate::geometry::{Config, Point, RobotShape};
+use crate::geometry::collide::ObstacleIndex;
+use crate::geometry::{Config, Point};
 use crate::planners::deadline::Deadline;
 use crate::contract::Limits;
 use crate::planners::search::{Edge, Entry, Graph, SearchBuffers, Tree, best_first};
@@ -170,7 +170,7 @@ struct Search<'a> {
     task: &'a Task<'a>,
     steering: Steering,
     goal: Config,
-    referee: Validator<'a>,
+    checker: CarChecker,
     deadline: Deadline,
     holonomic: Option<Holonomic>,
     /// The number of each cell reached.
@@ -211,7 +211,7 @@ impl<'a> Search<'a> {
             task,
             steering,
             goal,
-            referee: Validator::new(task.world),
+            checker: CarChecker::new(task.world, task.robot),
             deadline,
             holonomic,
             ids: HashMap::new(),
@@ -310,26 +310,18 @@ impl<'a> Search<'a> {
                 let car = self.path_to(&nodes, &tail);
                 // The pieces were checked one by one; the whole, integrated
                 // from the start, is checked again before it is returned.
-                match validate_car_path(
-                    &self.referee,
-                    self.task.robot,
-                    &car,
-                    Some(self.goal),
-                    DEFAULT_TOLERANCE,
-                ) {
-                    Ok(()) => {
-                        let mut poses = car.poses(DRAW_STEP);
-                        if let Some(last) = poses.last_mut() {
-                            *last = self.goal;
-                        }
-                        out.cost = Some(self.cost_of(&car));
-                        out.path = Some(poses);
-                        out.car = Some(car);
+                if self.checker.path_free(&car) && car.ends_on(self.goal) {
+                    let mut poses = car.poses(DRAW_STEP);
+                    if let Some(last) = poses.last_mut() {
+                        *last = self.goal;
                     }
-                    Err(e) => out.notes.push(format!(
-                        "the path found failed the validator when checked whole ({}); no path is returned",
-                        e.reason
-                    )),
+                    out.cost = Some(self.cost_of(&car));
+                    out.path = Some(poses);
+                    out.car = Some(car);
+                } else {
+                    out.notes.push(
+                        "the path found failed the motion check when checked whole (a touching contact, to rounding); no path is returned".into(),
+                    );
                 }
             }
             _ if result.gave_up => {
@@ -381,7 +373,7 @@ impl<'a> Search<'a> {
             return None;
         }
         let tail = CarPath::from_steer(pose, self.steering, &curve);
-        car_path_free(&self.referee, self.task.robot, &tail, DEFAULT_TOLERANCE).then_some(tail)
+        self.checker.path_free(&tail).then_some(tail)
     }
 
     /// The car path along the cells `nodes` (from the start), then `tail`,
@@ -464,7 +456,7 @@ impl Graph for Search<'_> {
             steering: self.steering,
             segments: vec![arc],
         };
-        if !car_path_free(&self.referee, self.task.robot, &piece, DEFAULT_TOLERANCE) {
+        if !self.checker.path_free(&piece) {
             return false;
         }
         self.poses[to] = end;
@@ -525,7 +517,7 @@ impl Holonomic {
             return None;
         }
         let (nx, ny) = (nx as usize, ny as usize);
-        let referee = Validator::new(task.world);
+        let points = ObstacleIndex::new(task.world);
         let mut free = vec![false; nx * ny];
         for j in 0..ny {
             if deadline.passed() {
@@ -537,7 +529,7 @@ impl Holonomic {
                     b.min.y + (j as f64 + 0.5) * cell,
                     0.0,
                 );
-                free[j * nx + i] = referee.config_collision(&RobotShape::Point, c).is_none();
+                free[j * nx + i] = points.disk_free(c.xy(), 0.0);
             }
         }
         let mut h = Holonomic {

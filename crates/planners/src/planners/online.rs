@@ -1082,6 +1082,7 @@ mod tests {
             seed: 0,
             steering: None,
             draw: true,
+            referee: None,
         }
     }
 

@@ -291,7 +291,8 @@ enum Advance {
 /// The fixed context of a walk: the world's indexes and the settings.
 struct Walker<'a> {
     world: &'a World,
-    robot: &'a RobotShape,
+    /// The runner's referee, for a walk too long to return whole.
+    referee: Option<&'a dyn crate::contract::Referee>,
     field: &'a FieldIndex,
     obstacles: &'a ObstacleIndex,
     bounds: Aabb,
@@ -421,7 +422,7 @@ pub fn plan(task: &Task<'_>, settings: &Potential) -> PlanOutcome {
     let goal = task.goal.unwrap_or(task.start);
     let walker = Walker {
         world,
-        robot: task.robot,
+        referee: task.referee,
         field: &field,
         obstacles: &obstacles,
         bounds: world.bounds,
@@ -440,7 +441,7 @@ fn walk(w: &Walker, start: Config, goal: Config) -> PlanOutcome {
     let mut rng = SplitMix64::new(s.seed);
     let mut out = PlanOutcome::default();
     let mut trace = FieldTrace::default();
-    let mut motion = motion::Motion::new(w.world, w.robot, start);
+    let mut motion = motion::Motion::new(w.referee, start);
     let mut descent = Descent::new(start.xy());
     let (mut minima, mut escapes) = (0u64, 0u64);
     let mut stride = 1usize;

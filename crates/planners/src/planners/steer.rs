@@ -10,8 +10,7 @@ use std::any::Any;
 use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
 use crate::contract::schema::RobotKind;
 use crate::contract::{PlanArgs, PlanOutcome, Planner, Settings, Task};
-use crate::geometry::car::{CarPath, DRAW_STEP, validate_car_path};
-use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
+use crate::geometry::car::{CarChecker, CarPath, DRAW_STEP};
 use crate::planners::deadline::Deadline;
 
 pub static PLANNER: Planner = Planner {
@@ -68,14 +67,13 @@ impl Settings for SteerSettings {
             };
         }
         let car = CarPath::from_steer(task.start, steering, &curve);
-        let referee = Validator::new(task.world);
-        let verdict = validate_car_path(&referee, task.robot, &car, Some(goal), DEFAULT_TOLERANCE);
+        let checker = CarChecker::new(task.world, task.robot);
+        let free = checker.path_free(&car) && car.ends_on(goal);
         let mut out = PlanOutcome {
             expanded: 1,
             ..PlanOutcome::default()
         };
-        match verdict {
-            Ok(()) => {
+        if free {
                 out.cost = Some(car.length());
                 // The segments end on the goal to rounding; the listed
                 // path ends on it exactly, as every planner's does.
@@ -85,15 +83,16 @@ impl Settings for SteerSettings {
                 }
                 out.path = Some(poses);
                 out.car = Some(car);
-            }
-            Err(e) => {
-                out.notes.push(format!(
-                    "the steering path is blocked on its segment {} at ({:.3}, {:.3}): {}",
-                    e.segment + 1,
-                    e.at.x,
-                    e.at.y,
-                    e.reason
-                ));
+        } else {
+                out.notes.push(match checker.first_blocked(&car) {
+                    Some((segment, at)) => format!(
+                        "the steering path is blocked on its segment {} at ({:.3}, {:.3})",
+                        segment + 1,
+                        at.x,
+                        at.y
+                    ),
+                    None => "the steering path is blocked (it touches an obstacle or the bounds, to rounding)".into(),
+                });
                 if task.draw {
                     let xy = car.poses(DRAW_STEP).iter().map(|c| c.xy()).collect();
                     out.layers.push(Layer::new(
@@ -103,7 +102,6 @@ impl Settings for SteerSettings {
                             .svg(Svg::line(0.6).dashed().key("steering path (blocked)")),
                     ));
                 }
-            }
         }
         out
     }

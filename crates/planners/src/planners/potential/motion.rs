@@ -6,8 +6,8 @@
 //! and validates the list as for any planner. The move after that switches
 //! to thinned recording: the full list is validated and measured once,
 //! then every later move is measured as it is made (length, turn,
-//! smoothness, exactly as the runner sums them) and validated with the
-//! independent validator in chunks of [`CHUNK`] poses, while the list keeps
+//! smoothness, exactly as the runner sums them) and validated by the
+//! runner's referee ([`crate::contract::referee`]) in chunks of [`CHUNK`] poses, while the list keeps
 //! every `stride`-th pose (the stride doubling whenever the list would
 //! exceed [`FULL_MOVES`] + 1 poses) and the last one. The outcome then
 //! carries the measures of the whole motion ([`MeasuredMotion`]).
@@ -22,10 +22,10 @@
 //! ends the chunk touching an obstacle), and the verdicts of the chunks are
 //! the verdict on the whole motion.
 
-use crate::contract::MeasuredMotion;
+use crate::contract::{MeasuredMotion, Referee};
 use crate::geometry::path::corner_smoothness;
-use crate::geometry::validator::{DEFAULT_TOLERANCE, ValidationError, Validator};
-use crate::geometry::{Config, Point, RobotShape, World, angle_diff};
+use crate::geometry::validator::ValidationError;
+use crate::geometry::{Config, Point, angle_diff};
 
 /// Moves kept in full (SPEC 3.4).
 pub const FULL_MOVES: u64 = 4_000_000;
@@ -39,8 +39,8 @@ const CLEAR: f64 = 1e-6;
 
 /// The executed motion, recorded as it is made.
 pub(super) struct Motion<'w> {
-    world: &'w World,
-    robot: &'w RobotShape,
+    /// The runner's referee; without one a thinned motion is not validated.
+    referee: Option<&'w dyn Referee>,
     /// Moves kept in full ([`FULL_MOVES`]; less in tests).
     full: u64,
     /// Poses validated at a time ([`CHUNK`]; less in tests).
@@ -58,7 +58,7 @@ pub(super) struct Motion<'w> {
 
 /// The measures of a thinned motion, and the poses not validated yet.
 struct Thinned<'w> {
-    validator: Validator<'w>,
+    referee: Option<&'w dyn Referee>,
     length: f64,
     turn: f64,
     smoothness: f64,
@@ -72,20 +72,18 @@ struct Thinned<'w> {
 }
 
 impl<'w> Motion<'w> {
-    pub(super) fn new(world: &'w World, robot: &'w RobotShape, start: Config) -> Self {
-        Self::with_sizes(world, robot, start, FULL_MOVES, CHUNK)
+    pub(super) fn new(referee: Option<&'w dyn Referee>, start: Config) -> Self {
+        Self::with_sizes(referee, start, FULL_MOVES, CHUNK)
     }
 
     fn with_sizes(
-        world: &'w World,
-        robot: &'w RobotShape,
+        referee: Option<&'w dyn Referee>,
         start: Config,
         full: u64,
         chunk: usize,
     ) -> Self {
         Motion {
-            world,
-            robot,
+            referee,
             full,
             chunk,
             kept: vec![start],
@@ -107,7 +105,7 @@ impl<'w> Motion<'w> {
         self.moves += 1;
         self.last = to;
         if let Some(t) = &mut self.thinned {
-            t.record(from, to, self.robot, self.chunk);
+            t.record(from, to, self.chunk);
         }
         if self.moves.is_multiple_of(self.stride) {
             self.kept.push(to);
@@ -115,9 +113,9 @@ impl<'w> Motion<'w> {
         if self.thinned.is_none() && self.moves > self.full {
             // Every pose so far is kept (`kept[0]` is the start): measure
             // and validate them as the moves to come will be.
-            let mut t = Thinned::new(self.world, self.kept[0]);
+            let mut t = Thinned::new(self.referee, self.kept[0]);
             for w in self.kept.windows(2) {
-                t.record(w[0], w[1], self.robot, self.chunk);
+                t.record(w[0], w[1], self.chunk);
             }
             self.thinned = Some(t);
         }
@@ -139,7 +137,7 @@ impl<'w> Motion<'w> {
             self.kept.push(self.last);
         }
         let measured = self.thinned.map(|mut t| {
-            t.flush(self.robot);
+            t.flush();
             MeasuredMotion {
                 poses: self.moves + 1,
                 length: t.length,
@@ -156,26 +154,33 @@ impl<'w> Motion<'w> {
 
 impl<'w> Thinned<'w> {
     /// Nothing measured yet, from the pose `first`.
-    fn new(world: &'w World, first: Config) -> Self {
+    fn new(referee: Option<&'w dyn Referee>, first: Config) -> Self {
         Thinned {
-            validator: Validator::new(world),
+            referee,
             length: 0.0,
             turn: 0.0,
             smoothness: 0.0,
             corner: [None, Some(first.xy())],
-            clearance: f64::INFINITY,
-            error: None,
+            clearance: if referee.is_some() { f64::INFINITY } else { f64::NAN },
+            error: referee.is_none().then(|| ValidationError {
+                segment: 0,
+                at: first,
+                obstacle: None,
+                reason: format!(
+                    "beyond {FULL_MOVES} moves the walk is validated as it is made, by the runner's referee, and none was lent: not validated"
+                ),
+            }),
             pending: vec![first],
             pending_from: 0,
         }
     }
 
     /// One more move: measured now, validated with its chunk.
-    fn record(&mut self, from: Config, to: Config, robot: &RobotShape, chunk: usize) {
+    fn record(&mut self, from: Config, to: Config, chunk: usize) {
         self.measure(from, to);
         self.pending.push(to);
         if self.pending.len() >= chunk {
-            self.flush(robot);
+            self.flush();
         }
     }
 
@@ -197,21 +202,23 @@ impl<'w> Thinned<'w> {
 
     /// Validates the pending poses and keeps the overlap the next chunk
     /// starts with.
-    fn flush(&mut self, robot: &RobotShape) {
+    fn flush(&mut self) {
+        let Some(referee) = self.referee else {
+            // Not validated (said at the start): nothing to keep.
+            self.pending.clear();
+            return;
+        };
         if self.pending.len() < 2 {
             return;
         }
-        let v = &self.validator;
         if self.error.is_none()
-            && let Err(mut e) = v.validate_path(robot, &self.pending, DEFAULT_TOLERANCE)
+            && let Err(mut e) = referee.validate(&self.pending)
         {
             e.segment += self.pending_from as usize;
             self.error = Some(e);
         }
-        self.clearance = self
-            .clearance
-            .min(v.clearance(robot, &self.pending, DEFAULT_TOLERANCE));
-        let (pending, from) = overlap(v, robot, &self.pending, self.pending_from);
+        self.clearance = self.clearance.min(referee.clearance(&self.pending));
+        let (pending, from) = overlap(referee, &self.pending, self.pending_from);
         self.pending = pending;
         self.pending_from = from;
     }
@@ -220,15 +227,10 @@ impl<'w> Thinned<'w> {
 /// The poses a chunk after `poses` (whose first is pose `first` of the
 /// motion) starts with: from the last one clear of every obstacle, or all
 /// of them when none is.
-fn overlap(
-    validator: &Validator<'_>,
-    robot: &RobotShape,
-    poses: &[Config],
-    first: u64,
-) -> (Vec<Config>, u64) {
+fn overlap(referee: &dyn Referee, poses: &[Config], first: u64) -> (Vec<Config>, u64) {
     let from = poses
         .iter()
-        .rposition(|&c| validator.clearance(robot, &[c], DEFAULT_TOLERANCE) > CLEAR)
+        .rposition(|&c| referee.clearance(&[c]) > CLEAR)
         .unwrap_or(0);
     (poses[from..].to_vec(), first + from as u64)
 }
@@ -236,8 +238,10 @@ fn overlap(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contract::ValidatorReferee;
     use crate::geometry::path::{path_length, smoothness};
-    use crate::geometry::{Aabb, Obstacle, Shape};
+    use crate::geometry::validator::{DEFAULT_TOLERANCE, Validator};
+    use crate::geometry::{Aabb, Obstacle, RobotShape, Shape, World};
 
     fn world() -> World {
         World {
@@ -273,7 +277,8 @@ mod tests {
         full: u64,
         chunk: usize,
     ) -> (Vec<Config>, Option<MeasuredMotion>) {
-        let mut m = Motion::with_sizes(w, robot, all[0], full, chunk);
+        let referee = ValidatorReferee::new(w, robot);
+        let mut m = Motion::with_sizes(Some(&referee), all[0], full, chunk);
         for &c in &all[1..] {
             m.push(c);
         }
@@ -360,5 +365,22 @@ mod tests {
             let e = measured.and_then(|m| m.validation).expect("the crossing");
             assert_eq!(e, whole, "{moves} moves");
         }
+    }
+
+    /// Without a referee, a thinned motion is measured but says it was not
+    /// validated (never a silent pass).
+    #[test]
+    fn without_a_referee_a_thinned_motion_is_not_validated() {
+        let all = zigzag(300);
+        let mut m = Motion::with_sizes(None, all[0], 100, 16);
+        for &c in &all[1..] {
+            m.push(c);
+        }
+        let (_, measured) = m.finish();
+        let m = measured.expect("thinned");
+        assert_eq!(m.length, path_length(&all));
+        assert!(m.clearance.is_nan());
+        let e = m.validation.expect("not validated");
+        assert!(e.reason.contains("not validated"), "{e:?}");
     }
 }

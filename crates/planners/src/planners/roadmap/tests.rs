@@ -73,6 +73,7 @@ fn task<'a>(w: &'a World, robot: &'a RobotShape, c: &Case) -> Task<'a> {
         seed: 0,
         steering: None,
         draw: true,
+        referee: None,
     }
 }
 

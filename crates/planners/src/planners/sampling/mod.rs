@@ -55,12 +55,12 @@ use crate::contract::schema::{
     DefaultValue, MetricSpec, ParamSpec, ValueSpec, Word, YesNo, at_least, num,
 };
 use crate::diagnostics::Diag;
-use crate::geometry::car::{CarPath, DRAW_STEP, car_path_free, validate_car_path};
+use crate::geometry::car::{CarChecker, CarPath, DRAW_STEP};
 use crate::geometry::cspace::ObstaclePieces;
 use crate::geometry::motion::{MotionChecker, NewEnd};
 use crate::geometry::path::path_length;
 use crate::geometry::steer::Steering;
-use crate::geometry::validator::{DEFAULT_TOLERANCE, MAX_SUB_STEPS, Validator, sub_step_count};
+use crate::geometry::validator::{DEFAULT_TOLERANCE, MAX_SUB_STEPS, sub_step_count};
 use crate::geometry::{Config, Point, RobotShape, angle_diff, wrap_angle};
 use crate::rng::SplitMix64;
 use crate::word_enum;
@@ -519,8 +519,8 @@ pub struct Run<'a> {
     pub checks: u64,
     deadline: Deadline,
     sigma: f64,
-    /// A car's motions are checked by the validator for cars.
-    referee: Option<Validator<'a>>,
+    /// A car's motions are checked along their curves.
+    car: Option<CarChecker>,
 }
 
 impl<'a> Run<'a> {
@@ -553,7 +553,9 @@ impl<'a> Run<'a> {
             checks: 0,
             deadline,
             sigma: SIGMA * bounds.width().hypot(bounds.height()),
-            referee: task.steering.map(|_| Validator::new(task.world)),
+            car: task
+                .steering
+                .map(|_| CarChecker::new(task.world, task.robot)),
         }
     }
 
@@ -577,11 +579,8 @@ impl<'a> Run<'a> {
 
     fn motion(&mut self, a: Config, b: Config, new: Option<NewEnd>) -> bool {
         self.checks += 1;
-        match (self.space.steering, &self.referee, new) {
-            (Some(steering), Some(referee), _) => {
-                let curve = CarPath::shortest(steering, a, b);
-                car_path_free(referee, self.task.robot, &curve, DEFAULT_TOLERANCE)
-            }
+        match (self.space.steering, &self.car, new) {
+            (Some(steering), Some(car), _) => car.path_free(&CarPath::shortest(steering, a, b)),
             (_, _, Some(new)) => self.checker.extension_free(a, b, new),
             (_, _, None) => self.checker.motion_free(a, b),
         }
@@ -849,29 +848,20 @@ impl<'a> Run<'a> {
     /// touching contact) is not returned, and a note says so.
     fn car_path(&self, steering: Steering, states: &[Config], out: &mut PlanOutcome) {
         let car = CarPath::through(self.task.start, steering, states);
-        let referee = self.referee.as_ref().expect("a car's run has a referee");
-        match validate_car_path(
-            referee,
-            self.task.robot,
-            &car,
-            self.task.goal,
-            DEFAULT_TOLERANCE,
-        ) {
-            Ok(()) => {
-                let mut poses = car.poses(DRAW_STEP);
-                if let (Some(last), Some(goal)) = (poses.last_mut(), self.task.goal) {
-                    *last = goal;
-                }
-                out.path = Some(poses);
-                out.car = Some(car);
+        let checker = self.car.as_ref().expect("a car's run has a car checker");
+        let on_goal = self.task.goal.is_none_or(|g| car.ends_on(g));
+        if checker.path_free(&car) && on_goal {
+            let mut poses = car.poses(DRAW_STEP);
+            if let (Some(last), Some(goal)) = (poses.last_mut(), self.task.goal) {
+                *last = goal;
             }
-            Err(e) => {
-                out.cost = None;
-                out.notes.push(format!(
-                    "the path found failed the validator when integrated whole ({}); no path is returned",
-                    e.reason
-                ));
-            }
+            out.path = Some(poses);
+            out.car = Some(car);
+        } else {
+            out.cost = None;
+            out.notes.push(
+                "the path found failed the motion check when integrated whole (a touching contact, to rounding); no path is returned".into(),
+            );
         }
     }
 
