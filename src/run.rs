@@ -224,7 +224,7 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     let validation = match (measured, car) {
         (Some(m), _) => m.validation.clone(),
         (None, Some(car)) => {
-            validate_car_path(&referee, robot, car, plan.params.goal, DEFAULT_TOLERANCE).err()
+            validate_car_path(referee, robot, car, plan.params.goal, DEFAULT_TOLERANCE).err()
         }
         (None, None) if task.steering.is_some() && outcome.path.is_some() => {
             Some(ValidationError {
