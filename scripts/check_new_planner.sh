@@ -3,7 +3,7 @@
 # command to regenerate what is generated (issue 22). In a copy of HEAD (a
 # fresh git repository in a temporary folder), it
 # 1. adds a trivial planner `straight` (the straight line from the start to
-#    the goal, found when the validator accepts it) in crates/planners/src/planners/straight.rs
+#    the goal, found when the motion checker accepts it) in crates/planners/src/planners/straight.rs
 #    and its one line in crates/planners/src/planners/registry.rs;
 # 2. shows that the tests of generated files now fail, naming the command;
 # 3. runs that command, scripts/regenerate.sh;
@@ -44,13 +44,13 @@ git -c user.name=check -c user.email=check@localhost commit -qm "HEAD of $repo"
 step "1. the planner's file and its registry line"
 cat > crates/planners/src/planners/straight.rs <<'EOF'
 //! `straight`: the straight line from the start to the goal, found when
-//! the validator accepts it (scripts/check_new_planner.sh adds it).
+//! the motion checker accepts it (scripts/check_new_planner.sh adds it).
 
 use std::any::Any;
 
 use crate::contract::schema::RobotKind;
 use crate::contract::{PlanArgs, PlanOutcome, Planner, Settings, Task};
-use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
+use crate::geometry::motion::MotionChecker;
 use crate::planners::deadline::Deadline;
 
 pub static PLANNER: Planner = Planner {
@@ -89,7 +89,7 @@ impl Settings for StraightSettings {
             return PlanOutcome::default();
         };
         let line = vec![task.start, goal];
-        let free = validate_path(task.world, task.robot, &line, DEFAULT_TOLERANCE).is_ok();
+        let free = MotionChecker::new(task.world, task.robot).motion_free(task.start, goal);
         PlanOutcome {
             cost: free.then(|| (goal.x - task.start.x).hypot(goal.y - task.start.y)),
             path: free.then_some(line),

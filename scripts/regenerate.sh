@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Regenerates every file generated from the planner registry
-# (crates/planners/src/planners/registry.rs) and the analyser's lists:
-# - docs/planners.md, the planner reference (tests/docs.rs);
+# (crates/planners/src/planners/registry.rs), the robot kinds
+# (crates/geometry/src/robots/mod.rs) and the analyser's lists:
+# - docs/planners.md, the planner reference, and the generated blocks of
+#   the pages (planner lists, the robot table of docs/language.md;
+#   tests/docs.rs);
 # - editors/vim/syntax/scen.vim and editors/vscode/syntaxes/scen.tmLanguage.json:
 #   their lists of planner kinds, keys, words, limit kinds, metrics,
 #   aggregates and bench keys (the parts marked generated), and

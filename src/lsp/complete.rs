@@ -12,7 +12,7 @@ use crate::scenario::grouping::ParamKeys;
 use crate::scenario::{AGGREGATES, BENCH_KEYS};
 use crate::syntax::{
     EXPRESSION_WORDS, FAMILY_VALUE_WORDS, GRID_OPTION_KEYWORDS, Lexer, ROBOT_CLAUSE_KEYWORDS,
-    ROBOT_SHAPE_KEYWORDS, STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
+    STATEMENT_KEYWORDS, Token, TokenKind, WORLD_ITEM_KEYWORDS, statement_at,
 };
 
 /// The completions at byte `offset` of `text` (the document `analysis` was
@@ -105,7 +105,11 @@ pub(crate) fn completions(text: &str, offset: usize, analysis: &Analysis) -> Vec
             }
             _ => Vec::new(),
         },
-        "robot" if open.is_empty() && head.len() == 2 => keywords(&ROBOT_SHAPE_KEYWORDS),
+        // The robot kinds of the registry, each with its summary.
+        "robot" if open.is_empty() && head.len() == 2 => crate::geometry::robots::ROBOTS
+            .iter()
+            .map(|m| item(m.keyword, CompletionItemKind::KEYWORD, m.summary, None))
+            .collect(),
         // `param gap = |`: the distributions and `choice`.
         "param" if open.is_empty() && tokens.last().is_some_and(|t| word(t) == "=") => {
             keywords(&FAMILY_VALUE_WORDS)

@@ -20,6 +20,7 @@ pub mod path;
 pub mod polygon;
 pub mod proximity;
 pub mod rng;
+pub mod robots;
 pub mod steer;
 pub mod union;
 pub mod validator;

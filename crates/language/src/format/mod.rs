@@ -26,8 +26,8 @@ use crate::contract::schema::ValueSpec;
 use crate::diagnostics::{Diag, Span};
 use crate::scenario::grouping::{ParamKeys, group_bench, group_params};
 use crate::syntax::ast::{
-    self, Expr, ExprKind, ObstacleShape, ParamSource, ParamToken, RobotShape, ScatterShape, Stmt,
-    Value, ValueKind, WorldItem,
+    self, Expr, ExprKind, ObstacleShape, ParamSource, ParamToken, ScatterShape, Stmt, Value,
+    ValueKind, WorldItem,
 };
 use crate::syntax::{Lexer, TokenKind, UNIT_WORDS};
 
@@ -287,19 +287,9 @@ impl Writer<'_> {
                 self.space();
                 self.leaf(out, robot.name.span);
                 self.space();
-                let shape: Option<(&str, Vec<&Value>)> = match &robot.shape {
-                    RobotShape::Point(span) => {
-                        self.leaf(out, *span);
-                        None
-                    }
-                    RobotShape::Disk(r) => Some(("disk", vec![r])),
-                    RobotShape::Rect(w, h) => Some(("rect", vec![w, h])),
-                    RobotShape::Polygon(v) => Some(("polygon", vec![v])),
-                };
-                if let Some((keyword, values)) = shape {
-                    self.tok(out, values[0].span.start, keyword);
-                    self.values(out, &values);
-                }
+                self.leaf(out, robot.shape.kind.span);
+                let args: Vec<&Value> = robot.shape.args.iter().collect();
+                self.values(out, &args);
                 if let Some(steer) = &robot.steer {
                     self.space();
                     self.leaf(out, steer.keyword);

@@ -105,13 +105,8 @@ impl Stmt {
                 }
             }
             Stmt::Robot(r) => {
-                match &r.shape {
-                    RobotShape::Point(_) => {}
-                    RobotShape::Disk(v) | RobotShape::Polygon(v) => f(v, false),
-                    RobotShape::Rect(a, b) => {
-                        f(a, false);
-                        f(b, false);
-                    }
+                for v in &r.shape.args {
+                    f(v, false);
                 }
                 if let Some(steer) = &r.steer {
                     f(&steer.radius, false);
@@ -272,7 +267,7 @@ pub struct GridSpec {
     pub span: Span,
 }
 
-/// `robot NAME SHAPE`
+/// `robot NAME KIND ARGS... [steer MODEL RADIUS]`
 #[derive(Clone, Debug)]
 pub struct RobotDecl {
     pub name: Ident,
@@ -294,16 +289,14 @@ pub struct SteerClause {
     pub span: Span,
 }
 
+/// The body of `robot NAME KIND ARGS...`: a kind of the robot registry
+/// (`scen_geometry::robots`) and its values, as written.
 #[derive(Clone, Debug)]
-pub enum RobotShape {
-    /// `point`
-    Point(Span),
-    /// `disk RADIUS`
-    Disk(Value),
-    /// `rect W H`
-    Rect(Value, Value),
-    /// `polygon [(x, y), ...]`
-    Polygon(Value),
+pub struct RobotShape {
+    pub kind: Ident,
+    pub args: Vec<Value>,
+    /// From the kind to its last value.
+    pub span: Span,
 }
 
 /// `plan NAME KIND ROBOT { tokens }`

@@ -321,20 +321,14 @@ impl<'t, 'd> Builder<'t, 'd> {
         let mut inner = children(pair).skip(1);
         let name = self.ident(&inner.next().expect("grammar guarantees a robot name"));
         let shape_pair = inner.next().expect("grammar guarantees a robot shape");
-        let shape_rule = shape_pair.as_rule();
-        let shape_span = self.span(&shape_pair);
-        let mut values = children(shape_pair).skip(1).map(|v| self.value(v));
-        let mut next = || {
-            values
-                .next()
-                .expect("grammar guarantees the shape's values")
-        };
-        let shape = match shape_rule {
-            Rule::point_shape => RobotShape::Point(shape_span),
-            Rule::disk_shape => RobotShape::Disk(next()),
-            Rule::rect_shape => RobotShape::Rect(next(), next()),
-            Rule::polygon_shape => RobotShape::Polygon(next()),
-            rule => unreachable!("grammar guarantees a robot shape, got {rule:?}"),
+        // Every shape rule is its kind's word, then its values.
+        let shape_span = self.trimmed_span(&shape_pair);
+        let mut parts = children(shape_pair);
+        let kind = self.ident(&parts.next().expect("grammar guarantees a robot kind"));
+        let shape = RobotShape {
+            kind,
+            args: parts.map(|v| self.value(v)).collect(),
+            span: shape_span,
         };
         let steer = inner.next().map(|clause| {
             let span = self.span(&clause);
@@ -711,25 +705,27 @@ mod tests {
             })
             .collect();
         assert_eq!(robots[0].name.value, "rod");
+        let kinds: Vec<&str> = robots.iter().map(|r| r.shape.kind.value.as_str()).collect();
+        assert_eq!(kinds, ["polygon", "rect", "disk", "point"]);
         assert!(matches!(
-            robots[0].shape,
-            RobotShape::Polygon(Value {
+            robots[0].shape.args[..],
+            [Value {
                 kind: ValueKind::List(_),
                 ..
-            })
+            }]
         ));
-        let RobotShape::Rect(w, h) = &robots[1].shape else {
+        let [w, h] = &robots[1].shape.args[..] else {
             panic!()
         };
         assert_eq!((number(w), number(h)), (2.0, 1.0));
-        let RobotShape::Disk(r) = &robots[2].shape else {
+        let [r] = &robots[2].shape.args[..] else {
             panic!()
         };
         assert_eq!(number(r), 0.5);
-        let RobotShape::Point(span) = robots[3].shape else {
-            panic!()
-        };
+        assert!(robots[3].shape.args.is_empty());
+        let span = robots[3].shape.kind.span;
         assert_eq!(snippet(APARTMENT, span), "point");
+        assert_eq!(snippet(APARTMENT, robots[3].shape.span), "point");
         assert_eq!(snippet(APARTMENT, robots[3].span), "robot p    point");
 
         let Stmt::Plan(plan) = &statements[7] else {

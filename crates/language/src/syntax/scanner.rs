@@ -29,9 +29,11 @@ pub(crate) const FAMILY_KEYWORDS: [&str; 3] = ["in", "gap", "choice"];
 /// What may follow `param NAME =`: the distributions and `choice`.
 pub const FAMILY_VALUE_WORDS: [&str; 4] = ["uniform", "normal", "int", "choice"];
 
-/// A robot's shapes (`robot NAME SHAPE`), a grid's options, and the words
-/// of `expect` expressions: with the two lists above, every keyword of
-/// grammar/scen.pest (a test checks it), for the language server.
+/// The robot kinds the grammar has rules of its own for (every kind of the
+/// registry, `scen_geometry::robots`, parses: these get precise syntax
+/// errors), a grid's options, and the words of `expect` expressions: with
+/// the two lists above, every keyword of grammar/scen.pest (a test checks
+/// it).
 pub const ROBOT_SHAPE_KEYWORDS: [&str; 4] = ["point", "disk", "rect", "polygon"];
 
 /// The keyword of the clause that may follow a robot's shape (`steer`).
@@ -458,7 +460,7 @@ fn next_nonblank_byte(bytes: &[u8], from: usize) -> Option<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::syntax::ast::{RobotShape, Stmt};
+    use crate::syntax::ast::Stmt;
     use crate::syntax::parse;
     use crate::syntax::testing::{errors, expr, line_of, parse_ok, sexp, snippet};
 
@@ -481,7 +483,7 @@ mod tests {
         assert_eq!(r.name.value, "disk1");
         let Stmt::Robot(r) = &s[1] else { panic!() };
         assert_eq!(r.name.value, "pointy");
-        assert!(matches!(r.shape, RobotShape::Point(_)));
+        assert_eq!(r.shape.kind.value, "point");
         let Stmt::Robot(r) = &s[3] else { panic!() };
         assert_eq!(r.name.value, "plan");
         let Stmt::Plan(p) = &s[4] else { panic!() };

@@ -234,6 +234,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_cell | Rule::grid_cell => "`cell`",
         Rule::kw_origin | Rule::grid_origin => "`origin`",
         Rule::kw_point | Rule::point_shape => "`point`",
+        Rule::other_shape | Rule::robot_kind => "a robot kind",
         Rule::kw_steer | Rule::steer_clause => "`steer`",
         Rule::steer_model => "a steering model (`dubins` or `reeds_shepp`)",
         Rule::kw_true => "`true`",
@@ -317,6 +318,11 @@ pub(super) fn syntax_error(
     {
         expected.retain(|d| !value_parts.contains(d));
         expected.insert(first.min(expected.len()), "a value");
+    }
+    // Any word may name a robot kind (the registry decides): the kinds
+    // with rules of their own are among them.
+    if expected.contains(&"a robot kind") {
+        expected.retain(|d| !["`point`", "`disk`", "`rect`", "`polygon`"].contains(d));
     }
     // A robot may end with `steer MODEL RADIUS`; after a robot's shape pest
     // expects it, but a word that is nothing like it is the start of junk
@@ -475,11 +481,11 @@ impl HelpContext<'_> {
             ));
         }
         if has(Rule::kw_point) {
-            return Some(
-                "a robot's shape is `point`, `disk RADIUS`, `rect WIDTH HEIGHT` or \
-                 `polygon [(x, y), ...]`"
-                    .to_string(),
-            );
+            let kinds: Vec<String> = crate::geometry::robots::ROBOTS
+                .iter()
+                .map(|m| format!("`{}`", m.example))
+                .collect();
+            return Some(format!("a robot is one of: {}", kinds.join(", ")));
         }
         if self.chunk.rule == Some(Rule::plan_chunk) && (has(Rule::ident) || has(Rule::plan_kind)) {
             return Some("a plan is written `plan NAME KIND ROBOT { PARAMETERS }`".to_string());
@@ -635,10 +641,7 @@ mod tests {
             .collect();
         assert_eq!(lines, [4, 5, 7], "{diags:#?}");
         assert!(diags.iter().all(|d| d.code == "scen::syntax::expected"));
-        assert_eq!(
-            diags[0].message,
-            "expected `rect`, `polygon`, `disk` or `point`, found `plan`"
-        );
+        assert_eq!(diags[0].message, "expected a robot kind, found `plan`");
         assert_eq!(snippet(text, diags[0].span.unwrap()), "r");
         assert_eq!(diags[1].message, "expected `,` or `)`, found `}`");
         assert_eq!(snippet(text, diags[1].span.unwrap()), "}");
@@ -720,8 +723,8 @@ mod tests {
 
     #[test]
     fn a_missing_value_is_expected_as_a_value() {
-        let d = &errors("robot r disk")[0];
-        assert_eq!(d.message, "expected a value, found the end of the file");
+        let d = &errors("world { disk A (0, 0) }")[0];
+        assert_eq!(d.message, "expected a value, found `}`");
         let d = &errors("world { rect A (0, 0) }")[0];
         assert_eq!(d.message, "expected a value, found `}`");
         // `(0 0)` could also be a parenthesised expression `(0)`.
@@ -743,7 +746,8 @@ mod tests {
             help("world { rectangle (0, 0) (1, 1) }"),
             "did you mean `rect`?"
         );
-        assert_eq!(help("robot r dsk 1"), "did you mean `disk`?");
+        // (`robot r dsk 1` parses: any word may be a robot kind, and the
+        // analyzer suggests `disk`.)
         // Other tools' words for a statement, first or after a statement.
         let expect_help = "a check is written `expect CONDITION`, e.g. `expect p.found`";
         assert_eq!(help("check p.found"), expect_help);

@@ -174,7 +174,8 @@ pub const GENERATED_END: &str = "<!-- end of generated -->";
 /// The text of a generated block of a page (`scripts/regenerate.sh`
 /// rewrites them, `tests/docs.rs` checks them): `planner-list` is every kind
 /// in backticks, in the registry's order; `planner-table` a Markdown table
-/// of every kind with its robots and summary. `None` for an unknown name.
+/// of every kind with its robots and summary; `robot-table` one of every
+/// robot kind (`scen_geometry::robots`). `None` for an unknown name.
 pub fn generated_block(name: &str) -> Option<String> {
     use std::fmt::Write as _;
     match name {
@@ -193,6 +194,13 @@ pub fn generated_block(name: &str) -> Option<String> {
                     robots.join(", "),
                     p.summary
                 );
+            }
+            Some(md.trim_end().to_string())
+        }
+        "robot-table" => {
+            let mut md = String::from("| kind | written | the body |\n|---|---|---|\n");
+            for m in crate::geometry::robots::ROBOTS {
+                let _ = writeln!(md, "| `{}` | `{}` | {} |", m.keyword, m.example, m.summary);
             }
             Some(md.trim_end().to_string())
         }

@@ -3,10 +3,11 @@
 use std::collections::HashMap;
 
 use crate::diagnostics::{Diag, Span};
+use crate::geometry::RobotShape;
 use crate::geometry::polygon;
+use crate::geometry::robots::{self, Arg, ArgValue};
 use crate::geometry::steer::{MODEL_NAMES, Model, Steering};
-use crate::geometry::{ConvexPolygon, Point, RobotShape};
-use crate::syntax::ast::{self, Value};
+use crate::syntax::ast;
 
 use crate::contract::Robot;
 use crate::scenario::statements::SourcedStmt;
@@ -34,30 +35,7 @@ impl Analyzer {
                 continue;
             }
             seen.insert(r.name.value.clone(), r.name.span);
-            let shape = match &r.shape {
-                ast::RobotShape::Point(_) => Some(RobotShape::Point),
-                ast::RobotShape::Disk(v) => self
-                    .expect_positive(v, "the robot's radius")
-                    .map(RobotShape::Disk),
-                ast::RobotShape::Rect(w, h) => {
-                    let (w, h) = (
-                        self.expect_positive(w, "the width"),
-                        self.expect_positive(h, "the height"),
-                    );
-                    match (w, h) {
-                        (Some(w), Some(h)) => Some(RobotShape::Polygon(ConvexPolygon {
-                            vertices: vec![
-                                Point::new(0.0, 0.0),
-                                Point::new(w, 0.0),
-                                Point::new(w, h),
-                                Point::new(0.0, h),
-                            ],
-                        })),
-                        _ => None,
-                    }
-                }
-                ast::RobotShape::Polygon(v) => self.robot_polygon(v),
-            };
+            let shape = self.robot_body(&r.shape);
             let steering = match (&r.steer, &shape) {
                 (None, _) => Ok(None),
                 (Some(clause), shape) => self.steering(clause, shape.as_ref()).map(Some).ok_or(()),
@@ -122,22 +100,95 @@ impl Analyzer {
         Some(Steering::new(model?, radius?))
     }
 
-    pub(super) fn robot_polygon(&mut self, v: &Value) -> Option<RobotShape> {
-        let (pts, vspans) = self.polygon_points(v, "the robot polygon")?;
-        match polygon::normalize_simple_polygon(&pts) {
-            Ok(outline) if polygon::is_convex(&outline) => {
-                Some(RobotShape::Polygon(ConvexPolygon { vertices: outline }))
-            }
-            Ok(_) => {
-                self.error(
-                    Diag::error("scen::analyze::robot_not_convex", "a robot polygon must be convex")
-                        .at(v.span, "not convex")
-                        .help("planners need convex robots: use the convex hull of this shape, or a smaller convex part"),
-                );
-                None
-            }
+    /// The body of `KIND ARGS...`: the kind from the registry of robot
+    /// kinds, its arguments checked against what it takes, and its body.
+    fn robot_body(&mut self, shape: &ast::RobotShape) -> Option<RobotShape> {
+        let kind = &shape.kind;
+        let Some(model) = robots::model(&kind.value) else {
+            let kinds: Vec<&str> = robots::keywords().collect();
+            let mut d = Diag::error(
+                "scen::analyze::unknown_robot_kind",
+                format!("unknown robot kind `{}`", kind.value),
+            )
+            .at(kind.span, "not a robot kind");
+            d = match crate::contract::schema::did_you_mean(&kind.value, kinds.iter().copied()) {
+                Some(k) => d.help(format!(
+                    "did you mean `{k}`? robot kinds: {}",
+                    crate::contract::schema::backticked(&kinds)
+                )),
+                None => d.help(format!(
+                    "robot kinds: {}, e.g. `{}`",
+                    crate::contract::schema::backticked(&kinds),
+                    robots::ROBOTS[1].example
+                )),
+            };
+            self.error(d);
+            return None;
+        };
+        if shape.args.len() != model.args.len() {
+            let wanted = match model.args.len() {
+                0 => "no values".to_string(),
+                1 => "1 value".to_string(),
+                n => format!("{n} values"),
+            };
+            let names: Vec<&str> = model
+                .args
+                .iter()
+                .map(|a| match a {
+                    Arg::Length(what) | Arg::Polygon(what) => *what,
+                })
+                .collect();
+            let (span, label) = match shape.args.get(model.args.len()) {
+                Some(extra) => (
+                    Span::new(extra.span.file, extra.span.start, shape.span.end),
+                    "one value too many".to_string(),
+                ),
+                None => (shape.span, format!("{} given", shape.args.len())),
+            };
+            let takes = if names.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", names.join(", "))
+            };
+            self.error(
+                Diag::error(
+                    "scen::analyze::robot_arguments",
+                    format!("a `{}` robot takes {wanted}{takes}", model.keyword),
+                )
+                .at(span, label)
+                .help(format!("write it as `{}`", model.example)),
+            );
+            return None;
+        }
+        let mut values = Vec::with_capacity(model.args.len());
+        let mut spans = Vec::with_capacity(model.args.len());
+        for (arg, v) in model.args.iter().zip(&shape.args) {
+            let value = match arg {
+                Arg::Length(what) => self.expect_positive(v, what).map(ArgValue::Length),
+                Arg::Polygon(what) => {
+                    let (pts, vspans) = self.polygon_points(v, what)?;
+                    match polygon::normalize_simple_polygon(&pts) {
+                        Ok(outline) => Some(ArgValue::Polygon(outline)),
+                        Err(e) => {
+                            self.polygon_error(e, v.span, &vspans, what);
+                            None
+                        }
+                    }
+                }
+            };
+            values.push(value);
+            spans.push(v.span);
+        }
+        let values: Vec<ArgValue> = values.into_iter().collect::<Option<_>>()?;
+        match (model.body)(&values) {
+            Ok(body) => Some(body),
             Err(e) => {
-                self.polygon_error(e, v.span, &vspans, "the robot polygon");
+                let span = spans.get(e.arg).copied().unwrap_or(shape.span);
+                self.error(
+                    Diag::error(e.code, e.message)
+                        .at(span, e.label)
+                        .help(e.help),
+                );
                 None
             }
         }

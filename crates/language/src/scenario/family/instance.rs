@@ -238,14 +238,8 @@ impl Family {
                 }
                 Stmt::Robot(r) => {
                     let mut r = r.clone();
-                    use crate::syntax::ast::RobotShape;
-                    match &mut r.shape {
-                        RobotShape::Point(_) => {}
-                        RobotShape::Disk(v) | RobotShape::Polygon(v) => ctx.value(v),
-                        RobotShape::Rect(a, b) => {
-                            ctx.value(a);
-                            ctx.value(b);
-                        }
+                    for v in &mut r.shape.args {
+                        ctx.value(v);
                     }
                     if let Some(steer) = &mut r.steer {
                         ctx.value(&mut steer.radius);
