@@ -91,7 +91,7 @@ fn the_generated_planner_lists_of_the_pages_are_up_to_date() {
     }
     assert!(
         stale.is_empty(),
-        "the planner lists of {} are stale: run `scripts/regenerate.sh`",
+        "the generated blocks (planner lists, the robot table) of {} are stale: run `scripts/regenerate.sh`",
         stale.join(", ")
     );
 }
