@@ -6,13 +6,15 @@
 #    B, as the polygon of 32 sides around it) in
 #    crates/geometry/src/robots/ellipse.rs and its one line in
 #    crates/geometry/src/robots/mod.rs;
-# 2. shows that the test of the generated robot table fails, naming the
-#    command, and runs that command (scripts/regenerate.sh);
-# 3. runs the registry's tests, the docs' tests and `cargo fmt --check`,
+# 2. shows that the tests of the generated robot table (docs/language.md)
+#    and editor lists fail, naming the command, and runs that command
+#    (scripts/regenerate.sh);
+# 3. runs the registry's tests, the docs' and editors' tests and
+#    `cargo fmt --check`,
 #    and a scenario in which planners for polygons plan for an ellipse and
 #    the validator accepts their paths; its picture draws the body;
 # 4. checks that `git status` lists only the new file, the registry line
-#    and the regenerated page.
+#    and the regenerated page and editor grammars.
 # CI runs it after check_new_planner.sh, in the same target folder
 # (target/check_new_planner). Extra arguments go to cargo.
 set -euo pipefail
@@ -80,20 +82,26 @@ git diff crates/geometry/src/robots/mod.rs
   || { echo "the registry change is not one added line" >&2; exit 1; }
 
 step "2. the robot table is stale until scripts/regenerate.sh $*"
-if stale="$(cargo test --release --no-fail-fast "$@" --test docs -- up_to_date 2>&1)"; then
-  echo "the docs' tests pass with a robot kind the manual does not list" >&2
+if stale="$(cargo test --release --no-fail-fast "$@" --test docs --test editors -- up_to_date 2>&1)"; then
+  echo "the tests of generated files pass with a robot kind they do not list" >&2
   exit 1
 fi
 grep -E 'stale.*scripts/regenerate.sh' <<<"$stale"
+[ "$(grep -cE 'stale.*scripts/regenerate.sh' <<<"$stale")" = 2 ] \
+  || { echo "not both tests (docs: the robot table; editors) name the command:" >&2; echo "$stale" >&2; exit 1; }
 scripts/regenerate.sh "$@" > "$work/regenerate.log" 2>&1 \
   || { cat "$work/regenerate.log" >&2; exit 1; }
 grep -q '| `ellipse` |' docs/language.md || { echo "docs/language.md does not list the ellipse" >&2; exit 1; }
+grep -q 'scenRobotShape contained point disk rect polygon ellipse' editors/vim/syntax/scen.vim \
+  || { echo "the Vim syntax does not colour the ellipse" >&2; exit 1; }
+grep -q 'point|disk|rect|polygon|ellipse' editors/vscode/syntaxes/scen.tmLanguage.json \
+  || { echo "the VS Code grammar does not colour the ellipse" >&2; exit 1; }
 
 step "3. the registry's tests, the docs, and a scenario with the new kind"
 cargo fmt --check
 {
   cargo test --release "$@" -p scen-geometry robots &&
-  cargo test --release "$@" --test docs
+  cargo test --release "$@" --test docs --test editors
 } > "$work/tests.log" 2>&1 || { cat "$work/tests.log" >&2; exit 1; }
 grep -E '^test |test result' "$work/tests.log"
 cat > "$work/ellipse.scen" <<'EOF'
@@ -124,6 +132,8 @@ step "4. git status: the new file, the registry line and the regenerated page on
 git status --porcelain
 expected=' M crates/geometry/src/robots/mod.rs
  M docs/language.md
+ M editors/vim/syntax/scen.vim
+ M editors/vscode/syntaxes/scen.tmLanguage.json
 ?? crates/geometry/src/robots/ellipse.rs'
 if [ "$(git status --porcelain | sort)" != "$expected" ]; then
   echo "git status lists other changes; expected:" >&2

@@ -58,6 +58,8 @@ const PLAN_LIST_KEY: &str = "plans";
 /// then `drive { ... }`'s).
 pub(crate) struct Lists {
     pub(crate) kinds: Vec<&'static str>,
+    /// The robot kinds (`scen::geometry::robots`).
+    pub(crate) robot_kinds: Vec<&'static str>,
     pub(crate) keys: Vec<&'static str>,
     pub(crate) limit_kinds: Vec<&'static str>,
     pub(crate) words: Vec<&'static str>,
@@ -150,6 +152,7 @@ pub(crate) fn lists() -> Result<Lists, String> {
         .collect();
     let lists = Lists {
         kinds,
+        robot_kinds: scen::geometry::robots::keywords().collect(),
         keys,
         limit_kinds,
         words,
@@ -162,6 +165,7 @@ pub(crate) fn lists() -> Result<Lists, String> {
     // The words go into regular expressions unescaped.
     for list in [
         &lists.kinds,
+        &lists.robot_kinds,
         &lists.keys,
         &lists.limit_kinds,
         &lists.words,
@@ -279,6 +283,15 @@ fn vim_regions(l: &Lists) -> Vec<(&'static str, String)> {
         ));
     }
     vec![
+        (
+            "robot-kinds",
+            wrapped(
+                "syn keyword scenRobotShape contained ",
+                &l.robot_kinds,
+                " ",
+                "",
+            ),
+        ),
         (
             "planners",
             wrapped(
@@ -444,12 +457,28 @@ fn textmate_grammar(committed: &str) -> Result<String, String> {
         .ok_or("no `repository` object")?;
     for (name, rule) in repository.iter() {
         let generated = rule.get("comment").and_then(Value::as_str) == Some(GENERATED);
-        if generated && !rules.iter().any(|(r, _, _)| r == name) {
+        if generated && name != "robot" && !rules.iter().any(|(r, _, _)| r == name) {
             return Err(format!(
                 "the rule `{name}` says it is generated, but is not"
             ));
         }
     }
+    // `robot NAME KIND`: the kind is one of the registry's.
+    let robot = json!({
+        "comment": GENERATED,
+        "match": format!(
+            "(?<![\\w.])(robot)\\b(?:\\s+([A-Za-z_][A-Za-z0-9_]*))?(?:\\s+({})\\b)?",
+            l.robot_kinds.join("|")
+        ),
+        "captures": {
+            "1": { "name": "keyword.control.robot.scen" },
+            "2": { "name": "entity.name.robot.scen" },
+            "3": { "name": "storage.type.shape.scen" }
+        }
+    });
+    *repository
+        .get_mut("robot")
+        .ok_or("no repository rule `robot`: the hand-written grammar includes it")? = robot;
     for (name, regex, scope) in rules {
         let slot = repository.get_mut(name).ok_or_else(|| {
             format!(

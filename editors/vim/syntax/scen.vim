@@ -80,7 +80,9 @@ syn match   scenStatement /\<bench\>\%(\s*\.\)\@!/ nextgroup=scenBenchWord,scenB
 
 " robot NAME SHAPE
 syn match   scenName contained /\h\w*/ nextgroup=scenRobotShape skipwhite
+" BEGIN GENERATED robot-kinds (scripts/regenerate.sh; do not edit)
 syn keyword scenRobotShape contained point disk rect polygon
+" END GENERATED robot-kinds
 " plan NAME KIND ROBOT
 syn match   scenPlanName contained /\h\w*/ nextgroup=scenPlanner,scenBadPlanner skipwhite
 syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
