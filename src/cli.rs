@@ -18,6 +18,7 @@ mod falsify;
 mod fmt;
 mod outputs;
 mod parts;
+mod validate;
 mod watch;
 
 /// Standard output with its failures remembered: a report that could not be
@@ -90,6 +91,10 @@ pub enum Command {
     Fmt(FmtArgs),
     /// Run a scenario again on every save of it or of a file it reads.
     Watch(RunArgs),
+    /// Judge a path made elsewhere (CSV or JSON) with the validator, against
+    /// a plan's world and robot: valid (exit 0) or where it first collides
+    /// (exit 1).
+    Validate(validate::ValidateArgs),
     /// A Language Server on stdin/stdout (for editors).
     Lsp,
     /// Convert another format into a scenario.
@@ -328,6 +333,7 @@ pub fn main() -> i32 {
         Command::Falsify(args) => falsify::cmd_falsify(&args),
         Command::Fmt(args) => fmt::run(&args.files, args.check),
         Command::Watch(args) => watch::cmd_watch(&args),
+        Command::Validate(args) => validate::cmd_validate(&args),
         // The server writes its own messages and ends on `exit`.
         Command::Lsp => return crate::lsp::run(),
         Command::Import { format, file } => cmd_import(&format, &file),

@@ -181,6 +181,75 @@ pub(crate) fn evaluate_checks(
     (outcomes, skipped)
 }
 
+/// `scen validate` (SPEC 7): the validator and the metrics on `path`, a
+/// path made elsewhere, as if plan `index`'s planner had returned it, and
+/// the checks that read only that plan. Its `cost` is the path's length;
+/// `time_ms` has no value (no planner ran). The first collision is drawn
+/// as a layer `collision`.
+pub fn validate_user_path(scenario: Scenario, index: usize, path: Vec<Config>) -> RunReport {
+    let plan = &scenario.plans[index];
+    let task = plan.task(&scenario);
+    let outcome = PlanOutcome {
+        cost: Some(path_length(&path)),
+        path: Some(path),
+        ..PlanOutcome::default()
+    };
+    let referee = validator::Validator::new(&scenario.world);
+    let mut run = judge(&scenario, index, plan, &task, outcome, f64::NAN, &referee);
+    // What only a planner measures has no value here: left out, and the
+    // checks that read it are skipped.
+    for planner_only in ["expanded", "gave_up", "time_ms"] {
+        run.metrics.remove(planner_only);
+    }
+    for m in plan.planner.metrics {
+        run.metrics.remove(m.name);
+    }
+    if let Some(e) = &run.validation {
+        use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
+        run.outcome.layers.push(Layer::new(
+            "collision",
+            Drawing::Points(vec![e.at.xy()]),
+            Style::new(Colour::Red, 6.0, 50.0).svg(Svg::fill(1.0).key("first collision")),
+        ));
+    }
+    let plans = vec![run];
+    let values = RunValues {
+        plans: metrics_by_plan(&scenario, &plans),
+    };
+    let judged = &plans[0];
+    let name = &scenario.plans[index].name;
+    let (checks, skipped) = evaluate_checks(&scenario, &values, |c| {
+        let mut read = Vec::new();
+        checks::metrics_used(&c.expr, &mut read);
+        !c.bench
+            && read
+                .iter()
+                .all(|(p, m)| p != name || judged.metrics.contains_key(m))
+    });
+    // A check left out by `wanted` is not reported as skipped by
+    // `evaluate_checks`: those reading a planner's own metrics are.
+    let mut skipped = skipped;
+    for (i, c) in scenario.checks.iter().enumerate() {
+        let mut read = Vec::new();
+        checks::metrics_used(&c.expr, &mut read);
+        if !c.bench
+            && read
+                .iter()
+                .any(|(p, m)| p == name && !judged.metrics.contains_key(m))
+        {
+            skipped.push(i);
+        }
+    }
+    skipped.sort_unstable();
+    RunReport {
+        scenario,
+        plans,
+        bench_runs: Vec::new(),
+        checks,
+        skipped,
+    }
+}
+
 fn run_plan(scenario: &Scenario, index: usize, draw: bool) -> PlanRun {
     let plan = &scenario.plans[index];
     let task = Task {
@@ -203,9 +272,31 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
         ..*task
     };
     let began = Instant::now();
-    let mut outcome = plan.settings.plan(&task);
+    let outcome = plan.settings.plan(&task);
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
-    let referee = lent.validator();
+    judge(
+        scenario,
+        index,
+        plan,
+        &task,
+        outcome,
+        time_ms,
+        lent.validator(),
+    )
+}
+
+/// The runner's half of a run: validates and measures what a plan's
+/// planner (or a user, `scen validate`) returned for `task`.
+fn judge(
+    scenario: &Scenario,
+    index: usize,
+    plan: &Plan,
+    task: &Task<'_>,
+    mut outcome: PlanOutcome,
+    time_ms: f64,
+    referee: &validator::Validator<'_>,
+) -> PlanRun {
+    let robot = &scenario.robots[plan.robot].shape;
     // The path, or the motion executed by a run that stopped short (SPEC 3:
     // `collision_free` validates it too).
     let motion = match &outcome.path {

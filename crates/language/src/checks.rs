@@ -322,6 +322,18 @@ pub fn plans_used(expr: &Expr, out: &mut Vec<String>) {
     });
 }
 
+/// Every `PLAN.METRIC` the expression reads, once each.
+pub fn metrics_used(expr: &Expr, out: &mut Vec<(String, String)>) {
+    expr.walk(&mut |e| {
+        if let ExprKind::Metric { plan, metric } = &e.kind {
+            let m = (plan.value.clone(), metric.value.clone());
+            if !out.contains(&m) {
+                out.push(m);
+            }
+        }
+    });
+}
+
 /// Formats a metric value for reports: booleans as `true`/`false`, whole
 /// numbers without a fraction, others with up to 6 significant decimals.
 pub fn format_value(v: MetricValue) -> String {
