@@ -27,9 +27,13 @@ expect q.found
 
 #[test]
 fn what_scen_run_writes_reads_back_as_valid() {
-    let t = Test::new()
-        .file("room.scen", ROOM)
-        .args(&["run", "room.scen", "--csv", "runs.csv", "--json"]);
+    let t = Test::new().file("room.scen", ROOM).args(&[
+        "run",
+        "room.scen",
+        "--csv",
+        "runs.csv",
+        "--json",
+    ]);
     t.run();
     let v = Test::new()
         .file("room.scen", ROOM)
