@@ -208,6 +208,7 @@ mod tests {
             name: name.into(),
             shape,
             steering: None,
+            speed: None,
             span: Span::default(),
         }
     }

@@ -1386,6 +1386,7 @@ mod tests {
             name: name.into(),
             shape,
             steering: None,
+            speed: None,
             span: Span::default(),
         };
         let scenario = Scenario {

@@ -129,7 +129,7 @@ syn keyword scenBenchKey contained plans nextgroup=scenPlanList skipwhite skipnl
 syn region  scenPlanList contained matchgroup=scenPunct start=/\[/ end=/\]/
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenPlanList,scenComment,scenString,scenUnterminated,@scenNumbers
-syn keyword scenWorldKeyword contained bounds origin in gap
+syn keyword scenWorldKeyword contained bounds origin in gap moving at then stay vanish
 " BEGIN GENERATED parameters (scripts/regenerate.sh; do not edit)
 " Parameter keys: the common ones, every planner's, and `drive { ... }`'s.
 syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic

@@ -290,12 +290,32 @@ impl Writer<'_> {
                 self.leaf(out, robot.shape.kind.span);
                 let args: Vec<&Value> = robot.shape.args.iter().collect();
                 self.values(out, &args);
+                // The clauses in the order written.
+                let steer_at = robot.steer.as_ref().map(|s| s.keyword.start);
+                let speed_at = robot.speed.as_ref().map(|(k, _)| k.start);
+                let speed_first = match (steer_at, speed_at) {
+                    (Some(a), Some(b)) => b < a,
+                    _ => true,
+                };
+                let print_speed = |w: &mut Self, out: &mut Vec<Doc>| {
+                    if let Some((keyword, value)) = &robot.speed {
+                        w.space();
+                        w.leaf(out, *keyword);
+                        w.values(out, &[value]);
+                    }
+                };
+                if speed_first {
+                    print_speed(self, out);
+                }
                 if let Some(steer) = &robot.steer {
                     self.space();
                     self.leaf(out, steer.keyword);
                     self.space();
                     self.leaf(out, steer.model.span);
                     self.values(out, &[&steer.radius]);
+                }
+                if !speed_first {
+                    print_speed(self, out);
                 }
             }
             Stmt::Plan(plan) => {
@@ -400,6 +420,32 @@ impl Writer<'_> {
                 return;
             }
             WorldItem::Obstacle(o) => o,
+            WorldItem::Moving(m) => {
+                self.tok(out, m.span.start, "moving");
+                self.space();
+                self.leaf(out, m.name.span);
+                self.space();
+                self.leaf(out, m.shape.kind.span);
+                let args: Vec<&Value> = m.shape.args.iter().collect();
+                self.values(out, &args);
+                self.space();
+                self.block(out, m.block.start, m.block.end - 1, |w, inner| {
+                    for (k, wp) in m.waypoints.iter().enumerate() {
+                        w.line(k);
+                        w.tok(inner, wp.span.start, "at");
+                        w.values(inner, &[&wp.time, &wp.at]);
+                    }
+                    if let Some(then) = &m.then {
+                        w.line(m.waypoints.len());
+                        let at = w.find_token(w.last_end, |t| t == "then");
+                        w.tok(inner, at, "then");
+                        w.space();
+                        w.leaf(inner, then.span);
+                    }
+                    !m.waypoints.is_empty() || m.then.is_some()
+                });
+                return;
+            }
             WorldItem::Scatter(s) => {
                 self.tok(out, s.span.start, "scatter");
                 self.space();

@@ -17,6 +17,7 @@ use super::statements::{LoadFailure, SourcedStmt};
 
 mod bench;
 mod expect;
+mod moving;
 mod plans;
 mod robots;
 mod values;
@@ -60,8 +61,13 @@ pub(crate) fn analyze(
     };
     let title = a.title(&statements);
     let (world, obstacle_spans) = a.world(&statements);
+    let (moving, moving_spans) = match &world {
+        Some(w) => a.moving(&statements, w, &obstacle_spans),
+        None => (Vec::new(), Vec::new()),
+    };
     let robots = a.robots(&statements);
     let world_ok = !a.diags.iter().any(Diag::is_error);
+    a.needs_time(&statements, &moving);
     let plans = a.plans(&statements, world.as_ref().filter(|_| world_ok), &robots);
     let benches = a.benches(
         &statements,
@@ -92,6 +98,8 @@ pub(crate) fn analyze(
             title,
             world,
             obstacle_spans,
+            moving,
+            moving_spans,
             robots,
             plans,
             benches,

@@ -32,6 +32,9 @@ pub struct Scenario {
     pub world: World,
     /// Span of each obstacle's declaration, parallel to `world.obstacles`.
     pub obstacle_spans: Vec<Span>,
+    /// The obstacles that move (SPEC 2.9), and their declarations' spans.
+    pub moving: Vec<crate::geometry::timed::MovingObstacle>,
+    pub moving_spans: Vec<Span>,
     pub robots: Vec<Robot>,
     pub plans: Vec<Plan>,
     pub benches: Vec<Bench>,

@@ -86,6 +86,15 @@ impl Stmt {
                                 }
                             }
                         },
+                        WorldItem::Moving(m) => {
+                            for v in &m.shape.args {
+                                f(v, false);
+                            }
+                            for w in &m.waypoints {
+                                f(&w.time, false);
+                                f(&w.at, false);
+                            }
+                        }
                         WorldItem::Scatter(sc) => {
                             f(&sc.count, false);
                             match &sc.shape {
@@ -110,6 +119,9 @@ impl Stmt {
                 }
                 if let Some(steer) = &r.steer {
                     f(&steer.radius, false);
+                }
+                if let Some((_, v)) = &r.speed {
+                    f(v, false);
                 }
             }
             Stmt::Plan(PlanDecl { body, .. }) | Stmt::Bench(BenchDecl { body, .. }) => {
@@ -178,6 +190,32 @@ pub enum WorldItem {
     Obstacle(ObstacleDecl),
     /// `scatter NAME N SHAPE in (x0, y0) (x1, y1) [gap G]` (SPEC 2.8).
     Scatter(ScatterDecl),
+    /// `moving NAME SHAPE { at T (x, y) ... then stay|vanish }` (SPEC 2.9).
+    Moving(MovingDecl),
+}
+
+/// `moving NAME SHAPE { at T (x, y) ... then stay|vanish }`: an obstacle
+/// that translates along timed waypoints.
+#[derive(Clone, Debug)]
+pub struct MovingDecl {
+    pub name: Ident,
+    /// `disk R`, `rect W H` (centred on the route's point) or
+    /// `polygon [...]` (its frame's origin on the point), as a robot's.
+    pub shape: RobotShape,
+    pub waypoints: Vec<MovingWaypoint>,
+    /// `then stay` or `then vanish`, with the word's span; `None`: stay.
+    pub then: Option<Ident>,
+    /// The `{ ... }` block.
+    pub block: Span,
+    pub span: Span,
+}
+
+/// `at T (x, y)`.
+#[derive(Clone, Debug)]
+pub struct MovingWaypoint {
+    pub time: Value,
+    pub at: Value,
+    pub span: Span,
 }
 
 /// `scatter NAME N SHAPE in (x0, y0) (x1, y1) [gap G]`: N obstacles at
@@ -274,6 +312,9 @@ pub struct RobotDecl {
     pub shape: RobotShape,
     /// `steer MODEL RADIUS` after the shape: a car-like robot (SPEC 2.4).
     pub steer: Option<SteerClause>,
+    /// `speed V` after the shape (SPEC 2.9): the `speed` keyword's span and
+    /// the value.
+    pub speed: Option<(Span, Value)>,
     pub span: Span,
 }
 

@@ -8,7 +8,7 @@
 use pest::iterators::Pair;
 
 use super::ast::{
-    Angle, BenchDecl, GridSpec, Ident, ObstacleDecl, ObstacleKind, ObstacleShape, ParamDecl,
+    Angle, BenchDecl, GridSpec, Ident, MovingDecl, MovingWaypoint, ObstacleDecl, ObstacleKind, ObstacleShape, ParamDecl,
     ParamSource, ParamToken, PlanDecl, RobotDecl, RobotShape, ScatterDecl, ScatterShape,
     SteerClause, Stmt, Value, ValueKind, WorldBlock, WorldItem,
 };
@@ -176,6 +176,9 @@ impl<'t, 'd> Builder<'t, 'd> {
         if rule == Rule::scatter {
             return WorldItem::Scatter(self.scatter(inner, span));
         }
+        if rule == Rule::moving {
+            return WorldItem::Moving(self.moving(inner, span));
+        }
         if rule == Rule::bounds {
             let min = self.value(inner.next().expect("grammar guarantees a min corner"));
             let max = self.value(inner.next().expect("grammar guarantees a max corner"));
@@ -330,23 +333,90 @@ impl<'t, 'd> Builder<'t, 'd> {
             args: parts.map(|v| self.value(v)).collect(),
             span: shape_span,
         };
-        let steer = inner.next().map(|clause| {
+        let (mut steer, mut speed): (Option<SteerClause>, Option<(Span, Value)>) = (None, None);
+        for clause in inner {
             let span = self.span(&clause);
+            let rule = clause.as_rule();
             let mut parts = children(clause);
-            let keyword = self.span(&parts.next().expect("grammar guarantees `steer`"));
-            let model = self.ident(&parts.next().expect("grammar guarantees the model"));
-            let radius = self.value(parts.next().expect("grammar guarantees the radius"));
-            SteerClause {
-                keyword,
-                model,
-                radius,
-                span,
+            let keyword = self.span(&parts.next().expect("grammar guarantees the keyword"));
+            let (word, first) = match rule {
+                Rule::steer_clause => ("steer", steer.as_ref().map(|s| s.keyword)),
+                _ => ("speed", speed.as_ref().map(|(k, _)| *k)),
+            };
+            if let Some(first) = first {
+                self.diags.push(
+                    Diag::error(
+                        "scen::syntax::duplicate_option",
+                        format!("`{word}` is given twice for this robot"),
+                    )
+                    .at(span, "given again here")
+                    .with_related(first, "first given here")
+                    .help(format!("keep one `{word}`")),
+                );
+                continue;
             }
-        });
+            if rule == Rule::steer_clause {
+                let model = self.ident(&parts.next().expect("grammar guarantees the model"));
+                let radius = self.value(parts.next().expect("grammar guarantees the radius"));
+                steer = Some(SteerClause {
+                    keyword,
+                    model,
+                    radius,
+                    span,
+                });
+            } else {
+                let value = self.value(parts.next().expect("grammar guarantees the speed"));
+                speed = Some((keyword, value));
+            }
+        }
         RobotDecl {
             name,
             shape,
             steer,
+            speed,
+            span,
+        }
+    }
+
+    /// `moving NAME SHAPE { at T (x, y) ... then stay|vanish }`.
+    fn moving<'i>(&mut self, mut inner: impl Iterator<Item = P<'i>>, span: Span) -> MovingDecl {
+        let name = self.ident(&inner.next().expect("grammar guarantees a name"));
+        let shape_pair = inner.next().expect("grammar guarantees a shape");
+        let shape_span = self.trimmed_span(&shape_pair);
+        let mut parts = children(shape_pair);
+        let kind = self.ident(&parts.next().expect("grammar guarantees the shape's keyword"));
+        let shape = RobotShape {
+            kind,
+            args: parts.map(|v| self.value(v)).collect(),
+            span: shape_span,
+        };
+        let open = inner.next().expect("grammar guarantees `{`");
+        let mut waypoints = Vec::new();
+        let mut then = None;
+        let mut close = self.span(&open);
+        for part in inner {
+            match part.as_rule() {
+                Rule::moving_at => {
+                    let span = self.span(&part);
+                    let mut v = children(part).skip(1);
+                    let time = self.value(v.next().expect("grammar guarantees a time"));
+                    let at = self.value(v.next().expect("grammar guarantees a point"));
+                    waypoints.push(MovingWaypoint { time, at, span });
+                }
+                Rule::moving_then => {
+                    let word = children(part).nth(1).expect("grammar guarantees `stay` or `vanish`");
+                    then = Some(self.ident(&word));
+                }
+                _ => close = self.span(&part),
+            }
+        }
+        let open = self.span(&open);
+        MovingDecl {
+            name,
+            shape,
+            waypoints,
+            then,
+            block: Span::new(open.file, open.start, close.end),
             span,
         }
     }

@@ -18,9 +18,12 @@ pub const STATEMENT_KEYWORDS: [&str; 9] = [
 ];
 
 /// The keywords that start an item of a `world` block.
-pub const WORLD_ITEM_KEYWORDS: [&str; 7] = [
-    "bounds", "rect", "polygon", "segment", "disk", "grid", "scatter",
+pub const WORLD_ITEM_KEYWORDS: [&str; 8] = [
+    "bounds", "rect", "polygon", "segment", "disk", "grid", "scatter", "moving",
 ];
+
+/// The words of a `moving` obstacle's route (SPEC 2.9).
+pub const MOVING_KEYWORDS: [&str; 4] = ["at", "then", "stay", "vanish"];
 
 /// The words of a `scatter` item and of a `param`'s `choice` (SPEC 2.8).
 #[cfg(test)]
@@ -36,8 +39,8 @@ pub const FAMILY_VALUE_WORDS: [&str; 4] = ["uniform", "normal", "int", "choice"]
 /// it).
 pub const ROBOT_SHAPE_KEYWORDS: [&str; 4] = ["point", "disk", "rect", "polygon"];
 
-/// The keyword of the clause that may follow a robot's shape (`steer`).
-pub const ROBOT_CLAUSE_KEYWORDS: [&str; 1] = ["steer"];
+/// The keywords of the clauses that may follow a robot's shape.
+pub const ROBOT_CLAUSE_KEYWORDS: [&str; 2] = ["steer", "speed"];
 pub const GRID_OPTION_KEYWORDS: [&str; 2] = ["cell", "origin"];
 pub const EXPRESSION_WORDS: [&str; 5] = ["and", "or", "not", "true", "false"];
 
@@ -557,6 +560,7 @@ mod tests {
             &WORLD_ITEM_KEYWORDS,
             &ROBOT_SHAPE_KEYWORDS,
             &ROBOT_CLAUSE_KEYWORDS,
+            &MOVING_KEYWORDS,
             &GRID_OPTION_KEYWORDS,
             &FAMILY_KEYWORDS,
         ]

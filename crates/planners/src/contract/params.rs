@@ -15,6 +15,8 @@ pub struct Robot {
     pub shape: RobotShape,
     /// `steer MODEL RADIUS`: a car-like robot (SPEC 2.4).
     pub steering: Option<Steering>,
+    /// `speed V`: the largest speed of its reference point (SPEC 2.9).
+    pub speed: Option<f64>,
     pub span: Span,
 }
 

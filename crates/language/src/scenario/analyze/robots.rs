@@ -40,14 +40,19 @@ impl Analyzer {
                 (None, _) => Ok(None),
                 (Some(clause), shape) => self.steering(clause, shape.as_ref()).map(Some).ok_or(()),
             };
-            if shape.is_none() || steering.is_err() {
+            let speed = match &r.speed {
+                None => Ok(None),
+                Some((_, v)) => self.expect_positive(v, "the robot's speed").map(Some).ok_or(()),
+            };
+            if shape.is_none() || steering.is_err() || speed.is_err() {
                 self.invalid_robots.push(r.name.value.clone());
             }
-            if let (Some(shape), Ok(steering)) = (shape, steering) {
+            if let (Some(shape), Ok(steering), Ok(speed)) = (shape, steering, speed) {
                 robots.push(Robot {
                     name: r.name.value.clone(),
                     shape,
                     steering,
+                    speed,
                     span: r.span,
                 });
             }

@@ -130,6 +130,15 @@ impl Ctx<'_> {
                     }
                 }
             },
+            WorldItem::Moving(m) => {
+                for v in &mut m.shape.args {
+                    self.value(v);
+                }
+                for w in &mut m.waypoints {
+                    self.value(&mut w.time);
+                    self.value(&mut w.at);
+                }
+            }
             WorldItem::Scatter(_) => unreachable!("scatters are placed by `scatter`"),
         }
     }
@@ -243,6 +252,9 @@ impl Family {
                     }
                     if let Some(steer) = &mut r.steer {
                         ctx.value(&mut steer.radius);
+                    }
+                    if let Some((_, v)) = &mut r.speed {
+                        ctx.value(v);
                     }
                     Stmt::Robot(r)
                 }
