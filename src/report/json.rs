@@ -244,6 +244,8 @@ mod tests {
                 obstacles: Vec::new(),
             },
             obstacle_spans: Vec::new(),
+            moving: Vec::new(),
+            moving_spans: Vec::new(),
             family: None,
             template: None,
             robots: vec![

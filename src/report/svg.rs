@@ -1395,6 +1395,8 @@ mod tests {
             title: title.map(String::from),
             world,
             obstacle_spans: Vec::new(),
+            moving: Vec::new(),
+            moving_spans: Vec::new(),
             family: None,
             template: None,
             robots: vec![

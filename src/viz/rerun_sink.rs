@@ -614,6 +614,8 @@ mod tests {
                 ],
             },
             obstacle_spans: Vec::new(),
+            moving: Vec::new(),
+            moving_spans: Vec::new(),
             family: None,
             template: None,
             robots: vec![

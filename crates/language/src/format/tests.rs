@@ -175,6 +175,6 @@ fn moving_obstacles_and_speed_in_the_canonical_layout() {
     let text = "world { bounds (0,0) (20,10)\n  moving cart   disk 0.5 { at 0s (2,5)  at 4s (10,5) then   vanish }\n  moving door rect 1 4 {}\n}\nrobot dot disk 0.3   speed 1.5 robot car rect 2 1 speed 2 steer dubins 3\n";
     assert_eq!(
         fmt(text),
-        "world {\n  bounds (0, 0) (20, 10)\n  moving cart disk 0.5 {\n    at 0s (2, 5)\n    at 4s (10, 5)\n    then vanish\n  }\n  moving door rect 1 4 {}\n}\n\nrobot dot disk 0.3 speed 1.5\nrobot car rect 2 1 speed 2 steer dubins 3\n"
+        "world {\n  bounds (0, 0) (20, 10)\n  moving cart disk 0.5 {\n    at 0s (2, 5)\n    at 4s (10, 5)\n    then vanish\n  }\n  moving door rect 1 4 {}\n}\nrobot dot disk 0.3 speed 1.5\nrobot car rect 2 1 speed 2 steer dubins 3\n"
     );
 }

@@ -8,9 +8,9 @@
 use pest::iterators::Pair;
 
 use super::ast::{
-    Angle, BenchDecl, GridSpec, Ident, MovingDecl, MovingWaypoint, ObstacleDecl, ObstacleKind, ObstacleShape, ParamDecl,
-    ParamSource, ParamToken, PlanDecl, RobotDecl, RobotShape, ScatterDecl, ScatterShape,
-    SteerClause, Stmt, Value, ValueKind, WorldBlock, WorldItem,
+    Angle, BenchDecl, GridSpec, Ident, MovingDecl, MovingWaypoint, ObstacleDecl, ObstacleKind,
+    ObstacleShape, ParamDecl, ParamSource, ParamToken, PlanDecl, RobotDecl, RobotShape,
+    ScatterDecl, ScatterShape, SteerClause, Stmt, Value, ValueKind, WorldBlock, WorldItem,
 };
 use super::parser::Rule;
 use super::scanner::is_ident_byte;
@@ -384,7 +384,11 @@ impl<'t, 'd> Builder<'t, 'd> {
         let shape_pair = inner.next().expect("grammar guarantees a shape");
         let shape_span = self.trimmed_span(&shape_pair);
         let mut parts = children(shape_pair);
-        let kind = self.ident(&parts.next().expect("grammar guarantees the shape's keyword"));
+        let kind = self.ident(
+            &parts
+                .next()
+                .expect("grammar guarantees the shape's keyword"),
+        );
         let shape = RobotShape {
             kind,
             args: parts.map(|v| self.value(v)).collect(),
@@ -404,7 +408,9 @@ impl<'t, 'd> Builder<'t, 'd> {
                     waypoints.push(MovingWaypoint { time, at, span });
                 }
                 Rule::moving_then => {
-                    let word = children(part).nth(1).expect("grammar guarantees `stay` or `vanish`");
+                    let word = children(part)
+                        .nth(1)
+                        .expect("grammar guarantees `stay` or `vanish`");
                     then = Some(self.ident(&word));
                 }
                 _ => close = self.span(&part),

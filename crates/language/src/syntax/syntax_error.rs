@@ -238,6 +238,8 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_steer | Rule::steer_clause => "`steer`",
         Rule::kw_speed | Rule::speed_clause => "`speed`",
         Rule::kw_moving | Rule::moving => "`moving`",
+        Rule::moving_open => "`{`",
+        Rule::moving_close => "`}`",
         Rule::kw_at | Rule::moving_at => "`at`",
         Rule::kw_then | Rule::moving_then => "`then`",
         Rule::kw_stay => "`stay`",
@@ -333,8 +335,11 @@ pub(super) fn syntax_error(
     // A robot may end with `steer MODEL RADIUS`; after a robot's shape pest
     // expects it, but a word that is nothing like it is the start of junk
     // or of the next statement, and reads best as such.
-    if expected.contains(&"`steer`") && closest_keyword(token, &["steer"]).is_none() {
-        expected.retain(|d| *d != "`steer`");
+    for clause in ["steer", "speed"] {
+        let shown = format!("`{clause}`");
+        if expected.contains(&shown.as_str()) && closest_keyword(token, &[clause]).is_none() {
+            expected.retain(|d| *d != shown);
+        }
     }
     let only_end = expected == ["the end of the statement"];
 

@@ -179,9 +179,14 @@ impl Analyzer {
             ValueKind::Duration(t) | ValueKind::Number(t) => t,
             _ => {
                 self.error(
-                    Diag::error("scen::analyze::wrong_type", "a waypoint's time is a duration")
-                        .at(v.span, "not a time")
-                        .help("write it in seconds or milliseconds: `at 2.5s (4, 5)`, `at 500ms (4, 5)`"),
+                    Diag::error(
+                        "scen::analyze::wrong_type",
+                        "a waypoint's time is a duration",
+                    )
+                    .at(v.span, "not a time")
+                    .help(
+                        "write it in seconds or milliseconds: `at 2.5s (4, 5)`, `at 500ms (4, 5)`",
+                    ),
                 );
                 return None;
             }

@@ -42,7 +42,10 @@ impl Analyzer {
             };
             let speed = match &r.speed {
                 None => Ok(None),
-                Some((_, v)) => self.expect_positive(v, "the robot's speed").map(Some).ok_or(()),
+                Some((_, v)) => self
+                    .expect_positive(v, "the robot's speed")
+                    .map(Some)
+                    .ok_or(()),
             };
             if shape.is_none() || steering.is_err() || speed.is_err() {
                 self.invalid_robots.push(r.name.value.clone());

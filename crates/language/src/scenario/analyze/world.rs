@@ -80,6 +80,8 @@ impl Analyzer {
                     // A family's sample places its scattered items before
                     // analysis (`super::super::family`).
                     ast::WorldItem::Scatter(_) => {}
+                    // Analysed once the bounds are known (`moving.rs`).
+                    ast::WorldItem::Moving(_) => {}
                     ast::WorldItem::Obstacle(o) => {
                         index += 1;
                         let name = match &o.name {
