@@ -150,6 +150,32 @@ fn params_are_hovered_navigated_and_referenced() {
     assert_eq!(lines, [0, 1, 7, 8], "{refs}");
 }
 
+const MOVING: &str = "world {
+  bounds (0, 0) (20, 10)
+  moving cart disk 0.5 {
+    at 0s (2, 5)
+    at 4s (10, 5)
+    then vanish
+  }
+}
+robot dot disk 0.3 speed 1.5
+";
+
+#[test]
+fn a_moving_obstacle_is_hovered_with_its_route() {
+    let dir = TempDir::new("lsp-moving");
+    std::fs::write(dir.path().join("m.scen"), MOVING).unwrap();
+    let file = uri(&dir.path().join("m.scen"));
+    let mut c = Client::start();
+    c.open(&file, MOVING);
+    let hover = c.at("textDocument/hover", &file, 2, 10);
+    let text = hover["contents"]["value"].as_str().unwrap_or_default();
+    assert!(
+        text.contains("at 4s (10, 5)") && text.contains("then vanish"),
+        "{hover}"
+    );
+}
+
 #[test]
 fn the_server_answers_every_request_exactly() {
     let (_dir, main, robots) = setup();

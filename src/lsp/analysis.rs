@@ -156,10 +156,17 @@ fn symbols(statements: &[SourcedStmt]) -> Vec<Symbol> {
         match &s.stmt {
             Stmt::World(w) => {
                 for item in &w.items {
-                    if let WorldItem::Obstacle(o) = item
-                        && let Some(n) = &o.name
-                    {
-                        declare(NameKind::Obstacle, &n.value, n.span, o.span);
+                    match item {
+                        WorldItem::Obstacle(o) => {
+                            if let Some(n) = &o.name {
+                                declare(NameKind::Obstacle, &n.value, n.span, o.span);
+                            }
+                        }
+                        // Its hover shows the whole item: the route and times.
+                        WorldItem::Moving(m) => {
+                            declare(NameKind::Obstacle, &m.name.value, m.name.span, m.span)
+                        }
+                        _ => {}
                     }
                 }
             }
