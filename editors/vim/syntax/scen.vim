@@ -83,6 +83,8 @@ syn match   scenName contained /\h\w*/ nextgroup=scenRobotShape skipwhite
 " BEGIN GENERATED robot-kinds (scripts/regenerate.sh; do not edit)
 syn keyword scenRobotShape contained point disk rect polygon
 " END GENERATED robot-kinds
+" The clauses after a robot's shape: `steer MODEL RADIUS`, `speed V`.
+syn keyword scenRobotClause steer speed
 " plan NAME KIND ROBOT
 syn match   scenPlanName contained /\h\w*/ nextgroup=scenPlanner,scenBadPlanner skipwhite
 syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
@@ -129,7 +131,8 @@ syn keyword scenBenchKey contained plans nextgroup=scenPlanList skipwhite skipnl
 syn region  scenPlanList contained matchgroup=scenPunct start=/\[/ end=/\]/
       \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenPlanList,scenComment,scenString,scenUnterminated,@scenNumbers
-syn keyword scenWorldKeyword contained bounds origin in gap moving at then stay vanish
+syn keyword scenWorldKeyword contained bounds origin in gap at then stay vanish
+syn keyword scenWorldKeyword contained moving nextgroup=scenObstacleName skipwhite
 " BEGIN GENERATED parameters (scripts/regenerate.sh; do not edit)
 " Parameter keys: the common ones, every planner's, and `drive { ... }`'s.
 syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic
@@ -248,6 +251,7 @@ hi def link scenShape         Type
 hi def link scenRobotShape    Type
 hi def link scenScatterShape  Type
 hi def link scenWorldKeyword  Keyword
+hi def link scenRobotClause   Keyword
 hi def link scenName          Function
 hi def link scenPlanName      Function
 hi def link scenBenchName     Function
