@@ -19,27 +19,8 @@
 # that list planners. Extra arguments go to cargo, e.g.
 # `scripts/check_new_planner.sh --no-default-features` (no viewer).
 set -euo pipefail
-repo="$(cd "$(dirname "$0")/.." && pwd)"
-export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$repo/target/check_new_planner}"
-# The first time, start from a copy of target/release's dependencies (not
-# links: a rebuild there must not write into target/release).
-if [ ! -d "$CARGO_TARGET_DIR/release" ] && [ -d "$repo/target/release/deps" ]; then
-  mkdir -p "$CARGO_TARGET_DIR/release"
-  for dir in deps build .fingerprint; do
-    cp -a --reflink=auto "$repo/target/release/$dir" "$CARGO_TARGET_DIR/release/"
-  done
-fi
-work="$(mktemp -d "${TMPDIR:-/tmp}/scen-new-planner.XXXXXX")"
-trap 'rm -rf "$work"' EXIT
-step() { printf '\n=== %s\n' "$*"; }
-
-step "a copy of $(git -C "$repo" rev-parse --short HEAD) in $work/repo"
-mkdir "$work/repo"
-git -C "$repo" archive HEAD | tar -x -C "$work/repo"
-cd "$work/repo"
-git init -q
-git add -A
-git -c user.name=check -c user.email=check@localhost commit -qm "HEAD of $repo"
+# A copy of HEAD to change, and its build folder.
+source "$(dirname "$0")/scratch_copy.sh" new-planner
 
 step "1. the planner's file and its registry line"
 cat > crates/planners/src/planners/straight.rs <<'EOF'

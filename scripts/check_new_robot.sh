@@ -18,25 +18,8 @@
 # CI runs it after check_new_planner.sh, in the same target folder
 # (target/check_new_planner). Extra arguments go to cargo.
 set -euo pipefail
-repo="$(cd "$(dirname "$0")/.." && pwd)"
-export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$repo/target/check_new_planner}"
-if [ ! -d "$CARGO_TARGET_DIR/release" ] && [ -d "$repo/target/release/deps" ]; then
-  mkdir -p "$CARGO_TARGET_DIR/release"
-  for dir in deps build .fingerprint; do
-    cp -a --reflink=auto "$repo/target/release/$dir" "$CARGO_TARGET_DIR/release/"
-  done
-fi
-work="$(mktemp -d "${TMPDIR:-/tmp}/scen-new-robot.XXXXXX")"
-trap 'rm -rf "$work"' EXIT
-step() { printf '\n=== %s\n' "$*"; }
-
-step "a copy of $(git -C "$repo" rev-parse --short HEAD) in $work/repo"
-mkdir "$work/repo"
-git -C "$repo" archive HEAD | tar -x -C "$work/repo"
-cd "$work/repo"
-git init -q
-git add -A
-git -c user.name=check -c user.email=check@localhost commit -qm "HEAD of $repo"
+# A copy of HEAD to change, and its build folder.
+source "$(dirname "$0")/scratch_copy.sh" new-robot
 
 step "1. the kind's file and its registry line"
 cat > crates/geometry/src/robots/ellipse.rs <<'EOF'
