@@ -93,6 +93,8 @@ fn bench(c: &mut Criterion) {
             steering: None,
             draw: true,
             referee: None,
+            moving: &[],
+            speed: None,
         };
         let settings = Coverage {
             on: 0,

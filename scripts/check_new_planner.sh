@@ -44,6 +44,7 @@ pub static PLANNER: Planner = Planner {
     needs_goal: true,
     randomized: false,
     grids: false,
+    time: false,
     check,
 };
 

@@ -9,12 +9,13 @@ use rayon::prelude::*;
 
 use crate::checks;
 use crate::contract::ParamValue;
-use crate::contract::schema::RobotKind;
+use crate::contract::schema::{DEFAULT_SPEED, RobotKind};
 use crate::contract::{MetricValue, Metrics, PlanOutcome};
 use crate::contract::{Task, ValidatorReferee};
 use crate::drive::{self, DriveOutcome};
 use crate::geometry::car::{CarPath, swept_poses, validate_car_path};
 use crate::geometry::path::{path_length, path_turn, smoothness};
+use crate::geometry::timed::{Timed, validate_trajectory};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
 use crate::geometry::{Config, RobotShape, angle_diff};
 use crate::scenario::{Check, Plan, Scenario};
@@ -312,7 +313,33 @@ fn judge(
     let car = outcome.car.as_ref().filter(|_| outcome.path.is_some());
     // A path of poses is validated and measured in one pass.
     let mut measured_clearance = None;
+    // A trajectory (SPEC 2.9): its poses with their times, validated in
+    // space-time among the moving obstacles.
+    let timed = match (&outcome.path, &outcome.times) {
+        (Some(path), Some(times)) => Some(
+            path.iter()
+                .zip(times)
+                .map(|(&pose, &t)| Timed { pose, t })
+                .collect::<Vec<_>>(),
+        ),
+        _ => None,
+    };
+    let speed = task.speed.unwrap_or(DEFAULT_SPEED);
     let validation = match (measured, car) {
+        _ if timed.is_some() => {
+            let trajectory = timed.as_deref().unwrap_or_default();
+            (outcome.times.as_ref().map(Vec::len) != outcome.path.as_ref().map(Vec::len))
+                .then(|| ValidationError {
+                    segment: 0,
+                    at: task.start,
+                    obstacle: None,
+                    reason: "a trajectory needs one time per pose".into(),
+                })
+                .or_else(|| {
+                    validate_trajectory(&scenario.world, &scenario.moving, robot, speed, trajectory)
+                        .err()
+                })
+        }
         (Some(m), _) => m.validation.clone(),
         (None, Some(car)) => {
             validate_car_path(referee, robot, car, plan.params.goal, DEFAULT_TOLERANCE).err()
@@ -341,6 +368,9 @@ fn judge(
     let mut metrics = common_metrics(&outcome, robot, plan, time_ms, valid);
     if plan.planner.plans_for(RobotKind::Car) {
         car_metrics(car, &mut metrics);
+    }
+    if plan.planner.time {
+        time_metrics(timed.as_deref(), &mut metrics);
     }
     let path = outcome.path.as_deref();
     // Without a path, the clearance has no value (NaN: `null` in JSON, `—`
@@ -399,6 +429,25 @@ fn car_metrics(car: Option<&CarPath>, metrics: &mut Metrics) {
             }
         }
     }
+}
+
+/// A time-aware plan's metrics (SPEC 2.9) from its trajectory: `arrival`
+/// (its last time; +∞ without one) and `waited` (the time spent standing
+/// still; no value without one).
+fn time_metrics(trajectory: Option<&[Timed]>, metrics: &mut Metrics) {
+    use MetricValue::Num;
+    let (arrival, waited) = match trajectory {
+        Some(tr) => (
+            tr.last().map_or(0.0, |p| p.t),
+            tr.windows(2)
+                .filter(|w| w[0].pose.x == w[1].pose.x && w[0].pose.y == w[1].pose.y)
+                .map(|w| w[1].t - w[0].t)
+                .sum(),
+        ),
+        None => (f64::INFINITY, f64::NAN),
+    };
+    metrics.insert("arrival".into(), Num(arrival));
+    metrics.insert("waited".into(), Num(waited));
 }
 
 /// For a plan with `drive`: drives its path with the model of the block

@@ -99,6 +99,19 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
         };
         obj.insert("segments".into(), segments);
     }
+    // A time-aware plan's trajectory (SPEC 2.9): `[x, y, θ, t]` per point
+    // (no key without one: `"trajectory"` alone, beside no path, is the
+    // motion a run executed before it stopped short).
+    if let (Some(path), Some(times)) = (&run.outcome.path, &run.outcome.times) {
+        let timed = path
+            .iter()
+            .zip(times)
+            .map(|(c, &t)| {
+                Value::Array([c.x, c.y, c.theta, t].into_iter().map(float_json).collect())
+            })
+            .collect();
+        obj.insert("trajectory".into(), Value::Array(timed));
+    }
     // A run that stopped short of the goal: the motion it executed (SPEC 3).
     let trajectory = &run.outcome.trajectory;
     if run.outcome.path.is_none() && !trajectory.is_empty() {

@@ -245,6 +245,28 @@ pub fn validate_trajectory(
     Ok(())
 }
 
+/// Whether `robot` moving straight at constant speed from `from` to `to`
+/// (`from.t ≤ to.t`) meets `o` at some instant of `[from.t, to.t]`: the
+/// validator's own test, on one segment of a trajectory.
+pub fn motion_meets(robot: &RobotShape, o: &MovingObstacle, from: Timed, to: Timed) -> bool {
+    let trajectory = [from, to];
+    let body = Body::of(robot, from.pose.theta);
+    let mut cuts = vec![from.t, to.t];
+    cuts.extend(
+        o.route
+            .iter()
+            .map(|w| w.t)
+            .filter(|t| *t > from.t && *t < to.t),
+    );
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    if cuts.len() == 1 {
+        return collides_between(&body, o, &trajectory, from.t, from.t);
+    }
+    cuts.windows(2)
+        .any(|w| collides_between(&body, o, &trajectory, w[0], w[1]))
+}
+
 fn obstacle_fail(trajectory: &[Timed], o: &MovingObstacle, t: f64) -> Result<(), ValidationError> {
     let segment = trajectory
         .partition_point(|p| p.t <= t)
@@ -423,6 +445,8 @@ fn span(v: &[Point], axis: Vector) -> (f64, f64) {
             (lo.min(x), hi.max(x))
         })
 }
+
+pub mod departures;
 
 #[cfg(test)]
 mod tests;

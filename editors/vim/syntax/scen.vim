@@ -91,7 +91,7 @@ syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
 " BEGIN GENERATED planners (scripts/regenerate.sh; do not edit)
 syn keyword scenPlanner contained astar online roadmap potential coverage rrt nextgroup=scenRobotRef skipwhite
 syn keyword scenPlanner contained rrt_connect rrt_star prm prm_star steer hybrid_astar nextgroup=scenRobotRef skipwhite
-syn keyword scenPlanner contained bug nextgroup=scenRobotRef skipwhite
+syn keyword scenPlanner contained bug sipp nextgroup=scenRobotRef skipwhite
 " END GENERATED planners
 syn match   scenRobotRef contained /\h\w*/
 " bench NAME { ... }: the block (after comments, other words, on later lines
@@ -190,8 +190,8 @@ syn match   scenMetric contained /\.\@1<=\%(layers\|generated\|traveled\|steps\|
 syn match   scenMetric contained /\.\@1<=\%(graph_edges\|minima\|escapes\|coverage\|cells_total\|cells_visited\)\>/
 syn match   scenMetric contained /\.\@1<=\%(revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
 syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\)\>/
-syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|analytic_tries\|hits\|drive_time\)\>/
-syn match   scenMetric contained /\.\@1<=\%(drive_max_deviation\|drive_collision_free\)\>/
+syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|analytic_tries\|hits\|intervals\)\>/
+syn match   scenMetric contained /\.\@1<=\%(drive_time\|drive_max_deviation\|drive_collision_free\)\>/
 " END GENERATED metrics
 syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " BENCH.PLAN[...]: the plan's name starts the selection, so that its `[` is

@@ -185,6 +185,8 @@ impl Plan {
             steering: scenario.robots[self.robot].steering,
             draw: true,
             referee: None,
+            moving: &scenario.moving,
+            speed: scenario.robots[self.robot].speed,
         }
     }
 }

@@ -56,6 +56,10 @@ pub struct PlanOutcome {
     /// A car robot's path as segments (SPEC §5 `"segments"`): what the
     /// runner validates; `path` is then its poses for drawing.
     pub car: Option<CarPath>,
+    /// A time-aware planner's trajectory (SPEC 2.9): the time of each pose
+    /// of `path`, from 0, increasing; the runner validates the path with
+    /// these times in space-time.
+    pub times: Option<Vec<f64>>,
 }
 
 /// The measures of a motion too long to return in full (SPEC 3.4: a

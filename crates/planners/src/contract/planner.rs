@@ -6,11 +6,13 @@ use std::any::Any;
 use std::fmt;
 
 use crate::geometry::steer::Steering;
+use crate::geometry::timed::MovingObstacle;
 use crate::geometry::{Config, RobotShape, World};
 
 use super::{Limits, PlanArgs, PlanOutcome};
 use crate::contract::schema::{
     CAR_METRICS, COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec, RobotKind,
+    TIME_METRICS,
 };
 
 /// What a planner is, for the analyzer, the runner and the tools.
@@ -35,6 +37,10 @@ pub struct Planner {
     /// Whether it plans in worlds with `grid` obstacles; the analyzer
     /// refuses a plan of a planner that does not in such a world.
     pub grids: bool,
+    /// Whether it plans among moving obstacles (SPEC 2.9: it knows time and
+    /// returns a trajectory); the analyzer refuses a plan of a planner that
+    /// does not in a world with `moving` obstacles.
+    pub time: bool,
     /// Reads the validated parameters into the planner's settings. Problems
     /// that involve several parameters, the world or the robot are reported
     /// through [`PlanArgs::error`] with spans; `None` (or any error
@@ -61,8 +67,8 @@ impl Planner {
     }
 
     /// The common metrics, a car's (when it plans for cars: reported for
-    /// every plan, with no value for a robot that is not a car), then the
-    /// planner's own.
+    /// every plan, with no value for a robot that is not a car), a
+    /// trajectory's (when it knows time), then the planner's own.
     pub fn all_metrics(&self) -> impl Iterator<Item = &'static MetricSpec> + use<> {
         let own: &'static [MetricSpec] = self.metrics;
         let car: &'static [MetricSpec] = if self.plans_for(RobotKind::Car) {
@@ -70,7 +76,12 @@ impl Planner {
         } else {
             &[]
         };
-        COMMON_METRICS.iter().chain(car).chain(own.iter())
+        let time: &'static [MetricSpec] = if self.time { TIME_METRICS } else { &[] };
+        COMMON_METRICS
+            .iter()
+            .chain(car)
+            .chain(time)
+            .chain(own.iter())
     }
 
     /// Whether it plans for robots of this kind.
@@ -107,6 +118,10 @@ pub struct Task<'a> {
     /// ([`super::referee`]: a motion too long to return, where a simulated
     /// robot's motion first fails); `None` when the caller lends none.
     pub referee: Option<&'a dyn super::Referee>,
+    /// The world's moving obstacles (SPEC 2.9); empty in a static world.
+    pub moving: &'a [MovingObstacle],
+    /// The robot's largest speed (`speed V`, SPEC 2.9), if it has one.
+    pub speed: Option<f64>,
 }
 
 impl Task<'_> {

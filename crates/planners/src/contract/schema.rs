@@ -561,6 +561,24 @@ pub const CAR_METRICS: &[MetricSpec] = &[
     MetricSpec::num("segments", "arcs and straights of a car's path"),
 ];
 
+/// The metrics of a time-aware plan (SPEC 2.9), measured by the runner
+/// from its trajectory (+∞ and no value without one); the planners that
+/// know time declare them.
+pub const TIME_METRICS: &[MetricSpec] = &[
+    MetricSpec::num(
+        "arrival",
+        "when the robot reaches the goal: the trajectory's last time, in seconds (+∞ without one)",
+    ),
+    MetricSpec::num(
+        "waited",
+        "total time the robot stands still along the trajectory, in seconds",
+    ),
+];
+
+/// The speed of a robot written without `speed` (SPEC 2.9), in units per
+/// second.
+pub const DEFAULT_SPEED: f64 = 1.0;
+
 /// Metrics every planner reports (SPEC 3), computed by the runner from the
 /// path the same way for every planner.
 pub const COMMON_METRICS: &[MetricSpec] = &[

@@ -95,6 +95,7 @@ pub static PLANNER: Planner = Planner {
     needs_goal: true,
     randomized: false,
     grids: false,
+    time: false,
     check,
 };
 
@@ -1039,6 +1040,8 @@ mod tests {
             steering: None,
             draw: true,
             referee: Some(&referee),
+            moving: &[],
+            speed: None,
         };
         plan(bug, &task)
     }
@@ -1073,6 +1076,8 @@ mod tests {
                 steering: None,
                 draw: false,
                 referee: Some(&referee),
+                moving: &[],
+                speed: None,
             };
             let out = plan(&bug, &task);
             let motion = out.path.as_ref().unwrap_or(&out.trajectory);

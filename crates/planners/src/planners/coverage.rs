@@ -82,6 +82,7 @@ pub static PLANNER: Planner = Planner {
     needs_goal: false,
     randomized: false,
     grids: true,
+    time: false,
     check,
 };
 
@@ -1044,6 +1045,8 @@ mod tests {
             steering: None,
             draw: true,
             referee: None,
+            moving: &[],
+            speed: None,
         };
         let k = cells_per_tool(grid, tool);
         plan(&task, &Coverage { on, k, weights })

@@ -104,6 +104,7 @@ pub static PLANNER: Planner = Planner {
     needs_goal: true,
     randomized: false,
     grids: true,
+    time: false,
     check,
 };
 

@@ -359,7 +359,18 @@ pub fn check_connect(args: &mut PlanArgs<'_>, rotating: bool) -> Option<u8> {
 /// the world's bounds), refused before anything is allocated when it
 /// exceeds the cap (`limit cells N`, default [`DEFAULT_CELL_CAP`]).
 pub fn check_lattice(args: &mut PlanArgs<'_>, layers: f64) -> Option<LatticeSpec> {
-    let spec = LatticeSpec::new(args.world, args.num("cell"), args.word("sample"), layers);
+    let sample = args.word("sample");
+    check_lattice_of(args, sample, layers)
+}
+
+/// [`check_lattice`] with the points sampled as `sample` says (for a
+/// planner without the `sample` parameter).
+pub fn check_lattice_of(
+    args: &mut PlanArgs<'_>,
+    sample: Sample,
+    layers: f64,
+) -> Option<LatticeSpec> {
+    let spec = LatticeSpec::new(args.world, args.num("cell"), sample, layers);
     let cap = args.params.limits.cells.unwrap_or(DEFAULT_CELL_CAP);
     let cells = spec.cells_f64();
     if cells > cap as f64 {

@@ -90,6 +90,7 @@ pub static PLANNER: Planner = Planner {
     needs_goal: true,
     randomized: false,
     grids: true,
+    time: false,
     check,
 };
 
@@ -1083,6 +1084,8 @@ mod tests {
             steering: None,
             draw: true,
             referee: None,
+            moving: &[],
+            speed: None,
         }
     }
 

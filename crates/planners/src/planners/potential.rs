@@ -119,6 +119,7 @@ pub static PLANNER: Planner = Planner {
     needs_goal: true,
     randomized: true,
     grids: true,
+    time: false,
     check,
 };
 

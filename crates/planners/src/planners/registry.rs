@@ -76,6 +76,7 @@ planners! {
     #[path = "steer.rs"] steer::PLANNER,
     #[path = "hybrid_astar.rs"] hybrid_astar::PLANNER,
     #[path = "bug.rs"] bug::PLANNER,
+    #[path = "sipp.rs"] sipp::PLANNER,
 }
 
 /// The planner of a kind.
@@ -86,7 +87,7 @@ pub fn planner(kind: &str) -> Option<&'static Planner> {
 /// The planner reference (`docs/planners.md`): every planner's robots,
 /// limits, parameters and metrics, and the common ones, as Markdown.
 pub fn reference() -> String {
-    use crate::contract::schema::{CAR_METRICS, DRIVE, DRIVE_METRICS, DefaultValue};
+    use crate::contract::schema::{CAR_METRICS, DRIVE, DRIVE_METRICS, DefaultValue, TIME_METRICS};
     use std::fmt::Write as _;
     let mut md = String::from(
         "# Planners\n\n\
@@ -129,6 +130,11 @@ pub fn reference() -> String {
          segments; no value for a robot that is not a car, or without a path):\n",
     );
     metrics(&mut md, &mut CAR_METRICS.iter());
+    md.push_str(
+        "\nMetrics every plan of a planner that knows time reports (measured from its trajectory, \
+         SPEC 2.9):\n",
+    );
+    metrics(&mut md, &mut TIME_METRICS.iter());
     for model in DRIVE {
         let _ = writeln!(
             md,

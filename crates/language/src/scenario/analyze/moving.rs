@@ -206,16 +206,27 @@ impl Analyzer {
     }
 
     /// Among moving obstacles only a planner that knows time may plan
-    /// (SPEC 2.9); none of this version does yet, so every plan of such a
-    /// world is refused, at its kind.
+    /// (SPEC 2.9): a plan of any other kind is refused, at its kind, with
+    /// the kinds that do named.
     pub(super) fn needs_time(&mut self, statements: &[SourcedStmt], moving: &[MovingObstacle]) {
         let Some(first) = moving.first() else {
             return;
         };
+        let knowing: Vec<String> = crate::planners::registry::PLANNERS
+            .iter()
+            .filter(|p| p.time)
+            .map(|p| format!("`{}`", p.kind))
+            .collect();
         for s in statements {
             let ast::Stmt::Plan(p) = &s.stmt else {
                 continue;
             };
+            let Some(planner) = crate::planners::registry::planner(&p.kind.value) else {
+                continue;
+            };
+            if planner.time {
+                continue;
+            }
             self.error(
                 Diag::error(
                     "scen::analyze::needs_time",
@@ -225,7 +236,10 @@ impl Analyzer {
                     ),
                 )
                 .at(p.kind.span, "a planner that ignores time")
-                .help("no planner of this version plans among moving obstacles yet (`sipp` is coming); remove the `moving` obstacles to plan in the static world"),
+                .help(format!(
+                    "plan with a planner that knows time ({}), or remove the `moving` obstacles to plan in the static world",
+                    knowing.join(", ")
+                )),
             );
         }
     }

@@ -74,6 +74,8 @@ fn task<'a>(w: &'a World, robot: &'a RobotShape, c: &Case) -> Task<'a> {
         steering: None,
         draw: true,
         referee: None,
+        moving: &[],
+        speed: None,
     }
 }
 

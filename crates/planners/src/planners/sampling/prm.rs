@@ -55,6 +55,7 @@ pub static PRM: Planner = Planner {
     needs_goal: true,
     randomized: true,
     grids: true,
+    time: false,
     check: check_prm,
 };
 
@@ -76,6 +77,7 @@ pub static PRM_STAR: Planner = Planner {
     needs_goal: true,
     randomized: true,
     grids: true,
+    time: false,
     check: check_prm_star,
 };
 

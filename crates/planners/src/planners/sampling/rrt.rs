@@ -54,6 +54,7 @@ pub static RRT: Planner = Planner {
     needs_goal: true,
     randomized: true,
     grids: true,
+    time: false,
     check: check_rrt,
 };
 
@@ -75,6 +76,7 @@ pub static RRT_STAR: Planner = Planner {
     needs_goal: true,
     randomized: true,
     grids: true,
+    time: false,
     check: check_rrt_star,
 };
 
