@@ -7,6 +7,7 @@ use super::{Aabb, Point};
 /// (k from the bottom) holds `items[start[i] .. start[i + 1]]`,
 /// i = k·nx + col. A box is listed in every bucket it meets; boxes outside
 /// the grid are listed in the buckets of its border.
+#[derive(Clone, Debug)]
 pub struct Buckets {
     pub origin: Point,
     /// Side of a bucket, in world units.

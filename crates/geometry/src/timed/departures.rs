@@ -18,8 +18,9 @@
 //! side. Standing at `p` is the move of length 0 (`q = p`, `τ = 0`).
 
 use super::{After, MovingObstacle, MovingShape, point_polygon_distance};
+use crate::buckets::Buckets;
 use crate::polygon::{closest_point_on_segment, convex_hull};
-use crate::{Point, Vector};
+use crate::{Aabb, Point, Vector};
 
 /// A conflict counts when the closest approach is below the robot's reach
 /// by less than this margin too: stricter than the validator (which lets
@@ -59,7 +60,16 @@ pub struct RoundMover<'a> {
     moving: &'a [MovingObstacle],
     radius: f64,
     pieces: Vec<Piece>,
+    /// The pieces' swept boxes (grown by their reach), by bucket: the
+    /// broad phase of a query.
+    buckets: Option<Buckets>,
+    /// The boxes of `buckets` and the piece of each.
+    boxes: Vec<Aabb>,
+    owners: Vec<u32>,
 }
+
+/// The length of route that one box of the broad phase covers.
+const CHUNK: f64 = 4.0;
 
 /// Open intervals of time, sorted and disjoint.
 pub type Intervals = Vec<(f64, f64)>;
@@ -100,10 +110,34 @@ impl<'a> RoundMover<'a> {
                 push(last.t, f64::INFINITY, last.at, last.at);
             }
         }
+        // A long route's box would be listed in many buckets it never
+        // crosses: each piece goes in as chunks of about a bucket's side.
+        let mut boxes: Vec<Aabb> = Vec::new();
+        let mut owners: Vec<u32> = Vec::new();
+        for (k, p) in pieces.iter().enumerate() {
+            let chunks = ((p.to - p.from).norm() / CHUNK).ceil().max(1.0) as usize;
+            let r = Vector::new(p.reach, p.reach);
+            for c in 0..chunks {
+                let at = |s: f64| p.from + (p.to - p.from) * s;
+                let b = Aabb::from_corners(
+                    at(c as f64 / chunks as f64),
+                    at((c + 1) as f64 / chunks as f64),
+                );
+                boxes.push(Aabb {
+                    min: b.min - r,
+                    max: b.max + r,
+                });
+                owners.push(k as u32);
+            }
+        }
+        let buckets = boxes.first().map(|first| Buckets::new(*first, &boxes, 256));
         RoundMover {
             moving,
             radius,
             pieces,
+            buckets,
+            boxes,
+            owners,
         }
     }
 
@@ -117,8 +151,28 @@ impl<'a> RoundMover<'a> {
     /// obstacle (overlap it, or come within the margin). Departing at an
     /// end of an interval is safe.
     pub fn blocked_departures(&self, p: Point, q: Point, tau: f64) -> Intervals {
+        let Some(buckets) = &self.buckets else {
+            return Vec::new();
+        };
+        let span = Aabb::from_corners(p, q);
+        let ((c0, c1), (r0, r1)) = buckets.range(&span);
+        let mut candidates: Vec<u32> = Vec::new();
+        for k in r0..=r1 {
+            for c in c0..=c1 {
+                candidates.extend(
+                    buckets
+                        .items(c, k)
+                        .iter()
+                        .filter(|&&b| self.boxes[b as usize].meets(&span))
+                        .map(|&b| self.owners[b as usize]),
+                );
+            }
+        }
+        candidates.sort_unstable();
+        candidates.dedup();
         let mut out = Vec::new();
-        for piece in &self.pieces {
+        for &i in &candidates {
+            let piece = &self.pieces[i as usize];
             if !self.near(piece, p, q) {
                 continue;
             }
@@ -176,41 +230,199 @@ impl<'a> RoundMover<'a> {
 
     /// The open interval of departures at which the move meets `piece`.
     fn blocked_by(&self, piece: &Piece, p: Point, q: Point, tau: f64) -> Option<(f64, f64)> {
+        if let MovingShape::Disk(r_o) = self.moving[piece.obstacle].shape {
+            return disk_blocked(piece, p, q, tau, r_o + self.radius + MARGIN);
+        }
+        self.blocked_by_search(piece, p, q, tau)
+    }
+
+    /// [`RoundMover::blocked_by`] for any convex shape: by the convexity of
+    /// the closest approach in the departure time (see the module's
+    /// documentation), a golden-section search and a root finder.
+    fn blocked_by_search(&self, piece: &Piece, p: Point, q: Point, tau: f64) -> Option<(f64, f64)> {
         // Departures whose motion overlaps the piece's span, from 0; after
         // an unending piece's start (and before a piece that stood since
         // forever ends, less the move) the closest approach is constant.
-        let lo = (piece.a - tau).max(0.0);
-        let hi = if piece.b.is_finite() {
-            piece.b
-        } else {
-            piece.a.max(0.0)
-        };
+        let (mut a, mut b) = (piece.a, piece.b);
+        // A moving piece comes near the move only while its centre is
+        // within its reach of the move's segment: within the reach plus
+        // half the move of the move's middle.
+        if a.is_finite() && b.is_finite() && piece.from != piece.to {
+            let v = (piece.to - piece.from) / (b - a);
+            let w = piece.from - v * a - Point::from((p.coords + q.coords) / 2.0);
+            let rho = piece.reach + (q - p).norm() / 2.0;
+            let (qa, qb, qc) = (v.norm_squared(), w.dot(&v), w.norm_squared() - rho * rho);
+            let disc = qb * qb - qa * qc;
+            if disc < 0.0 {
+                return None;
+            }
+            let root = disc.sqrt();
+            a = a.max((-qb - root) / qa);
+            b = b.min((-qb + root) / qa);
+            if b < a {
+                return None;
+            }
+        }
+        let lo = (a - tau).max(0.0);
+        let hi = if b.is_finite() { b } else { a.max(0.0) };
         if hi < lo {
             return None;
         }
-        let g = |t0: f64| self.gap(piece, p, q, tau, t0);
-        let blocked = |t0: f64| g(t0) < MARGIN;
-        let (t_min, g_min) = golden_min(&g, lo, hi);
-        if g_min >= MARGIN {
+        let g = |t0: f64| self.gap(piece, p, q, tau, t0) - MARGIN;
+        // The closest approach changes no faster than the robot and the
+        // obstacle move: the ends of the relative segment do.
+        let moving = piece.a.is_finite() && piece.b.is_finite();
+        let lipschitz = if moving {
+            (piece.to - piece.from).norm() / (piece.b - piece.a)
+        } else {
+            0.0
+        } + if tau > 0.0 { (q - p).norm() / tau } else { 0.0 };
+        let (g_lo, g_hi) = (g(lo), g(hi));
+        let (t_min, g_min) = golden_min(&g, lo, hi, g_lo, g_hi, lipschitz * (1.0 + 1e-9));
+        if g_min >= 0.0 {
             return None;
         }
-        // Invariant of each bisection: `safe` is not blocked, `hit` is.
-        let left = if blocked(lo) {
+        let left = if g_lo < 0.0 {
             if lo == 0.0 { f64::NEG_INFINITY } else { lo }
         } else {
-            bisect(&blocked, lo, t_min)
+            last_safe(&g, lo, g_lo, t_min, g_min)
         };
-        let right = if blocked(hi) {
+        let right = if g_hi < 0.0 {
             if piece.b.is_finite() {
                 hi
             } else {
                 f64::INFINITY
             }
         } else {
-            bisect(&blocked, hi, t_min)
+            last_safe(&g, hi, g_hi, t_min, g_min)
         };
         Some((left, right))
     }
+}
+
+/// A disk obstacle's blocked departures in closed form: with `s` the time
+/// since departure, the offset from the robot's centre to the obstacle's is
+/// `c + v·t0 + w·s` (`v` the obstacle's velocity, `w = v − u`, `u` the
+/// robot's), so the meetings `(t0, s)` are the inside of an ellipse (or a
+/// strip) of the plane, cut by the parallelogram `0 ≤ s ≤ τ`,
+/// `a ≤ t0 + s ≤ b`. The extreme departures of that convex set are among
+/// the parallelogram's corners inside the ellipse, the ellipse's crossings
+/// of its edges, and the two points of the ellipse whose tangent is along
+/// `s`. `reach` is the sum of the radii and the margin.
+fn disk_blocked(piece: &Piece, p: Point, q: Point, tau: f64, reach: f64) -> Option<(f64, f64)> {
+    let u = if tau > 0.0 {
+        (q - p) / tau
+    } else {
+        Vector::zeros()
+    };
+    let r2 = reach * reach;
+    if piece.from == piece.to || !piece.a.is_finite() || !piece.b.is_finite() {
+        // Standing: the offset is `c + w·s` (w = −u), met for s in an
+        // interval S of [0, τ]; departures t0 with t0 + s in [a, b] for
+        // some s in S.
+        let c = piece.from - p;
+        let (s_lo, s_hi) = if tau > 0.0 {
+            let (lo, hi) = quadratic_below(u.norm_squared(), -c.dot(&u), c.norm_squared() - r2)?;
+            (lo.max(0.0), hi.min(tau))
+        } else if c.norm_squared() < r2 {
+            (0.0, 0.0)
+        } else {
+            return None;
+        };
+        if s_hi < s_lo {
+            return None;
+        }
+        return open_from_zero(piece.a - s_hi, piece.b - s_lo);
+    }
+    let (a, b) = (piece.a, piece.b);
+    let v = (piece.to - piece.from) / (b - a);
+    let w = v - u;
+    // The offset at (t0, s).
+    let c = piece.from - v * a - p;
+    let offset = |t0: f64, s: f64| c + v * t0 + w * s;
+    let inside =
+        |t0: f64, s: f64| -> bool { (0.0..=tau).contains(&s) && t0 + s >= a && t0 + s <= b };
+    let corners = [(a, 0.0), (b, 0.0), (b - tau, tau), (a - tau, tau)];
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut take = |t0: f64| {
+        lo = lo.min(t0);
+        hi = hi.max(t0);
+    };
+    for k in 0..4 {
+        let (t_a, s_a) = corners[k];
+        let (t_b, s_b) = corners[(k + 1) % 4];
+        if offset(t_a, s_a).norm_squared() < r2 {
+            take(t_a);
+        }
+        // The edge's crossings of the ellipse: |d_a + λ·e|² = R².
+        let d_a = offset(t_a, s_a);
+        let e = offset(t_b, s_b) - d_a;
+        if let Some((l1, l2)) =
+            quadratic_below(e.norm_squared(), d_a.dot(&e), d_a.norm_squared() - r2)
+        {
+            for l in [l1, l2] {
+                if (0.0..=1.0).contains(&l) {
+                    take(t_a + (t_b - t_a) * l);
+                }
+            }
+        }
+    }
+    // Where the tangent is along s: the part of the offset across w is R.
+    let w2 = w.norm_squared();
+    let across = Vector::new(-w.y, w.x);
+    let rate = across.dot(&v);
+    if w2 > 0.0 && rate != 0.0 {
+        for sign in [-1.0, 1.0] {
+            let t0 = (sign * reach * w2.sqrt() - across.dot(&c)) / rate;
+            let s = -w.dot(&(c + v * t0)) / w2;
+            if inside(t0, s) {
+                take(t0);
+            }
+        }
+    }
+    if lo > hi {
+        return None;
+    }
+    open_from_zero(lo, hi)
+}
+
+/// The open interval `(lo, hi)` of departures, from 0 on: `None` when it
+/// ends by 0 or is empty; from −∞ when it holds 0 (the move is blocked at
+/// once).
+fn open_from_zero(lo: f64, hi: f64) -> Option<(f64, f64)> {
+    if hi <= 0.0 || hi <= lo {
+        return None;
+    }
+    Some((if lo < 0.0 { f64::NEG_INFINITY } else { lo }, hi))
+}
+
+/// The roots of `A·x² + 2B·x + C` (A ≥ 0) around where it is negative, or
+/// `None` when it never is; for `A = 0` the whole line or nothing.
+fn quadratic_below(qa: f64, qb: f64, qc: f64) -> Option<(f64, f64)> {
+    if qa == 0.0 {
+        if qb == 0.0 {
+            return (qc < 0.0).then_some((f64::NEG_INFINITY, f64::INFINITY));
+        }
+        let x = -qc / (2.0 * qb);
+        return Some(if qb > 0.0 {
+            (f64::NEG_INFINITY, x)
+        } else {
+            (x, f64::INFINITY)
+        });
+    }
+    let disc = qb * qb - qa * qc;
+    if disc <= 0.0 {
+        return None;
+    }
+    let root = disc.sqrt();
+    // The stable pair of roots.
+    let q = -(qb + qb.signum() * root);
+    let (x1, x2) = if q == 0.0 {
+        (0.0, 0.0)
+    } else {
+        (q / qa, qc / q)
+    };
+    Some((x1.min(x2), x1.max(x2)))
 }
 
 /// The distance from the origin to the convex polygon `hull` (0 inside).
@@ -245,27 +457,37 @@ fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
         && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
 }
 
-/// The minimum of the convex `g` on `[lo, hi]` (a point of it, and the
-/// value), by golden-section search to the resolution of the floats.
-fn golden_min(g: &impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64) {
+/// A point of `[lo, hi]` where the convex `g` (Lipschitz constant
+/// `lipschitz`; `g_lo`, `g_hi` its values at the ends) is negative, or its
+/// minimum when it is nowhere negative (then only as precise as needed to
+/// tell: a golden-section search that stops once the bracket is too short
+/// for `g` to get below 0 in it, or at the floats' resolution).
+fn golden_min(
+    g: &impl Fn(f64) -> f64,
+    lo: f64,
+    hi: f64,
+    g_lo: f64,
+    g_hi: f64,
+    lipschitz: f64,
+) -> (f64, f64) {
     const INV_PHI: f64 = 0.618_033_988_749_894_9;
-    let (mut a, mut b) = (lo, hi);
-    let mut best = (lo, g(lo));
-    let g_hi = g(hi);
-    if g_hi < best.1 {
-        best = (hi, g_hi);
-    }
-    if best.1 < MARGIN {
+    let mut best = if g_hi < g_lo { (hi, g_hi) } else { (lo, g_lo) };
+    if best.1 < 0.0 || hi <= lo {
         return best;
     }
+    let (mut a, mut b) = (lo, hi);
     let mut c = b - (b - a) * INV_PHI;
     let mut d = a + (b - a) * INV_PHI;
     let (mut gc, mut gd) = (g(c), g(d));
-    for _ in 0..200 {
+    for _ in 0..300 {
         if gc.min(gd) < best.1 {
             best = if gc < gd { (c, gc) } else { (d, gd) };
         }
-        if best.1 < MARGIN || b - a <= 1e-13 * b.abs().max(1.0) || b.is_nan() {
+        // The minimum lies in [a, b], within b − a of c and of d.
+        if best.1 < 0.0
+            || gc.min(gd) - lipschitz * (b - a) >= 0.0
+            || b - a <= 1e-13 * b.abs().max(1.0)
+        {
             break;
         }
         if gc < gd {
@@ -285,18 +507,47 @@ fn golden_min(g: &impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64) {
     best
 }
 
-/// Between `safe` (not blocked) and `hit` (blocked): the last safe time
-/// found, as close to the boundary as the floats allow.
-fn bisect(blocked: &impl Fn(f64) -> bool, mut safe: f64, mut hit: f64) -> f64 {
-    for _ in 0..200 {
-        let mid = safe + (hit - safe) / 2.0;
-        if mid == safe || mid == hit {
+/// Between `safe` (`g_safe ≥ 0`) and `hit` (`g_hit < 0`) on a convex `g`:
+/// the last point found with `g ≥ 0`, as close to the crossing as the
+/// floats allow (regula falsi with the Illinois correction, falling back to
+/// halving when a step stalls).
+fn last_safe(
+    g: &impl Fn(f64) -> f64,
+    mut safe: f64,
+    mut g_safe: f64,
+    mut hit: f64,
+    mut g_hit: f64,
+) -> f64 {
+    let mut side = 0i8;
+    for k in 0..200 {
+        if (hit - safe).abs() <= 1e-13 * safe.abs().max(1.0) {
             break;
         }
-        if blocked(mid) {
-            hit = mid;
+        let mut x = safe + (hit - safe) * (g_safe / (g_safe - g_hit));
+        // Every fourth step, or when the secant leaves the bracket or
+        // lands on an end: halve.
+        let inside = x > safe.min(hit) && x < safe.max(hit);
+        if k % 4 == 3 || !inside {
+            x = safe + (hit - safe) / 2.0;
+        }
+        if x == safe || x == hit {
+            break;
+        }
+        let gx = g(x);
+        if gx < 0.0 {
+            hit = x;
+            g_hit = gx;
+            if side == -1 {
+                g_safe /= 2.0;
+            }
+            side = -1;
         } else {
-            safe = mid;
+            safe = x;
+            g_safe = gx;
+            if side == 1 {
+                g_hit /= 2.0;
+            }
+            side = 1;
         }
     }
     safe
@@ -453,6 +704,58 @@ mod tests {
                 assert!(valid(b) && valid(a), "ends of {blocked:?} are safe");
                 assert!(!valid(a + 1e-6) && !valid(b - 1e-6), "{blocked:?}");
                 assert!(!valid((a + b) / 2.0));
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+        /// The closed form for disks agrees with the search that serves
+        /// every convex shape, on random moves and route pieces (standing
+        /// for good, or moving between two waypoints).
+        #[test]
+        fn disks_in_closed_form_agree_with_the_search(
+            from in (0.0..10.0f64, 0.0..10.0f64),
+            to in (0.0..10.0f64, 0.0..10.0f64),
+            a in 0.0..10.0f64,
+            span in 0.1..10.0f64,
+            p in (0.0..10.0f64, 0.0..10.0f64),
+            step in (-1i32..=1, -1i32..=1),
+            speed in 0.2..3.0f64,
+            r_o in 0.1..2.0f64,
+            radius in 0.0..1.0f64,
+            stays in proptest::bool::ANY,
+        ) {
+            let mut route = vec![Waypoint { t: a, at: Point::new(from.0, from.1) }];
+            if !stays {
+                route.push(Waypoint { t: a + span, at: Point::new(to.0, to.1) });
+            }
+            let c = [MovingObstacle {
+                name: "c".into(),
+                shape: MovingShape::Disk(r_o),
+                route,
+                after: After::Stay,
+            }];
+            let mover = RoundMover::new(&c, radius);
+            let p = Point::new(p.0, p.1);
+            let q = p + Vector::new(f64::from(step.0), f64::from(step.1));
+            let tau = (q - p).norm() / speed;
+            for piece in &mover.pieces {
+                let closed = mover.blocked_by(piece, p, q, tau);
+                let search = mover.blocked_by_search(piece, p, q, tau);
+                let close = |x: f64, y: f64| x == y || (x - y).abs() <= 1e-6 * x.abs().max(1.0);
+                match (closed, search) {
+                    (Some(x), Some(y)) => proptest::prop_assert!(
+                        close(x.0, y.0) && close(x.1, y.1),
+                        "closed form {x:?}, search {y:?} for {piece:?}"
+                    ),
+                    (None, None) => {}
+                    // A grazing meeting: a vanishing interval on one side.
+                    (Some(x), None) | (None, Some(x)) => proptest::prop_assert!(
+                        x.1 - x.0 < 1e-4,
+                        "only one finds {x:?} for {piece:?}"
+                    ),
+                }
             }
         }
     }

@@ -106,7 +106,8 @@ struct State {
     closed: bool,
 }
 
-/// An open-list entry: smallest `f`, then smallest arrival, then the
+/// An open-list entry: smallest `f`, then latest arrival (deeper first on
+/// ties), then the
 /// earliest generated state (a deterministic order).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Open {
@@ -122,7 +123,7 @@ impl Ord for Open {
         other
             .f
             .total_cmp(&self.f)
-            .then(other.arrival.total_cmp(&self.arrival))
+            .then(self.arrival.total_cmp(&other.arrival))
             .then(other.state.cmp(&self.state))
     }
 }
