@@ -183,16 +183,23 @@ pub(crate) fn evaluate_checks(
 }
 
 /// `scen validate` (SPEC 7): the validator and the metrics on `path`, a
-/// path made elsewhere, as if plan `index`'s planner had returned it, and
+/// path made elsewhere (a trajectory with `times`, judged in space-time),
+/// as if plan `index`'s planner had returned it, and
 /// the checks that read only that plan. Its `cost` is the path's length;
 /// `time_ms` has no value (no planner ran). The first collision is drawn
 /// as a layer `collision`.
-pub fn validate_user_path(scenario: Scenario, index: usize, path: Vec<Config>) -> RunReport {
+pub fn validate_user_path(
+    scenario: Scenario,
+    index: usize,
+    path: Vec<Config>,
+    times: Option<Vec<f64>>,
+) -> RunReport {
     let plan = &scenario.plans[index];
     let task = plan.task(&scenario);
     let outcome = PlanOutcome {
         cost: Some(path_length(&path)),
         path: Some(path),
+        times,
         ..PlanOutcome::default()
     };
     let referee = validator::Validator::new(&scenario.world);

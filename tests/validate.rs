@@ -184,3 +184,116 @@ fn bad_input_is_located_with_exit_2() {
         .status(2)
         .run();
 }
+
+/// A cart crossing the robot's way at x = 5 (up, 1 unit/s, from y = 0 at
+/// t = 0, then gone).
+const CROSSING: &str = r#"scenario "crossing"
+world {
+  bounds (0, 0) (10, 10)
+  moving cart disk 0.5 { at 0s (5, 0) at 10s (5, 10) then vanish }
+}
+robot dot disk 0.3 speed 1
+plan p sipp dot {
+  start (1.5, 5.5)
+  goal (8.5, 5.5)
+}
+expect p.collision_free
+"#;
+
+#[test]
+fn a_trajectory_is_judged_in_space_time() {
+    // What `scen run --csv` writes (with `t`) reads back as valid, and so
+    // does the `"trajectory"` of `scen run --json`.
+    let t = Test::new()
+        .file("c.scen", CROSSING)
+        .args(&["run", "c.scen", "--csv", "runs.csv", "--json"]);
+    let out = t.run();
+    let csv = std::fs::read_to_string(t.dir().join("runs.csv")).unwrap();
+    assert!(
+        csv.lines()
+            .nth(2)
+            .is_some_and(|l| l.starts_with("p,path,1,1,")),
+        "{csv}"
+    );
+    for (name, text) in [
+        ("runs.csv", csv),
+        (
+            "run.json",
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        ),
+    ] {
+        Test::new()
+            .file("c.scen", CROSSING)
+            .file(name, &text)
+            .args(&["validate", "c.scen", "--plan", "p", "--path", name])
+            .stdout_contains("valid: the path passes the validator")
+            .status(0)
+            .run();
+    }
+    // Waiting a little, then crossing x = 5 at t = 5 with the cart there.
+    Test::new()
+        .file("c.scen", CROSSING)
+        .file(
+            "fast.csv",
+            "x,y,t\n1.5,5.5,0\n3.5,5.5,2\n3.5,5.5,3.5\n8.5,5.5,8.5\n",
+        )
+        .args(&["validate", "c.scen", "--plan", "p", "--path", "fast.csv"])
+        .stdout_contains("obstacle `cart`")
+        .stdout_contains("the robot meets the moving obstacle `cart` at t = ")
+        .status(1)
+        .run();
+    // Waiting for it at (3.5, 5.5) until t = 7: valid (JSON points).
+    Test::new()
+        .file("c.scen", CROSSING)
+        .file(
+            "wait.json",
+            "[[1.5, 5.5, 0, 0], [3.5, 5.5, 0, 2], [3.5, 5.5, 0, 7], [8.5, 5.5, 0, 12]]",
+        )
+        .args(&["validate", "c.scen", "--plan", "p", "--path", "wait.json"])
+        .stdout_contains("valid: the path passes the validator")
+        .stdout_contains("waited 5")
+        .status(0)
+        .run();
+    // Faster than the robot's speed.
+    Test::new()
+        .file("c.scen", CROSSING)
+        .file("speeding.csv", "x,y,t\n1.5,5.5,0\n3.5,5.5,1\n")
+        .args(&[
+            "validate",
+            "c.scen",
+            "--plan",
+            "p",
+            "--path",
+            "speeding.csv",
+        ])
+        .stdout_contains("faster than the robot's speed 1")
+        .status(1)
+        .run();
+}
+
+#[test]
+fn among_moving_obstacles_a_path_needs_its_times() {
+    Test::new()
+        .file("c.scen", CROSSING)
+        .file("p.csv", "x,y\n1.5,5.5\n8.5,5.5\n")
+        .args(&["validate", "c.scen", "--plan", "p", "--path", "p.csv"])
+        .stderr_contains("scen::validate::needs_times")
+        .stderr_contains("`cart`")
+        .status(2)
+        .run();
+    Test::new()
+        .file("c.scen", CROSSING)
+        .file("mixed.csv", "x,y,t\n1.5,5.5,0\n8.5,5.5,\n")
+        .args(&["validate", "c.scen", "--plan", "p", "--path", "mixed.csv"])
+        .stderr_contains("scen::validate::bad_row")
+        .stderr_contains("mixed.csv:3:9")
+        .status(2)
+        .run();
+    Test::new()
+        .file("c.scen", CROSSING)
+        .file("mixed.json", "[[1.5, 5.5, 0, 0], [8.5, 5.5]]")
+        .args(&["validate", "c.scen", "--plan", "p", "--path", "mixed.json"])
+        .stderr_contains("pose 1 is not")
+        .status(2)
+        .run();
+}

@@ -7,10 +7,16 @@
 //!   are needed; `theta` (radians) is optional, as are `plan` (rows of
 //!   another plan are left out) and `what` (only `path` rows are read when
 //!   there are any): the columns `scen run --csv` writes, so its output
-//!   reads back. A malformed row is a diagnostic at its line and column.
-//! - JSON: a list of poses `[x, y]` or `[x, y, θ]`; an object with a
-//!   `"path"` list; or a `scen run --json` document (its plan NAME's
-//!   `"path"`).
+//!   reads back. A `t` column (seconds) filled on every row makes the path
+//!   a trajectory (SPEC 2.9). A malformed row is a diagnostic at its line
+//!   and column.
+//! - JSON: a list of poses `[x, y]` or `[x, y, θ]`, or of trajectory
+//!   points `[x, y, θ, t]`; an object with a `"trajectory"` or `"path"`
+//!   list; or a `scen run --json` document (its plan NAME's `"trajectory"`,
+//!   else its `"path"`).
+//!
+//! In a world with moving obstacles only a trajectory can be judged: a
+//! path without times is refused (`scen::validate::needs_times`).
 
 use std::path::{Path, PathBuf};
 
@@ -100,7 +106,7 @@ pub fn cmd_validate(args: &ValidateArgs) -> i32 {
         );
         return EXIT_BAD_INPUT;
     }
-    let path = match read_path(&args.path, &args.plan) {
+    let (path, times) = match read_path(&args.path, &args.plan) {
         Ok(p) => p,
         Err((diags, sources)) => {
             eprint!("{}", render_diags(&diags, &sources));
@@ -108,7 +114,24 @@ pub fn cmd_validate(args: &ValidateArgs) -> i32 {
             return EXIT_BAD_INPUT;
         }
     };
-    let report = crate::run::validate_user_path(scenario, index, path);
+    if times.is_none() && !scenario.moving.is_empty() {
+        let mut sources = SourceMap::default();
+        let id = sources.add(&args.path, "");
+        let d = Diag::error(
+            "scen::validate::needs_times",
+            format!(
+                "the world of `{}` has moving obstacles (`{}`): a path without times cannot be judged among them",
+                args.file.display(),
+                scenario.moving[0].name
+            ),
+        )
+        .at(Span::new(id, 0, 0), "a path, not a trajectory")
+        .help("give every pose its time: a `t` column (seconds) in CSV, or `[x, y, theta, t]` in JSON");
+        eprint!("{}", render_diags(&[d], &sources));
+        eprintln!("the path was not validated");
+        return EXIT_BAD_INPUT;
+    }
+    let report = crate::run::validate_user_path(scenario, index, path, times);
     if args.json {
         let doc = report::json::to_json(&report);
         outln!("{}", serde_json::to_string(&doc).unwrap_or_default());
@@ -156,8 +179,12 @@ fn verdict_line(report: &crate::RunReport) -> String {
 
 type Failure = (Vec<Diag>, SourceMap);
 
-/// The poses of `file` for plan `plan` (see the module documentation).
-pub fn read_path(file: &Path, plan: &str) -> Result<Vec<Config>, Failure> {
+/// Poses, and their times when they are a trajectory.
+pub type UserPath = (Vec<Config>, Option<Vec<f64>>);
+
+/// The poses of `file` for plan `plan`, with their times when the file
+/// gives them (see the module documentation).
+pub fn read_path(file: &Path, plan: &str) -> Result<UserPath, Failure> {
     let mut sources = SourceMap::default();
     let bytes = match read_regular_file(file, MAX_PATH_BYTES) {
         Ok(b) => b,
@@ -188,7 +215,7 @@ pub fn read_path(file: &Path, plan: &str) -> Result<Vec<Config>, Failure> {
         from_csv(&text, id, plan)
     };
     match parsed {
-        Ok(path) if path.is_empty() => {
+        Ok((path, _)) if path.is_empty() => {
             let d = Diag::error(
                 "scen::validate::empty_path",
                 format!("the path file has no pose for plan `{plan}`"),
@@ -213,7 +240,7 @@ fn bad_row(span: Span, message: String, label: &str, help: &str) -> Box<Diag> {
 const CSV_HELP: &str =
     "a row is a pose under the header: `x,y` or `x,y,theta` (radians), e.g. `1.5,2,0`";
 
-fn from_csv(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Diag>> {
+fn from_csv(text: &str, file: FileId, plan: &str) -> Result<UserPath, Box<Diag>> {
     // Lines with their byte offsets, blank ones and `#` comments skipped.
     let mut lines = Vec::new();
     let mut at = 0;
@@ -225,7 +252,7 @@ fn from_csv(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Dia
         at += line.len();
     }
     let Some(&(header_at, header)) = lines.first() else {
-        return Ok(Vec::new());
+        return Ok((Vec::new(), None));
     };
     let names: Vec<&str> = header.split(',').map(str::trim).collect();
     let column = |name: &str| names.iter().position(|n| *n == name);
@@ -240,6 +267,7 @@ fn from_csv(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Dia
         ));
     };
     let (ctheta, cplan, cwhat) = (column("theta"), column("plan"), column("what"));
+    let ct = column("t");
     struct Row<'a> {
         fields: Vec<(usize, &'a str)>,
     }
@@ -271,6 +299,9 @@ fn from_csv(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Dia
         .iter()
         .any(|r| of_plan(r) && what(r).as_deref() == Some("path"));
     let mut path = Vec::new();
+    let mut times = Vec::new();
+    // The first row read without a time, and whether any row had one.
+    let mut untimed: Option<Span> = None;
     for r in rows.iter().filter(|r| of_plan(r)) {
         if any_path && what(r).as_deref() != Some("path") {
             continue;
@@ -297,7 +328,24 @@ fn from_csv(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Dia
             _ => 0.0,
         };
         path.push(Config::new(x, y, theta));
+        match ct {
+            Some(c) if !r.fields[c].1.trim().is_empty() => times.push(number(c, "t")?),
+            Some(c) => {
+                let at = r.fields[c].0;
+                untimed.get_or_insert(Span::new(file, at, at));
+            }
+            None => {}
+        }
     }
+    if let (Some(span), false) = (untimed, times.is_empty()) {
+        return Err(bad_row(
+            span,
+            "this row has no time, where others have one".into(),
+            "no `t`",
+            "a trajectory gives every row its time `t` (seconds); a path gives none",
+        ));
+    }
+    let times = (!times.is_empty()).then_some(times);
     if path.is_empty() && cplan.is_some() && !rows.is_empty() {
         let others: Vec<&str> = {
             let mut v: Vec<&str> = rows
@@ -320,10 +368,10 @@ fn from_csv(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Dia
             .help(format!("its plans: {}", others.join(", "))),
         ));
     }
-    Ok(path)
+    Ok((path, times))
 }
 
-fn from_json(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Diag>> {
+fn from_json(text: &str, file: FileId, plan: &str) -> Result<UserPath, Box<Diag>> {
     use serde_json::Value;
     let doc: Value = match serde_json::from_str(text) {
         Ok(v) => v,
@@ -339,10 +387,13 @@ fn from_json(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Di
     let whole = Span::new(file, 0, text.len().min(1));
     let poses = match &doc {
         Value::Array(_) => &doc,
-        Value::Object(o) => match (o.get("path"), o.get("plans")) {
+        Value::Object(o) => match (o.get("trajectory").or(o.get("path")), o.get("plans")) {
             (Some(p), _) => p,
-            (None, Some(Value::Object(plans))) => match plans.get(plan).and_then(|p| p.get("path"))
-            {
+            (None, Some(Value::Object(plans))) => match plans.get(plan).and_then(|p| {
+                p.get("trajectory")
+                    .filter(|t| t.is_array())
+                    .or(p.get("path"))
+            }) {
                 Some(p) => p,
                 None => {
                     return Err(Box::new(
@@ -386,26 +437,35 @@ fn from_json(text: &str, file: FileId, plan: &str) -> Result<Vec<Config>, Box<Di
         ));
     };
     let mut path = Vec::with_capacity(list.len());
+    let mut times = Vec::new();
     for (k, pose) in list.iter().enumerate() {
         let numbers: Option<Vec<f64>> = pose
             .as_array()
             .and_then(|a| a.iter().map(Value::as_f64).collect());
+        // A trajectory's points have four numbers, all of them.
+        let timed = k > 0 && !times.is_empty();
         match numbers.as_deref() {
-            Some([x, y]) => path.push(Config::new(*x, *y, 0.0)),
-            Some([x, y, theta]) => path.push(Config::new(*x, *y, *theta)),
+            Some([x, y]) if !timed => path.push(Config::new(*x, *y, 0.0)),
+            Some([x, y, theta]) if !timed => path.push(Config::new(*x, *y, *theta)),
+            Some([x, y, theta, t]) if k == 0 || timed => {
+                path.push(Config::new(*x, *y, *theta));
+                times.push(*t);
+            }
             _ => {
                 return Err(Box::new(
                     Diag::error(
                         "scen::validate::bad_row",
-                        format!("pose {k} is not `[x, y]` or `[x, y, theta]`: {pose}"),
+                        format!(
+                            "pose {k} is not `[x, y]`, `[x, y, theta]` or, in a trajectory, `[x, y, theta, t]`: {pose}"
+                        ),
                     )
                     .at(whole, "in this document")
-                    .help("every pose is a list of two or three numbers"),
+                    .help("every pose is a list of two or three numbers; every point of a trajectory, of four"),
                 ));
             }
         }
     }
-    Ok(path)
+    Ok((path, (!times.is_empty()).then_some(times)))
 }
 
 /// The byte offset of 1-based `line` and `column` in `text`.

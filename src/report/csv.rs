@@ -4,8 +4,8 @@
 //!
 //! Columns: `plan`, `what` (`path`; `trajectory` for the motion executed by
 //! a run that stopped short; `drive` for the simulated robot driving the
-//! path), `index` (0-based along that line), `t` (seconds, for `drive` rows;
-//! empty otherwise), `x`, `y`, `theta` (radians), `length` (the cumulative
+//! path), `index` (0-based along that line), `t` (seconds: a time-aware
+//! plan's trajectory on its `path` rows, and `drive` rows; empty otherwise), `x`, `y`, `theta` (radians), `length` (the cumulative
 //! (x, y) arc length from the line's first row). Numbers are written exactly
 //! (shortest round-trip form), so a program reading the file gets the very
 //! values `scen` validated.
@@ -59,7 +59,19 @@ pub fn paths_csv(report: &RunReport) -> Option<String> {
         let plan = report.plan(run);
         let name = quoted(&plan.name);
         if let Some(path) = &run.outcome.path {
-            rows += lines(&mut s, &name, "path", path.iter().map(|c| (None, *c)));
+            // A trajectory's times (SPEC 2.9) go with its poses.
+            let times = run
+                .outcome
+                .times
+                .as_deref()
+                .filter(|t| t.len() == path.len());
+            let t = |i: usize| times.map(|t| t[i]);
+            rows += lines(
+                &mut s,
+                &name,
+                "path",
+                path.iter().enumerate().map(|(i, c)| (t(i), *c)),
+            );
         } else if !run.outcome.trajectory.is_empty() {
             rows += lines(
                 &mut s,
