@@ -482,8 +482,12 @@ fn offset_of(text: &str, line: usize, column: usize) -> usize {
 mod tests {
     use super::*;
 
+    /// The poses of a CSV path without times.
     fn csv(text: &str) -> Result<Vec<Config>, Box<Diag>> {
-        from_csv(text, 0, "p")
+        from_csv(text, 0, "p").map(|(path, times)| {
+            assert_eq!(times, None);
+            path
+        })
     }
 
     #[test]
@@ -527,12 +531,23 @@ mod tests {
     #[test]
     fn json_shapes() {
         let j = |t: &str| from_json(t, 0, "p");
-        let two = vec![Config::new(0.0, 0.0, 0.0), Config::new(1.0, 2.0, 0.5)];
+        let two = (
+            vec![Config::new(0.0, 0.0, 0.0), Config::new(1.0, 2.0, 0.5)],
+            None,
+        );
         assert_eq!(j("[[0, 0], [1, 2, 0.5]]").unwrap(), two);
         assert_eq!(j("{\"path\": [[0, 0], [1, 2, 0.5]]}").unwrap(), two);
         assert_eq!(
             j("{\"plans\": {\"p\": {\"path\": [[0, 0], [1, 2, 0.5]]}}}").unwrap(),
             two
+        );
+        // A trajectory, alone or beside its path in a run's document.
+        let timed = (two.0.clone(), Some(vec![0.0, 3.0]));
+        assert_eq!(j("[[0, 0, 0, 0], [1, 2, 0.5, 3]]").unwrap(), timed);
+        assert_eq!(
+            j("{\"plans\": {\"p\": {\"path\": [[9, 9]], \"trajectory\": [[0, 0, 0, 0], [1, 2, 0.5, 3]]}}}")
+                .unwrap(),
+            timed
         );
         let d = j("[[0, 0], [1]]").unwrap_err();
         assert!(d.message.contains("pose 1"), "{}", d.message);
