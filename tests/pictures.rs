@@ -479,3 +479,69 @@ fn a_familys_picture_names_its_sample() {
         "{title}"
     );
 }
+
+/// A cart crossing the robot's corridor, then vanishing; the robot waits.
+const CART: &str = r#"scenario "Cart"
+world {
+  bounds (0, 0) (10, 4)
+  rect south_w (0, 0) (4, 2)
+  rect south_e (5, 0) (10, 2)
+  rect north_w (0, 3) (4, 4)
+  rect north_e (5, 3) (10, 4)
+  moving cart disk 0.5 { at 0s (4.5, 0.5) at 6s (4.5, 3.5) then vanish }
+}
+robot dot disk 0.3 speed 1
+plan go sipp dot { start (0.5, 2.5) goal (9.5, 2.5) }
+"#;
+
+#[test]
+fn a_moving_obstacle_is_drawn_with_its_route_times_and_the_robots_waits() {
+    let t =
+        Test::new()
+            .file("cart.scen", CART)
+            .args(&["run", "-q", "--svg", "out.svg", "cart.scen"]);
+    t.run();
+    let svg = std::fs::read_to_string(t.dir().join("out.svg")).expect("out.svg written");
+    let (left, bottom, scale) = bounds_frame(&svg, (10.0, 4.0));
+    let cart = group(&svg, "moving-cart");
+    // Filled where it starts, at its first point and of its radius.
+    let start = elements(cart, "circle", "fill-opacity");
+    assert_eq!(start.len(), 1, "{cart}");
+    assert!(
+        (num(start[0], "cx") - (left + 4.5 * scale)).abs() < 0.01,
+        "{}",
+        start[0]
+    );
+    assert!(
+        (num(start[0], "cy") - (bottom - 0.5 * scale)).abs() < 0.01,
+        "{}",
+        start[0]
+    );
+    assert!(
+        (num(start[0], "r") - 0.5 * scale).abs() < 0.01,
+        "{}",
+        start[0]
+    );
+    // The route dashed; the end outlined and dotted, since it vanishes.
+    let route = elements(cart, "polyline", "class=\"route\"");
+    assert!(
+        route.len() == 1 && route[0].contains("stroke-dasharray"),
+        "{cart}"
+    );
+    let end = elements(cart, "circle", "fill=\"none\"");
+    assert!(
+        end.len() == 1 && end[0].contains("stroke-dasharray=\"2 3\""),
+        "{cart}"
+    );
+    // The times, over the paths.
+    let times: Vec<String> = texts(group(&svg, "moving-times"), "class=\"time\"")
+        .into_iter()
+        .map(|(_, text)| text)
+        .collect();
+    assert_eq!(times, ["0s", "6s", "gone"]);
+    assert!(svg.find("id=\"moving-times\"") > svg.find("class=\"path\""));
+    // The robot waits for the cart beside its way.
+    let waits = texts(&svg, "class=\"wait\"");
+    assert_eq!(waits.len(), 1, "{svg}");
+    assert!(waits[0].1.starts_with("waits "), "{waits:?}");
+}

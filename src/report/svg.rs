@@ -107,6 +107,7 @@ pub fn to_svg(report: &RunReport) -> String {
     );
     svg.push_str("<g clip-path=\"url(#plot)\">\n");
     draw_obstacles(&mut svg, &view, scenario);
+    draw_moving(&mut svg, &view, scenario);
     for drawn in &layers {
         draw_layer(&mut svg, &view, drawn);
     }
@@ -127,6 +128,7 @@ pub fn to_svg(report: &RunReport) -> String {
     for &(plan, run) in &runs {
         draw_plan(&mut svg, &view, scenario, plan, run);
     }
+    draw_moving_times(&mut svg, &view, scenario);
     legend.draw(&mut svg, legend_top);
     svg.push_str("</svg>\n");
     svg
@@ -489,6 +491,110 @@ fn draw_obstacles(svg: &mut String, view: &View, scenario: &Scenario) {
     svg.push_str("</g>\n");
 }
 
+/// The moving obstacles (SPEC 2.9): each route dashed with its waypoints'
+/// times, the shape where it starts (filled) and where it ends (outlined;
+/// dotted when it vanishes there).
+fn draw_moving(svg: &mut String, view: &View, scenario: &Scenario) {
+    use crate::geometry::timed::{After, MovingShape};
+    if scenario.moving.is_empty() {
+        return;
+    }
+    let grey = hex(OBSTACLE_GREY);
+    let dark = hex(OBSTACLE_GREY.map(|c| c / 2));
+    let _ = writeln!(svg, "<g id=\"moving\">");
+    for o in &scenario.moving {
+        let name = escape(&o.name);
+        let (Some(first), Some(last)) = (o.route.first(), o.route.last()) else {
+            continue;
+        };
+        let shape_at = |svg: &mut String, at: Point, attrs: &str| match &o.shape {
+            MovingShape::Disk(r) => {
+                let _ = writeln!(
+                    svg,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" {attrs}/>",
+                    num(view.x(at.x)),
+                    num(view.y(at.y)),
+                    num(r * view.scale)
+                );
+            }
+            MovingShape::Pieces(pieces) => {
+                for piece in pieces {
+                    let placed: Vec<Point> = piece.iter().map(|v| at + v.coords).collect();
+                    let _ = writeln!(
+                        svg,
+                        "<polygon points=\"{}\" {attrs}/>",
+                        view.points(&placed)
+                    );
+                }
+            }
+        };
+        let _ = writeln!(svg, "<g id=\"moving-{name}\">");
+        shape_at(
+            svg,
+            first.at,
+            &format!("fill=\"{grey}\" fill-opacity=\"0.8\" stroke=\"{dark}\" stroke-width=\"1\""),
+        );
+        if o.route.len() > 1 {
+            let points: Vec<Point> = o.route.iter().map(|w| w.at).collect();
+            let _ = writeln!(
+                svg,
+                "<polyline class=\"route\" points=\"{}\" fill=\"none\" stroke=\"{dark}\" \
+                 stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>",
+                view.points(&points)
+            );
+            let dots = if o.after == After::Vanish {
+                " stroke-dasharray=\"2 3\""
+            } else {
+                ""
+            };
+            shape_at(
+                svg,
+                last.at,
+                &format!("fill=\"none\" stroke=\"{dark}\" stroke-width=\"1.5\"{dots}"),
+            );
+        }
+        svg.push_str("</g>\n");
+    }
+    svg.push_str("</g>\n");
+}
+
+/// The times of the moving obstacles' waypoints, over everything else.
+fn draw_moving_times(svg: &mut String, view: &View, scenario: &Scenario) {
+    use crate::geometry::timed::After;
+    if scenario.moving.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        svg,
+        "<g id=\"moving-times\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\">"
+    );
+    for o in &scenario.moving {
+        let Some(last) = o.route.last() else {
+            continue;
+        };
+        for w in &o.route {
+            let _ = writeln!(
+                svg,
+                "<text class=\"time\" x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{INK}\">{}</text>",
+                num(view.x(w.at.x) + 4.0),
+                num(view.y(w.at.y) - 4.0),
+                num(FONT - 2.0),
+                escape(&format!("{}s", short(w.t)))
+            );
+        }
+        if o.after == After::Vanish {
+            let _ = writeln!(
+                svg,
+                "<text class=\"time\" x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{INK}\">gone</text>",
+                num(view.x(last.at.x) + 4.0),
+                num(view.y(last.at.y) + FONT),
+                num(FONT - 2.0),
+            );
+        }
+    }
+    svg.push_str("</g>\n");
+}
+
 /// A layer as the picture draws it: the plan it belongs to, its legend key,
 /// and the stroke it gets (faded when its kind is large).
 struct Drawn<'a> {
@@ -732,6 +838,30 @@ fn draw_path(svg: &mut String, view: &View, run: &PlanRun) {
         hex(plan_colour(run.plan)),
         dash_attr(run.plan)
     );
+    // A trajectory's waits (SPEC 2.9): where and when the robot stands.
+    if let Some(times) = run
+        .outcome
+        .times
+        .as_deref()
+        .filter(|t| t.len() == path.len())
+    {
+        for k in 1..path.len() {
+            let (a, b) = (path[k - 1], path[k]);
+            if a.x == b.x && a.y == b.y {
+                let _ = writeln!(
+                    svg,
+                    "<text class=\"wait\" x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{}\" \
+                     stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\">waits {}–{} s</text>",
+                    num(view.x(a.x) + 5.0),
+                    num(view.y(a.y) + FONT + 2.0),
+                    num(FONT - 1.0),
+                    hex(plan_colour(run.plan)),
+                    short(times[k - 1]),
+                    short(times[k])
+                );
+            }
+        }
+    }
 }
 
 /// The dash patterns of paths, by plan (cycling): overlaid paths differ
