@@ -348,3 +348,38 @@ fn the_recording_of_a_roadmap_has_the_visibility_edges() {
     };
     assert_lists(&text, &["/plans/triangle/grown", "/plans/triangle/roadmap"]);
 }
+
+#[cfg(feature = "viewer")]
+#[test]
+fn the_recording_of_time_moves_the_obstacles_and_the_robot_on_timeline_time() {
+    let Some(text) = recorded_entities("scenarios/time_door.scen") else {
+        return;
+    };
+    assert_lists(
+        &text,
+        &[
+            "/world/moving/door",
+            "/world/moving/door/route",
+            "/plans/through/trajectory/robot",
+        ],
+    );
+    // The door vanishes: its outline is cleared then.
+    assert!(
+        text.lines()
+            .any(|l| l.contains("/world/moving/door ") && l.contains("Clear")),
+        "no Clear of the door:\n{text}"
+    );
+    let Some(recording) = verified_recording("scenarios/time_door.scen") else {
+        return;
+    };
+    let headers = run_with_timeout(
+        Command::new(&recording.rerun)
+            .args(["rrd", "print", "-vv"])
+            .arg(&recording.rrd),
+        Duration::from_secs(120),
+    );
+    assert!(
+        String::from_utf8_lossy(&headers.stdout).contains("index_name: time"),
+        "no timeline `time`"
+    );
+}

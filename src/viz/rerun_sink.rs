@@ -15,6 +15,9 @@
 //! | `plans/NAME/robot` | LineStrips2D: the body at path configuration `i` (a point robot as a cross; at most 10 000 poses, evenly spread) | `step` = i |
 //! | `plans/NAME/drive/path`, `plans/NAME/drive/robot` | LineStrips2D: a driven trajectory and the body along it | static, `time` (s) |
 //! | `plans/NAME/LAYER` | the planner's drawable layers ([`crate::contract::layers`]): `search`, `grown`, `cspace/layer_K`, `roadmap`, `tree`, ... as each planner documents them | static or its timeline |
+//! | `world/moving/NAME` | LineStrips2D: a moving obstacle's outline where it is (cleared when it vanishes) | `time` (s) |
+//! | `world/moving/NAME/route` | LineStrips2D: its route through its waypoints | static |
+//! | `plans/NAME/trajectory/robot` | LineStrips2D: a time-aware plan's robot where its trajectory has it | `time` (s) |
 //! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
 //!
 //! Colours: obstacles grey, each plan its [`plan_colour`], failed checks red.
@@ -179,9 +182,10 @@ fn log_report(rec: &RecordingStream, report: &RunReport) -> RecordingStreamResul
         .filter_map(|run| Some((scenario.plans.get(run.plan)?, run)))
         .collect();
     runs.sort_by_key(|(_, run)| run.plan);
-    for (plan, run) in runs {
+    for &(plan, run) in &runs {
         log_plan(rec, scenario, plan, run)?;
     }
+    log_time(rec, scenario, &runs)?;
     log_checks(rec, report)
 }
 
@@ -436,6 +440,123 @@ fn log_layer(
         }))
         .with_colors([colour])),
     }
+}
+
+/// The most instants of timeline `time` at which one moving obstacle or
+/// the robot of one time-aware plan is sent (SPEC 2.9)...
+pub(crate) const TIME_SAMPLES: usize = 2_000;
+
+/// ... and the most for all of them together, so that a world of hundreds
+/// of carts makes a recording of megabytes, not gigabytes.
+pub(crate) const TIME_SAMPLES_IN_ALL: usize = 50_000;
+
+/// Time (SPEC 2.9) on timeline `time`: every moving obstacle, and the robot
+/// of every plan with a trajectory, at up to [`TIME_SAMPLES`] instants
+/// evenly spread from 0 to a second after the last thing moves, plus each
+/// trajectory's own points.
+fn log_time(
+    rec: &RecordingStream,
+    scenario: &Scenario,
+    runs: &[(&Plan, &PlanRun)],
+) -> RecordingStreamResult<()> {
+    use crate::geometry::timed::{MovingShape, Timed, robot_at};
+    let timed: Vec<(&Plan, &PlanRun, Vec<Timed>)> = runs
+        .iter()
+        .filter_map(|&(plan, run)| {
+            let path = run.outcome.path.as_deref()?;
+            let times = run
+                .outcome
+                .times
+                .as_deref()
+                .filter(|t| t.len() == path.len())?;
+            let points = path
+                .iter()
+                .zip(times)
+                .map(|(&pose, &t)| Timed { pose, t })
+                .collect();
+            Some((plan, run, points))
+        })
+        .collect();
+    if scenario.moving.is_empty() && timed.is_empty() {
+        return Ok(());
+    }
+    let end = scenario
+        .moving
+        .iter()
+        .map(|o| o.settles())
+        .chain(timed.iter().filter_map(|(_, _, p)| p.last().map(|p| p.t)))
+        .fold(0.0, f64::max)
+        + 1.0;
+    let movers = scenario.moving.len() + timed.len();
+    let samples = (TIME_SAMPLES_IN_ALL / movers.max(1)).clamp(10, TIME_SAMPLES);
+    let instants: Vec<f64> = (0..=samples)
+        .map(|k| end * k as f64 / samples as f64)
+        .collect();
+    let grey = rgb(OBSTACLE_GREY);
+    for o in &scenario.moving {
+        let path = entity(&["world", "moving", &o.name]);
+        let route: Vec<Point> = o.route.iter().map(|w| w.at).collect();
+        rec.log_static(
+            entity(&["world", "moving", &o.name, "route"]),
+            &LineStrips2D::new([strip(&route)])
+                .with_colors([Color::from_unmultiplied_rgba(90, 90, 90, 140)])
+                .with_radii([Radius::new_ui_points(1.0)])
+                .with_draw_order(6.0),
+        )?;
+        // The route's own times too, so each waypoint is met exactly.
+        let mut at: Vec<f64> = instants.clone();
+        at.extend(o.route.iter().map(|w| w.t).filter(|t| *t < end));
+        at.sort_by(f64::total_cmp);
+        at.dedup();
+        for t in at {
+            rec.set_duration_secs("time", t);
+            let Some(p) = o.position(t) else {
+                rec.log(path.clone(), &rerun::Clear::flat())?;
+                break;
+            };
+            let strips: Vec<Vec<Point>> = match &o.shape {
+                MovingShape::Disk(r) => {
+                    vec![closed(super::circle_polygon(p, *r, super::CIRCLE_VERTICES))]
+                }
+                MovingShape::Pieces(pieces) => pieces
+                    .iter()
+                    .map(|piece| closed(piece.iter().map(|v| p + v.coords).collect()))
+                    .collect(),
+            };
+            rec.log(
+                path.clone(),
+                &LineStrips2D::new(strips.iter().map(|s| strip(s)))
+                    .with_colors([grey])
+                    .with_radii([Radius::new_ui_points(1.5)])
+                    .with_draw_order(11.0),
+            )?;
+        }
+    }
+    let bounds = scenario.world.bounds;
+    let mark = 0.01 * bounds.width().max(bounds.height());
+    for (plan, run, points) in &timed {
+        let Some(robot) = scenario.robots.get(plan.robot) else {
+            continue;
+        };
+        let body = entity(&["plans", &plan.name, "trajectory", "robot"]);
+        let mut at: Vec<f64> = instants.clone();
+        at.extend(points.iter().map(|p| p.t));
+        at.sort_by(f64::total_cmp);
+        at.dedup();
+        for t in at {
+            rec.set_duration_secs("time", t);
+            let strips = robot_outline(&robot.shape, robot_at(points, t), mark);
+            rec.log(
+                body.clone(),
+                &LineStrips2D::new(strips.iter().map(|s| strip(s)))
+                    .with_colors([rgb(plan_colour(run.plan))])
+                    .with_radii([Radius::new_ui_points(1.5)])
+                    .with_draw_order(41.0),
+            )?;
+        }
+    }
+    rec.reset_time();
+    Ok(())
 }
 
 /// The driven trajectory and the body along it on timeline `time`, at
