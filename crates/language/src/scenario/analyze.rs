@@ -69,6 +69,7 @@ pub(crate) fn analyze(
     let world_ok = !a.diags.iter().any(Diag::is_error);
     a.needs_time(&statements, &moving);
     let plans = a.plans(&statements, world.as_ref().filter(|_| world_ok), &robots);
+    a.start_hit(&plans, &robots, &moving);
     let benches = a.benches(
         &statements,
         &plans,

@@ -205,6 +205,48 @@ impl Analyzer {
         Some(t)
     }
 
+    /// A plan's start must be clear of the moving obstacles at t = 0 (SPEC
+    /// 2.9): the robot is there then, whatever it does next.
+    pub(super) fn start_hit(
+        &mut self,
+        plans: &[crate::scenario::Plan],
+        robots: &[crate::contract::Robot],
+        moving: &[MovingObstacle],
+    ) {
+        use crate::geometry::timed::{Timed, motion_meets};
+        for plan in plans {
+            let Some(robot) = robots.get(plan.robot) else {
+                continue;
+            };
+            let at = Timed {
+                pose: plan.params.start,
+                t: 0.0,
+            };
+            if let Some(o) = moving
+                .iter()
+                .find(|o| motion_meets(&robot.shape, o, at, at))
+            {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::start_hit",
+                        format!(
+                            "the start of plan `{}` is in the moving obstacle `{}` at t = 0",
+                            plan.name, o.name
+                        ),
+                    )
+                    .at(
+                        plan.params.start_span,
+                        format!("robot `{}` overlaps `{}` here at 0 s", robot.name, o.name),
+                    )
+                    .help(format!(
+                        "move the start, or let `{}` start elsewhere (its first waypoint)",
+                        o.name
+                    )),
+                );
+            }
+        }
+    }
+
     /// Among moving obstacles only a planner that knows time may plan
     /// (SPEC 2.9): a plan of any other kind is refused, at its kind, with
     /// the kinds that do named.
