@@ -1,25 +1,34 @@
 //! When a round robot (a point or a disk) may stand at a point, and when it
 //! may leave a point for a straight move at constant speed, among moving
-//! obstacles: the time-aware planners' checker (SPEC 3.10), exact up to a
-//! bisection of the times to about 1e-12 s and a distance margin that makes
-//! it stricter than the validator ([`super::validate_trajectory`]).
+//! obstacles: the time-aware planners' checker (SPEC 3.10), exact (in
+//! closed form, to the floats' rounding) and stricter than the validator
+//! ([`super::validate_trajectory`]) by a distance margin.
 //!
-//! # Why one interval per piece of a route
+//! # Why one interval per convex piece of a route
 //! Cut an obstacle's route into pieces in which it moves linearly (standing
 //! before its first waypoint, between waypoints, standing after its last
 //! unless it vanishes). For a move from `p` to `q` taking `τ` and leaving
 //! at `t0`, the obstacle's offset from the robot, `d(t0, t)`, is affine in
 //! `(t0, t)` over the convex set `t0 ≤ t ≤ t0 + τ`, `t` in the piece's
-//! span; the distance from the robot's centre to the obstacle's shape
-//! there is a convex function of `d`, so its minimum over `t`, the move's
-//! closest approach `g(t0)`, is convex in `t0`. The departures that meet
-//! the piece, `g(t0) < r`, are therefore one open interval: found by a
-//! golden-section search for the minimum of `g` and a bisection on each
-//! side. Standing at `p` is the move of length 0 (`q = p`, `τ = 0`).
+//! span. The robot's centre comes within its radius of a convex shape for
+//! `d` in a convex set, so the meetings `(t0, t)` are a convex set and the
+//! departures that meet the piece one open interval: its ends are the
+//! extreme `t0` of that set, computed exactly ([`Frame`]). A shape that is
+//! not convex is met on one interval per convex piece. Standing at `p` is
+//! the move of length 0 (`q = p`, `τ = 0`).
+//!
+//! The tests check the closed forms against a search that needs only the
+//! convexity: the closest approach `g(t0)`, a minimum over `t` of a convex
+//! function, is convex in `t0`, so a golden-section search for its minimum
+//! and a root finder on each side find the same interval.
 
-use super::{After, MovingObstacle, MovingShape, point_polygon_distance};
+#[cfg(test)]
+use super::point_polygon_distance;
+use super::{After, MovingObstacle, MovingShape};
 use crate::buckets::Buckets;
-use crate::polygon::{closest_point_on_segment, convex_hull};
+use crate::polygon::closest_point_on_segment;
+#[cfg(test)]
+use crate::polygon::convex_hull;
 use crate::{Aabb, Point, Vector};
 
 /// A conflict counts when the closest approach is below the robot's reach
@@ -45,6 +54,7 @@ struct Piece {
 }
 
 impl Piece {
+    #[cfg(test)]
     fn position(&self, t: f64) -> Point {
         if self.from == self.to || !self.a.is_finite() || !self.b.is_finite() {
             return self.from;
@@ -176,9 +186,7 @@ impl<'a> RoundMover<'a> {
             if !self.near(piece, p, q) {
                 continue;
             }
-            if let Some(iv) = self.blocked_by(piece, p, q, tau) {
-                out.push(iv);
-            }
+            self.blocked_by(piece, p, q, tau, &mut out);
         }
         merge(out)
     }
@@ -199,6 +207,7 @@ impl<'a> RoundMover<'a> {
     /// The closest approach minus the reach, for the move leaving at `t0`
     /// over the part of `[t0, t0 + tau]` in the piece's span (which the
     /// caller keeps non-empty).
+    #[cfg(test)]
     fn gap(&self, piece: &Piece, p: Point, q: Point, tau: f64, t0: f64) -> f64 {
         let lo = t0.max(piece.a);
         let hi = (t0 + tau).min(piece.b).max(lo);
@@ -229,16 +238,39 @@ impl<'a> RoundMover<'a> {
     }
 
     /// The open interval of departures at which the move meets `piece`.
-    fn blocked_by(&self, piece: &Piece, p: Point, q: Point, tau: f64) -> Option<(f64, f64)> {
-        if let MovingShape::Disk(r_o) = self.moving[piece.obstacle].shape {
-            return disk_blocked(piece, p, q, tau, r_o + self.radius + MARGIN);
+    fn blocked_by(&self, piece: &Piece, p: Point, q: Point, tau: f64, out: &mut Intervals) {
+        let frame = Frame::new(piece, p, q, tau);
+        let reach = self.radius + MARGIN;
+        match &self.moving[piece.obstacle].shape {
+            MovingShape::Disk(r_o) => {
+                out.extend(
+                    frame
+                        .disk(Vector::zeros(), r_o + reach)
+                        .and_then(|(lo, hi)| open_from_zero(lo, hi)),
+                );
+            }
+            // Each convex piece of a polygon is met on one interval; a
+            // shape that is not convex may be met on several.
+            // A point robot meets a polygon where its centre enters the
+            // closed polygon: the ends of the interval are the touching
+            // departures, which the validator lets pass.
+            MovingShape::Pieces(shapes) => {
+                for shape in shapes {
+                    let range = if self.radius > 0.0 {
+                        frame.rounded_polygon(shape, reach)
+                    } else {
+                        frame.polygon(shape)
+                    };
+                    out.extend(range.and_then(|(lo, hi)| open_from_zero(lo, hi)));
+                }
+            }
         }
-        self.blocked_by_search(piece, p, q, tau)
     }
 
     /// [`RoundMover::blocked_by`] for any convex shape: by the convexity of
     /// the closest approach in the departure time (see the module's
     /// documentation), a golden-section search and a root finder.
+    #[cfg(test)]
     fn blocked_by_search(&self, piece: &Piece, p: Point, q: Point, tau: f64) -> Option<(f64, f64)> {
         // Departures whose motion overlaps the piece's span, from 0; after
         // an unending piece's start (and before a piece that stood since
@@ -300,90 +332,232 @@ impl<'a> RoundMover<'a> {
     }
 }
 
-/// A disk obstacle's blocked departures in closed form: with `s` the time
-/// since departure, the offset from the robot's centre to the obstacle's is
-/// `c + v·t0 + w·s` (`v` the obstacle's velocity, `w = v − u`, `u` the
-/// robot's), so the meetings `(t0, s)` are the inside of an ellipse (or a
-/// strip) of the plane, cut by the parallelogram `0 ≤ s ≤ τ`,
-/// `a ≤ t0 + s ≤ b`. The extreme departures of that convex set are among
-/// the parallelogram's corners inside the ellipse, the ellipse's crossings
-/// of its edges, and the two points of the ellipse whose tangent is along
-/// `s`. `reach` is the sum of the radii and the margin.
-fn disk_blocked(piece: &Piece, p: Point, q: Point, tau: f64, reach: f64) -> Option<(f64, f64)> {
-    let u = if tau > 0.0 {
-        (q - p) / tau
-    } else {
-        Vector::zeros()
-    };
-    let r2 = reach * reach;
-    if piece.from == piece.to || !piece.a.is_finite() || !piece.b.is_finite() {
-        // Standing: the offset is `c + w·s` (w = −u), met for s in an
-        // interval S of [0, τ]; departures t0 with t0 + s in [a, b] for
-        // some s in S.
-        let c = piece.from - p;
-        let (s_lo, s_hi) = if tau > 0.0 {
-            let (lo, hi) = quadratic_below(u.norm_squared(), -c.dot(&u), c.norm_squared() - r2)?;
-            (lo.max(0.0), hi.min(tau))
-        } else if c.norm_squared() < r2 {
-            (0.0, 0.0)
+/// A move against one piece of a route in the plane of (departure `t0`,
+/// time since departure `s`): the obstacle's offset from the robot's
+/// centre is `c + v·t0 + w·s` (`v` the obstacle's velocity, `w = v − u`,
+/// `u` the robot's) over the parallelogram `0 ≤ s ≤ τ`, `a ≤ t0 + s ≤ b`.
+/// A standing piece (`v = 0`, its span possibly unbounded) depends on `s`
+/// alone: the meetings are an interval `S` of `s`, and the departures those
+/// `t0` with `t0 + s` in `[a, b]` for some `s` in `S`.
+///
+/// The obstacle's shape is cut into convex regions, each met on a convex
+/// set of the plane: the inside of an ellipse (a disk region, whose offset
+/// must stay within its radius) or of a polygon (a polygon region, whose
+/// half-planes are linear in `(t0, s)`). The extreme departures of a convex
+/// set cut by the parallelogram are exact: for a polygon, the corners of
+/// the clipped polygon; for an ellipse, the parallelogram's corners inside
+/// it, its edges' crossings of it, and the two points of the ellipse whose
+/// tangent is along `s`.
+struct Frame {
+    c: Vector,
+    v: Vector,
+    w: Vector,
+    a: f64,
+    b: f64,
+    tau: f64,
+    standing: bool,
+}
+
+impl Frame {
+    fn new(piece: &Piece, p: Point, q: Point, tau: f64) -> Frame {
+        let u = if tau > 0.0 {
+            (q - p) / tau
         } else {
-            return None;
+            Vector::zeros()
         };
-        if s_hi < s_lo {
-            return None;
+        let standing = piece.from == piece.to || !piece.a.is_finite() || !piece.b.is_finite();
+        let v = if standing {
+            Vector::zeros()
+        } else {
+            (piece.to - piece.from) / (piece.b - piece.a)
+        };
+        let c = if standing {
+            piece.from - p
+        } else {
+            piece.from - v * piece.a - p
+        };
+        Frame {
+            c,
+            v,
+            w: v - u,
+            a: piece.a,
+            b: piece.b,
+            tau,
+            standing,
         }
-        return open_from_zero(piece.a - s_hi, piece.b - s_lo);
     }
-    let (a, b) = (piece.a, piece.b);
-    let v = (piece.to - piece.from) / (b - a);
-    let w = v - u;
-    // The offset at (t0, s).
-    let c = piece.from - v * a - p;
-    let offset = |t0: f64, s: f64| c + v * t0 + w * s;
-    let inside =
-        |t0: f64, s: f64| -> bool { (0.0..=tau).contains(&s) && t0 + s >= a && t0 + s <= b };
-    let corners = [(a, 0.0), (b, 0.0), (b - tau, tau), (a - tau, tau)];
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut take = |t0: f64| {
-        lo = lo.min(t0);
-        hi = hi.max(t0);
-    };
-    for k in 0..4 {
-        let (t_a, s_a) = corners[k];
-        let (t_b, s_b) = corners[(k + 1) % 4];
-        if offset(t_a, s_a).norm_squared() < r2 {
-            take(t_a);
+
+    /// The departures of a standing piece met for `s` in `[s_lo, s_hi]`.
+    fn shifted(&self, s_lo: f64, s_hi: f64) -> Option<(f64, f64)> {
+        (s_lo <= s_hi).then_some((self.a - s_hi, self.b - s_lo))
+    }
+
+    /// The extreme departures at which the offset, moved by `k`, is within
+    /// `r` of the origin: the robot's centre within `r` of the obstacle's
+    /// point `k`.
+    fn disk(&self, k: Vector, r: f64) -> Option<(f64, f64)> {
+        let r2 = r * r;
+        let c = self.c + k;
+        let (v, w, tau) = (self.v, self.w, self.tau);
+        if self.standing {
+            let (s_lo, s_hi) = if tau > 0.0 {
+                let (lo, hi) = quadratic_below(w.norm_squared(), c.dot(&w), c.norm_squared() - r2)?;
+                (lo.max(0.0), hi.min(tau))
+            } else if c.norm_squared() < r2 {
+                (0.0, 0.0)
+            } else {
+                return None;
+            };
+            return self.shifted(s_lo, s_hi);
         }
-        // The edge's crossings of the ellipse: |d_a + λ·e|² = R².
-        let d_a = offset(t_a, s_a);
-        let e = offset(t_b, s_b) - d_a;
-        if let Some((l1, l2)) =
-            quadratic_below(e.norm_squared(), d_a.dot(&e), d_a.norm_squared() - r2)
-        {
-            for l in [l1, l2] {
-                if (0.0..=1.0).contains(&l) {
-                    take(t_a + (t_b - t_a) * l);
+        let (a, b) = (self.a, self.b);
+        let offset = |t0: f64, s: f64| c + v * t0 + w * s;
+        let inside =
+            |t0: f64, s: f64| -> bool { (0.0..=tau).contains(&s) && t0 + s >= a && t0 + s <= b };
+        let corners = [(a, 0.0), (b, 0.0), (b - tau, tau), (a - tau, tau)];
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut take = |t0: f64| {
+            lo = lo.min(t0);
+            hi = hi.max(t0);
+        };
+        for k in 0..4 {
+            let (t_a, s_a) = corners[k];
+            let (t_b, s_b) = corners[(k + 1) % 4];
+            let d_a = offset(t_a, s_a);
+            if d_a.norm_squared() < r2 {
+                take(t_a);
+            }
+            // The edge's crossings of the ellipse: |d_a + λ·e|² = r².
+            let e = offset(t_b, s_b) - d_a;
+            if let Some((l1, l2)) =
+                quadratic_below(e.norm_squared(), d_a.dot(&e), d_a.norm_squared() - r2)
+            {
+                for l in [l1, l2] {
+                    if (0.0..=1.0).contains(&l) {
+                        take(t_a + (t_b - t_a) * l);
+                    }
                 }
             }
         }
-    }
-    // Where the tangent is along s: the part of the offset across w is R.
-    let w2 = w.norm_squared();
-    let across = Vector::new(-w.y, w.x);
-    let rate = across.dot(&v);
-    if w2 > 0.0 && rate != 0.0 {
-        for sign in [-1.0, 1.0] {
-            let t0 = (sign * reach * w2.sqrt() - across.dot(&c)) / rate;
-            let s = -w.dot(&(c + v * t0)) / w2;
-            if inside(t0, s) {
-                take(t0);
+        // Where the tangent is along s: the part of the offset across w is r.
+        let w2 = w.norm_squared();
+        let across = Vector::new(-w.y, w.x);
+        let rate = across.dot(&v);
+        if w2 > 0.0 && rate != 0.0 {
+            for sign in [-1.0, 1.0] {
+                let t0 = (sign * r * w2.sqrt() - across.dot(&c)) / rate;
+                let s = -w.dot(&(c + v * t0)) / w2;
+                if inside(t0, s) {
+                    take(t0);
+                }
             }
         }
+        (lo <= hi).then_some((lo, hi))
     }
-    if lo > hi {
-        return None;
+
+    /// The extreme departures at which the robot's centre is inside the
+    /// convex polygon `shape` (counter-clockwise, in the obstacle's frame):
+    /// minus the offset inside it, one linear inequality per edge.
+    fn polygon(&self, shape: &[Point]) -> Option<(f64, f64)> {
+        let n = shape.len();
+        if n < 3 {
+            return None;
+        }
+        // Clockwise (as a shape may come), the normals point inwards.
+        let twice_area: f64 = (0..n)
+            .map(|i| shape[i].coords.perp(&shape[(i + 1) % n].coords))
+            .sum();
+        let flip = if twice_area < 0.0 { -1.0 } else { 1.0 };
+        // Each edge: −n·(c + v·t0 + w·s) ≤ h, i.e. α·t0 + β·s ≤ γ.
+        let planes = (0..n).filter_map(|i| {
+            let (p0, p1) = (shape[i], shape[(i + 1) % n]);
+            let e = p1 - p0;
+            let len = e.norm();
+            (len > 0.0).then(|| {
+                let normal = Vector::new(e.y, -e.x) / len * flip;
+                let h = normal.dot(&p0.coords);
+                (
+                    -normal.dot(&self.v),
+                    -normal.dot(&self.w),
+                    h + normal.dot(&self.c),
+                )
+            })
+        });
+        if self.standing {
+            let (mut s_lo, mut s_hi) = (0.0f64, self.tau);
+            for (_, beta, gamma) in planes {
+                if beta > 0.0 {
+                    s_hi = s_hi.min(gamma / beta);
+                } else if beta < 0.0 {
+                    s_lo = s_lo.max(gamma / beta);
+                } else if gamma < 0.0 {
+                    return None;
+                }
+            }
+            return self.shifted(s_lo, s_hi);
+        }
+        let (a, b, tau) = (self.a, self.b, self.tau);
+        let mut poly = vec![(a, 0.0), (b, 0.0), (b - tau, tau), (a - tau, tau)];
+        for (alpha, beta, gamma) in planes {
+            poly = clip(&poly, alpha, beta, gamma);
+            if poly.is_empty() {
+                return None;
+            }
+        }
+        let lo = poly.iter().map(|v| v.0).fold(f64::INFINITY, f64::min);
+        let hi = poly.iter().map(|v| v.0).fold(f64::NEG_INFINITY, f64::max);
+        Some((lo, hi))
     }
-    open_from_zero(lo, hi)
+
+    /// The extreme departures at which the robot's centre comes within `r`
+    /// of the convex polygon `shape`: the polygon, each edge's band of
+    /// width `r` outside it, and a disk of radius `r` at each corner.
+    fn rounded_polygon(&self, shape: &[Point], r: f64) -> Option<(f64, f64)> {
+        let n = shape.len();
+        let twice_area: f64 = (0..n)
+            .map(|i| shape[i].coords.perp(&shape[(i + 1) % n].coords))
+            .sum();
+        let orientation = if twice_area < 0.0 { -1.0 } else { 1.0 };
+        let mut range: Option<(f64, f64)> = None;
+        let mut add = |part: Option<(f64, f64)>| {
+            if let Some((lo, hi)) = part {
+                range = Some(range.map_or((lo, hi), |(l, h)| (l.min(lo), h.max(hi))));
+            }
+        };
+        add(self.polygon(shape));
+        for i in 0..n {
+            let (p0, p1) = (shape[i], shape[(i + 1) % n]);
+            let e = p1 - p0;
+            let len = e.norm();
+            if len > 0.0 {
+                // Out from p0, along, and back in (counter-clockwise for a
+                // counter-clockwise shape; `polygon` takes either).
+                let out = Vector::new(e.y, -e.x) / len * r * orientation;
+                add(self.polygon(&[p0, p0 + out, p1 + out, p1]));
+            }
+            add(self.disk(p0.coords, r));
+        }
+        range
+    }
+}
+
+/// The convex polygon `poly` cut by the half-plane `α·x + β·y ≤ γ`
+/// (Sutherland–Hodgman).
+fn clip(poly: &[(f64, f64)], alpha: f64, beta: f64, gamma: f64) -> Vec<(f64, f64)> {
+    let side = |p: (f64, f64)| alpha * p.0 + beta * p.1 - gamma;
+    let mut out = Vec::with_capacity(poly.len() + 1);
+    for i in 0..poly.len() {
+        let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
+        let (sp, sq) = (side(p), side(q));
+        if sp <= 0.0 {
+            out.push(p);
+        }
+        if (sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0) {
+            let l = sp / (sp - sq);
+            out.push((p.0 + (q.0 - p.0) * l, p.1 + (q.1 - p.1) * l));
+        }
+    }
+    out
 }
 
 /// The open interval `(lo, hi)` of departures, from 0 on: `None` when it
@@ -426,6 +600,7 @@ fn quadratic_below(qa: f64, qb: f64, qc: f64) -> Option<(f64, f64)> {
 }
 
 /// The distance from the origin to the convex polygon `hull` (0 inside).
+#[cfg(test)]
 fn hull_distance(hull: &[Point]) -> f64 {
     match hull.len() {
         0 => f64::INFINITY,
@@ -462,6 +637,7 @@ fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
 /// minimum when it is nowhere negative (then only as precise as needed to
 /// tell: a golden-section search that stops once the bracket is too short
 /// for `g` to get below 0 in it, or at the floats' resolution).
+#[cfg(test)]
 fn golden_min(
     g: &impl Fn(f64) -> f64,
     lo: f64,
@@ -511,6 +687,7 @@ fn golden_min(
 /// the last point found with `g ≥ 0`, as close to the crossing as the
 /// floats allow (regula falsi with the Illinois correction, falling back to
 /// halving when a step stalls).
+#[cfg(test)]
 fn last_safe(
     g: &impl Fn(f64) -> f64,
     mut safe: f64,
@@ -710,11 +887,15 @@ mod tests {
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
-        /// The closed form for disks agrees with the search that serves
-        /// every convex shape, on random moves and route pieces (standing
-        /// for good, or moving between two waypoints).
+        /// The closed forms (disks, and convex polygons: rectangles and
+        /// triangles, either way round) agree with the search that needs only convexity, on
+        /// random moves and route pieces (standing for good, or moving
+        /// between two waypoints), for point and disk robots.
         #[test]
-        fn disks_in_closed_form_agree_with_the_search(
+        fn closed_forms_agree_with_the_search(
+            kind in 0usize..4,
+            size in (0.1..2.0f64, 0.1..2.0f64),
+            apex in (-1.0..1.0f64, 0.1..2.0f64),
             from in (0.0..10.0f64, 0.0..10.0f64),
             to in (0.0..10.0f64, 0.0..10.0f64),
             a in 0.0..10.0f64,
@@ -723,16 +904,36 @@ mod tests {
             step in (-1i32..=1, -1i32..=1),
             speed in 0.2..3.0f64,
             r_o in 0.1..2.0f64,
-            radius in 0.0..1.0f64,
+            radius in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.0..1.0f64],
             stays in proptest::bool::ANY,
         ) {
             let mut route = vec![Waypoint { t: a, at: Point::new(from.0, from.1) }];
             if !stays {
                 route.push(Waypoint { t: a + span, at: Point::new(to.0, to.1) });
             }
+            let shape = match kind {
+                0 => MovingShape::Disk(r_o),
+                1 => MovingShape::polygon(&[
+                    Point::new(-size.0 / 2.0, -size.1 / 2.0),
+                    Point::new(size.0 / 2.0, -size.1 / 2.0),
+                    Point::new(size.0 / 2.0, size.1 / 2.0),
+                    Point::new(-size.0 / 2.0, size.1 / 2.0),
+                ]),
+                2 => MovingShape::polygon(&[
+                    Point::new(-size.0, -0.3),
+                    Point::new(size.1, -0.2),
+                    Point::new(apex.0, apex.1),
+                ]),
+                // Clockwise, as the analyzer may give a piece.
+                _ => MovingShape::Pieces(vec![vec![
+                    Point::new(apex.0, apex.1),
+                    Point::new(size.1, -0.2),
+                    Point::new(-size.0, -0.3),
+                ]]),
+            };
             let c = [MovingObstacle {
                 name: "c".into(),
-                shape: MovingShape::Disk(r_o),
+                shape,
                 route,
                 after: After::Stay,
             }];
@@ -741,7 +942,10 @@ mod tests {
             let q = p + Vector::new(f64::from(step.0), f64::from(step.1));
             let tau = (q - p).norm() / speed;
             for piece in &mover.pieces {
-                let closed = mover.blocked_by(piece, p, q, tau);
+                let mut found = Vec::new();
+                mover.blocked_by(piece, p, q, tau, &mut found);
+                proptest::prop_assert!(found.len() <= 1, "a convex shape: {found:?}");
+                let closed = found.first().copied();
                 let search = mover.blocked_by_search(piece, p, q, tau);
                 let close = |x: f64, y: f64| x == y || (x - y).abs() <= 1e-6 * x.abs().max(1.0);
                 match (closed, search) {
