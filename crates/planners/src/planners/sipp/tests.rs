@@ -20,7 +20,7 @@ use crate::geometry::{Aabb, Config, RobotShape, World};
 use crate::planners::lattice::Sample;
 
 /// A random small world: `w` × `h` unit cells, a few blocked cells, a few
-/// moving disks and squares on random routes, a point or disk robot, and a
+/// moving disks, squares (either way round) and L shapes on random routes, a point or disk robot, and a
 /// start and goal on free cell centres.
 struct Case {
     world: World,
@@ -49,16 +49,27 @@ fn random_case(seed: u64) -> Case {
     );
     let mut moving = Vec::new();
     for k in 0..1 + rng.next_u64() % 3 {
-        let shape = if rng.coin() {
-            MovingShape::Disk(rng.range(0.2, 0.6))
-        } else {
-            let s = rng.range(0.2, 0.5);
-            MovingShape::polygon(&[
+        let s = rng.range(0.2, 0.5);
+        let square = [
+            Point::new(-s, -s),
+            Point::new(s, -s),
+            Point::new(s, s),
+            Point::new(-s, s),
+        ];
+        let shape = match rng.next_u64() % 4 {
+            0 => MovingShape::Disk(rng.range(0.2, 0.6)),
+            1 => MovingShape::polygon(&square),
+            // Clockwise, as the analyzer may give a piece.
+            2 => MovingShape::Pieces(vec![square.iter().rev().copied().collect()]),
+            // An L, not convex: two pieces.
+            _ => MovingShape::polygon(&[
                 Point::new(-s, -s),
-                Point::new(s, -s),
-                Point::new(s, s),
-                Point::new(-s, s),
-            ])
+                Point::new(2.0 * s, -s),
+                Point::new(2.0 * s, 0.0),
+                Point::new(0.0, 0.0),
+                Point::new(0.0, 2.0 * s),
+                Point::new(-s, 2.0 * s),
+            ]),
         };
         let mut t = rng.range(0.0, 3.0);
         let mut route = Vec::new();
