@@ -185,7 +185,7 @@ fn brute_force(case: &Case, connect: usize, dt: f64, horizon: f64) -> Option<f64
             if safe(case, at(c, t), at(c, t + dt)) {
                 push(c, t + dt);
             }
-            for &(dx, dy) in &DIRS_FOR_TEST[..connect] {
+            for &(dx, dy) in &crate::planners::grid_lattice::DIRS[..connect] {
                 let to = (c.0 + dx, c.1 + dy);
                 if !cell_free(to) || !statically_free(centre(c), centre(to)) {
                     continue;
@@ -203,17 +203,6 @@ fn brute_force(case: &Case, connect: usize, dt: f64, horizon: f64) -> Option<f64
     }
     None
 }
-
-const DIRS_FOR_TEST: [(i64, i64); 8] = [
-    (1, 0),
-    (0, 1),
-    (-1, 0),
-    (0, -1),
-    (1, 1),
-    (-1, 1),
-    (-1, -1),
-    (1, -1),
-];
 
 /// What `sipp` returned for `case`: its trajectory validated in
 /// space-time; its arrival (or `None`).
