@@ -545,3 +545,52 @@ fn a_moving_obstacle_is_drawn_with_its_route_times_and_the_robots_waits() {
     assert_eq!(waits.len(), 1, "{svg}");
     assert!(waits[0].1.starts_with("waits "), "{waits:?}");
 }
+
+#[test]
+fn a_gif_animates_the_cart_and_the_robot_at_25_frames_per_second() {
+    let t =
+        Test::new()
+            .file("cart.scen", CART)
+            .args(&["run", "-q", "--gif", "out.gif", "cart.scen"]);
+    t.run();
+    let file = std::fs::File::open(t.dir().join("out.gif")).expect("out.gif written");
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::Indexed);
+    let mut decoder = options.read_info(file).expect("a GIF");
+    let (width, height) = (decoder.width(), decoder.height());
+    let mut frames = 0;
+    let mut delays = std::collections::BTreeSet::new();
+    while let Some(frame) = decoder.read_next_frame().expect("a frame") {
+        if frames == 0 {
+            assert_eq!((frame.width, frame.height), (width, height));
+        }
+        assert!(frame.left + frame.width <= width && frame.top + frame.height <= height);
+        delays.insert(frame.delay);
+        frames += 1;
+    }
+    // The robot waits for the cart and arrives at t ≈ 9.4 s (the cart
+    // vanishes at 6 s): frames every 1/25 s to a second after that.
+    let arrival: f64 = {
+        let out = Test::new()
+            .file("cart.scen", CART)
+            .args(&["run", "--json", "cart.scen"])
+            .run();
+        let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        doc["plans"]["go"]["metrics"]["arrival"].as_f64().unwrap()
+    };
+    assert_eq!(frames, ((arrival + 1.0) * 25.0).ceil() as usize + 1);
+    assert_eq!(delays.into_iter().collect::<Vec<_>>(), [4]);
+    // Where nothing moves, nothing is written.
+    Test::new()
+        .file("disks.scen", DISKS)
+        .args(&["run", "-q", "--gif", "out.gif", "disks.scen"])
+        .stderr_contains("nothing moves")
+        .status(2)
+        .run();
+    Test::new()
+        .file("cart.scen", CART)
+        .args(&["run", "-q", "--gif", "out.png", "cart.scen"])
+        .stderr_contains("writes a GIF animation")
+        .status(2)
+        .run();
+}

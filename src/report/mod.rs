@@ -1,9 +1,10 @@
-//! Reports: the text report, JSON (SPEC 5), SVG and PNG, CSV, bench tables
+//! Reports: the text report, JSON (SPEC 5), SVG, PNG and GIF, CSV, bench tables
 //! and plots, OMPL logs, JUnit; the file outputs are sinks ([`sink`]).
 
 pub mod bench;
 pub mod compare;
 pub mod csv;
+pub mod gif;
 pub mod json;
 pub mod junit;
 pub mod ompl;

@@ -50,6 +50,14 @@ fn scale_for(width: f32, height: f32) -> f32 {
 /// The PNG file of an SVG document, [`SCALE`] times its size (less for a
 /// huge one). The same SVG gives the same bytes.
 pub fn to_png(svg: &str) -> Result<Vec<u8>, String> {
+    rasterise(svg, None)?
+        .encode_png()
+        .map_err(|e| e.to_string())
+}
+
+/// An SVG document's pixels, at `scale` pixels per unit ([`SCALE`], less
+/// for a huge one, when `None`).
+pub fn rasterise(svg: &str, scale: Option<f32>) -> Result<Pixmap, String> {
     let options = usvg::Options {
         font_family: FAMILY.to_string(),
         fontdb: fonts(),
@@ -57,7 +65,7 @@ pub fn to_png(svg: &str) -> Result<Vec<u8>, String> {
     };
     let tree = usvg::Tree::from_str(svg, &options).map_err(|e| e.to_string())?;
     let size = tree.size();
-    let scale = scale_for(size.width(), size.height());
+    let scale = scale.unwrap_or_else(|| scale_for(size.width(), size.height()));
     let pixels = |x: f32| (x * scale).ceil().max(1.0) as u32;
     let (width, height) = (pixels(size.width()), pixels(size.height()));
     let mut pixmap = Pixmap::new(width, height)
@@ -67,7 +75,7 @@ pub fn to_png(svg: &str) -> Result<Vec<u8>, String> {
         Transform::from_scale(scale, scale),
         &mut pixmap.as_mut(),
     );
-    pixmap.encode_png().map_err(|e| e.to_string())
+    Ok(pixmap)
 }
 
 /// `--png OUT.png`: the same picture as `--svg`, rasterised.

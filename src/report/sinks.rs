@@ -8,6 +8,7 @@ use super::sink::Sink;
 pub static SINKS: &[&Sink] = &[
     &super::svg::SINK,
     &super::png::SINK,
+    &super::gif::SINK,
     &super::csv::SINK,
     &super::ompl::SINK,
 ];

@@ -60,6 +60,18 @@ const TICKS: f64 = 10.0;
 
 /// The SVG document as text. The same report gives the same text.
 pub fn to_svg(report: &RunReport) -> String {
+    run_picture(report, None)
+}
+
+/// The picture at plan time `t` (an animation's frame, `--gif`): each
+/// moving obstacle where it is then (none once it vanished), and the robot
+/// of every plan with a trajectory or a drive where it is then; the title
+/// says the time.
+pub fn frame_at(report: &RunReport, t: f64) -> String {
+    run_picture(report, Some(t))
+}
+
+fn run_picture(report: &RunReport, at: Option<f64>) -> String {
     let scenario = &report.scenario;
     let runs = plan_runs(report);
     let view = View::fit(scenario, &runs);
@@ -73,6 +85,10 @@ pub fn to_svg(report: &RunReport) -> String {
     let title = match super::text::sample_line(scenario) {
         Some(sample) => format!("{} — {sample}", title(scenario)),
         None => title(scenario),
+    };
+    let title = match at {
+        Some(t) => format!("{title} — t = {t:.2} s"),
+        None => title,
     };
 
     let mut svg = String::new();
@@ -107,7 +123,7 @@ pub fn to_svg(report: &RunReport) -> String {
     );
     svg.push_str("<g clip-path=\"url(#plot)\">\n");
     draw_obstacles(&mut svg, &view, scenario);
-    draw_moving(&mut svg, &view, scenario);
+    draw_moving(&mut svg, &view, scenario, at);
     for drawn in &layers {
         draw_layer(&mut svg, &view, drawn);
     }
@@ -123,12 +139,20 @@ pub fn to_svg(report: &RunReport) -> String {
         draw_motions(&mut svg, &view, run, &hex(plan_colour(run.plan)));
     }
     for &(_, run) in &runs {
-        draw_path(&mut svg, &view, run);
+        draw_path(&mut svg, &view, run, at.is_none());
     }
     for &(plan, run) in &runs {
         draw_plan(&mut svg, &view, scenario, plan, run);
     }
-    draw_moving_times(&mut svg, &view, scenario);
+    // A frame shows where things are, not the times of their routes.
+    if at.is_none() {
+        draw_moving_times(&mut svg, &view, scenario);
+    }
+    if let Some(t) = at {
+        for &(plan, run) in &runs {
+            draw_robot_at(&mut svg, &view, scenario, plan, run, t);
+        }
+    }
     legend.draw(&mut svg, legend_top);
     svg.push_str("</svg>\n");
     svg
@@ -494,7 +518,7 @@ fn draw_obstacles(svg: &mut String, view: &View, scenario: &Scenario) {
 /// The moving obstacles (SPEC 2.9): each route dashed with its waypoints'
 /// times, the shape where it starts (filled) and where it ends (outlined;
 /// dotted when it vanishes there).
-fn draw_moving(svg: &mut String, view: &View, scenario: &Scenario) {
+fn draw_moving(svg: &mut String, view: &View, scenario: &Scenario, at: Option<f64>) {
     use crate::geometry::timed::{After, MovingShape};
     if scenario.moving.is_empty() {
         return;
@@ -529,11 +553,26 @@ fn draw_moving(svg: &mut String, view: &View, scenario: &Scenario) {
             }
         };
         let _ = writeln!(svg, "<g id=\"moving-{name}\">");
-        shape_at(
-            svg,
-            first.at,
-            &format!("fill=\"{grey}\" fill-opacity=\"0.8\" stroke=\"{dark}\" stroke-width=\"1\""),
-        );
+        let filled =
+            format!("fill=\"{grey}\" fill-opacity=\"0.8\" stroke=\"{dark}\" stroke-width=\"1\"");
+        // A frame: where it is at that instant, over its route.
+        if let Some(t) = at {
+            if o.route.len() > 1 {
+                let points: Vec<Point> = o.route.iter().map(|w| w.at).collect();
+                let _ = writeln!(
+                    svg,
+                    "<polyline class=\"route\" points=\"{}\" fill=\"none\" stroke=\"{dark}\" \
+                     stroke-width=\"1\" stroke-opacity=\"0.5\" stroke-dasharray=\"6 4\"/>",
+                    view.points(&points)
+                );
+            }
+            if let Some(p) = o.position(t) {
+                shape_at(svg, p, &filled);
+            }
+            svg.push_str("</g>\n");
+            continue;
+        }
+        shape_at(svg, first.at, &filled);
         if o.route.len() > 1 {
             let points: Vec<Point> = o.route.iter().map(|w| w.at).collect();
             let _ = writeln!(
@@ -820,7 +859,7 @@ fn draw_motions(svg: &mut String, view: &View, run: &PlanRun, colour: &str) {
 
 /// A plan's path in its colour, over a light halo that sets it off from
 /// the layers under it.
-fn draw_path(svg: &mut String, view: &View, run: &PlanRun) {
+fn draw_path(svg: &mut String, view: &View, run: &PlanRun, waits: bool) {
     let Some(path) = run.outcome.path.as_deref().filter(|p| !p.is_empty()) else {
         return;
     };
@@ -843,7 +882,7 @@ fn draw_path(svg: &mut String, view: &View, run: &PlanRun) {
         .outcome
         .times
         .as_deref()
-        .filter(|t| t.len() == path.len())
+        .filter(|t| waits && t.len() == path.len())
     {
         for k in 1..path.len() {
             let (a, b) = (path[k - 1], path[k]);
@@ -906,6 +945,44 @@ fn draw_plan(svg: &mut String, view: &View, scenario: &Scenario, plan: &Plan, ru
     start_marker(svg, view.x(start.x), view.y(start.y), &colour);
     if let Some(goal) = goal {
         goal_marker(svg, view.x(goal.x), view.y(goal.y), &colour);
+    }
+    svg.push_str("</g>\n");
+}
+
+/// A frame's robot (`--gif`): where a plan's trajectory, or its drive, has
+/// it at `t`, filled in the plan's colour.
+fn draw_robot_at(
+    svg: &mut String,
+    view: &View,
+    scenario: &Scenario,
+    plan: &Plan,
+    run: &PlanRun,
+    t: f64,
+) {
+    use crate::geometry::timed::{Timed, robot_at};
+    let Some(robot) = scenario.robots.get(plan.robot) else {
+        return;
+    };
+    let pose = match (&run.outcome.path, &run.outcome.times, &run.drive) {
+        (Some(path), Some(times), _) if times.len() == path.len() => {
+            let points: Vec<Timed> = path
+                .iter()
+                .zip(times)
+                .map(|(&pose, &t)| Timed { pose, t })
+                .collect();
+            robot_at(&points, t)
+        }
+        (_, _, Some(drive)) if !drive.samples.is_empty() => {
+            let k = drive.samples.partition_point(|(s, _)| *s <= t);
+            drive.samples[k.saturating_sub(1)].1
+        }
+        _ => return,
+    };
+    let colour = hex(plan_colour(run.plan));
+    let _ = writeln!(svg, "<g class=\"now\" id=\"now-{}\">", escape(&plan.name));
+    draw_body_as(svg, view, &robot.shape, pose, &colour, 0.6, 1.0);
+    if matches!(robot.shape, RobotShape::Point) {
+        start_marker(svg, view.x(pose.x), view.y(pose.y), &colour);
     }
     svg.push_str("</g>\n");
 }
