@@ -322,30 +322,19 @@ fn judge(
     let mut measured_clearance = None;
     // A trajectory (SPEC 2.9): its poses with their times, validated in
     // space-time among the moving obstacles.
-    let timed = match (&outcome.path, &outcome.times) {
-        (Some(path), Some(times)) => Some(
-            path.iter()
-                .zip(times)
-                .map(|(&pose, &t)| Timed { pose, t })
-                .collect::<Vec<_>>(),
-        ),
-        _ => None,
-    };
+    let timed = outcome.timed();
+    let untimed_poses = timed.is_none() && outcome.path.is_some() && outcome.times.is_some();
     let speed = task.speed.unwrap_or(DEFAULT_SPEED);
     let validation = match (measured, car) {
+        _ if untimed_poses => Some(ValidationError {
+            segment: 0,
+            at: task.start,
+            obstacle: None,
+            reason: "a trajectory needs one time per pose".into(),
+        }),
         _ if timed.is_some() => {
             let trajectory = timed.as_deref().unwrap_or_default();
-            (outcome.times.as_ref().map(Vec::len) != outcome.path.as_ref().map(Vec::len))
-                .then(|| ValidationError {
-                    segment: 0,
-                    at: task.start,
-                    obstacle: None,
-                    reason: "a trajectory needs one time per pose".into(),
-                })
-                .or_else(|| {
-                    validate_trajectory(&scenario.world, &scenario.moving, robot, speed, trajectory)
-                        .err()
-                })
+            validate_trajectory(&scenario.world, &scenario.moving, robot, speed, trajectory).err()
         }
         (Some(m), _) => m.validation.clone(),
         (None, Some(car)) => {

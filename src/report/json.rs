@@ -102,15 +102,20 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     // A time-aware plan's trajectory (SPEC 2.9): `[x, y, θ, t]` per point
     // (no key without one: `"trajectory"` alone, beside no path, is the
     // motion a run executed before it stopped short).
-    if let (Some(path), Some(times)) = (&run.outcome.path, &run.outcome.times) {
-        let timed = path
+    if let Some(trajectory) = run.outcome.timed() {
+        let points = trajectory
             .iter()
-            .zip(times)
-            .map(|(c, &t)| {
-                Value::Array([c.x, c.y, c.theta, t].into_iter().map(float_json).collect())
+            .map(|p| {
+                let c = p.pose;
+                Value::Array(
+                    [c.x, c.y, c.theta, p.t]
+                        .into_iter()
+                        .map(float_json)
+                        .collect(),
+                )
             })
             .collect();
-        obj.insert("trajectory".into(), Value::Array(timed));
+        obj.insert("trajectory".into(), Value::Array(points));
     }
     // A run that stopped short of the goal: the motion it executed (SPEC 3).
     let trajectory = &run.outcome.trajectory;

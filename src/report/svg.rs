@@ -959,20 +959,13 @@ fn draw_robot_at(
     run: &PlanRun,
     t: f64,
 ) {
-    use crate::geometry::timed::{Timed, robot_at};
+    use crate::geometry::timed::robot_at;
     let Some(robot) = scenario.robots.get(plan.robot) else {
         return;
     };
-    let pose = match (&run.outcome.path, &run.outcome.times, &run.drive) {
-        (Some(path), Some(times), _) if times.len() == path.len() => {
-            let points: Vec<Timed> = path
-                .iter()
-                .zip(times)
-                .map(|(&pose, &t)| Timed { pose, t })
-                .collect();
-            robot_at(&points, t)
-        }
-        (_, _, Some(drive)) if !drive.samples.is_empty() => {
+    let pose = match (run.outcome.timed(), &run.drive) {
+        (Some(points), _) => robot_at(&points, t),
+        (None, Some(drive)) if !drive.samples.is_empty() => {
             let k = drive.samples.partition_point(|(s, _)| *s <= t);
             drive.samples[k.saturating_sub(1)].1
         }

@@ -462,20 +462,7 @@ fn log_time(
     use crate::geometry::timed::{MovingShape, Timed, robot_at};
     let timed: Vec<(&Plan, &PlanRun, Vec<Timed>)> = runs
         .iter()
-        .filter_map(|&(plan, run)| {
-            let path = run.outcome.path.as_deref()?;
-            let times = run
-                .outcome
-                .times
-                .as_deref()
-                .filter(|t| t.len() == path.len())?;
-            let points = path
-                .iter()
-                .zip(times)
-                .map(|(&pose, &t)| Timed { pose, t })
-                .collect();
-            Some((plan, run, points))
-        })
+        .filter_map(|&(plan, run)| Some((plan, run, run.outcome.timed()?)))
         .collect();
     if scenario.moving.is_empty() && timed.is_empty() {
         return Ok(());

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use crate::geometry::Config;
 use crate::geometry::car::CarPath;
+use crate::geometry::timed::Timed;
 use crate::geometry::validator::ValidationError;
 
 use super::layers::Layer;
@@ -92,6 +93,18 @@ impl PlanOutcome {
             cost: Some(0.0),
             ..PlanOutcome::default()
         }
+    }
+
+    /// The trajectory (SPEC 2.9): each pose of `path` with its time, when
+    /// the outcome has both, one time per pose.
+    pub fn timed(&self) -> Option<Vec<Timed>> {
+        let (path, times) = (self.path.as_ref()?, self.times.as_ref()?);
+        (path.len() == times.len()).then(|| {
+            path.iter()
+                .zip(times)
+                .map(|(&pose, &t)| Timed { pose, t })
+                .collect()
+        })
     }
 
     /// The layers of one entity, in order.
