@@ -270,15 +270,20 @@ fn search(
     deadline: &Deadline,
     out: &mut PlanOutcome,
 ) -> Option<Vec<(Point, f64)>> {
+    // Each point's safe intervals, computed when the search first needs them.
     let mut safe: HashMap<usize, Intervals> = HashMap::new();
-    let mut intervals_of = |node: usize, graph: &Graph| -> Intervals {
+    fn intervals_of<'s>(
+        safe: &'s mut HashMap<usize, Intervals>,
+        mover: &RoundMover<'_>,
+        graph: &Graph,
+        node: usize,
+    ) -> &'s Intervals {
         safe.entry(node)
             .or_insert_with(|| mover.safe_intervals(graph.point(node)))
-            .clone()
-    };
+    }
     let goal_at = graph.goal_at;
     let h = |p: Point| (goal_at - p).norm() / speed;
-    let start_safe = intervals_of(graph.start, graph);
+    let start_safe = intervals_of(&mut safe, mover, graph, graph.start);
     if start_safe.first().is_none_or(|iv| iv.0 > 0.0) {
         out.notes.push(format!(
             "a moving obstacle is on the start at t = 0{}",
@@ -286,7 +291,7 @@ fn search(
         ));
         return None;
     }
-    let goal_safe = intervals_of(graph.goal, graph);
+    let goal_safe = intervals_of(&mut safe, mover, graph, graph.goal);
     if goal_safe.last().is_none_or(|iv| iv.1.is_finite()) {
         out.notes.push(format!(
             "the goal is never safe for good: a moving obstacle is on it at the end{}",
@@ -336,7 +341,7 @@ fn search(
         if task.draw {
             expansion_order.push(graph.point(node));
         }
-        let here = intervals_of(node, graph)[interval];
+        let here = intervals_of(&mut safe, mover, graph, node)[interval];
         if node == graph.goal && here.1 == f64::INFINITY {
             reached = Some(id);
             break;
@@ -347,7 +352,7 @@ fn search(
             let to = graph.point(m);
             let tau = (to - from).norm() / speed;
             let blocked = mover.blocked_departures(from, to, tau);
-            let there = intervals_of(m, graph);
+            let there = intervals_of(&mut safe, mover, graph, m);
             for (j, &(j_start, j_end)) in there.iter().enumerate() {
                 if j_start > here.1 + tau {
                     break;
