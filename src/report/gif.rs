@@ -33,16 +33,7 @@ pub static SINK: Sink = Sink {
     )],
     draws: false,
     folder: false,
-    check: |path| {
-        if super::sink::has_extension(path, "gif") {
-            Ok(())
-        } else {
-            Err(format!(
-                "`--gif {}` writes a GIF animation: give it a file ending in `.gif`",
-                path.display()
-            ))
-        }
-    },
+    check: |path| super::sink::needs_extension(path, "--gif", "gif", "a GIF animation", ""),
     files: the_file,
     write: |product, path| match product {
         Product::Run(report) => write_file(path, animation(report, path)?),

@@ -6,7 +6,7 @@
 
 use std::sync::{Arc, OnceLock};
 
-use super::sink::{Command, Sink, has_extension, the_file, write_file};
+use super::sink::{Command, Sink, needs_extension, the_file, write_file};
 
 use resvg::tiny_skia::{Pixmap, Transform};
 use resvg::usvg::{self, fontdb};
@@ -89,14 +89,13 @@ pub static SINK: Sink = Sink {
     draws: true,
     folder: false,
     check: |path| {
-        if has_extension(path, "png") {
-            Ok(())
-        } else {
-            Err(format!(
-                "`--png {}` writes a PNG picture: give it a file ending in `.png` (`--svg OUT.svg` writes an SVG)",
-                path.display()
-            ))
-        }
+        needs_extension(
+            path,
+            "--png",
+            "png",
+            "a PNG picture",
+            " (`--svg OUT.svg` writes an SVG)",
+        )
     },
     files: the_file,
     write: |product, path| {

@@ -76,6 +76,26 @@ pub fn any_path(_: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// [`Sink::check`] of a sink whose file must end in `.EXT` (any case):
+/// `option` writes `what`, and `hint` (empty, or ` (...)`) ends the
+/// refusal.
+pub fn needs_extension(
+    path: &Path,
+    option: &str,
+    ext: &str,
+    what: &str,
+    hint: &str,
+) -> Result<(), String> {
+    if has_extension(path, ext) {
+        Ok(())
+    } else {
+        Err(format!(
+            "`{option} {}` writes {what}: give it a file ending in `.{ext}`{hint}",
+            path.display()
+        ))
+    }
+}
+
 /// Whether `path` ends in `.EXT` (any case).
 pub fn has_extension(path: &Path, ext: &str) -> bool {
     path.extension()

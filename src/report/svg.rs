@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::sink::{Command, Product, Sink, has_extension, the_file, write_file};
+use super::sink::{Command, Product, Sink, needs_extension, the_file, write_file};
 use crate::contract::layers::{Colour, Drawing, Layer, Rounded, Svg};
 use crate::geometry::{Aabb, Config, Point, RobotShape, Shape};
 use crate::run::{PlanRun, RunReport};
@@ -1458,14 +1458,13 @@ pub static SINK: Sink = Sink {
     draws: true,
     folder: false,
     check: |path| {
-        if has_extension(path, "svg") {
-            Ok(())
-        } else {
-            Err(format!(
-                "`--svg {}` writes an SVG picture: give it a file ending in `.svg` (`--png OUT.png` writes a PNG)",
-                path.display()
-            ))
-        }
+        needs_extension(
+            path,
+            "--svg",
+            "svg",
+            "an SVG picture",
+            " (`--png OUT.png` writes a PNG)",
+        )
     },
     files: the_file,
     write: |product, path| write_file(path, picture(product, path)?),
