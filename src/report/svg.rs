@@ -253,6 +253,18 @@ impl View {
         format!("{},{}", num(self.x(p.x)), num(self.y(p.y)))
     }
 
+    /// A `<circle>` element of world radius `r` at `at`, with `attrs`
+    /// (none when empty).
+    fn circle(&self, at: Point, r: f64, attrs: &str) -> String {
+        let sep = if attrs.is_empty() { "" } else { " " };
+        format!(
+            "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{sep}{attrs}/>",
+            num(self.x(at.x)),
+            num(self.y(at.y)),
+            num(r * self.scale)
+        )
+    }
+
     /// `x y x y ...` of world points, for `points` attributes.
     fn points(&self, ps: &[Point]) -> String {
         let xs: Vec<String> = ps
@@ -533,13 +545,7 @@ fn draw_moving(svg: &mut String, view: &View, scenario: &Scenario, at: Option<f6
         };
         let shape_at = |svg: &mut String, at: Point, attrs: &str| match &o.shape {
             MovingShape::Disk(r) => {
-                let _ = writeln!(
-                    svg,
-                    "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" {attrs}/>",
-                    num(view.x(at.x)),
-                    num(view.y(at.y)),
-                    num(r * view.scale)
-                );
+                let _ = writeln!(svg, "{}", view.circle(at, *r, attrs));
             }
             MovingShape::Pieces(pieces) => {
                 for piece in pieces {
@@ -787,13 +793,7 @@ fn draw_layer(svg: &mut String, view: &View, drawn: &Drawn<'_>) {
                         let _ = writeln!(svg, "<path d=\"{d}\"/>");
                     }
                     (None, Some(c)) => {
-                        let _ = writeln!(
-                            svg,
-                            "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/>",
-                            num(view.x(c.x)),
-                            num(view.y(c.y)),
-                            num(region.radius * view.scale)
-                        );
+                        let _ = writeln!(svg, "{}", view.circle(*c, region.radius, ""));
                     }
                     (None, None) => {}
                 }
@@ -1069,13 +1069,7 @@ fn draw_body_as(
     match shape {
         RobotShape::Point => {}
         RobotShape::Disk(r) => {
-            let _ = writeln!(
-                svg,
-                "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" {style}/>",
-                num(view.x(c.x)),
-                num(view.y(c.y)),
-                num(r * view.scale)
-            );
+            let _ = writeln!(svg, "{}", view.circle(c.xy(), *r, &style));
         }
         RobotShape::Polygon(_) => {
             let _ = writeln!(
