@@ -93,7 +93,7 @@ pub fn distance_point_segment(p: Point, a: Point, b: Point) -> f64 {
 }
 
 /// Distance between the closed segments `ab` and `cd` (0 when they meet).
-fn distance_segment_segment(a: Point, b: Point, c: Point, d: Point) -> f64 {
+pub(crate) fn distance_segment_segment(a: Point, b: Point, c: Point, d: Point) -> f64 {
     let (o1, o2) = (orient(a, b, c), orient(a, b, d));
     let (o3, o4) = (orient(c, d, a), orient(c, d, b));
     if o1 * o2 < 0.0 && o3 * o4 < 0.0 {

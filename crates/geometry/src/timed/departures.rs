@@ -26,9 +26,11 @@
 use super::point_polygon_distance;
 use super::{After, MovingObstacle, MovingShape};
 use crate::buckets::Buckets;
+#[cfg(test)]
 use crate::polygon::closest_point_on_segment;
 #[cfg(test)]
 use crate::polygon::convex_hull;
+use crate::polygon::distance_segment_segment;
 use crate::{Aabb, Point, Vector};
 
 /// A conflict counts when the closest approach is below the robot's reach
@@ -201,7 +203,7 @@ impl<'a> RoundMover<'a> {
     /// The broad phase: whether the piece's swept segment comes within its
     /// reach of the move's segment.
     fn near(&self, piece: &Piece, p: Point, q: Point) -> bool {
-        segment_distance(piece.from, piece.to, p, q) < piece.reach
+        distance_segment_segment(piece.from, piece.to, p, q) < piece.reach
     }
 
     /// The closest approach minus the reach, for the move leaving at `t0`
@@ -610,26 +612,6 @@ fn hull_distance(hull: &[Point]) -> f64 {
             .norm(),
         _ => point_polygon_distance(Point::origin(), hull),
     }
-}
-
-/// The distance between segments `ab` and `cd`.
-fn segment_distance(a: Point, b: Point, c: Point, d: Point) -> f64 {
-    if segments_cross(a, b, c, d) {
-        return 0.0;
-    }
-    let to = |x: Point, s: Point, e: Point| (x - closest_point_on_segment(x, s, e)).norm();
-    to(a, c, d)
-        .min(to(b, c, d))
-        .min(to(c, a, b))
-        .min(to(d, a, b))
-}
-
-fn segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let cross = |o: Point, p: Point, q: Point| (p - o).perp(&(q - o));
-    let (d1, d2) = (cross(c, d, a), cross(c, d, b));
-    let (d3, d4) = (cross(a, b, c), cross(a, b, d));
-    ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
 }
 
 /// A point of `[lo, hi]` where the convex `g` (Lipschitz constant
