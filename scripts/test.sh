@@ -3,10 +3,12 @@
 # (rerun-sdk==0.36.3, whose `rerun` binary the .rrd tests use), OMPL's
 # Python package (ompl==2.0.1, for its benchmark statistics script) and
 # maturin (the wheel) into a virtual environment under target/, then runs
-# `cargo test --release`, builds the wheel from that release build and
-# installs it into a fresh venv (scripts/wheel.sh --check), then the editor
-# support's tests (editors/test.sh: Node.js; npm installs the pinned test
-# tools into editors/node_modules).
+# `cargo test --release` (every crate but the Python module's, whose tests
+# are pytest's), builds the wheel (the module, and the `scen` that release
+# build made) and installs it into a fresh venv with numpy and pytest, where
+# tests/python/ runs (scripts/wheel.sh --check), then the editor support's
+# tests (editors/test.sh: Node.js; npm installs the pinned test tools into
+# editors/node_modules).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -17,7 +19,8 @@ if [ ! -x "$venv/bin/rerun" ] || [ ! -x "$venv/bin/ompl_benchmark_statistics" ] 
   # The Rerun viewer (for the .rrd tests) and OMPL's Python package, whose
   # ompl_benchmark_statistics turns `scen bench --ompl-log` into the
   # database Planner Arena reads (tests/bench.rs).
-  # maturin builds the wheel of the `scen` binary (scripts/wheel.sh).
+  # maturin builds the wheel: the Python module and the `scen` binary
+  # (scripts/wheel.sh).
   "$venv/bin/pip" install --quiet --disable-pip-version-check "rerun-sdk==0.36.3" "ompl==2.0.1" "maturin==1.16.0"
 fi
 "$venv/bin/rerun" analytics disable >/dev/null 2>&1 || true
@@ -29,11 +32,12 @@ export SCEN_OMPL_STATS="$PWD/$venv/bin/ompl_benchmark_statistics"
 # reproducible; unset PROPTEST_RNG_SEED (or set another) to explore new cases.
 export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}"
 
-cargo test --release --workspace --no-fail-fast "$@"
+cargo test --release --workspace --exclude scen-python --no-fail-fast "$@"
 
-# The wheel, from the release build cargo test just made (maturin finds the
-# crate up to date and only packages it), installed into a fresh venv: the
-# `scen` pip puts on PATH must run a scenario.
+# The wheel: maturin builds the module (crates/python: the library without
+# the viewer, so no Rerun SDK is built again) and packages the `scen` that
+# cargo test just built; installed into a fresh venv, the `scen` pip puts on
+# PATH must run a scenario, and pytest runs tests/python/ on `import scen`.
 MATURIN="$PWD/$venv/bin/maturin" bash scripts/wheel.sh --check
 
 # The VS Code grammar and the Vim syntax (after cargo test, which built

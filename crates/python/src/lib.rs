@@ -1,0 +1,578 @@
+//! `scen._scen`: the Python module (SPEC §7), on the `scen` library without
+//! the viewer, never through the command line.
+//!
+//! - [`load`] / [`loads`]: a scenario from a file or from text; bad input
+//!   raises `ScenError`, carrying the located diagnostics.
+//! - [`Scenario::run`]: its plans run with the GIL released; a
+//!   [`Report`] whose plans hold their metrics, and their path and
+//!   trajectory as numpy float64 arrays, taken from the same document as
+//!   `scen run --json` (so the two agree to the bit).
+//! - [`Scenario::validate`]: the validator on a path made elsewhere (a
+//!   numpy array), as `scen validate` does.
+//! - `_repr_svg_` on scenarios and reports, for Jupyter.
+//!
+//! The Python package (`python/scen/__init__.py`) re-exports this module;
+//! its type stubs are `python/scen/_scen.pyi`.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyReadonlyArray2};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyException, PyKeyError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use pyo3::{IntoPyObjectExt, Py};
+use serde_json::Value;
+
+use scen::diagnostics::{Diag, SourceMap, render_diags};
+use scen::geometry::Config;
+use scen::scenario::SampleChoice;
+use scen::scenario::loader::{LoadFailure, load_sample};
+
+create_exception!(
+    _scen,
+    ScenError,
+    PyException,
+    "Bad input: a scenario that does not load, a plan that does not exist, a path of the wrong shape. `diagnostics` lists each problem as a dict (severity, code, message, label, help, and file, line, column when located); str(error) is the report `scen check` prints."
+);
+
+/// The error for diagnostics: its text the rendered report, its
+/// `diagnostics` the list of dicts (`scen check --format json`'s).
+fn scen_error(py: Python<'_>, diags: &[Diag], sources: &SourceMap) -> PyErr {
+    let text = render_diags(diags, sources);
+    let err = ScenError::new_err(text.trim_end().to_string());
+    let list: Vec<Value> = diags.iter().map(|d| d.to_json(sources)).collect();
+    match json_to_py(py, &Value::Array(list)) {
+        Ok(value) => match err.value(py).setattr("diagnostics", value) {
+            Ok(()) => err,
+            Err(e) => e,
+        },
+        Err(e) => e,
+    }
+}
+
+/// A `ScenError` with one message and no location.
+fn plain_error(py: Python<'_>, code: &'static str, message: String, help: &str) -> PyErr {
+    scen_error(
+        py,
+        &[Diag::error(code, message).help(help)],
+        &SourceMap::default(),
+    )
+}
+
+fn failure(py: Python<'_>, f: LoadFailure) -> PyErr {
+    scen_error(py, &f.diags, &f.sources)
+}
+
+/// JSON as Python: objects as dicts (in order), arrays as lists, numbers
+/// as int or float, null as None.
+fn json_to_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => b.into_bound_py_any(py)?,
+        Value::Number(n) => {
+            if let Some(i) = n.as_i64() {
+                i.into_bound_py_any(py)?
+            } else if let Some(u) = n.as_u64() {
+                u.into_bound_py_any(py)?
+            } else {
+                n.as_f64().unwrap_or(f64::NAN).into_bound_py_any(py)?
+            }
+        }
+        Value::String(s) => s.into_bound_py_any(py)?,
+        Value::Array(items) => {
+            let list = PyList::empty(py);
+            for item in items {
+                list.append(json_to_py(py, item)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(map) => {
+            let dict = PyDict::new(py);
+            for (k, item) in map {
+                dict.set_item(k, json_to_py(py, item)?)?;
+            }
+            dict.into_any()
+        }
+    })
+}
+
+/// A JSON array of equally long number arrays as an (N, K) float64 array
+/// (null, JSON's NaN, as NaN); `None` when `v` is not such an array.
+fn json_matrix<'py>(py: Python<'py>, v: &Value) -> Option<Bound<'py, PyAny>> {
+    let rows = v.as_array()?;
+    let width = rows.first().map_or(0, |r| r.as_array().map_or(0, Vec::len));
+    let mut flat = Vec::with_capacity(rows.len() * width);
+    for row in rows {
+        let row = row.as_array()?;
+        if row.len() != width {
+            return None;
+        }
+        for x in row {
+            flat.push(x.as_f64().unwrap_or(f64::NAN));
+        }
+    }
+    let array = Array2::from_shape_vec((rows.len(), width), flat).ok()?;
+    Some(array.into_pyarray(py).into_any())
+}
+
+/// Reads a scenario file (its includes and maps inside its folder, or
+/// inside `root`). For a family (`param`, `scatter`): sample `sample`,
+/// drawn from `family_seed` (as `scen run --sample K --family-seed S`).
+#[pyfunction]
+#[pyo3(signature = (path, *, root = None, sample = 0, family_seed = 0))]
+fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    root: Option<PathBuf>,
+    sample: u64,
+    family_seed: u64,
+) -> PyResult<Scenario> {
+    let choice = SampleChoice {
+        sample,
+        family_seed,
+    };
+    let loaded = py.detach(|| load_sample(&path, root.as_deref(), &|_| None, choice));
+    loaded.map(Scenario::new).map_err(|f| failure(py, f))
+}
+
+/// Reads a scenario from its text. `name` is the file it is reported as
+/// (its includes and maps are read relative to the current folder, which
+/// is its root unless `root` is given); `sample` and `family_seed` as for
+/// [`load`].
+#[pyfunction]
+#[pyo3(signature = (text, *, name = "<string>.scen", root = None, sample = 0, family_seed = 0))]
+fn loads(
+    py: Python<'_>,
+    text: &str,
+    name: &str,
+    root: Option<PathBuf>,
+    sample: u64,
+    family_seed: u64,
+) -> PyResult<Scenario> {
+    let path = PathBuf::from(name);
+    let canon = scen::scenario::loader::canonical(&path);
+    let text: Arc<str> = Arc::from(text);
+    let root = root.unwrap_or_else(|| PathBuf::from("."));
+    let choice = SampleChoice {
+        sample,
+        family_seed,
+    };
+    let loaded = py.detach(|| {
+        let overlay = |p: &Path| (p == canon).then(|| text.clone());
+        load_sample(&path, Some(&root), &overlay, choice)
+    });
+    loaded.map(Scenario::new).map_err(|f| failure(py, f))
+}
+
+/// A loaded scenario: its world, robots, plans and checks.
+#[pyclass(frozen, module = "scen")]
+struct Scenario {
+    inner: scen::Scenario,
+}
+
+impl Scenario {
+    fn new(inner: scen::Scenario) -> Self {
+        Scenario { inner }
+    }
+
+    fn plan_index(&self, py: Python<'_>, name: &str) -> PyResult<usize> {
+        self.inner
+            .plans
+            .iter()
+            .position(|p| p.name == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = self.inner.plans.iter().map(|p| p.name.as_str()).collect();
+                plain_error(
+                    py,
+                    "scen::python::no_plan",
+                    format!("the scenario has no plan `{name}`"),
+                    &format!("its plans: {}", names.join(", ")),
+                )
+            })
+    }
+}
+
+#[pymethods]
+impl Scenario {
+    /// The scenario's title (`scenario "..."`), None without one.
+    #[getter]
+    fn title(&self) -> Option<String> {
+        self.inner.title.clone()
+    }
+
+    /// The file it was read from.
+    #[getter]
+    fn file(&self) -> String {
+        self.inner.file.display().to_string()
+    }
+
+    /// For a family (`param`, `scatter`): the sample's number and its
+    /// drawn params (`{"sample": K, "family_seed": S, "params": {...}}`);
+    /// None for a scenario that draws nothing.
+    #[getter]
+    fn family(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let Some(drawn) = &self.inner.family else {
+            return Ok(py.None());
+        };
+        let d = PyDict::new(py);
+        d.set_item("sample", drawn.sample)?;
+        d.set_item("family_seed", drawn.family_seed)?;
+        let params = PyDict::new(py);
+        for (name, x) in &drawn.params {
+            params.set_item(name, x)?;
+        }
+        d.set_item("params", params)?;
+        Ok(d.into_any().unbind())
+    }
+
+    /// Sample `k` of the family this scenario was drawn from (same family
+    /// seed); a scenario that draws nothing is its own only sample.
+    fn sample(&self, py: Python<'_>, k: u64) -> PyResult<Scenario> {
+        let sampled = py.detach(|| self.inner.sample(k));
+        sampled.map(Scenario::new).map_err(|f| failure(py, f))
+    }
+
+    /// The names of its plans, in order.
+    #[getter]
+    fn plans(&self) -> Vec<String> {
+        self.inner.plans.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// Each plan's planner (`astar`, `rrt`, ...), by plan name.
+    #[getter]
+    fn planners(&self) -> Vec<(String, String)> {
+        self.inner
+            .plans
+            .iter()
+            .map(|p| (p.name.clone(), p.kind().to_string()))
+            .collect()
+    }
+
+    /// Runs the plans (all, or those named in `plans`), validates every
+    /// path and evaluates the checks, with the GIL released. `seed`, when
+    /// given, is every plan's seed (else each plan's own `seed`, 0 by
+    /// default); `draw` builds the planners' layers (the search, the
+    /// roadmap) for the report's picture.
+    #[pyo3(signature = (plans = None, *, seed = None, draw = false))]
+    fn run(
+        &self,
+        py: Python<'_>,
+        plans: Option<Vec<String>>,
+        seed: Option<u64>,
+        draw: bool,
+    ) -> PyResult<Report> {
+        let only = plans.unwrap_or_default();
+        for name in &only {
+            self.plan_index(py, name)?;
+        }
+        let mut scenario = self.inner.clone();
+        if let Some(seed) = seed {
+            for plan in &mut scenario.plans {
+                plan.params.seed = seed;
+            }
+        }
+        let report = py.detach(|| scen::run_scenario_drawing(scenario, &only, draw));
+        Report::new(py, report)
+    }
+
+    /// The validator on a path made elsewhere, as if plan `plan`'s planner
+    /// had returned it (`scen validate`): `path` is an (N, 2) array of
+    /// x, y, (N, 3) of x, y, θ (radians), or (N, 4) of x, y, θ, t (a
+    /// trajectory, seconds). The report's plan has `valid`, the metrics,
+    /// and `collision` where it first collides.
+    fn validate(
+        &self,
+        py: Python<'_>,
+        plan: &str,
+        path: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<Report> {
+        let index = self.plan_index(py, plan)?;
+        let view = path.as_array();
+        let (rows, cols) = view.dim();
+        let bad = |message: String| {
+            plain_error(
+                py,
+                "scen::python::bad_path",
+                message,
+                "give an (N, 2) array of x, y, (N, 3) of x, y, theta, or (N, 4) of x, y, theta, t",
+            )
+        };
+        if !(2..=4).contains(&cols) {
+            return Err(bad(format!("a path of {cols} columns")));
+        }
+        if rows == 0 {
+            return Err(bad("an empty path".into()));
+        }
+        if let Some((i, _)) = view.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(bad(format!(
+                "row {} holds a value that is not a finite number",
+                i / cols
+            )));
+        }
+        let robot = &self.inner.robots[self.inner.plans[index].robot];
+        if robot.steering.is_some() {
+            return Err(plain_error(
+                py,
+                "scen::python::car_path",
+                format!("plan `{plan}` is for a car robot, whose path is its segments (SPEC 3.0)"),
+                "validating a car's path from poses is not supported",
+            ));
+        }
+        let poses: Vec<Config> = view
+            .rows()
+            .into_iter()
+            .map(|r| Config::new(r[0], r[1], if cols >= 3 { r[2] } else { 0.0 }))
+            .collect();
+        let times = (cols == 4).then(|| view.column(3).to_vec());
+        if times.is_none() && !self.inner.moving.is_empty() {
+            return Err(plain_error(
+                py,
+                "scen::validate::needs_times",
+                format!(
+                    "the world has moving obstacles (`{}`): a path without times cannot be judged among them",
+                    self.inner.moving[0].name
+                ),
+                "give every pose its time: an (N, 4) array of x, y, theta, t",
+            ));
+        }
+        let scenario = self.inner.clone();
+        let report = py.detach(|| scen::run::validate_user_path(scenario, index, poses, times));
+        Report::new(py, report)
+    }
+
+    /// The scenario drawn (its world, robots, starts and goals) as SVG.
+    fn to_svg(&self, py: Python<'_>) -> String {
+        let scenario = self.inner.clone();
+        py.detach(|| {
+            scen::report::svg::to_svg(&scen::RunReport {
+                scenario,
+                plans: Vec::new(),
+                bench_runs: Vec::new(),
+                checks: Vec::new(),
+                skipped: Vec::new(),
+            })
+        })
+    }
+
+    fn _repr_svg_(&self, py: Python<'_>) -> String {
+        self.to_svg(py)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<scen.Scenario {:?}: {} plan(s)>",
+            self.inner.title,
+            self.inner.plans.len()
+        )
+    }
+}
+
+/// What a run (or a validation) produced: each plan's result and each
+/// check's verdict.
+#[pyclass(frozen, module = "scen")]
+struct Report {
+    inner: scen::RunReport,
+    /// `scen run --json`'s document, as its text.
+    json: String,
+    plans: Py<PyDict>,
+    checks: Py<PyList>,
+}
+
+impl Report {
+    fn new(py: Python<'_>, report: scen::RunReport) -> PyResult<Report> {
+        let doc = scen::report::json::to_json(&report);
+        let json = serde_json::to_string(&doc).unwrap_or_default();
+        let plans = PyDict::new(py);
+        if let Some(Value::Object(map)) = doc.get("plans") {
+            for (name, plan) in map {
+                let validation = report
+                    .plans
+                    .iter()
+                    .find(|r| report.scenario.plans[r.plan].name == *name)
+                    .and_then(|r| r.validation.clone());
+                let result = PlanResult::new(py, name, plan, validation)?;
+                plans.set_item(name, Py::new(py, result)?)?;
+            }
+        }
+        let checks = match doc.get("checks") {
+            Some(v) => json_to_py(py, v)?.cast_into::<PyList>()?,
+            None => PyList::empty(py),
+        };
+        Ok(Report {
+            inner: report,
+            json,
+            plans: plans.unbind(),
+            checks: checks.unbind(),
+        })
+    }
+}
+
+#[pymethods]
+impl Report {
+    /// Each plan's result, by name (`PlanResult`).
+    #[getter]
+    fn plans(&self, py: Python<'_>) -> Py<PyDict> {
+        self.plans.clone_ref(py)
+    }
+
+    /// Each evaluated check: `line`, `expr`, `passed`, `values`.
+    #[getter]
+    fn checks(&self, py: Python<'_>) -> Py<PyList> {
+        self.checks.clone_ref(py)
+    }
+
+    /// How many checks passed.
+    #[getter]
+    fn passed(&self) -> usize {
+        self.inner.passed()
+    }
+
+    /// How many checks failed.
+    #[getter]
+    fn failed(&self) -> usize {
+        self.inner.failed()
+    }
+
+    /// `scen run --json`'s document (SPEC 5), as text.
+    fn to_json(&self) -> String {
+        self.json.clone()
+    }
+
+    /// The run drawn as `scen run --svg` draws it.
+    fn to_svg(&self, py: Python<'_>) -> String {
+        py.detach(|| scen::report::svg::to_svg(&self.inner))
+    }
+
+    fn _repr_svg_(&self, py: Python<'_>) -> String {
+        self.to_svg(py)
+    }
+
+    fn __getitem__(&self, py: Python<'_>, name: &str) -> PyResult<Py<PyAny>> {
+        match self.plans.bind(py).get_item(name)? {
+            Some(plan) => Ok(plan.unbind()),
+            None => Err(PyKeyError::new_err(name.to_string())),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<scen.Report {:?}: {} plan(s), {} passed, {} failed>",
+            self.inner.scenario.title,
+            self.inner.plans.len(),
+            self.inner.passed(),
+            self.inner.failed()
+        )
+    }
+}
+
+/// One plan's result.
+#[pyclass(frozen, module = "scen", get_all)]
+struct PlanResult {
+    /// The plan's name.
+    name: String,
+    /// Its planner (`astar`, `rrt`, ...).
+    planner: String,
+    /// Whether the planner returned a path.
+    found: bool,
+    /// Whether the validator accepted it (False also when there is none).
+    valid: bool,
+    /// Every metric, by name (SPEC 3).
+    metrics: Py<PyAny>,
+    /// The path: (N, 2) x, y, or (N, 3) x, y, θ for a robot whose heading
+    /// matters; None without one.
+    path: Py<PyAny>,
+    /// A time-aware plan's trajectory, (N, 4) x, y, θ, t; or the motion a
+    /// run executed before it stopped short; None otherwise.
+    trajectory: Py<PyAny>,
+    /// A car's path as its segments, `[(turn, length), ...]`; None
+    /// otherwise.
+    segments: Py<PyAny>,
+    /// Where the path first failed the validator: `segment`, `at`
+    /// (x, y, θ), `obstacle` (None for the bounds), `reason`; None when
+    /// it passed.
+    collision: Py<PyAny>,
+}
+
+impl PlanResult {
+    fn new(
+        py: Python<'_>,
+        name: &str,
+        plan: &Value,
+        validation: Option<scen::geometry::validator::ValidationError>,
+    ) -> PyResult<PlanResult> {
+        let metrics = json_to_py(py, plan.get("metrics").unwrap_or(&Value::Null))?;
+        let found = plan.get("path").is_some_and(|p| !p.is_null());
+        let matrix = |key: &str| -> Py<PyAny> {
+            plan.get(key)
+                .and_then(|v| json_matrix(py, v))
+                .map_or_else(|| py.None(), Bound::unbind)
+        };
+        let segments = match plan.get("segments") {
+            Some(Value::Array(items)) => {
+                let list = PyList::empty(py);
+                for s in items {
+                    let turn = s.get(0).and_then(Value::as_str).unwrap_or("");
+                    let length = s.get(1).and_then(Value::as_f64).unwrap_or(f64::NAN);
+                    list.append((turn, length))?;
+                }
+                list.into_any().unbind()
+            }
+            _ => py.None(),
+        };
+        let collision = match &validation {
+            Some(e) => {
+                let d = PyDict::new(py);
+                d.set_item("segment", e.segment)?;
+                d.set_item("at", (e.at.x, e.at.y, e.at.theta))?;
+                d.set_item("obstacle", e.obstacle.clone())?;
+                d.set_item("reason", e.reason.clone())?;
+                d.into_any().unbind()
+            }
+            None => py.None(),
+        };
+        Ok(PlanResult {
+            name: name.to_string(),
+            planner: plan
+                .get("kind")
+                .and_then(Value::as_str)
+                .unwrap_or("")
+                .to_string(),
+            found,
+            valid: found && validation.is_none(),
+            metrics: metrics.unbind(),
+            path: matrix("path"),
+            trajectory: matrix("trajectory"),
+            segments,
+            collision,
+        })
+    }
+}
+
+#[pymethods]
+impl PlanResult {
+    fn __repr__(&self) -> String {
+        format!(
+            "<scen.PlanResult {:?} ({}): found={}, valid={}>",
+            self.name,
+            self.planner,
+            if self.found { "True" } else { "False" },
+            if self.valid { "True" } else { "False" }
+        )
+    }
+}
+
+/// The module `scen._scen`.
+#[pymodule]
+fn _scen(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("ScenError", m.py().get_type::<ScenError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(loads, m)?)?;
+    m.add_class::<Scenario>()?;
+    m.add_class::<Report>()?;
+    m.add_class::<PlanResult>()?;
+    Ok(())
+}

@@ -1,0 +1,90 @@
+# Type stubs of the extension module scen._scen (crates/python/src/lib.rs).
+from os import PathLike
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class ScenError(Exception):
+    """Bad input. `diagnostics`: one dict per problem, with `severity`,
+    `code`, `message`, `label`, `help`, and `file`, `line`, `column`,
+    `end_line`, `end_column` when located."""
+
+    diagnostics: List[Dict[str, Any]]
+
+def load(
+    path: Union[str, PathLike[str]],
+    *,
+    root: Optional[Union[str, PathLike[str]]] = None,
+    sample: int = 0,
+    family_seed: int = 0,
+) -> Scenario:
+    """Reads a scenario file (its includes and maps inside its folder, or `root`);
+    for a family, sample `sample` drawn from `family_seed`."""
+
+def loads(
+    text: str,
+    *,
+    name: str = "<string>.scen",
+    root: Optional[Union[str, PathLike[str]]] = None,
+    sample: int = 0,
+    family_seed: int = 0,
+) -> Scenario:
+    """Reads a scenario from its text, reported as the file `name`."""
+
+class Scenario:
+    @property
+    def title(self) -> Optional[str]: ...
+    @property
+    def file(self) -> str: ...
+    @property
+    def family(self) -> Optional[Dict[str, Any]]:
+        """A family's sample: sample, family_seed, params; None otherwise."""
+    def sample(self, k: int) -> Scenario:
+        """Sample k of the same family (itself when it draws nothing)."""
+    @property
+    def plans(self) -> List[str]:
+        """The plans' names, in order."""
+    @property
+    def planners(self) -> List[Tuple[str, str]]:
+        """(plan, planner) for each plan."""
+    def run(self, plans: Optional[Sequence[str]] = None, *, seed: Optional[int] = None, draw: bool = False) -> Report:
+        """Runs the plans (all, or those named), validates every path and
+        evaluates the checks; the GIL is released meanwhile."""
+    def validate(self, plan: str, path: npt.NDArray[np.float64]) -> Report:
+        """The validator on an (N, 2), (N, 3) or (N, 4) array (x, y[, theta[, t]])
+        as if plan `plan` had returned it."""
+    def to_svg(self) -> str: ...
+    def _repr_svg_(self) -> str: ...
+
+class Report:
+    @property
+    def plans(self) -> Dict[str, PlanResult]: ...
+    @property
+    def checks(self) -> List[Dict[str, Any]]:
+        """Each evaluated check: line, expr, passed, values."""
+    @property
+    def passed(self) -> int: ...
+    @property
+    def failed(self) -> int: ...
+    def to_json(self) -> str:
+        """The document `scen run --json` prints."""
+    def to_svg(self) -> str: ...
+    def _repr_svg_(self) -> str: ...
+    def __getitem__(self, plan: str) -> PlanResult: ...
+
+class PlanResult:
+    name: str
+    planner: str
+    found: bool
+    valid: bool
+    metrics: Dict[str, Union[int, float, bool, None]]
+    path: Optional[npt.NDArray[np.float64]]
+    """(N, 2) x, y, or (N, 3) x, y, theta when the robot's heading matters."""
+    trajectory: Optional[npt.NDArray[np.float64]]
+    """(N, 4) x, y, theta, t for a time-aware plan."""
+    segments: Optional[List[Tuple[str, float]]]
+    collision: Optional[Dict[str, Any]]
+    """segment, at (x, y, theta), obstacle, reason; None when valid."""

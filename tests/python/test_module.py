@@ -1,0 +1,238 @@
+"""The Python module, as a user has it: `import scen` from the installed
+wheel (scripts/wheel.sh --check runs these with the wheel's venv)."""
+
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import scen
+
+ROOT = Path(__file__).resolve().parents[2]
+SCENARIOS = ROOT / "scenarios"
+# The `scen` command pip installed beside this Python.
+SCEN = Path(sys.executable).parent / "scen"
+
+# What varies between two runs of the same input: the timings.
+TIMINGS = {"time_ms", "simplify_ms"}
+
+
+def without_timings(v):
+    if isinstance(v, dict):
+        return {k: without_timings(x) for k, x in v.items() if k not in TIMINGS and not k.endswith(".time_ms")}
+    if isinstance(v, list):
+        return [without_timings(x) for x in v]
+    return v
+
+
+def test_the_module_is_the_installed_wheel_not_the_sources():
+    assert "site-packages" in scen.__file__, scen.__file__
+    assert scen.__version__.count(".") == 2
+
+
+WALL = """scenario "a wall"
+world {
+  bounds (0, 0) (10, 10)
+  rect wall (4, 0) (6, 8)
+}
+robot r point
+plan p astar r {
+  start (1, 1)
+  goal (9, 1)
+  cell 0.5
+}
+expect p.found
+"""
+
+
+def test_load_run_and_the_path_as_numpy():
+    sc = scen.load(SCENARIOS / "apartment_disk.scen")
+    assert sc.plans, "the scenario has plans"
+    report = sc.run()
+    assert report.failed == 0 and report.passed >= 1
+    for name in sc.plans:
+        r = report[name]
+        assert r.name == name
+        if r.found:
+            assert isinstance(r.path, np.ndarray) and r.path.dtype == np.float64
+            assert r.path.ndim == 2 and r.path.shape[1] in (2, 3) and len(r.path) >= 2
+            assert r.valid and r.collision is None
+            # The path's length is the metric of the same name.
+            steps = np.diff(r.path[:, :2], axis=0)
+            assert math.isclose(np.hypot(steps[:, 0], steps[:, 1]).sum(), r.metrics["length"], rel_tol=1e-9)
+    assert all(isinstance(c["passed"], bool) for c in report.checks)
+
+
+def test_loads_reads_text_and_reports_the_name():
+    text = WALL
+    sc = scen.loads(text, name="tiny.scen")
+    assert sc.title == "a wall" and sc.file.endswith("tiny.scen") and sc.plans == ["p"] and sc.planners == [("p", "astar")]
+    report = sc.run()
+    assert report.passed == 1 and report["p"].found and report["p"].valid
+    # It goes round the wall: up past y = 8.
+    assert report["p"].path[:, 1].max() >= 8.0
+    svg = report._repr_svg_()
+    assert svg.startswith("<svg") or svg.startswith("<?xml"), svg[:60]
+    assert "<svg" in sc._repr_svg_()
+
+
+def test_bad_input_raises_scen_error_with_code_and_line():
+    text = WALL.replace("  cell 0.5", "  cel 0.5")
+    with pytest.raises(scen.ScenError) as info:
+        scen.loads(text, name="bad.scen")
+    diags = info.value.diagnostics
+    assert diags, "the error carries its diagnostics"
+    first = diags[0]
+    assert first["severity"] == "error"
+    assert first["code"].startswith("scen::")
+    assert first["line"] == 10 and first["file"].endswith("bad.scen")
+    assert "bad.scen" in str(info.value) and first["code"] in str(info.value)
+
+
+def test_a_missing_file_and_an_unknown_plan_raise_scen_error():
+    with pytest.raises(scen.ScenError) as info:
+        scen.load(ROOT / "no-such-file.scen")
+    assert info.value.diagnostics[0]["code"].startswith("scen::")
+    sc = scen.load(SCENARIOS / "apartment_disk.scen")
+    with pytest.raises(scen.ScenError) as info:
+        sc.run(["no_such_plan"])
+    assert info.value.diagnostics[0]["code"] == "scen::python::no_plan"
+    assert "no_such_plan" in str(info.value)
+
+
+def test_validate_accepts_the_planners_path_and_locates_a_collision():
+    text = WALL
+    sc = scen.loads(text, name="wall.scen")
+    planned = sc.run()["p"].path
+    ok = sc.validate("p", planned)
+    assert ok["p"].valid and ok["p"].collision is None
+    assert math.isclose(ok["p"].metrics["length"], sc.run()["p"].metrics["length"], rel_tol=1e-12)
+    through = np.array([[1.0, 1.0], [9.0, 1.0]])
+    bad = sc.validate("p", through)
+    r = bad["p"]
+    assert not r.valid
+    assert r.collision["segment"] == 0 and r.collision["obstacle"] == "wall"
+    assert "wall" in r.collision["reason"]
+    # The pose of the failing sub-step: on the segment (a translation of a
+    # point robot is one sub-step, so its end).
+    x, y, _ = r.collision["at"]
+    assert 4.0 <= x <= 9.0 and y == pytest.approx(1.0)
+    # The second leg of a path round the wall's top, cut through its corner.
+    corner = sc.validate("p", np.array([[1.0, 1.0], [3.5, 8.5], [9.0, 1.0]]))["p"]
+    assert not corner.valid and corner.collision["segment"] == 1
+    with pytest.raises(scen.ScenError) as info:
+        sc.validate("p", np.zeros((3, 5)))
+    assert info.value.diagnostics[0]["code"] == "scen::python::bad_path"
+    with pytest.raises(scen.ScenError):
+        sc.validate("p", np.array([[1.0, 1.0], [math.nan, 2.0]]))
+
+
+def test_validate_a_trajectory_among_moving_obstacles():
+    sc = scen.load(SCENARIOS / "time_door.scen")
+    report = sc.run()
+    name = sc.plans[0]
+    traj = report[name].trajectory
+    assert traj is not None and traj.shape[1] == 4
+    assert np.all(np.diff(traj[:, 3]) >= 0), "times never go back"
+    again = sc.validate(name, traj)
+    assert again[name].valid
+    # Without its times the path cannot be judged among moving obstacles.
+    with pytest.raises(scen.ScenError) as info:
+        sc.validate(name, traj[:, :3])
+    assert info.value.diagnostics[0]["code"] == "scen::validate::needs_times"
+    # Straight through at the robot's speed, without waiting: the door,
+    # which stands until t = 10 s, is in the way at t = 6.1 s.
+    straight = np.array([[2.5, 5.5, 0.0, 0.0], [17.5, 5.5, 0.0, 15.0]])
+    hit = sc.validate(name, straight)[name]
+    assert not hit.valid and hit.collision["obstacle"] == "door"
+
+
+def test_seeds_are_explicit_and_runs_repeat():
+    sc = scen.load(SCENARIOS / "apartment_rrt.scen") if (SCENARIOS / "apartment_rrt.scen").exists() else None
+    if sc is None:
+        candidates = [p for p in sorted(SCENARIOS.glob("*.scen")) if any(k in p.read_text() for k in (" rrt ", " prm "))]
+        assert candidates, "a scenario with a sampling planner"
+        sc = scen.load(candidates[0])
+    a = json.loads(sc.run(seed=7).to_json())
+    b = json.loads(sc.run(seed=7).to_json())
+    assert without_timings(a) == without_timings(b)
+
+
+def scenario_files():
+    # As `scen test` does: a leading `_` marks an include-only fragment.
+    return sorted(p for p in SCENARIOS.glob("*.scen") if not p.name.startswith("_"))
+
+
+@pytest.mark.parametrize("path", scenario_files(), ids=lambda p: p.name)
+def test_run_is_scen_run_json_to_the_bit(path):
+    """Every scenario: the module's run and the command's `--json` give the
+    same document (timings aside), and the numpy paths hold the JSON's
+    numbers exactly."""
+    cli = subprocess.run(
+        [str(SCEN), "run", "--json", path.name], cwd=SCENARIOS, capture_output=True, text=True
+    )
+    assert cli.returncode in (0, 1), cli.stderr
+    expected = json.loads(cli.stdout)
+    cwd = os.getcwd()
+    os.chdir(SCENARIOS)
+    try:
+        report = scen.load(path.name).run()
+    finally:
+        os.chdir(cwd)
+    got = json.loads(report.to_json())
+    assert without_timings(got) == without_timings(expected)
+    for name, plan in expected["plans"].items():
+        r = report[name]
+        assert r.found == (plan["path"] is not None)
+        if plan["path"] is not None:
+            assert np.array_equal(r.path, np.array(plan["path"], dtype=np.float64))
+        if "trajectory" in plan:
+            assert np.array_equal(r.trajectory, np.array(plan["trajectory"], dtype=np.float64))
+        metrics = {k: v for k, v in plan["metrics"].items() if k not in TIMINGS}
+        assert {k: v for k, v in r.metrics.items() if k not in TIMINGS} == metrics
+
+
+HEAVY = """scenario "a long search"
+world {
+  bounds (0, 0) (20, 20)
+  rect wall (10, 0) (10.5, 19.5)
+}
+robot r point
+plan p astar r {
+  start (1, 1)
+  goal (19, 1)
+  cell 0.02
+}
+"""
+
+
+def test_the_gil_is_released_while_planning():
+    """While one thread plans, another runs Python. With the GIL held for
+    the whole call, the other thread, woken by `inside`, could only take
+    the GIL after the call returned: it would count (almost) nothing."""
+    sc = scen.loads(HEAVY, name="heavy.scen")
+    inside = threading.Event()
+    done = threading.Event()
+    result = []
+
+    def work():
+        inside.set()
+        result.append(sc.run())
+        done.set()
+
+    counted = 0
+    t = threading.Thread(target=work)
+    t.start()
+    inside.wait()
+    while not done.is_set():
+        counted += 1
+    t.join()
+    assert result[0]["p"].found
+    assert counted > 1000, counted
