@@ -34,6 +34,20 @@ def loads(
 ) -> Scenario:
     """Reads a scenario from its text, reported as the file `name`."""
 
+def plan(
+    grid: npt.ArrayLike,
+    start: Sequence[float],
+    goal: Optional[Sequence[float]] = None,
+    *,
+    planner: str = "astar",
+    robot: str = "point",
+    cell: float = 1.0,
+    origin: Tuple[float, float] = (0.0, 0.0),
+    **params: Any,
+) -> PlanResult:
+    """Plans on a 2-D numpy grid (True or non-zero: blocked; row 0 the top row)
+    from `start` to `goal` (x, y[, theta]); `params` are the planner's."""
+
 class Scenario:
     @property
     def title(self) -> Optional[str]: ...

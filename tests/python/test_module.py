@@ -199,25 +199,14 @@ def test_run_is_scen_run_json_to_the_bit(path):
         assert {k: v for k, v in r.metrics.items() if k not in TIMINGS} == metrics
 
 
-HEAVY = """scenario "a long search"
-world {
-  bounds (0, 0) (20, 20)
-  rect wall (10, 0) (10.5, 19.5)
-}
-robot r point
-plan p astar r {
-  start (1, 1)
-  goal (19, 1)
-  cell 0.02
-}
-"""
+LONG = ROOT / "tests" / "python" / "long_search.scen"
 
 
 def test_the_gil_is_released_while_planning():
     """While one thread plans, another runs Python. With the GIL held for
     the whole call, the other thread, woken by `inside`, could only take
     the GIL after the call returned: it would count (almost) nothing."""
-    sc = scen.loads(HEAVY, name="heavy.scen")
+    sc = scen.load(LONG)
     inside = threading.Event()
     done = threading.Event()
     result = []
@@ -236,3 +225,110 @@ def test_the_gil_is_released_while_planning():
     t.join()
     assert result[0]["p"].found
     assert counted > 1000, counted
+
+
+DATA = ROOT.parent / "shared" / "data" / "movingai"
+
+
+def movingai_grid(path):
+    """A MovingAI map as a bool array, True where blocked (row 0 the top)."""
+    lines = path.read_text().splitlines()
+    rows = lines[lines.index("map") + 1 :]
+    return np.array([[c not in ".GS" for c in row] for row in rows if row], dtype=bool)
+
+
+def centre(h, col, row):
+    """The world point of a MovingAI cell (x right, y down from the top)."""
+    return (col + 0.5, h - 1 - row + 0.5)
+
+
+def test_plan_on_a_numpy_grid_is_the_cli_on_the_same_map(tmp_path):
+    """`scen.plan` on a MovingAI map read into numpy gives the path `scen
+    run` gives on the map file, to the bit, and the benchmark's optimal
+    length."""
+    map_file = DATA / "maze512-32-9.map"
+    if not map_file.exists():
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"{map_file} is missing (CI always has ../shared/data)")
+        pytest.skip(f"{map_file} is missing: the MovingAI data lives in ../shared/data")
+    grid = movingai_grid(map_file)
+    h, w = grid.shape
+    assert (h, w) == (512, 512)
+    rows = [l.split("\t") for l in (DATA / "maze512-32-9.map.scen").read_text().splitlines()[1:]]
+    row = rows[-1]  # the longest query
+    start = centre(h, int(row[4]), int(row[5]))
+    goal = centre(h, int(row[6]), int(row[7]))
+    optimal = float(row[8])
+    mine = scen.plan(grid, start, goal, connect=8)
+    assert mine.found and mine.valid
+    assert mine.metrics["length"] == pytest.approx(optimal, abs=1e-6)
+    (tmp_path / "maze.map").write_text(map_file.read_text())
+    (tmp_path / "maze.scen").write_text(
+        f"""scenario "maze"
+world {{
+  bounds (0, 0) ({w}, {h})
+  grid cells "maze.map" cell 1 origin (0, 0)
+}}
+robot r point
+plan p astar r {{
+  start ({start[0]}, {start[1]})
+  goal ({goal[0]}, {goal[1]})
+  connect 8
+}}
+"""
+    )
+    cli = subprocess.run([str(SCEN), "run", "--json", "maze.scen"], cwd=tmp_path, capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stderr
+    expected = json.loads(cli.stdout)["plans"]["p"]
+    assert np.array_equal(mine.path, np.array(expected["path"]))
+    assert {k: v for k, v in mine.metrics.items() if k != "time_ms"} == {
+        k: v for k, v in expected["metrics"].items() if k != "time_ms"
+    }
+
+
+def test_plan_reads_row_0_as_the_top_row_and_any_dtype():
+    # Only the top row is free: the path stays on it (y = 4.5 of 0..5).
+    grid = np.ones((5, 6), dtype=bool)
+    grid[0, :] = False
+    r = scen.plan(grid, (0.5, 4.5), (5.5, 4.5), connect=4)
+    assert r.found and r.valid and np.all(r.path[:, 1] == 4.5)
+    assert r.metrics["length"] == pytest.approx(5.0)
+    for dtype in (np.uint8, np.int32, np.int64, np.float32, np.float64):
+        again = scen.plan(grid.astype(dtype), (0.5, 4.5), (5.5, 4.5), connect=4)
+        assert np.array_equal(again.path, r.path), dtype
+    # A transposed view (not C-contiguous) reads the same cells.
+    assert scen.plan(np.ascontiguousarray(grid.T).T, (0.5, 4.5), (5.5, 4.5), connect=4).found
+    # Free cells only on the diagonal: 4-connected, they do not meet.
+    none = scen.plan(np.ones((5, 6), dtype=bool) & ~np.eye(5, 6, dtype=bool), (0.5, 4.5), (4.5, 0.5), connect=4)
+    assert not none.found and none.path is None and not none.valid
+
+
+def test_plan_with_cell_origin_robot_and_params():
+    grid = np.zeros((10, 10), dtype=bool)
+    grid[2:10, 5] = True  # a wall from the bottom, open at the top two rows
+    # The grid spans x in [-2, 3] and y in [0, 5]: (9, 1) is outside.
+    with pytest.raises(scen.ScenError) as info:
+        scen.plan(grid, (-1.0, 1.0), (9.0, 1.0), cell=0.5, origin=(-2.0, 0.0), robot="disk 0.2")
+    assert info.value.diagnostics[0]["code"] == "scen::analyze::pose_outside"
+    r = scen.plan(grid, (-1.0, 1.0), (2.0, 1.0), cell=0.5, origin=(-2.0, 0.0), robot="disk 0.2", heuristic="zero")
+    assert r.found and r.valid and r.path[:, 1].max() >= 4.0
+
+
+def test_plan_refuses_bad_input_with_its_code():
+    grid = np.zeros((4, 4), dtype=bool)
+    cases = [
+        (lambda: scen.plan([[0, 1], [1, 0]], (0.5, 0.5), (1.5, 1.5)), "scen::python::bad_grid"),
+        (lambda: scen.plan(np.zeros((2, 2, 2)), (0.5, 0.5), (1.5, 1.5)), "scen::python::bad_grid"),
+        (lambda: scen.plan(grid, (0.5,), (1.5, 1.5)), "scen::python::bad_plan"),
+        (lambda: scen.plan(grid, (0.5, 0.5), (1.5, math.inf)), "scen::python::bad_plan"),
+        (lambda: scen.plan(grid, (0.5, 0.5), (1.5, 1.5), cell=0), "scen::python::bad_plan"),
+        (lambda: scen.plan(grid, (0.5, 0.5), (1.5, 1.5), planner="astar }"), "scen::python::bad_plan"),
+        (lambda: scen.plan(grid, (0.5, 0.5), (1.5, 1.5), heuristic="zero\n}"), "scen::python::bad_plan"),
+        (lambda: scen.plan(grid, (0.5, 0.5), (1.5, 1.5), cel=0.5), "scen::analyze::unknown_key"),
+        (lambda: scen.plan(grid, (0.5, 0.5), (1.5, 1.5), planner="astra"), "scen::analyze::unknown_planner"),
+        (lambda: scen.plan(grid, (0.5, 0.5), (9.5, 1.5)), "scen::analyze::pose_outside"),
+    ]
+    for call, code in cases:
+        with pytest.raises(scen.ScenError) as info:
+            call()
+        assert info.value.diagnostics[0]["code"] == code, (code, str(info.value))

@@ -167,6 +167,200 @@ fn loads(
     loaded.map(Scenario::new).map_err(|f| failure(py, f))
 }
 
+/// A numpy grid as the text of a MovingAI map: `@` where the array is
+/// non-zero (True), `.` elsewhere; row 0 the top row. `None` when the
+/// array's element type is not a number or a bool.
+fn map_text(grid: &Bound<'_, PyAny>) -> Option<(usize, usize, String)> {
+    fn write<T: numpy::Element + Copy>(
+        grid: &Bound<'_, PyAny>,
+        blocked: impl Fn(T) -> bool,
+    ) -> Option<(usize, usize, String)> {
+        let array = grid.extract::<PyReadonlyArray2<'_, T>>().ok()?;
+        let view = array.as_array();
+        let (height, width) = view.dim();
+        let mut text = format!("type octile\nheight {height}\nwidth {width}\nmap\n");
+        text.reserve(height * (width + 1));
+        for row in view.rows() {
+            text.extend(row.iter().map(|&x| if blocked(x) { '@' } else { '.' }));
+            text.push('\n');
+        }
+        Some((width, height, text))
+    }
+    write::<bool>(grid, |x| x)
+        .or_else(|| write::<u8>(grid, |x| x != 0))
+        .or_else(|| write::<i8>(grid, |x| x != 0))
+        .or_else(|| write::<i32>(grid, |x| x != 0))
+        .or_else(|| write::<i64>(grid, |x| x != 0))
+        .or_else(|| write::<u32>(grid, |x| x != 0))
+        .or_else(|| write::<u64>(grid, |x| x != 0))
+        .or_else(|| write::<f32>(grid, |x| x != 0.0))
+        .or_else(|| write::<f64>(grid, |x| x != 0.0))
+}
+
+/// A pose as the language writes it: `(x, y)` or `(x, y, θrad)`.
+fn pose_text(py: Python<'_>, what: &str, pose: &[f64]) -> PyResult<String> {
+    if !(2..=3).contains(&pose.len()) || pose.iter().any(|x| !x.is_finite()) {
+        return Err(plain_error(
+            py,
+            "scen::python::bad_plan",
+            format!("the {what} is not a pose: {pose:?}"),
+            "give (x, y), or (x, y, theta) with theta in radians, as finite numbers",
+        ));
+    }
+    Ok(match pose {
+        [x, y] => format!("({x}, {y})"),
+        [x, y, t] => format!("({x}, {y}, {t}rad)"),
+        _ => unreachable!("2 or 3 numbers"),
+    })
+}
+
+/// A keyword argument of `plan` as a plan parameter's text.
+fn param_text(py: Python<'_>, key: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
+    let bad = |why: &str| {
+        plain_error(
+            py,
+            "scen::python::bad_plan",
+            format!("the parameter `{key}` {why}"),
+            "give a number, True or False, a word (`heuristic=\"zero\"`), or a tuple of numbers; the planner's parameters are in the manual's planners page",
+        )
+    };
+    let simple = |s: &str| {
+        !s.is_empty()
+            && s.chars()
+                .all(|c| c.is_alphanumeric() || " _.-+()[],".contains(c))
+    };
+    if !key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Err(bad("is not a parameter's name"));
+    }
+    let text = if let Ok(b) = value.extract::<bool>() {
+        b.to_string()
+    } else if let Ok(i) = value.extract::<i64>() {
+        i.to_string()
+    } else if let Ok(x) = value.extract::<f64>() {
+        if !x.is_finite() {
+            return Err(bad("is not a finite number"));
+        }
+        x.to_string()
+    } else if let Ok(word) = value.extract::<String>() {
+        if !simple(&word) {
+            return Err(bad("holds characters a parameter's value cannot"));
+        }
+        word
+    } else if let Ok(xs) = value.extract::<Vec<f64>>() {
+        if xs.iter().any(|x| !x.is_finite()) {
+            return Err(bad("holds a number that is not finite"));
+        }
+        let items: Vec<String> = xs.iter().map(f64::to_string).collect();
+        format!("({})", items.join(", "))
+    } else {
+        return Err(bad("has a value of a type the language has no word for"));
+    };
+    Ok(format!("  {key} {text}\n"))
+}
+
+/// Plans on a numpy grid without writing a scenario: the grid is the
+/// world's obstacles (a cell is blocked where the array is non-zero or
+/// True; row 0 is the top row), `cell` its cells' side and `origin` its
+/// bottom-left corner; `robot` is a robot as the language writes it after
+/// its name (`"point"`, `"disk 0.3"`); the keyword arguments are the
+/// planner's parameters (`connect=4`, `heuristic="zero"`). The plan is
+/// named `p`; its path is validated like any other.
+#[pyfunction]
+#[pyo3(signature = (grid, start, goal = None, *, planner = "astar", robot = "point", cell = 1.0, origin = (0.0, 0.0), **params))]
+#[allow(clippy::too_many_arguments)]
+fn plan(
+    py: Python<'_>,
+    grid: &Bound<'_, PyAny>,
+    start: Vec<f64>,
+    goal: Option<Vec<f64>>,
+    planner: &str,
+    robot: &str,
+    cell: f64,
+    origin: (f64, f64),
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PlanResult> {
+    let Some((width, height, map)) = map_text(grid) else {
+        return Err(plain_error(
+            py,
+            "scen::python::bad_grid",
+            "the grid is not a 2-D numpy array of numbers or booleans".into(),
+            "pass a 2-D array: True or non-zero where a cell is blocked, row 0 the top row",
+        ));
+    };
+    let word =
+        |s: &str| !s.is_empty() && s.chars().all(|c| c.is_alphanumeric() || " _.-".contains(c));
+    if !word(planner) || !word(robot) {
+        return Err(plain_error(
+            py,
+            "scen::python::bad_plan",
+            format!(
+                "`{planner}` / `{robot}` is not a planner and a robot as the language writes them"
+            ),
+            "e.g. planner=\"astar\", robot=\"disk 0.3\"",
+        ));
+    }
+    let (ox, oy) = origin;
+    if !(cell.is_finite() && cell > 0.0 && ox.is_finite() && oy.is_finite()) {
+        return Err(plain_error(
+            py,
+            "scen::python::bad_plan",
+            format!("a grid of cell {cell} at ({ox}, {oy})"),
+            "the cell is a positive number and the origin finite",
+        ));
+    }
+    let mut text = format!(
+        "scenario \"a numpy grid\"\nworld {{\n  bounds ({ox}, {oy}) ({}, {})\n  grid cells \"grid.map\" cell {cell} origin ({ox}, {oy})\n}}\nrobot r {robot}\nplan p {planner} r {{\n  start {}\n",
+        ox + width as f64 * cell,
+        oy + height as f64 * cell,
+        pose_text(py, "start", &start)?,
+    );
+    if let Some(goal) = &goal {
+        text.push_str(&format!("  goal {}\n", pose_text(py, "goal", goal)?));
+    }
+    if let Some(params) = params {
+        for (k, v) in params.iter() {
+            text.push_str(&param_text(py, &k.extract::<String>()?, &v)?);
+        }
+    }
+    text.push_str("}\n");
+    // A folder that exists only in the overlay: the scenario and its map.
+    let folder = std::env::current_dir()
+        .unwrap_or_default()
+        .join("<numpy grid>");
+    let main = folder.join("plan.scen");
+    let (main_c, map_c) = (
+        scen::scenario::loader::canonical(&main),
+        scen::scenario::loader::canonical(&folder.join("grid.map")),
+    );
+    let (text, map): (Arc<str>, Arc<str>) = (text.into(), map.into());
+    let outcome = py.detach(|| {
+        let overlay = |p: &Path| {
+            if p == main_c {
+                Some(text.clone())
+            } else if p == map_c {
+                Some(map.clone())
+            } else {
+                None
+            }
+        };
+        load_sample(&main, Some(&folder), &overlay, SampleChoice::default())
+            .map(|scenario| scen::run_scenario_drawing(scenario, &[], false))
+    });
+    let report = outcome.map_err(|f| failure(py, f))?;
+    let doc = scen::report::json::to_json(&report);
+    let plan = doc
+        .get("plans")
+        .and_then(|p| p.get("p"))
+        .cloned()
+        .unwrap_or(Value::Null);
+    PlanResult::new(
+        py,
+        "p",
+        &plan,
+        report.plans.first().and_then(|r| r.validation.clone()),
+    )
+}
+
 /// A loaded scenario: its world, robots, plans and checks.
 #[pyclass(frozen, module = "scen")]
 struct Scenario {
@@ -571,6 +765,7 @@ fn _scen(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(loads, m)?)?;
+    m.add_function(wrap_pyfunction!(plan, m)?)?;
     m.add_class::<Scenario>()?;
     m.add_class::<Report>()?;
     m.add_class::<PlanResult>()?;

@@ -527,18 +527,41 @@ impl Reader<'_> {
         let target = self.folder_of(from).join(&file.value);
         let canon = canonical(&target);
         let read = match self.inside_root(&canon, &file.value, file.span) {
-            Ok(()) => read_text(
-                &target,
-                MAX_MAP_BYTES,
-                Some(file.span),
-                "map",
-                &mut self.parsed.sources,
-            )
-            .map(|text| self.parsed.sources.add(&target, text)),
+            // The overlay's text first (a map made in memory: the Python
+            // module's `scen.plan` from a numpy grid), as for `.scen` files.
+            Ok(()) => match (self.overlay)(&canon) {
+                Some(text) if text.len() as u64 > MAX_MAP_BYTES => {
+                    Err(map_too_large(&target, file.span))
+                }
+                Some(text) => Ok(self.parsed.sources.add(&target, text)),
+                None => read_text(
+                    &target,
+                    MAX_MAP_BYTES,
+                    Some(file.span),
+                    "map",
+                    &mut self.parsed.sources,
+                )
+                .map(|text| self.parsed.sources.add(&target, text)),
+            },
             Err(d) => Err(d),
         };
         self.parsed.maps.insert(file.span, read);
     }
+}
+
+/// A map file (on disk or in the overlay) larger than [`MAX_MAP_BYTES`],
+/// at the `grid` that names it.
+fn map_too_large(path: &Path, at: Span) -> Diag {
+    Diag::error(
+        "scen::load::too_large",
+        format!(
+            "map file `{}` is larger than {}",
+            path.display(),
+            human_bytes(MAX_MAP_BYTES)
+        ),
+    )
+    .at(at, "file too large")
+    .help("a MovingAI map may be at most 64 MiB: use a coarser map, or a smaller part of it")
 }
 
 /// The scenario's text passed [`MAX_SCENARIO_BYTES`]: at the include that
@@ -593,17 +616,12 @@ pub(crate) fn read_text(
                 ),
             ),
         },
-        Err(ReadError::TooLarge(max)) if what == "map" => (
-            "scen::load::too_large",
-            format!(
-                "map file `{}` is larger than {}",
-                path.display(),
-                human_bytes(max)
-            ),
-            "file too large".to_string(),
-            "a MovingAI map may be at most 64 MiB: use a coarser map, or a smaller part of it"
-                .to_string(),
-        ),
+        Err(ReadError::TooLarge(_)) if what == "map" => {
+            let Some(span) = from else {
+                return Err(scenario_too_large(path, from, sources));
+            };
+            return Err(map_too_large(path, span));
+        }
         Err(ReadError::TooLarge(_)) => {
             return Err(scenario_too_large(path, from, sources));
         }
@@ -683,5 +701,37 @@ mod tests {
         // Without it, the disk's text.
         assert!(load(&main).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_map_file_comes_from_the_overlay_too() {
+        // Neither file is on disk: a scenario and its map made in memory.
+        let dir = std::env::temp_dir().join(format!("scen-overlay-map-{}", std::process::id()));
+        let main = dir.join("made.scen");
+        let (main_c, map_c) = (canonical(&main), canonical(&dir.join("cells.map")));
+        let overlay = |p: &Path| -> Option<Arc<str>> {
+            if p == main_c {
+                Some("world { bounds (0, 0) (3, 2) grid g \"cells.map\" cell 1 }\nrobot r point\nplan p astar r { start (0.5, 0.5) goal (2.5, 0.5) }\n".into())
+            } else if p == map_c {
+                Some("type octile\nheight 2\nwidth 3\nmap\n...\n.@.\n".into())
+            } else {
+                None
+            }
+        };
+        let s = load_with(&main, None, &overlay).expect("the overlay's map loads");
+        let crate::geometry::Shape::Grid(g) = &s.world.obstacles[0].shape else {
+            panic!("a grid: {:?}", s.world.obstacles[0].shape);
+        };
+        assert_eq!((g.width, g.height), (3, 2));
+        // Row 0 is the top row: the blocked cell is the bottom row's middle.
+        assert!(g.is_blocked(1, 1) && !g.is_blocked(1, 0));
+        // Without the overlay, the map is missing (and located at the grid).
+        let without = |p: &Path| (p == main_c).then(|| overlay(p)).flatten();
+        let err = load_with(&main, None, &without).expect_err("no map on disk");
+        assert!(
+            err.diags.iter().any(|d| d.code == "scen::load::read"),
+            "{:?}",
+            err.diags
+        );
     }
 }
