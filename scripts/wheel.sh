@@ -6,7 +6,7 @@
 # --release`): it goes into the wheel's scripts through the data folder
 # (pyproject.toml), so pip puts it on PATH and it is never built twice.
 # With `--check` the wheel is installed into a fresh virtual environment
-# (with numpy and pytest from PyPI), the `scen` on PATH runs a scenario,
+# (with numpy, pytest and distributed from PyPI), the `scen` on PATH runs a scenario,
 # and pytest runs tests/python/ against the installed module.
 #
 #   scripts/wheel.sh            # target/wheels/scen-VERSION-*.whl
@@ -38,7 +38,9 @@ if [ "${1:-}" = "--check" ]; then
   venv="target/wheel-venv"
   rm -rf "$venv"
   python3 -m venv "$venv"
-  "$venv/bin/pip" install --quiet --disable-pip-version-check "numpy>=1.21" "pytest==8.3.4"
+  # numpy (the module's), pytest, and Dask's distributed for the example
+  # that spreads a bench over a local cluster (examples/dask/bench.py).
+  "$venv/bin/pip" install --quiet --disable-pip-version-check "numpy>=1.21" "pytest==8.3.4" "distributed==2026.8.0"
   "$venv/bin/pip" install --quiet --disable-pip-version-check --no-index --no-deps "$wheel"
   # The `scen` pip installed, found on PATH as a user would find it.
   found=$(PATH="$PWD/$venv/bin:/usr/bin:/bin" command -v scen)

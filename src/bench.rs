@@ -116,6 +116,82 @@ impl Shard {
     }
 }
 
+/// The benches named in `names` exist (an error names the unknown one and
+/// lists the scenario's benches).
+pub fn known_benches(scenario: &Scenario, names: &[String]) -> Result<(), String> {
+    match names
+        .iter()
+        .find(|n| !scenario.benches.iter().any(|b| &b.name == *n))
+    {
+        Some(unknown) => {
+            let all: Vec<&str> = scenario.benches.iter().map(|b| b.name.as_str()).collect();
+            Err(format!(
+                "no bench `{unknown}` (benches: {})",
+                if all.is_empty() {
+                    "none".to_string()
+                } else {
+                    all.join(", ")
+                }
+            ))
+        }
+        None => Ok(()),
+    }
+}
+
+/// Why a bench cannot start: a message, or a family's sample that cannot
+/// be drawn (its diagnostics).
+pub enum Unready {
+    Message(String),
+    Load(crate::scenario::loader::LoadFailure),
+}
+
+/// What a bench runs: the scenario with `--runs N` and `--worlds N`
+/// applied, the worlds its benches run on, and its runs (those of the
+/// benches in `only`, all when empty; only shard `shard`'s when given).
+pub struct Prepared {
+    pub scenario: Scenario,
+    pub worlds: Worlds,
+    pub ids: Vec<RunId>,
+}
+
+/// Readies `scenario`'s benches to run, as `scen bench` does: the
+/// overrides, the runs of the shard, the worlds drawn.
+pub fn prepare(
+    mut scenario: Scenario,
+    only: &[String],
+    runs: Option<u64>,
+    worlds: Option<u64>,
+    shard: Option<Shard>,
+) -> Result<Prepared, Unready> {
+    known_benches(&scenario, only).map_err(Unready::Message)?;
+    if let Some(n) = runs {
+        scenario.override_runs(n);
+    }
+    if let Some(n) = worlds {
+        scenario.override_worlds(n).map_err(Unready::Message)?;
+    }
+    let mut ids = run_ids(&scenario, only);
+    if let Some(s) = shard {
+        if s.n > ids.len() as u64 {
+            return Err(Unready::Message(format!(
+                "`--shard {}/{}`: `{}` has only {} bench run(s) to split; N may be at most {}",
+                s.k,
+                s.n,
+                scenario.file.display(),
+                ids.len(),
+                ids.len()
+            )));
+        }
+        ids.retain(|id| s.takes(id.index));
+    }
+    let worlds = Worlds::draw(&scenario, only).map_err(Unready::Load)?;
+    Ok(Prepared {
+        scenario,
+        worlds,
+        ids,
+    })
+}
+
 /// Every run of the file's benches, in order, for the benches named in
 /// `only` (all when empty).
 pub fn run_ids(scenario: &Scenario, only: &[String]) -> Vec<RunId> {

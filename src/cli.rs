@@ -12,7 +12,7 @@ use crate::run::{RunReport, run_scenario_drawing};
 use crate::scenario::loader::LoadFailure;
 use crate::viz::{self, ViewerTarget};
 
-mod bench;
+pub(crate) mod bench;
 mod clobber;
 mod falsify;
 mod fmt;

@@ -55,6 +55,18 @@ pub use diagnostics::{Diag, SourceMap, Span};
 pub use run::{RunReport, run_scenario, run_scenario_drawing};
 pub use scenario::{Scenario, load};
 
+/// `scen bench merge PART.jsonl...` as a library call: the report of the
+/// whole bench from the parts of its shards (`bench::prepare` with a
+/// shard, then `report::bench::part_text`), checked as the command checks
+/// them (every part once, from one split of one unchanged scenario, every
+/// run the scenario gives); the error is the command's message.
+pub fn merge_bench_parts(
+    paths: &[std::path::PathBuf],
+    root: Option<&std::path::Path>,
+) -> Result<RunReport, String> {
+    cli::bench::merge(paths, root, &[])
+}
+
 /// The `scen` command line: reads the arguments, runs the command, and
 /// returns the exit code (0 all checks passed, 1 a check failed, 2 bad
 /// input or usage). The binary is this call.

@@ -313,6 +313,9 @@ fn every_example_is_tested_here() {
     assert_eq!(
         names,
         [
+            // Run by tests/python/test_bench.py (it needs the wheel and
+            // Dask's `distributed`, which scripts/wheel.sh --check installs).
+            "dask/bench.py",
             "github-actions/scen.yml",
             "kubernetes/bench-job.yaml",
             "kubernetes/merge-job.yaml",

@@ -11,7 +11,7 @@ The manual's chapter is docs/python.md. Bad input raises `scen.ScenError`,
 whose `diagnostics` locate each problem (file, line, column, code, help).
 """
 
-from ._scen import PlanResult, Report, Scenario, ScenError, __version__, load, loads, plan
+from ._scen import PlanResult, Report, Scenario, ScenError, __version__, bench_merge, load, loads, plan
 
 __all__ = [
     "PlanResult",
@@ -19,6 +19,7 @@ __all__ = [
     "Scenario",
     "ScenError",
     "__version__",
+    "bench_merge",
     "load",
     "loads",
     "plan",

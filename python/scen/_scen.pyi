@@ -48,6 +48,9 @@ def plan(
     """Plans on a 2-D numpy grid (True or non-zero: blocked; row 0 the top row)
     from `start` to `goal` (x, y[, theta]); `params` are the planner's."""
 
+def bench_merge(paths: Sequence[Union[str, PathLike[str]]], *, root: Optional[Union[str, PathLike[str]]] = None) -> Report:
+    """`scen bench merge`: the whole bench from its shards' part files."""
+
 class Scenario:
     @property
     def title(self) -> Optional[str]: ...
@@ -70,6 +73,15 @@ class Scenario:
     def validate(self, plan: str, path: npt.NDArray[np.float64]) -> Report:
         """The validator on an (N, 2), (N, 3) or (N, 4) array (x, y[, theta[, t]])
         as if plan `plan` had returned it."""
+    @property
+    def benches(self) -> List[str]:
+        """The benches' names, in order."""
+    def bench(self, benches: Optional[Sequence[str]] = None, *, runs: Optional[int] = None, worlds: Optional[int] = None) -> Report:
+        """Runs the benches as `scen bench` does (the GIL released)."""
+    def bench_part(
+        self, k: int, n: int, *, benches: Optional[Sequence[str]] = None, runs: Optional[int] = None, worlds: Optional[int] = None
+    ) -> str:
+        """Shard k of n: the text of the part `scen bench --shard K/N --out` writes."""
     def to_svg(self) -> str: ...
     def _repr_svg_(self) -> str: ...
 
@@ -83,8 +95,13 @@ class Report:
     def passed(self) -> int: ...
     @property
     def failed(self) -> int: ...
+    @property
+    def bench_runs(self) -> List[Dict[str, Any]]:
+        """A bench's runs: bench, plan, config, world, run, seed, metrics."""
+    def bench_table(self, metrics: Optional[Sequence[str]] = None) -> str:
+        """A bench's tables, as `scen bench` prints them."""
     def to_json(self) -> str:
-        """The document `scen run --json` prints."""
+        """The document `scen run --json` prints (`scen bench --json`'s for a bench)."""
     def to_svg(self) -> str: ...
     def _repr_svg_(self) -> str: ...
     def __getitem__(self, plan: str) -> PlanResult: ...

@@ -38,7 +38,7 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     let shard = args.shard;
     let mut code = EXIT_OK;
     for file in &args.files {
-        let mut scenario = match super::load(file, args.root.as_deref()) {
+        let scenario = match super::load(file, args.root.as_deref()) {
             Ok(s) => s,
             Err(f) => {
                 print_failure(&f);
@@ -46,7 +46,7 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
                 continue;
             }
         };
-        if let Err(e) = known_benches(&scenario, &args.benches)
+        if let Err(e) = bench::known_benches(&scenario, &args.benches)
             .and_then(|()| known_metrics(&scenario, &args.benches, &args.metrics))
         {
             eprintln!("error: `{}`: {e}", file.display());
@@ -73,40 +73,25 @@ pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
             code = code.max(EXIT_BAD_INPUT);
             continue;
         }
-        if let Some(n) = args.runs {
-            scenario.override_runs(n);
-        }
-        if let Some(n) = args.worlds
-            && let Err(e) = scenario.override_worlds(n)
+        let prepared = match bench::prepare(scenario, &args.benches, args.runs, args.worlds, shard)
         {
-            eprintln!("error: {e}");
-            code = code.max(EXIT_BAD_INPUT);
-            continue;
-        }
-        let mut ids = bench::run_ids(&scenario, &args.benches);
-        if let Some(s) = shard {
-            if s.n > ids.len() as u64 {
-                eprintln!(
-                    "error: `--shard {}/{}`: `{}` has only {} bench run(s) to split; N may be at most {}",
-                    s.k,
-                    s.n,
-                    file.display(),
-                    ids.len(),
-                    ids.len()
-                );
+            Ok(p) => p,
+            Err(bench::Unready::Message(e)) => {
+                eprintln!("error: {e}");
                 code = code.max(EXIT_BAD_INPUT);
                 continue;
             }
-            ids.retain(|id| s.takes(id.index));
-        }
-        let worlds = match bench::Worlds::draw(&scenario, &args.benches) {
-            Ok(w) => w,
-            Err(f) => {
+            Err(bench::Unready::Load(f)) => {
                 print_failure(&f);
                 code = code.max(EXIT_BAD_INPUT);
                 continue;
             }
         };
+        let bench::Prepared {
+            scenario,
+            worlds,
+            ids,
+        } = prepared;
         let runs = run_with_progress(&scenario, &worlds, &ids, args);
         if let (Some(s), Some(out)) = (shard, &args.out) {
             code = code.max(write_part(&scenario, s, args, &runs, out));
@@ -130,27 +115,6 @@ impl BenchArgs {
             .collect();
         all.push(("--out", self.out.clone()));
         all
-    }
-}
-
-/// The named benches exist.
-fn known_benches(scenario: &Scenario, names: &[String]) -> Result<(), String> {
-    match names
-        .iter()
-        .find(|n| !scenario.benches.iter().any(|b| &b.name == *n))
-    {
-        Some(unknown) => {
-            let all: Vec<&str> = scenario.benches.iter().map(|b| b.name.as_str()).collect();
-            Err(format!(
-                "no bench `{unknown}` (benches: {})",
-                if all.is_empty() {
-                    "none".to_string()
-                } else {
-                    all.join(", ")
-                }
-            ))
-        }
-        None => Ok(()),
     }
 }
 
@@ -266,23 +230,8 @@ fn write_part(
     runs: &[BenchRun],
     out: &Path,
 ) -> i32 {
-    let hash = scenario.sources.content_hash();
-    let header = report::bench::part_header(
-        scenario,
-        &hash,
-        shard,
-        &args.benches,
-        args.runs,
-        args.worlds,
-    );
-    let mut text = serde_json::to_string(&header).unwrap_or_default();
-    text.push('\n');
-    for r in runs {
-        text.push_str(
-            &serde_json::to_string(&report::bench::part_run(scenario, r)).unwrap_or_default(),
-        );
-        text.push('\n');
-    }
+    let text =
+        report::bench::part_text(scenario, shard, &args.benches, args.runs, args.worlds, runs);
     match std::fs::write(out, text) {
         Ok(()) => {
             eprintln!(
@@ -396,7 +345,11 @@ impl parts::Part for Part {
     }
 }
 
-fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<RunReport, String> {
+pub(crate) fn merge(
+    paths: &[PathBuf],
+    root: Option<&Path>,
+    metrics: &[String],
+) -> Result<RunReport, String> {
     let parts: Vec<Part> = parts::read_parts(paths)?;
     let first = &parts[0];
     let head = &first.header;
@@ -408,7 +361,7 @@ fn merge(paths: &[PathBuf], root: Option<&Path>, metrics: &[String]) -> Result<R
         )
     })?;
     parts::unchanged(first, &scenario.sources.content_hash())?;
-    known_benches(&scenario, &first.benches)?;
+    bench::known_benches(&scenario, &first.benches)?;
     known_metrics(&scenario, &first.benches, metrics)?;
     if let Some(n) = first.runs_override {
         scenario.override_runs(n);

@@ -452,6 +452,27 @@ pub fn part_header(
     Value::Object(o)
 }
 
+/// The text of a part (`scen bench --shard K/N --out PART.jsonl`): its
+/// header line, then one line per run of `runs`.
+pub fn part_text(
+    sc: &Scenario,
+    shard: bench::Shard,
+    only: &[String],
+    runs_override: Option<u64>,
+    worlds_override: Option<u64>,
+    runs: &[BenchRun],
+) -> String {
+    let hash = sc.sources.content_hash();
+    let header = part_header(sc, &hash, shard, only, runs_override, worlds_override);
+    let mut text = serde_json::to_string(&header).unwrap_or_default();
+    text.push('\n');
+    for r in runs {
+        text.push_str(&serde_json::to_string(&part_run(sc, r)).unwrap_or_default());
+        text.push('\n');
+    }
+    text
+}
+
 /// One run of a part: its coordinates and its metrics, every number exact
 /// (non-finite ones as strings, which JSON numbers cannot be).
 pub fn part_run(sc: &Scenario, r: &BenchRun) -> Value {

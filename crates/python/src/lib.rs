@@ -361,6 +361,28 @@ fn plan(
     )
 }
 
+/// `scen bench merge`: the whole bench's report from the parts of its
+/// shards (files written from `Scenario.bench_part`'s text, or by `scen
+/// bench --shard K/N --out`), refused as the command refuses them (a part
+/// missing or given twice, parts of another split or of a changed
+/// scenario, a run edited on the way). The scenario is read again from
+/// the path the parts name (relative to the current folder), its root
+/// `root` or its folder.
+#[pyfunction]
+#[pyo3(signature = (paths, *, root = None))]
+fn bench_merge(py: Python<'_>, paths: Vec<PathBuf>, root: Option<PathBuf>) -> PyResult<Report> {
+    let merged = py.detach(|| scen::merge_bench_parts(&paths, root.as_deref()));
+    match merged {
+        Ok(report) => Report::new(py, report),
+        Err(e) => Err(plain_error(
+            py,
+            "scen::python::bad_bench",
+            e,
+            "give every part of one split once, made from the scenario as it is now",
+        )),
+    }
+}
+
 /// A loaded scenario: its world, robots, plans and checks.
 #[pyclass(frozen, module = "scen")]
 struct Scenario {
@@ -370,6 +392,44 @@ struct Scenario {
 impl Scenario {
     fn new(inner: scen::Scenario) -> Self {
         Scenario { inner }
+    }
+
+    /// `scen bench`'s preparation, its refusals as `ScenError`s.
+    fn prepare(
+        &self,
+        py: Python<'_>,
+        only: &[String],
+        runs: Option<u64>,
+        worlds: Option<u64>,
+        shard: Option<scen::bench::Shard>,
+    ) -> PyResult<scen::bench::Prepared> {
+        if self.inner.benches.is_empty() {
+            return Err(plain_error(
+                py,
+                "scen::python::bad_bench",
+                format!("`{}` has no `bench`", self.inner.file.display()),
+                "write e.g. `bench b { vary cell [1, 0.5] runs 10 }`, or use `run`",
+            ));
+        }
+        if runs == Some(0) || worlds == Some(0) {
+            return Err(plain_error(
+                py,
+                "scen::python::bad_bench",
+                "`runs` and `worlds` are at least 1".into(),
+                "leave them out to run what the benches say",
+            ));
+        }
+        let scenario = self.inner.clone();
+        let prepared = py.detach(|| scen::bench::prepare(scenario, only, runs, worlds, shard));
+        prepared.map_err(|e| match e {
+            scen::bench::Unready::Message(m) => plain_error(
+                py,
+                "scen::python::bad_bench",
+                m,
+                "see the benches of `Scenario.benches`",
+            ),
+            scen::bench::Unready::Load(f) => failure(py, f),
+        })
     }
 
     fn plan_index(&self, py: Python<'_>, name: &str) -> PyResult<usize> {
@@ -433,6 +493,12 @@ impl Scenario {
     #[getter]
     fn plans(&self) -> Vec<String> {
         self.inner.plans.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// The names of its benches, in order.
+    #[getter]
+    fn benches(&self) -> Vec<String> {
+        self.inner.benches.iter().map(|b| b.name.clone()).collect()
     }
 
     /// Each plan's planner (`astar`, `rrt`, ...), by plan name.
@@ -537,6 +603,61 @@ impl Scenario {
         Report::new(py, report)
     }
 
+    /// Runs the benches (all, or those named in `benches`) as `scen bench`
+    /// does, with the GIL released: every configuration, world and seed,
+    /// then the plain plans and every check. `runs` and `worlds` are
+    /// `--runs N` and `--worlds N`. The report's `bench_runs` lists every
+    /// run; `bench_table()` is the command's tables; `to_json()` its
+    /// `--json` document.
+    #[pyo3(signature = (benches = None, *, runs = None, worlds = None))]
+    fn bench(
+        &self,
+        py: Python<'_>,
+        benches: Option<Vec<String>>,
+        runs: Option<u64>,
+        worlds: Option<u64>,
+    ) -> PyResult<Report> {
+        let only = benches.unwrap_or_default();
+        let prepared = self.prepare(py, &only, runs, worlds, None)?;
+        let report = py.detach(|| {
+            let ran =
+                scen::bench::run_all(&prepared.scenario, &prepared.worlds, &prepared.ids, &|| {});
+            scen::bench::report(prepared.scenario, ran)
+        });
+        Report::new(py, report)
+    }
+
+    /// Shard `k` of `n` of the benches: the text of the part that `scen
+    /// bench --shard K/N --out PART.jsonl` writes (a string, so it travels
+    /// between processes and machines); write the parts to files and
+    /// combine them with `scen.bench_merge` (or `scen bench merge`).
+    #[pyo3(signature = (k, n, *, benches = None, runs = None, worlds = None))]
+    fn bench_part(
+        &self,
+        py: Python<'_>,
+        k: u64,
+        n: u64,
+        benches: Option<Vec<String>>,
+        runs: Option<u64>,
+        worlds: Option<u64>,
+    ) -> PyResult<String> {
+        let shard = scen::bench::Shard::parse(&format!("{k}/{n}")).map_err(|e| {
+            plain_error(
+                py,
+                "scen::python::bad_bench",
+                e,
+                "shards are K/N with 1 <= K <= N",
+            )
+        })?;
+        let only = benches.unwrap_or_default();
+        let prepared = self.prepare(py, &only, runs, worlds, Some(shard))?;
+        Ok(py.detach(|| {
+            let ran =
+                scen::bench::run_all(&prepared.scenario, &prepared.worlds, &prepared.ids, &|| {});
+            scen::report::bench::part_text(&prepared.scenario, shard, &only, runs, worlds, &ran)
+        }))
+    }
+
     /// The scenario drawn (its world, robots, starts and goals) as SVG.
     fn to_svg(&self, py: Python<'_>) -> String {
         let scenario = self.inner.clone();
@@ -573,12 +694,37 @@ struct Report {
     json: String,
     plans: Py<PyDict>,
     checks: Py<PyList>,
+    /// A bench's runs, one dict each (`scen bench --json`'s results with
+    /// their bench's name).
+    bench_runs: Py<PyList>,
 }
 
 impl Report {
     fn new(py: Python<'_>, report: scen::RunReport) -> PyResult<Report> {
         let doc = scen::report::json::to_json(&report);
-        let json = serde_json::to_string(&doc).unwrap_or_default();
+        // A bench's report is `scen bench --json`'s document.
+        let bench_doc =
+            (!report.bench_runs.is_empty()).then(|| scen::report::bench::to_json(&report));
+        let json = serde_json::to_string(bench_doc.as_ref().unwrap_or(&doc)).unwrap_or_default();
+        let bench_runs = PyList::empty(py);
+        if let Some(Value::Array(benches)) = bench_doc.as_ref().and_then(|d| d.get("benches")) {
+            for b in benches {
+                let name = b.get("name").cloned().unwrap_or(Value::Null);
+                for r in b
+                    .get("results")
+                    .and_then(Value::as_array)
+                    .into_iter()
+                    .flatten()
+                {
+                    let mut row = serde_json::Map::new();
+                    row.insert("bench".into(), name.clone());
+                    if let Value::Object(fields) = r {
+                        row.extend(fields.clone());
+                    }
+                    bench_runs.append(json_to_py(py, &Value::Object(row))?)?;
+                }
+            }
+        }
         let plans = PyDict::new(py);
         if let Some(Value::Object(map)) = doc.get("plans") {
             for (name, plan) in map {
@@ -600,6 +746,7 @@ impl Report {
             json,
             plans: plans.unbind(),
             checks: checks.unbind(),
+            bench_runs: bench_runs.unbind(),
         })
     }
 }
@@ -618,6 +765,25 @@ impl Report {
         self.checks.clone_ref(py)
     }
 
+    /// A bench's runs: one dict per run (`bench`, `plan`, the varied
+    /// `config`, `world`, `run`, `seed`, `metrics`), in the order `scen
+    /// bench` runs them; empty for a run of plans.
+    #[getter]
+    fn bench_runs(&self, py: Python<'_>) -> Py<PyList> {
+        self.bench_runs.clone_ref(py)
+    }
+
+    /// A bench's tables, as `scen bench` prints them (the statistics of
+    /// `metrics`, by default the command's).
+    #[pyo3(signature = (metrics = None))]
+    fn bench_table(&self, metrics: Option<Vec<String>>) -> String {
+        let names: Vec<&str> = match &metrics {
+            Some(m) => m.iter().map(String::as_str).collect(),
+            None => scen::bench::TABLE_METRICS.to_vec(),
+        };
+        scen::report::bench::render(&self.inner, &names)
+    }
+
     /// How many checks passed.
     #[getter]
     fn passed(&self) -> usize {
@@ -630,7 +796,8 @@ impl Report {
         self.inner.failed()
     }
 
-    /// `scen run --json`'s document (SPEC 5), as text.
+    /// `scen run --json`'s document (SPEC 5), as text; for a bench,
+    /// `scen bench --json`'s.
     fn to_json(&self) -> String {
         self.json.clone()
     }
@@ -766,6 +933,7 @@ fn _scen(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(loads, m)?)?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_function(wrap_pyfunction!(bench_merge, m)?)?;
     m.add_class::<Scenario>()?;
     m.add_class::<Report>()?;
     m.add_class::<PlanResult>()?;
