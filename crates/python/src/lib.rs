@@ -333,18 +333,32 @@ fn plan(
         scen::scenario::loader::canonical(&folder.join("grid.map")),
     );
     let (text, map): (Arc<str>, Arc<str>) = (text.into(), map.into());
-    let outcome = py.detach(|| {
-        let overlay = |p: &Path| {
-            if p == main_c {
-                Some(text.clone())
-            } else if p == map_c {
-                Some(map.clone())
-            } else {
-                None
-            }
+    let map_path = folder.join("grid.map");
+    let outcome = py.detach(move || {
+        let loaded = {
+            let overlay = |p: &Path| {
+                if p == main_c {
+                    Some(text.clone())
+                } else if p == map_c {
+                    Some(map.clone())
+                } else {
+                    None
+                }
+            };
+            load_sample(&main, Some(&folder), &overlay, SampleChoice::default())
         };
-        load_sample(&main, Some(&folder), &overlay, SampleChoice::default())
-            .map(|scenario| scen::run_scenario_drawing(scenario, &[], false))
+        drop(map);
+        loaded.map(|mut scenario| {
+            // The map's text served the loading (and its diagnostics) only:
+            // dropped before planning, so that the world's cells are the
+            // one copy of the grid that remains.
+            for f in &mut scenario.sources.files {
+                if f.path == map_path {
+                    f.text = Arc::from("");
+                }
+            }
+            scen::run_scenario_drawing(scenario, &[], false)
+        })
     });
     let report = outcome.map_err(|f| failure(py, f))?;
     let doc = scen::report::json::to_json(&report);
