@@ -593,4 +593,59 @@ fn a_gif_animates_the_cart_and_the_robot_at_25_frames_per_second() {
         .stderr_contains("writes a GIF animation")
         .status(2)
         .run();
+
+    // `--gif-speed 4`: a frame every 4/25 s of plan time, to a second of
+    // the animation (4 s) after the arrival; still 4/100 s per frame.
+    let fast = Test::new().file("cart.scen", CART).args(&[
+        "run",
+        "-q",
+        "--gif",
+        "fast.gif",
+        "--gif-speed",
+        "4",
+        "cart.scen",
+    ]);
+    fast.run();
+    let file = std::fs::File::open(fast.dir().join("fast.gif")).expect("fast.gif written");
+    let mut decoder = gif::DecodeOptions::new().read_info(file).expect("a GIF");
+    let mut fast_frames = 0;
+    while let Some(frame) = decoder.read_next_frame().expect("a frame") {
+        assert_eq!(frame.delay, 4);
+        fast_frames += 1;
+    }
+    assert_eq!(
+        fast_frames,
+        ((arrival + 4.0) * 25.0 / 4.0).ceil() as usize + 1
+    );
+    assert!(fast_frames * 3 < frames, "{fast_frames} of {frames}");
+    // The speed tunes `--gif` only, and is a positive number.
+    for (args, says) in [
+        (
+            vec!["--gif-speed", "2"],
+            "`--gif-speed` tunes `--gif`, which was not given",
+        ),
+        (
+            vec!["--gif", "o.gif", "--gif-speed", "0"],
+            "the speed is a number above 0",
+        ),
+        (
+            vec!["--gif", "o.gif", "--gif-speed", "-2"],
+            "the speed is a number above 0",
+        ),
+        (
+            vec!["--gif", "o.gif", "--gif-speed", "fast"],
+            "invalid value 'fast'",
+        ),
+    ] {
+        let mut all = vec!["run", "-q"];
+        all.extend(args);
+        all.push("cart.scen");
+        let t = Test::new()
+            .file("cart.scen", CART)
+            .args(&all)
+            .stderr_contains(says)
+            .status(2);
+        t.run();
+        assert!(!t.dir().join("o.gif").exists());
+    }
 }

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use clap::{Arg, ArgMatches, Args, FromArgMatches};
 
 use super::{check_output_folder, check_output_path};
-use crate::report::sink::{Command, Product, Sink};
+use crate::report::sink::{Command, Product, Sink, Tuning};
 use crate::report::sinks::SINKS;
 use crate::scenario::Scenario;
 
@@ -31,10 +31,11 @@ impl OfCommand for BenchSinks {
 }
 
 /// The sinks a command was given, each with its path, in the registry's
-/// order.
+/// order; and the tunings given (`--gif-speed K`), by option.
 #[derive(Debug)]
 pub struct Outputs<K> {
     pub given: Vec<(&'static Sink, PathBuf)>,
+    tunings: Vec<(&'static Tuning, f64)>,
     command: PhantomData<K>,
 }
 
@@ -42,6 +43,7 @@ impl<K> Default for Outputs<K> {
     fn default() -> Self {
         Outputs {
             given: Vec::new(),
+            tunings: Vec::new(),
             command: PhantomData,
         }
     }
@@ -69,6 +71,12 @@ impl<K: OfCommand> FromArgMatches for Outputs<K> {
         }
         let order = |s: &Sink| SINKS.iter().position(|t| std::ptr::eq(*t, s));
         self.given.sort_by_key(|(s, _)| order(s));
+        for tuning in offered::<K>().filter_map(|(s, _)| s.tuning) {
+            if let Some(&value) = matches.get_one::<f64>(tuning.name()) {
+                self.tunings.retain(|(t, _)| !std::ptr::eq(*t, tuning));
+                self.tunings.push((tuning, value));
+            }
+        }
         Ok(())
     }
 }
@@ -76,13 +84,24 @@ impl<K: OfCommand> FromArgMatches for Outputs<K> {
 impl<K: OfCommand> Args for Outputs<K> {
     fn augment_args(cmd: clap::Command) -> clap::Command {
         offered::<K>().fold(cmd, |cmd, (sink, help)| {
-            cmd.arg(
+            let cmd = cmd.arg(
                 Arg::new(sink.name())
                     .long(sink.name())
                     .value_name(sink.value_name)
                     .value_parser(clap::value_parser!(PathBuf))
                     .help(help),
-            )
+            );
+            match sink.tuning {
+                Some(t) => cmd.arg(
+                    Arg::new(t.name())
+                        .long(t.name())
+                        .value_name(t.value_name)
+                        .value_parser(clap::value_parser!(f64))
+                        .allow_negative_numbers(true)
+                        .help(t.help),
+                ),
+                None => cmd,
+            }
         })
     }
 
@@ -112,6 +131,27 @@ impl<K> Outputs<K> {
     /// and that it can be written (a folder sink: its folder, or the
     /// folder it would be created in). Prints the first problem.
     pub fn usable(&self) -> bool {
+        for (tuning, value) in &self.tunings {
+            let tuned = self
+                .given
+                .iter()
+                .find(|(s, _)| s.tuning.is_some_and(|t| std::ptr::eq(t, *tuning)));
+            let checked = match tuned {
+                None => Err(format!(
+                    "`{}` tunes `{}`, which was not given",
+                    tuning.option,
+                    SINKS
+                        .iter()
+                        .find(|s| s.tuning.is_some_and(|t| std::ptr::eq(t, *tuning)))
+                        .map_or("its output", |s| s.option)
+                )),
+                Some(_) => (tuning.check)(*value),
+            };
+            if let Err(e) = checked {
+                eprintln!("error: {e}");
+                return false;
+            }
+        }
         for (sink, path) in &self.given {
             let checked = (sink.check)(path).and_then(|()| {
                 if sink.folder && path.is_dir() {
@@ -154,7 +194,13 @@ impl<K> Outputs<K> {
     pub fn write(&self, product: Product<'_>) -> bool {
         let mut ok = true;
         for (sink, path) in &self.given {
-            if let Err(errors) = (sink.write)(product, path) {
+            let tuning = sink.tuning.map(|t| {
+                self.tunings
+                    .iter()
+                    .find(|(given, _)| std::ptr::eq(*given, t))
+                    .map_or(t.default, |&(_, v)| v)
+            });
+            if let Err(errors) = (sink.write)(product, path, tuning) {
                 for e in errors {
                     eprintln!("error: {e}");
                 }

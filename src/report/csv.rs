@@ -34,7 +34,8 @@ pub static SINK: Sink = Sink {
     folder: false,
     check: any_path,
     files: the_file,
-    write: |product, path| match product {
+    tuning: None,
+    write: |product, path, _| match product {
         Product::Run(report) => match paths_csv(report) {
             Some(text) => write_file(path, text),
             None => Err(vec![format!(

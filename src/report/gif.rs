@@ -2,8 +2,9 @@
 //! the moving obstacles, and the robot of every plan with a trajectory
 //! (a time-aware planner's) or a drive — at 25 frames per second, each
 //! frame the picture of `--svg` at that instant ([`super::svg::frame_at`])
-//! rasterised. An animation longer than [`MAX_FRAMES`] frames plays faster
-//! so that it fits (each frame's title says its time).
+//! rasterised; `--gif-speed K` plays it K times faster (a frame every K/25
+//! s of plan time). An animation longer than [`MAX_FRAMES`] frames plays
+//! faster still so that it fits (each frame's title says its time).
 //!
 //! Colours: one fixed palette (a 6 × 6 × 6 cube and 40 greys), each pixel
 //! its nearest entry, so frames need no quantiser and the same run gives
@@ -11,7 +12,7 @@
 
 use std::path::Path;
 
-use super::sink::{Command, Product, Sink, the_file, write_file};
+use super::sink::{Command, Product, Sink, Tuning, the_file, write_file};
 use crate::run::RunReport;
 
 /// Frames per second of plan time.
@@ -35,9 +36,34 @@ pub static SINK: Sink = Sink {
     folder: false,
     check: |path| super::sink::needs_extension(path, "--gif", "gif", "a GIF animation", ""),
     files: the_file,
-    write: |product, path| match product {
-        Product::Run(report) => write_file(path, animation(report, path)?),
+    tuning: Some(&SPEED),
+    write: |product, path, speed| match product {
+        Product::Run(report) => write_file(
+            path,
+            animation(report, path, speed.unwrap_or(SPEED.default))?,
+        ),
         Product::Bench(..) => Err(vec!["`--gif` animates a run, not a bench".into()]),
+    },
+};
+
+/// The most `--gif-speed` accepts (a 1,000-frame animation of a day of
+/// plan time at 100 is still 30 s long).
+const MAX_SPEED: f64 = 1e6;
+
+/// `--gif-speed K`.
+static SPEED: Tuning = Tuning {
+    option: "--gif-speed",
+    value_name: "K",
+    help: "Play the `--gif` animation K times faster than plan time (default 1; 0.5 is slow motion)",
+    default: 1.0,
+    check: |k| {
+        if k.is_finite() && k > 0.0 && k <= MAX_SPEED {
+            Ok(())
+        } else {
+            Err(format!(
+                "`--gif-speed {k}`: the speed is a number above 0 and at most {MAX_SPEED:e} (2 plays twice as fast, 0.5 in slow motion)"
+            ))
+        }
     },
 };
 
@@ -61,27 +87,35 @@ pub fn duration(report: &RunReport) -> Option<f64> {
     end
 }
 
-/// The instants of the frames: every 1/25 s of plan time from 0 to a
-/// second after `end` (fewer, evenly spread, beyond [`MAX_FRAMES`]).
-pub fn instants(end: f64) -> Vec<f64> {
-    let span = end.max(0.0) + 1.0;
-    let frames = ((span * FPS).ceil() as usize + 1).min(MAX_FRAMES);
+/// The plan time an animation at `speed` spans: from 0 to one second of
+/// the animation (`speed` s of plan time) after `end`.
+fn span(end: f64, speed: f64) -> f64 {
+    end.max(0.0) + speed
+}
+
+/// The instants of the frames at `speed`: every `speed`/25 s of plan time
+/// from 0 to a second of the animation after `end` (fewer, evenly spread,
+/// beyond [`MAX_FRAMES`]).
+pub fn instants(end: f64, speed: f64) -> Vec<f64> {
+    let span = span(end, speed);
+    let frames = ((span * FPS / speed).ceil() as usize + 1).clamp(2, MAX_FRAMES);
     (0..frames)
         .map(|k| span * k as f64 / (frames - 1) as f64)
         .collect()
 }
 
-fn animation(report: &RunReport, path: &Path) -> Result<Vec<u8>, Vec<String>> {
+fn animation(report: &RunReport, path: &Path, speed: f64) -> Result<Vec<u8>, Vec<String>> {
     let Some(end) = duration(report) else {
         return Err(vec![format!(
             "`--gif {}`: nothing moves (no moving obstacle, and no plan with a trajectory or a drive); nothing was written",
             path.display()
         )]);
     };
-    let times = instants(end);
+    let times = instants(end, speed);
     // The frame's delay in hundredths of a second: 4 at 25 frames per
-    // second of plan time; longer when the animation was spread thinner.
-    let step = (end.max(0.0) + 1.0) / (times.len() - 1).max(1) as f64;
+    // second; the plan time between frames, shown `speed` times faster
+    // (longer when a long animation was spread thinner).
+    let step = span(end, speed) / (times.len() - 1) as f64 / speed;
     let delay = (step * 100.0).round().clamp(2.0, 65_535.0) as u16;
     let palette = palette();
     let fail = |e: String| vec![format!("cannot animate `{}`: {e}", path.display())];
@@ -190,11 +224,33 @@ mod tests {
 
     #[test]
     fn frames_are_25_per_second_up_to_the_cap() {
-        let t = instants(3.0);
+        let t = instants(3.0, 1.0);
         assert_eq!(t.len(), 101);
         assert!((t[1] - 0.04).abs() < 1e-12, "{}", t[1]);
         assert_eq!(t.last().copied(), Some(4.0));
-        assert_eq!(instants(1e6).len(), MAX_FRAMES);
+        assert_eq!(instants(1e6, 1.0).len(), MAX_FRAMES);
+    }
+
+    #[test]
+    fn a_speed_of_k_takes_a_frame_every_k_25ths_of_a_second() {
+        // 4 times faster: 4 s of motion and a second of the animation
+        // (4 s of plan time) after it, a frame every 0.16 s.
+        let t = instants(4.0, 4.0);
+        assert_eq!(t.len(), 51);
+        assert!((t[1] - 0.16).abs() < 1e-12, "{}", t[1]);
+        assert_eq!(t.last().copied(), Some(8.0));
+        // Slow motion: twice the frames of the same span.
+        let slow = instants(3.0, 0.5);
+        assert!((slow[1] - 0.02).abs() < 1e-12, "{}", slow[1]);
+        assert_eq!(slow.last().copied(), Some(3.5));
+        // Nothing moves for long: still the second after the end; and the
+        // cap.
+        assert_eq!(instants(0.0, 1e6).len(), 26);
+        assert_eq!(instants(1e6, 0.001).len(), MAX_FRAMES);
+        for k in [0.0, -1.0, f64::NAN, f64::INFINITY, 2e6] {
+            assert!((SPEED.check)(k).is_err(), "{k}");
+        }
+        assert!((SPEED.check)(0.5).is_ok() && (SPEED.check)(100.0).is_ok());
     }
 
     #[test]

@@ -36,7 +36,8 @@ pub static SINK: Sink = Sink {
     folder: true,
     check: any_path,
     files: log_files,
-    write: write_logs,
+    tuning: None,
+    write: |product, path, _| write_logs(product, path),
 };
 
 /// The logs `--ompl-log DIR` writes: one per bench chosen (all when

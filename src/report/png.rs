@@ -98,7 +98,8 @@ pub static SINK: Sink = Sink {
         )
     },
     files: the_file,
-    write: |product, path| {
+    tuning: None,
+    write: |product, path, _| {
         let svg = super::svg::picture(product, path)?;
         let bytes =
             to_png(&svg).map_err(|e| vec![format!("cannot draw `{}`: {e}", path.display())])?;

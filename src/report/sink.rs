@@ -47,8 +47,36 @@ pub struct Sink {
     /// sink's several), for the check that no output replaces an input;
     /// `benches` are the benches `--bench` chose (empty: all).
     pub files: fn(&Path, &Scenario, &[String]) -> Vec<PathBuf>,
-    /// Writes it; each failure as an error message.
-    pub write: fn(Product<'_>, &Path) -> Result<(), Vec<String>>,
+    /// An option of its own that tunes what it writes (`--gif-speed K`),
+    /// given only with the sink's.
+    pub tuning: Option<&'static Tuning>,
+    /// Writes it, with its tuning's value (`None` for a sink without
+    /// one); each failure as an error message.
+    pub write: Write,
+}
+
+/// [`Sink::write`]: the product, the path, the tuning's value.
+pub type Write = fn(Product<'_>, &Path, Option<f64>) -> Result<(), Vec<String>>;
+
+/// A number that tunes a sink: its own option, next to the sink's.
+#[derive(Debug)]
+pub struct Tuning {
+    /// The option, `--NAME`.
+    pub option: &'static str,
+    /// What its value is, for `--help` (`K`).
+    pub value_name: &'static str,
+    pub help: &'static str,
+    /// Its value when the option is not given.
+    pub default: f64,
+    /// Refuses a value before anything runs.
+    pub check: fn(f64) -> Result<(), String>,
+}
+
+impl Tuning {
+    /// The option's name without its dashes (`gif-speed`).
+    pub fn name(&self) -> &'static str {
+        self.option.trim_start_matches('-')
+    }
 }
 
 impl Sink {

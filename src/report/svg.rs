@@ -1461,7 +1461,8 @@ pub static SINK: Sink = Sink {
         )
     },
     files: the_file,
-    write: |product, path| write_file(path, picture(product, path)?),
+    tuning: None,
+    write: |product, path, _| write_file(path, picture(product, path)?),
 };
 
 /// The SVG text of a run's picture or a bench's plots (`--svg`, `--png`).
