@@ -546,6 +546,48 @@ fn a_moving_obstacle_is_drawn_with_its_route_times_and_the_robots_waits() {
     assert!(waits[0].1.starts_with("waits "), "{waits:?}");
 }
 
+/// A cart with a waypoint every 0.2 units: its times are thinned so that
+/// no two labels overlap, the first and last always kept.
+#[test]
+fn a_dense_route_keeps_a_readable_subset_of_its_times() {
+    let waypoints: Vec<String> = (0..=40)
+        .map(|k| format!("at {}s ({}, 0.5)", k, 1.0 + 0.2 * k as f64))
+        .collect();
+    let scenario = format!(
+        "scenario \"Dense\"\nworld {{\n  bounds (0, 0) (10, 4)\n  moving cart disk 0.3 {{ {} then stay }}\n}}\nrobot dot disk 0.3 speed 1\nplan go sipp dot {{ start (0.5, 3.5) goal (9.5, 3.5) }}\n",
+        waypoints.join(" ")
+    );
+    let t = Test::new().file("dense.scen", &scenario).args(&[
+        "run",
+        "-q",
+        "--svg",
+        "out.svg",
+        "dense.scen",
+    ]);
+    t.run();
+    let svg = std::fs::read_to_string(t.dir().join("out.svg")).expect("out.svg written");
+    let labels = texts(group(&svg, "moving-times"), "class=\"time\"");
+    let times: Vec<&str> = labels.iter().map(|(_, t)| t.as_str()).collect();
+    assert!(times.contains(&"0s") && times.contains(&"40s"), "{times:?}");
+    assert!(times.len() > 2 && times.len() < 41, "{times:?}");
+    // Along a straight route, the kept labels are far enough apart: each
+    // at least its own width from the next.
+    let xs: Vec<f64> = labels
+        .iter()
+        .map(|(open, _)| {
+            let at = open.find(" x=\"").expect("x") + 4;
+            open[at..at + open[at..].find('"').expect("\"")]
+                .parse()
+                .expect("a number")
+        })
+        .collect();
+    let mut sorted = xs.clone();
+    sorted.sort_by(f64::total_cmp);
+    for pair in sorted.windows(2) {
+        assert!(pair[1] - pair[0] >= 0.6 * 11.0 * 2.0 - 1e-9, "{xs:?}");
+    }
+}
+
 #[test]
 fn a_gif_animates_the_cart_and_the_robot_at_25_frames_per_second() {
     let t =

@@ -613,31 +613,83 @@ fn draw_moving_times(svg: &mut String, view: &View, scenario: &Scenario) {
         svg,
         "<g id=\"moving-times\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\">"
     );
-    for o in &scenario.moving {
-        let Some(last) = o.route.last() else {
-            continue;
-        };
-        for w in &o.route {
+    // Every route's first and last times (and `gone`) first, then the
+    // times between, each only where it overlaps no label already placed:
+    // a dense route (a waypoint at every cell) keeps a readable subset.
+    let size = FONT - 2.0;
+    let mut placed = Labels::default();
+    let mut label = |svg: &mut String, x: f64, y: f64, text: &str, always: bool| {
+        if placed.take(x, y, text, size) || always {
             let _ = writeln!(
                 svg,
                 "<text class=\"time\" x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{INK}\">{}</text>",
-                num(view.x(w.at.x) + 4.0),
-                num(view.y(w.at.y) - 4.0),
-                num(FONT - 2.0),
-                escape(&format!("{}s", short(w.t)))
+                num(x),
+                num(y),
+                num(size),
+                escape(text)
             );
         }
+    };
+    let at = |p: crate::geometry::Point, dy: f64| (view.x(p.x) + 4.0, view.y(p.y) + dy);
+    for o in &scenario.moving {
+        let (Some(first), Some(last)) = (o.route.first(), o.route.last()) else {
+            continue;
+        };
+        let (x, y) = at(first.at, -4.0);
+        let start = format!("{}s", short(first.t));
+        if o.route.len() == 1 {
+            label(svg, x, y, &start, true);
+        } else {
+            let (lx, ly) = at(last.at, -4.0);
+            let end = format!("{}s", short(last.t));
+            // A route that ends where it began: one label with both times.
+            let mut alone = Labels::default();
+            alone.take(x, y, &start, size);
+            if alone.take(lx, ly, &end, size) {
+                label(svg, x, y, &start, true);
+                label(svg, lx, ly, &end, true);
+            } else {
+                label(svg, x, y, &format!("{start}, {end}"), true);
+            }
+        }
         if o.after == After::Vanish {
-            let _ = writeln!(
-                svg,
-                "<text class=\"time\" x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{INK}\">gone</text>",
-                num(view.x(last.at.x) + 4.0),
-                num(view.y(last.at.y) + FONT),
-                num(FONT - 2.0),
-            );
+            let (x, y) = at(last.at, FONT);
+            label(svg, x, y, "gone", true);
+        }
+    }
+    for o in &scenario.moving {
+        let inner = o.route.len().saturating_sub(2);
+        for w in o.route.iter().skip(1).take(inner) {
+            let (x, y) = at(w.at, -4.0);
+            label(svg, x, y, &format!("{}s", short(w.t)), false);
         }
     }
     svg.push_str("</g>\n");
+}
+
+/// The boxes of the labels placed so far, in pixels.
+#[derive(Default)]
+struct Labels(Vec<[f64; 4]>);
+
+impl Labels {
+    /// Places `text` at (x, y) (its baseline's start) unless it would
+    /// overlap a label already placed; whether it was placed. A label is
+    /// recorded either way when it overlaps nothing.
+    fn take(&mut self, x: f64, y: f64, text: &str, size: f64) -> bool {
+        // A character is about 0.6 of the font size wide.
+        let b = [
+            x,
+            y - size,
+            x + 0.6 * size * text.chars().count() as f64,
+            y + 0.25 * size,
+        ];
+        let overlaps = |o: &[f64; 4]| b[0] < o[2] && o[0] < b[2] && b[1] < o[3] && o[1] < b[3];
+        if self.0.iter().any(overlaps) {
+            return false;
+        }
+        self.0.push(b);
+        true
+    }
 }
 
 /// A layer as the picture draws it: the plan it belongs to, its legend key,
