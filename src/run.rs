@@ -15,7 +15,7 @@ use crate::contract::{Task, ValidatorReferee};
 use crate::drive::{self, DriveOutcome};
 use crate::geometry::car::{CarPath, swept_poses, validate_car_path};
 use crate::geometry::path::{path_length, path_turn, smoothness};
-use crate::geometry::timed::{Timed, validate_trajectory};
+use crate::geometry::timed::{Timed, moving_clearance, validate_trajectory};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
 use crate::geometry::{Config, RobotShape, angle_diff};
 use crate::scenario::{Check, Plan, Scenario};
@@ -369,20 +369,33 @@ fn judge(
         time_metrics(timed.as_deref(), &mut metrics);
     }
     let path = outcome.path.as_deref();
+    let static_clearance = |p: &[Config]| match (measured, car) {
+        (Some(m), _) => m.clearance,
+        (None, Some(car)) => referee.clearance(
+            robot,
+            &swept_poses(robot, car, DEFAULT_TOLERANCE),
+            DEFAULT_TOLERANCE,
+        ),
+        (None, None) => {
+            measured_clearance.unwrap_or_else(|| referee.clearance(robot, p, DEFAULT_TOLERANCE))
+        }
+    };
+    // A trajectory keeps its distance from the moving obstacles too
+    // (exact, the parked robot included).
+    let distance_to_moving = |trajectory: &[Timed]| {
+        if scenario.moving.is_empty() {
+            f64::INFINITY
+        } else {
+            moving_clearance(&scenario.moving, robot, trajectory)
+        }
+    };
     // Without a path, the clearance has no value (NaN: `null` in JSON, `—`
     // in the report), never a 0 that reads as "touched a wall".
     metrics.insert(
         "clearance".into(),
-        MetricValue::Num(path.map_or(f64::NAN, |p| match (measured, car) {
-            (Some(m), _) => m.clearance,
-            (None, Some(car)) => referee.clearance(
-                robot,
-                &swept_poses(robot, car, DEFAULT_TOLERANCE),
-                DEFAULT_TOLERANCE,
-            ),
-            (None, None) => {
-                measured_clearance.unwrap_or_else(|| referee.clearance(robot, p, DEFAULT_TOLERANCE))
-            }
+        MetricValue::Num(path.map_or(f64::NAN, |p| {
+            let moving = timed.as_deref().map_or(f64::INFINITY, distance_to_moving);
+            static_clearance(p).min(moving)
         })),
     );
     metrics.insert(

@@ -267,6 +267,111 @@ pub fn motion_meets(robot: &RobotShape, o: &MovingObstacle, from: Timed, to: Tim
         .any(|w| collides_between(&body, o, &trajectory, w[0], w[1]))
 }
 
+/// The smallest distance between the robot on `trajectory` (parked at its
+/// last pose forever after) and the moving obstacles, over every instant
+/// each is present: 0 when they touch or overlap, +∞ when none is ever
+/// present. Exact (the `clearance` of SPEC 3 in a world that moves):
+/// within an interval in which both move linearly, the obstacle relative
+/// to the robot sweeps a segment of offsets, and the distance is the one
+/// between the robot's body and the obstacle's shape swept along it.
+pub fn moving_clearance(
+    moving: &[MovingObstacle],
+    robot: &RobotShape,
+    trajectory: &[Timed],
+) -> f64 {
+    let Some(first) = trajectory.first() else {
+        return f64::INFINITY;
+    };
+    let mut cuts: Vec<f64> = trajectory.iter().map(|p| p.t).collect();
+    for o in moving {
+        cuts.extend(o.route.iter().map(|w| w.t).filter(|t| *t >= first.t));
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup();
+    let end = *cuts.last().expect("the trajectory has a time");
+    let body = Body::of(robot, first.pose.theta);
+    let mut best = f64::INFINITY;
+    for o in moving {
+        for w in cuts.windows(2) {
+            best = best.min(distance_between(&body, o, trajectory, w[0], w[1]));
+        }
+        best = best.min(distance_between(&body, o, trajectory, end, end));
+    }
+    best.max(0.0)
+}
+
+/// The offsets of `o`'s origin from the robot's at `a` and `b` (both
+/// moving linearly between), or `None` when `o` is absent from the open
+/// interval (it vanished); for `a = b`, at that instant.
+fn relative_offsets(
+    o: &MovingObstacle,
+    trajectory: &[Timed],
+    a: f64,
+    b: f64,
+) -> Option<(Vector, Vector)> {
+    // Present on the whole closed interval, or on none of it: a vanishing
+    // obstacle's last time is a cut, and what holds at that instant holds
+    // just before it too.
+    let mid = if a == b { a } else { a + (b - a) / 2.0 };
+    o.position(mid)?;
+    let ends = |t: f64| -> Option<Vector> {
+        let at = o.position(t).or_else(|| o.route.last().map(|w| w.at))?;
+        let p = robot_at(trajectory, t);
+        Some(at - Point::new(p.x, p.y))
+    };
+    Some((ends(a)?, ends(b)?))
+}
+
+/// The smallest distance between the robot and `o` over `[a, b]`, in which
+/// both move linearly (negative or 0 when they meet; +∞ when `o` is
+/// absent).
+fn distance_between(body: &Body, o: &MovingObstacle, trajectory: &[Timed], a: f64, b: f64) -> f64 {
+    let Some((da, db)) = relative_offsets(o, trajectory, a, b) else {
+        return f64::INFINITY;
+    };
+    match (&o.shape, body) {
+        (MovingShape::Disk(r_o), Body::Round(r)) => {
+            let d = closest_point_on_segment(Point::origin(), Point::from(da), Point::from(db));
+            d.coords.norm() - r - r_o
+        }
+        (MovingShape::Disk(r_o), Body::Convex(v)) => {
+            segment_polygon_distance(Point::from(da), Point::from(db), v) - r_o
+        }
+        (MovingShape::Pieces(pieces), body) => pieces
+            .iter()
+            .map(|piece| {
+                let hull = swept(piece, da, db);
+                match body {
+                    Body::Round(r) => point_polygon_distance(Point::origin(), &hull) - r,
+                    Body::Convex(v) => polygon_distance(v, &hull),
+                }
+            })
+            .fold(f64::INFINITY, f64::min),
+    }
+}
+
+/// The convex piece swept by translating it from offset `da` to `db`.
+fn swept(piece: &[Point], da: Vector, db: Vector) -> Vec<Point> {
+    let mut points: Vec<Point> = piece.iter().map(|p| p + da).collect();
+    points.extend(piece.iter().map(|p| p + db));
+    convex_hull(&points)
+}
+
+/// The distance between two convex polygons (counter-clockwise; 0 when
+/// they meet): between separate ones, a vertex of one is nearest to the
+/// other.
+fn polygon_distance(a: &[Point], b: &[Point]) -> f64 {
+    if penetration(a, b) >= 0.0 {
+        return 0.0;
+    }
+    let from = |x: &[Point], y: &[Point]| {
+        x.iter()
+            .map(|&p| point_polygon_distance(p, y))
+            .fold(f64::INFINITY, f64::min)
+    };
+    from(a, b).min(from(b, a))
+}
+
 fn obstacle_fail(trajectory: &[Timed], o: &MovingObstacle, t: f64) -> Result<(), ValidationError> {
     let segment = trajectory
         .partition_point(|p| p.t <= t)
@@ -306,19 +411,7 @@ impl Body {
 /// Whether the robot and `o` overlap (deeper than `TOUCH_EPS`) at some
 /// instant of `[a, b]`, in which both move linearly (or `a = b`).
 fn collides_between(body: &Body, o: &MovingObstacle, trajectory: &[Timed], a: f64, b: f64) -> bool {
-    // Present on the whole closed interval, or on none of it: a vanishing
-    // obstacle's last time is a cut, and an overlap of interiors at that
-    // instant is one just before it too.
-    let mid = if a == b { a } else { a + (b - a) / 2.0 };
-    if o.position(mid).is_none() {
-        return false;
-    }
-    let ends = |t: f64| -> Option<Vector> {
-        let at = o.position(t).or_else(|| o.route.last().map(|w| w.at))?;
-        let p = robot_at(trajectory, t);
-        Some(at - Point::new(p.x, p.y))
-    };
-    let (Some(da), Some(db)) = (ends(a), ends(b)) else {
+    let Some((da, db)) = relative_offsets(o, trajectory, a, b) else {
         return false;
     };
     match (&o.shape, body) {
@@ -330,9 +423,7 @@ fn collides_between(body: &Body, o: &MovingObstacle, trajectory: &[Timed], a: f6
             segment_polygon_distance(Point::from(da), Point::from(db), v) < r_o - TOUCH_EPS
         }
         (MovingShape::Pieces(pieces), body) => pieces.iter().any(|piece| {
-            let mut swept: Vec<Point> = piece.iter().map(|p| p + da).collect();
-            swept.extend(piece.iter().map(|p| p + db));
-            let hull = convex_hull(&swept);
+            let hull = swept(piece, da, db);
             match body {
                 Body::Round(r) => {
                     let inside = depth_inside(Point::origin(), &hull);

@@ -609,7 +609,7 @@ pub const COMMON_METRICS: &[MetricSpec] = &[
     ),
     MetricSpec::num(
         "clearance",
-        "smallest distance between the robot and any obstacle along the path (0 when it touches, +∞ with no obstacle; no value — `null` in JSON, `—` in the report — without a path)",
+        "smallest distance between the robot and any obstacle along the path (0 when it touches, +∞ with no obstacle; no value — `null` in JSON, `—` in the report — without a path); a trajectory's also to the moving obstacles, at every instant, the parked robot included",
     ),
     MetricSpec::num(
         "smoothness",
