@@ -119,3 +119,6 @@ class PlanResult:
     segments: Optional[List[Tuple[str, float]]]
     collision: Optional[Dict[str, Any]]
     """segment, at (x, y, theta), obstacle, reason; None when valid."""
+    def to_svg(self) -> str:
+        """This plan's run drawn alone (its world, search layers if drawn, path)."""
+    def _repr_svg_(self) -> str: ...

@@ -68,6 +68,12 @@ def test_load_run_and_the_path_as_numpy():
             steps = np.diff(r.path[:, :2], axis=0)
             assert math.isclose(np.hypot(steps[:, 0], steps[:, 1]).sum(), r.metrics["length"], rel_tol=1e-9)
     assert all(isinstance(c["passed"], bool) for c in report.checks)
+    # Each plan's picture shows that plan alone; the report's shows all.
+    first, second = sc.plans[:2]
+    whole = report._repr_svg_()
+    alone = report[first]._repr_svg_()
+    assert f"{first} (" in whole and f"{second} (" in whole
+    assert f"{first} (" in alone and f"{second} (" not in alone
 
 
 def test_loads_reads_text_and_reports_the_name():
@@ -293,6 +299,7 @@ def test_plan_reads_row_0_as_the_top_row_and_any_dtype():
     r = scen.plan(grid, (0.5, 4.5), (5.5, 4.5), connect=4)
     assert r.found and r.valid and np.all(r.path[:, 1] == 4.5)
     assert r.metrics["length"] == pytest.approx(5.0)
+    assert "<svg" in r._repr_svg_() and "p (astar)" in r.to_svg()
     for dtype in (np.uint8, np.int32, np.int64, np.float32, np.float64):
         again = scen.plan(grid.astype(dtype), (0.5, 4.5), (5.5, 4.5), connect=4)
         assert np.array_equal(again.path, r.path), dtype

@@ -360,19 +360,14 @@ fn plan(
             scen::run_scenario_drawing(scenario, &[], false)
         })
     });
-    let report = outcome.map_err(|f| failure(py, f))?;
+    let report = Arc::new(outcome.map_err(|f| failure(py, f))?);
     let doc = scen::report::json::to_json(&report);
     let plan = doc
         .get("plans")
         .and_then(|p| p.get("p"))
         .cloned()
         .unwrap_or(Value::Null);
-    PlanResult::new(
-        py,
-        "p",
-        &plan,
-        report.plans.first().and_then(|r| r.validation.clone()),
-    )
+    PlanResult::new(py, &report, "p", &plan)
 }
 
 /// `scen bench merge`: the whole bench's report from the parts of its
@@ -703,7 +698,7 @@ impl Scenario {
 /// check's verdict.
 #[pyclass(frozen, module = "scen")]
 struct Report {
-    inner: scen::RunReport,
+    inner: Arc<scen::RunReport>,
     /// `scen run --json`'s document, as its text.
     json: String,
     plans: Py<PyDict>,
@@ -739,15 +734,11 @@ impl Report {
                 }
             }
         }
+        let report = Arc::new(report);
         let plans = PyDict::new(py);
         if let Some(Value::Object(map)) = doc.get("plans") {
             for (name, plan) in map {
-                let validation = report
-                    .plans
-                    .iter()
-                    .find(|r| report.scenario.plans[r.plan].name == *name)
-                    .and_then(|r| r.validation.clone());
-                let result = PlanResult::new(py, name, plan, validation)?;
+                let result = PlanResult::new(py, &report, name, plan)?;
                 plans.set_item(name, Py::new(py, result)?)?;
             }
         }
@@ -844,40 +835,61 @@ impl Report {
 }
 
 /// One plan's result.
-#[pyclass(frozen, module = "scen", get_all)]
+#[pyclass(frozen, module = "scen")]
 struct PlanResult {
     /// The plan's name.
+    #[pyo3(get)]
     name: String,
     /// Its planner (`astar`, `rrt`, ...).
+    #[pyo3(get)]
     planner: String,
     /// Whether the planner returned a path.
+    #[pyo3(get)]
     found: bool,
     /// Whether the validator accepted it (False also when there is none).
+    #[pyo3(get)]
     valid: bool,
     /// Every metric, by name (SPEC 3).
+    #[pyo3(get)]
     metrics: Py<PyAny>,
     /// The path: (N, 2) x, y, or (N, 3) x, y, θ for a robot whose heading
     /// matters; None without one.
+    #[pyo3(get)]
     path: Py<PyAny>,
     /// A time-aware plan's trajectory, (N, 4) x, y, θ, t; or the motion a
     /// run executed before it stopped short; None otherwise.
+    #[pyo3(get)]
     trajectory: Py<PyAny>,
     /// A car's path as its segments, `[(turn, length), ...]`; None
     /// otherwise.
+    #[pyo3(get)]
     segments: Py<PyAny>,
     /// Where the path first failed the validator: `segment`, `at`
     /// (x, y, θ), `obstacle` (None for the bounds), `reason`; None when
     /// it passed.
+    #[pyo3(get)]
     collision: Py<PyAny>,
+    /// The run it is part of, and its index among the run's plans: for
+    /// its picture.
+    report: Arc<scen::RunReport>,
+    run: usize,
 }
 
 impl PlanResult {
+    /// Plan `name` of `report`, from its entry `plan` in the report's
+    /// JSON document.
     fn new(
         py: Python<'_>,
+        report: &Arc<scen::RunReport>,
         name: &str,
         plan: &Value,
-        validation: Option<scen::geometry::validator::ValidationError>,
     ) -> PyResult<PlanResult> {
+        let run = report
+            .plans
+            .iter()
+            .position(|r| report.scenario.plans[r.plan].name == name)
+            .unwrap_or(0);
+        let validation = report.plans.get(run).and_then(|r| r.validation.as_ref());
         let metrics = json_to_py(py, plan.get("metrics").unwrap_or(&Value::Null))?;
         let found = plan.get("path").is_some_and(|p| !p.is_null());
         let matrix = |key: &str| -> Py<PyAny> {
@@ -922,12 +934,38 @@ impl PlanResult {
             trajectory: matrix("trajectory"),
             segments,
             collision,
+            report: report.clone(),
+            run,
         })
     }
 }
 
 #[pymethods]
 impl PlanResult {
+    /// This plan's run drawn alone, as `scen run --plan NAME --svg` draws
+    /// it.
+    fn to_svg(&self, py: Python<'_>) -> String {
+        py.detach(|| {
+            scen::report::svg::to_svg(&scen::RunReport {
+                scenario: self.report.scenario.clone(),
+                plans: self
+                    .report
+                    .plans
+                    .get(self.run)
+                    .cloned()
+                    .into_iter()
+                    .collect(),
+                bench_runs: Vec::new(),
+                checks: Vec::new(),
+                skipped: Vec::new(),
+            })
+        })
+    }
+
+    fn _repr_svg_(&self, py: Python<'_>) -> String {
+        self.to_svg(py)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<scen.PlanResult {:?} ({}): found={}, valid={}>",
