@@ -392,6 +392,18 @@ fn bench_merge(py: Python<'_>, paths: Vec<PathBuf>, root: Option<PathBuf>) -> Py
     }
 }
 
+/// The picture `scen run --svg` draws of `scenario` with the runs of
+/// `plans` (none: the world, its robots' starts and goals).
+fn picture(scenario: &scen::Scenario, plans: Vec<scen::run::PlanRun>) -> String {
+    scen::report::svg::to_svg(&scen::RunReport {
+        scenario: scenario.clone(),
+        plans,
+        bench_runs: Vec::new(),
+        checks: Vec::new(),
+        skipped: Vec::new(),
+    })
+}
+
 /// A loaded scenario: its world, robots, plans and checks.
 #[pyclass(frozen, module = "scen")]
 struct Scenario {
@@ -669,16 +681,7 @@ impl Scenario {
 
     /// The scenario drawn (its world, robots, starts and goals) as SVG.
     fn to_svg(&self, py: Python<'_>) -> String {
-        let scenario = self.inner.clone();
-        py.detach(|| {
-            scen::report::svg::to_svg(&scen::RunReport {
-                scenario,
-                plans: Vec::new(),
-                bench_runs: Vec::new(),
-                checks: Vec::new(),
-                skipped: Vec::new(),
-            })
-        })
+        py.detach(|| picture(&self.inner, Vec::new()))
     }
 
     fn _repr_svg_(&self, py: Python<'_>) -> String {
@@ -945,21 +948,8 @@ impl PlanResult {
     /// This plan's run drawn alone, as `scen run --plan NAME --svg` draws
     /// it.
     fn to_svg(&self, py: Python<'_>) -> String {
-        py.detach(|| {
-            scen::report::svg::to_svg(&scen::RunReport {
-                scenario: self.report.scenario.clone(),
-                plans: self
-                    .report
-                    .plans
-                    .get(self.run)
-                    .cloned()
-                    .into_iter()
-                    .collect(),
-                bench_runs: Vec::new(),
-                checks: Vec::new(),
-                skipped: Vec::new(),
-            })
-        })
+        let run = self.report.plans.get(self.run).cloned();
+        py.detach(|| picture(&self.report.scenario, run.into_iter().collect()))
     }
 
     fn _repr_svg_(&self, py: Python<'_>) -> String {
