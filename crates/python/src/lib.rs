@@ -9,7 +9,10 @@
 //!   `scen run --json` (so the two agree to the bit).
 //! - [`Scenario::validate`]: the validator on a path made elsewhere (a
 //!   numpy array), as `scen validate` does.
-//! - `_repr_svg_` on scenarios and reports, for Jupyter.
+//! - [`plan`]: a planner straight on a numpy occupancy grid.
+//! - [`Scenario::bench`], [`Scenario::bench_part`], [`bench_merge`]: `scen
+//!   bench`, one shard of it as a part's text, and the merge of the parts.
+//! - `_repr_svg_` on scenarios, reports and plans' results, for Jupyter.
 //!
 //! The Python package (`python/scen/__init__.py`) re-exports this module;
 //! its type stubs are `python/scen/_scen.pyi`.
