@@ -151,7 +151,7 @@ fn point_convex_distance(p: Point, v: &[Point]) -> f64 {
 }
 
 /// The distance between two convex point lists (0 when they meet).
-fn convex_distance(a: &[Point], b: &[Point]) -> f64 {
+pub(crate) fn convex_distance(a: &[Point], b: &[Point]) -> f64 {
     if !separated(a, b) {
         return 0.0;
     }

@@ -38,6 +38,7 @@
 //! segment and the earliest time found.
 
 use super::polygon::{closest_point_on_segment, convex_decomposition, convex_hull};
+use super::proximity::convex_distance;
 use super::validator::{DEFAULT_TOLERANCE, ValidationError, validate_path};
 use super::{Config, Point, RobotShape, TOUCH_EPS, Vector, World, place};
 
@@ -343,7 +344,7 @@ fn distance_between(body: &Body, o: &MovingObstacle, trajectory: &[Timed], a: f6
                 let hull = swept(piece, da, db);
                 match body {
                     Body::Round(r) => point_polygon_distance(Point::origin(), &hull) - r,
-                    Body::Convex(v) => polygon_distance(v, &hull),
+                    Body::Convex(v) => convex_distance(v, &hull),
                 }
             })
             .fold(f64::INFINITY, f64::min),
@@ -355,21 +356,6 @@ fn swept(piece: &[Point], da: Vector, db: Vector) -> Vec<Point> {
     let mut points: Vec<Point> = piece.iter().map(|p| p + da).collect();
     points.extend(piece.iter().map(|p| p + db));
     convex_hull(&points)
-}
-
-/// The distance between two convex polygons (counter-clockwise; 0 when
-/// they meet): between separate ones, a vertex of one is nearest to the
-/// other.
-fn polygon_distance(a: &[Point], b: &[Point]) -> f64 {
-    if penetration(a, b) >= 0.0 {
-        return 0.0;
-    }
-    let from = |x: &[Point], y: &[Point]| {
-        x.iter()
-            .map(|&p| point_polygon_distance(p, y))
-            .fold(f64::INFINITY, f64::min)
-    };
-    from(a, b).min(from(b, a))
 }
 
 fn obstacle_fail(trajectory: &[Timed], o: &MovingObstacle, t: f64) -> Result<(), ValidationError> {

@@ -415,7 +415,7 @@ fn distance_at(robot: &RobotShape, traj: &[Timed], o: &MovingObstacle, t: f64) -
                 let placed: Vec<Point> = piece.iter().map(|q| q + d).collect();
                 match body {
                     Body::Round(rr) => point_polygon_distance(Point::origin(), &placed) - rr,
-                    Body::Convex(v) => polygon_distance(v, &placed),
+                    Body::Convex(v) => convex_distance(v, &placed),
                 }
             })
             .fold(f64::INFINITY, f64::min),
