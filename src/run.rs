@@ -380,21 +380,16 @@ fn judge(
             measured_clearance.unwrap_or_else(|| referee.clearance(robot, p, DEFAULT_TOLERANCE))
         }
     };
-    // A trajectory keeps its distance from the moving obstacles too
-    // (exact, the parked robot included).
-    let distance_to_moving = |trajectory: &[Timed]| {
-        if scenario.moving.is_empty() {
-            f64::INFINITY
-        } else {
-            moving_clearance(&scenario.moving, robot, trajectory)
-        }
-    };
     // Without a path, the clearance has no value (NaN: `null` in JSON, `—`
-    // in the report), never a 0 that reads as "touched a wall".
+    // in the report), never a 0 that reads as "touched a wall". A
+    // trajectory keeps its distance from the moving obstacles too (exact,
+    // the parked robot included; +∞ without any).
     metrics.insert(
         "clearance".into(),
         MetricValue::Num(path.map_or(f64::NAN, |p| {
-            let moving = timed.as_deref().map_or(f64::INFINITY, distance_to_moving);
+            let moving = timed.as_deref().map_or(f64::INFINITY, |trajectory| {
+                moving_clearance(&scenario.moving, robot, trajectory)
+            });
             static_clearance(p).min(moving)
         })),
     );
