@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use clap::{Arg, ArgMatches, Args, FromArgMatches};
 
 use super::{check_output_folder, check_output_path};
-use crate::report::sink::{Command, Product, Sink, Tuning};
+use crate::report::sink::{Command, Product, Sink};
 use crate::report::sinks::SINKS;
 use crate::scenario::Scenario;
 
@@ -31,11 +31,11 @@ impl OfCommand for BenchSinks {
 }
 
 /// The sinks a command was given, each with its path, in the registry's
-/// order; and the tunings given (`--gif-speed K`), by option.
+/// order; and the tunings given (`--gif-speed K`), by the sink they tune.
 #[derive(Debug)]
 pub struct Outputs<K> {
     pub given: Vec<(&'static Sink, PathBuf)>,
-    tunings: Vec<(&'static Tuning, f64)>,
+    tunings: Vec<(&'static Sink, f64)>,
     command: PhantomData<K>,
 }
 
@@ -71,10 +71,10 @@ impl<K: OfCommand> FromArgMatches for Outputs<K> {
         }
         let order = |s: &Sink| SINKS.iter().position(|t| std::ptr::eq(*t, s));
         self.given.sort_by_key(|(s, _)| order(s));
-        for tuning in offered::<K>().filter_map(|(s, _)| s.tuning) {
+        for (sink, tuning) in offered::<K>().filter_map(|(s, _)| Some((s, s.tuning?))) {
             if let Some(&value) = matches.get_one::<f64>(tuning.name()) {
-                self.tunings.retain(|(t, _)| !std::ptr::eq(*t, tuning));
-                self.tunings.push((tuning, value));
+                self.tunings.retain(|(s, _)| !std::ptr::eq(*s, sink));
+                self.tunings.push((sink, value));
             }
         }
         Ok(())
@@ -131,21 +131,17 @@ impl<K> Outputs<K> {
     /// and that it can be written (a folder sink: its folder, or the
     /// folder it would be created in). Prints the first problem.
     pub fn usable(&self) -> bool {
-        for (tuning, value) in &self.tunings {
-            let tuned = self
-                .given
-                .iter()
-                .find(|(s, _)| s.tuning.is_some_and(|t| std::ptr::eq(t, *tuning)));
-            let checked = match tuned {
-                None => Err(format!(
+        for &(sink, value) in &self.tunings {
+            let Some(tuning) = sink.tuning else {
+                continue;
+            };
+            let checked = if self.given.iter().any(|(s, _)| std::ptr::eq(*s, sink)) {
+                (tuning.check)(value)
+            } else {
+                Err(format!(
                     "`{}` tunes `{}`, which was not given",
-                    tuning.option,
-                    SINKS
-                        .iter()
-                        .find(|s| s.tuning.is_some_and(|t| std::ptr::eq(t, *tuning)))
-                        .map_or("its output", |s| s.option)
-                )),
-                Some(_) => (tuning.check)(*value),
+                    tuning.option, sink.option
+                ))
             };
             if let Err(e) = checked {
                 eprintln!("error: {e}");
@@ -197,7 +193,7 @@ impl<K> Outputs<K> {
             let tuning = sink.tuning.map(|t| {
                 self.tunings
                     .iter()
-                    .find(|(given, _)| std::ptr::eq(*given, t))
+                    .find(|(tuned, _)| std::ptr::eq(*tuned, *sink))
                     .map_or(t.default, |&(_, v)| v)
             });
             if let Err(errors) = (sink.write)(product, path, tuning) {
