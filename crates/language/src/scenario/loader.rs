@@ -616,14 +616,11 @@ pub(crate) fn read_text(
                 ),
             ),
         },
-        Err(ReadError::TooLarge(_)) if what == "map" => {
-            let Some(span) = from else {
-                return Err(scenario_too_large(path, from, sources));
-            };
-            return Err(map_too_large(path, span));
-        }
         Err(ReadError::TooLarge(_)) => {
-            return Err(scenario_too_large(path, from, sources));
+            return Err(match from {
+                Some(span) if what == "map" => map_too_large(path, span),
+                _ => scenario_too_large(path, from, sources),
+            });
         }
         Err(ReadError::Folder) => (
             "scen::load::read",
