@@ -156,7 +156,6 @@ fn loads(
     family_seed: u64,
 ) -> PyResult<Scenario> {
     let path = PathBuf::from(name);
-    let canon = scen::scenario::loader::canonical(&path);
     let text: Arc<str> = Arc::from(text);
     let root = root.unwrap_or_else(|| PathBuf::from("."));
     let choice = SampleChoice {
@@ -164,10 +163,20 @@ fn loads(
         family_seed,
     };
     let loaded = py.detach(|| {
-        let overlay = |p: &Path| (p == canon).then(|| text.clone());
+        let overlay = in_memory(vec![(&path, text)]);
         load_sample(&path, Some(&root), &overlay, choice)
     });
     loaded.map(Scenario::new).map_err(|f| failure(py, f))
+}
+
+/// The loader's overlay for files made in memory: each text, by its
+/// path's canonical form (as the loader asks).
+fn in_memory(files: Vec<(&Path, Arc<str>)>) -> impl Fn(&Path) -> Option<Arc<str>> + use<> {
+    let files: Vec<(PathBuf, Arc<str>)> = files
+        .into_iter()
+        .map(|(path, text)| (scen::scenario::loader::canonical(path), text))
+        .collect();
+    move |p| files.iter().find(|(c, _)| c == p).map(|(_, t)| t.clone())
 }
 
 /// A numpy grid as the text of a MovingAI map: `@` where the array is
@@ -331,26 +340,11 @@ fn plan(
         .unwrap_or_default()
         .join("<numpy grid>");
     let main = folder.join("plan.scen");
-    let (main_c, map_c) = (
-        scen::scenario::loader::canonical(&main),
-        scen::scenario::loader::canonical(&folder.join("grid.map")),
-    );
-    let (text, map): (Arc<str>, Arc<str>) = (text.into(), map.into());
     let map_path = folder.join("grid.map");
     let outcome = py.detach(move || {
-        let loaded = {
-            let overlay = |p: &Path| {
-                if p == main_c {
-                    Some(text.clone())
-                } else if p == map_c {
-                    Some(map.clone())
-                } else {
-                    None
-                }
-            };
-            load_sample(&main, Some(&folder), &overlay, SampleChoice::default())
-        };
-        drop(map);
+        let overlay = in_memory(vec![(&main, text.into()), (&map_path, map.into())]);
+        let loaded = load_sample(&main, Some(&folder), &overlay, SampleChoice::default());
+        drop(overlay);
         loaded.map(|mut scenario| {
             // The map's text served the loading (and its diagnostics) only:
             // dropped before planning, so that the world's cells are the
