@@ -2,28 +2,19 @@
 (`bench_part`) merge (`scen.bench_merge`) into the same report, and the
 Dask example spreads one over a local cluster."""
 
+import contextlib
 import json
 import os
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
 import scen
 
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = Path(sys.executable).parent / "scen"
+from common import ROOT, SCEN, without_timings
+
 BENCH = "scenarios/features/bench_seeds.scen"
-TIMINGS = {"time_ms", "simplify_ms"}
-
-
-def without_timings(v):
-    if isinstance(v, dict):
-        return {k: without_timings(x) for k, x in v.items() if k not in TIMINGS}
-    if isinstance(v, list):
-        return [without_timings(x) for x in v]
-    return v
 
 
 # The table's columns without the timings (as tests/examples.rs).
@@ -32,10 +23,8 @@ METRICS = ["length", "expanded", "steps", "clearance"]
 
 @pytest.fixture
 def at_root():
-    cwd = os.getcwd()
-    os.chdir(ROOT)
-    yield
-    os.chdir(cwd)
+    with contextlib.chdir(ROOT):
+        yield
 
 
 def test_bench_is_scen_bench_json(at_root):

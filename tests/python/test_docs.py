@@ -1,11 +1,10 @@
 """docs/python.md stays true: its ```python blocks run, in order, in one
 namespace, from the repository's root (as the page says)."""
 
-import os
+import contextlib
 import re
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+from common import ROOT
 
 
 def python_blocks(text):
@@ -16,14 +15,10 @@ def test_the_python_chapter_runs(capsys):
     page = (ROOT / "docs" / "python.md").read_text()
     blocks = python_blocks(page)
     assert len(blocks) >= 5, "the chapter's examples were found"
-    cwd = os.getcwd()
-    os.chdir(ROOT)
-    try:
+    with contextlib.chdir(ROOT):
         namespace = {"__name__": "docs_python"}
         for i, block in enumerate(blocks):
             code = compile(block, f"docs/python.md, block {i + 1}", "exec")
             exec(code, namespace)
-    finally:
-        os.chdir(cwd)
     printed = capsys.readouterr().out
     assert "checks passed" in printed and "astar:" in printed

@@ -1,35 +1,19 @@
 """The Python module, as a user has it: `import scen` from the installed
 wheel (scripts/wheel.sh --check runs these with the wheel's venv)."""
 
+import contextlib
 import json
 import math
 import os
 import subprocess
-import sys
 import threading
-import time
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import scen
 
-ROOT = Path(__file__).resolve().parents[2]
-SCENARIOS = ROOT / "scenarios"
-# The `scen` command pip installed beside this Python.
-SCEN = Path(sys.executable).parent / "scen"
-
-# What varies between two runs of the same input: the timings.
-TIMINGS = {"time_ms", "simplify_ms"}
-
-
-def without_timings(v):
-    if isinstance(v, dict):
-        return {k: without_timings(x) for k, x in v.items() if k not in TIMINGS and not k.endswith(".time_ms")}
-    if isinstance(v, list):
-        return [without_timings(x) for x in v]
-    return v
+from common import ROOT, SCEN, SCENARIOS, TIMINGS, without_timings
 
 
 def test_the_module_is_the_installed_wheel_not_the_sources():
@@ -186,12 +170,8 @@ def test_run_is_scen_run_json_to_the_bit(path):
     )
     assert cli.returncode in (0, 1), cli.stderr
     expected = json.loads(cli.stdout)
-    cwd = os.getcwd()
-    os.chdir(SCENARIOS)
-    try:
+    with contextlib.chdir(SCENARIOS):
         report = scen.load(path.name).run()
-    finally:
-        os.chdir(cwd)
     got = json.loads(report.to_json())
     assert without_timings(got) == without_timings(expected)
     for name, plan in expected["plans"].items():
