@@ -95,6 +95,7 @@ fn bench(c: &mut Criterion) {
             referee: None,
             moving: &[],
             speed: None,
+            agents: &[],
         };
         let settings = Coverage {
             on: 0,

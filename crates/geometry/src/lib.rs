@@ -22,6 +22,7 @@ pub mod proximity;
 pub mod rng;
 pub mod robots;
 pub mod steer;
+pub mod team;
 pub mod timed;
 pub mod union;
 pub mod validator;

@@ -187,6 +187,7 @@ impl Plan {
             referee: None,
             moving: &scenario.moving,
             speed: scenario.robots[self.robot].speed,
+            agents: scenario.robots[self.robot].team.as_deref().unwrap_or(&[]),
         }
     }
 }

@@ -20,6 +20,6 @@ pub mod schema;
 pub use args::PlanArgs;
 pub use layers::Layer;
 pub use outcome::{MeasuredMotion, MetricValue, Metrics, PlanOutcome};
-pub use params::{DEFAULT_CELL_CAP, Limits, Param, ParamValue, Params, Robot};
+pub use params::{Agent, DEFAULT_CELL_CAP, Limits, Param, ParamValue, Params, Robot};
 pub use planner::{Planner, Settings, Task};
 pub use referee::{Referee, ValidatorReferee};

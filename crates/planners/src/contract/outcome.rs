@@ -61,6 +61,9 @@ pub struct PlanOutcome {
     /// of `path`, from 0, increasing; the runner validates the path with
     /// these times in space-time.
     pub times: Option<Vec<f64>>,
+    /// A team planner's paths (SPEC 2.10), one per agent in the team's
+    /// order, one lattice point per step; `None` when it found none.
+    pub agents: Option<Vec<Vec<crate::geometry::Point>>>,
 }
 
 /// The measures of a motion too long to return in full (SPEC 3.4: a

@@ -17,6 +17,18 @@ pub struct Robot {
     pub steering: Option<Steering>,
     /// `speed V`: the largest speed of its reference point (SPEC 2.9).
     pub speed: Option<f64>,
+    /// For a `team` (SPEC 2.10): its agents, each of this shape.
+    pub team: Option<std::sync::Arc<[Agent]>>,
+    pub span: Span,
+}
+
+/// One agent of a team (SPEC 2.10): its name, start and goal.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Agent {
+    pub name: String,
+    pub start: Point,
+    pub goal: Point,
+    /// Its row in the team's block or `.scen` file, for diagnostics.
     pub span: Span,
 }
 
@@ -24,7 +36,9 @@ impl Robot {
     /// What it is for the planners' robot tables: a car when it steers,
     /// else its shape's kind.
     pub fn kind(&self) -> RobotKind {
-        if self.steering.is_some() {
+        if self.team.is_some() {
+            RobotKind::Team
+        } else if self.steering.is_some() {
             RobotKind::Car
         } else {
             RobotKind::of(&self.shape)

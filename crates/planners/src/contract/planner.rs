@@ -12,7 +12,7 @@ use crate::geometry::{Config, RobotShape, World};
 use super::{Limits, PlanArgs, PlanOutcome};
 use crate::contract::schema::{
     CAR_METRICS, COMMON_METRICS, COMMON_PARAMS, MetricSpec, MetricType, ParamSpec, RobotKind,
-    TIME_METRICS,
+    TEAM_METRICS, TIME_METRICS,
 };
 
 /// What a planner is, for the analyzer, the runner and the tools.
@@ -68,20 +68,32 @@ impl Planner {
 
     /// The common metrics, a car's (when it plans for cars: reported for
     /// every plan, with no value for a robot that is not a car), a
-    /// trajectory's (when it knows time), then the planner's own.
+    /// trajectory's (when it knows time), then the planner's own. A team
+    /// planner's are the team metrics, then its own.
     pub fn all_metrics(&self) -> impl Iterator<Item = &'static MetricSpec> + use<> {
         let own: &'static [MetricSpec] = self.metrics;
+        let common: &'static [MetricSpec] = if self.plans_teams() {
+            TEAM_METRICS
+        } else {
+            COMMON_METRICS
+        };
         let car: &'static [MetricSpec] = if self.plans_for(RobotKind::Car) {
             CAR_METRICS
         } else {
             &[]
         };
         let time: &'static [MetricSpec] = if self.time { TIME_METRICS } else { &[] };
-        COMMON_METRICS
+        common
             .iter()
             .chain(car)
             .chain(time)
             .chain(own.iter())
+    }
+
+    /// Whether it plans for teams (SPEC 2.10): then it plans for nothing
+    /// else, and its task's [`Task::agents`] are the team's.
+    pub fn plans_teams(&self) -> bool {
+        self.plans_for(RobotKind::Team)
     }
 
     /// Whether it plans for robots of this kind.
@@ -122,6 +134,9 @@ pub struct Task<'a> {
     pub moving: &'a [MovingObstacle],
     /// The robot's largest speed (`speed V`, SPEC 2.9), if it has one.
     pub speed: Option<f64>,
+    /// A team plan's agents (SPEC 2.10), each of `robot`'s shape; empty for
+    /// one robot. `start` is then the first agent's start.
+    pub agents: &'a [crate::contract::Agent],
 }
 
 impl Task<'_> {

@@ -16,6 +16,8 @@ pub enum RobotKind {
     Polygon,
     /// A disk or polygon robot with `steer` (SPEC 2.4).
     Car,
+    /// A `team` of agents of one shape (SPEC 2.10).
+    Team,
 }
 
 impl RobotKind {
@@ -25,6 +27,7 @@ impl RobotKind {
             RobotKind::Disk => "disk",
             RobotKind::Polygon => "polygon",
             RobotKind::Car => "car",
+            RobotKind::Team => "team",
         }
     }
 
@@ -572,6 +575,36 @@ pub const TIME_METRICS: &[MetricSpec] = &[
     MetricSpec::num(
         "waited",
         "total time the robot stands still along the trajectory, in seconds",
+    ),
+];
+
+/// The metrics of a team plan (SPEC 2.10), measured by the runner from the
+/// agents' paths; they stand for [`COMMON_METRICS`], which are about one
+/// robot's path.
+pub const TEAM_METRICS: &[MetricSpec] = &[
+    MetricSpec::bool("found", "every agent has a path to its goal"),
+    MetricSpec::bool("gave_up", "a limit was reached first"),
+    MetricSpec::num("agents", "agents in the team"),
+    MetricSpec::num(
+        "sum_of_costs",
+        "the sum over agents of the step at which each reaches its goal for the last time (+∞ without a solution)",
+    ),
+    MetricSpec::num(
+        "makespan",
+        "the largest of the agents' costs (+∞ without a solution)",
+    ),
+    MetricSpec::num(
+        "soc_lower_bound",
+        "the sum of each agent's own shortest cost, by breadth-first search on the referee's lattice (+∞ when some agent cannot reach its goal)",
+    ),
+    MetricSpec::num(
+        "expanded",
+        "search nodes expanded, low-level searches included",
+    ),
+    MetricSpec::num("time_ms", "wall time of the plan, in milliseconds"),
+    MetricSpec::bool(
+        "collision_free",
+        "the agents' paths passed the referee: obstacles, vertex and edge conflicts",
     ),
 ];
 

@@ -1042,6 +1042,7 @@ mod tests {
             referee: Some(&referee),
             moving: &[],
             speed: None,
+            agents: &[],
         };
         plan(bug, &task)
     }
@@ -1078,6 +1079,7 @@ mod tests {
                 referee: Some(&referee),
                 moving: &[],
                 speed: None,
+                agents: &[],
             };
             let out = plan(&bug, &task);
             let motion = out.path.as_ref().unwrap_or(&out.trajectory);

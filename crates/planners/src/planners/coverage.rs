@@ -1047,6 +1047,7 @@ mod tests {
             referee: None,
             moving: &[],
             speed: None,
+            agents: &[],
         };
         let k = cells_per_tool(grid, tool);
         plan(&task, &Coverage { on, k, weights })

@@ -11,6 +11,7 @@ pub mod coverage;
 pub mod deadline;
 pub mod grid_lattice;
 pub mod lattice;
+pub mod mapf;
 pub mod online;
 pub mod potential;
 pub mod registry;

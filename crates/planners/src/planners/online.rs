@@ -1086,6 +1086,7 @@ mod tests {
             referee: None,
             moving: &[],
             speed: None,
+            agents: &[],
         }
     }
 

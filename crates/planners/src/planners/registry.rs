@@ -77,6 +77,7 @@ planners! {
     #[path = "hybrid_astar.rs"] hybrid_astar::PLANNER,
     #[path = "bug.rs"] bug::PLANNER,
     #[path = "sipp.rs"] sipp::PLANNER,
+    #[path = "cbs.rs"] cbs::PLANNER,
 }
 
 /// The planner of a kind.

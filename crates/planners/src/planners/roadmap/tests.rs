@@ -76,6 +76,7 @@ fn task<'a>(w: &'a World, robot: &'a RobotShape, c: &Case) -> Task<'a> {
         referee: None,
         moving: &[],
         speed: None,
+        agents: &[],
     }
 }
 

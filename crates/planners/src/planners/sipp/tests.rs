@@ -127,6 +127,7 @@ fn run_sipp(case: &Case, connect: u8) -> PlanOutcome {
         referee: None,
         moving: &case.moving,
         speed: Some(case.speed),
+        agents: &[],
     };
     plan(&task, &settings)
 }

@@ -1,0 +1,175 @@
+//! What the grid MAPF planners (SPEC 2.10, 3.11) share: the team's graph
+//! — the lattice of cell centres at spacing `cell`, 4-neighbour moves the
+//! motion checker allows — its agents' start and goal nodes, and distances
+//! by breadth-first search.
+
+use std::collections::VecDeque;
+
+use crate::contract::schema::ParamSpec;
+use crate::contract::{PlanArgs, Task};
+use crate::diagnostics::Diag;
+use crate::geometry::Point;
+use crate::geometry::collide::ObstacleIndex;
+use crate::planners::deadline::Deadline;
+use crate::planners::grid_lattice::GridLattice;
+use crate::planners::lattice::{LATTICE_PARAMS, LatticeSpec, Sample, check_lattice_of};
+
+/// A node of the graph (a lattice point's index).
+pub type Node = u32;
+
+/// No node (a missing neighbour).
+pub const NONE: Node = Node::MAX;
+
+/// The parameters every grid MAPF planner takes: `cell`.
+pub const MAPF_PARAMS: [ParamSpec; 1] = [LATTICE_PARAMS[0]];
+
+/// A grid MAPF plan's lattice, checked: the cap, a point team, agents on
+/// lattice points (each error at its agent's row).
+pub fn check_mapf_lattice(args: &mut PlanArgs<'_>) -> Option<LatticeSpec> {
+    let spec = check_lattice_of(args, Sample::Center, 1.0)?;
+    let robot = args.robot;
+    if !matches!(robot.shape, crate::geometry::RobotShape::Point) {
+        let (plan, kind) = (args.plan, args.planner().kind);
+        args.error(
+            Diag::error(
+                "scen::analyze::robot_kind",
+                format!("plan `{plan}`: `{kind}` plans teams of `point` agents (grid MAPF)"),
+            )
+            .at(robot.span, "a team of bodies")
+            .help("declare the team `team NAME point { ... }`; teams of bodies are planned by `prioritized`"),
+        );
+        return None;
+    }
+    let agents = robot.team.clone().unwrap_or_else(|| Vec::new().into());
+    for a in agents.iter() {
+        for (what, p) in [("start", a.start), ("goal", a.goal)] {
+            if node_at(&spec, p).is_none() {
+                let near = spec.point_of(nearest(&spec, p));
+                args.error(
+                    Diag::error(
+                        "scen::analyze::off_lattice",
+                        format!(
+                            "agent `{}`'s {what} ({}, {}) is not a cell centre of plan `{}`'s lattice",
+                            a.name, p.x, p.y, args.plan
+                        ),
+                    )
+                    .at(a.span, format!("its {what}"))
+                    .help(format!(
+                        "grid MAPF moves agents between cell centres (`cell {}` from the bounds' corner); the nearest is ({}, {})",
+                        spec.cell, near.x, near.y
+                    )),
+                );
+            }
+        }
+    }
+    Some(spec)
+}
+
+/// The lattice point at `p`, when `p` is one (within 1e-9 of a cell).
+pub fn node_at(spec: &LatticeSpec, p: Point) -> Option<usize> {
+    let fi = (p.x - spec.x0) / spec.cell;
+    let fj = (p.y - spec.y0) / spec.cell;
+    let (i, j) = (fi.round(), fj.round());
+    let on = (fi - i).abs() <= 1e-9 && (fj - j).abs() <= 1e-9;
+    (on && i >= 0.0 && j >= 0.0 && (i as usize) < spec.nx && (j as usize) < spec.ny)
+        .then(|| spec.index(i as usize, j as usize))
+}
+
+fn nearest(spec: &LatticeSpec, p: Point) -> usize {
+    let clamp = |f: f64, n: usize| (f.round().max(0.0) as usize).min(n.saturating_sub(1));
+    spec.index(
+        clamp((p.x - spec.x0) / spec.cell, spec.nx),
+        clamp((p.y - spec.y0) / spec.cell, spec.ny),
+    )
+}
+
+/// The team's graph: each free node's 4-neighbours it may move to.
+pub struct Graph {
+    pub spec: LatticeSpec,
+    /// Per node, up to four neighbours ([`NONE`] where there is none).
+    pub adj: Vec<[Node; 4]>,
+    pub free: Vec<bool>,
+    pub starts: Vec<Node>,
+    pub goals: Vec<Node>,
+}
+
+impl Graph {
+    /// The graph of `task`'s world for its agents; `Err` with a note when
+    /// the deadline passes while it is built or an agent stands off it.
+    pub fn build(task: &Task<'_>, spec: LatticeSpec, deadline: &Deadline) -> Result<Self, String> {
+        let index = ObstacleIndex::new(task.world);
+        let Some(mut lat) = GridLattice::build_until(spec, &index, 0.0, deadline) else {
+            return Err(crate::planners::deadline::setup_note("classifying the lattice"));
+        };
+        let n = spec.layer_len();
+        let mut adj = vec![[NONE; 4]; n];
+        let mut free = vec![false; n];
+        for (v, slot) in adj.iter_mut().enumerate() {
+            if v % crate::planners::deadline::SETUP_CHECK_EVERY == 0 && deadline.passed() {
+                return Err(crate::planners::deadline::setup_note("connecting the lattice"));
+            }
+            if !lat.free.get(v) {
+                continue;
+            }
+            free[v] = true;
+            let mut k = 0;
+            for d in 0..4 {
+                if let Some(m) = lat.neighbour(v, d)
+                    && lat.edge_usable(&index, v, d, m)
+                {
+                    slot[k] = m as Node;
+                    k += 1;
+                }
+            }
+        }
+        let mut starts = Vec::with_capacity(task.agents.len());
+        let mut goals = Vec::with_capacity(task.agents.len());
+        for a in task.agents {
+            for (p, out) in [(a.start, &mut starts), (a.goal, &mut goals)] {
+                match node_at(&spec, p).filter(|&v| free[v]) {
+                    Some(v) => out.push(v as Node),
+                    None => {
+                        return Err(format!(
+                            "agent `{}` stands at ({}, {}), not a free cell centre",
+                            a.name, p.x, p.y
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(Graph {
+            spec,
+            adj,
+            free,
+            starts,
+            goals,
+        })
+    }
+
+    /// The neighbours of `v`.
+    pub fn neighbours(&self, v: Node) -> impl Iterator<Item = Node> + '_ {
+        self.adj[v as usize].iter().copied().take_while(|&m| m != NONE)
+    }
+
+    /// Steps from every node to `goal` ([`u32::MAX`]: never).
+    pub fn distances_to(&self, goal: Node) -> Vec<u32> {
+        let mut dist = vec![u32::MAX; self.adj.len()];
+        dist[goal as usize] = 0;
+        let mut queue = VecDeque::from([goal]);
+        while let Some(v) = queue.pop_front() {
+            let d = dist[v as usize] + 1;
+            for m in self.neighbours(v) {
+                if dist[m as usize] == u32::MAX {
+                    dist[m as usize] = d;
+                    queue.push_back(m);
+                }
+            }
+        }
+        dist
+    }
+
+    /// The world point of `v`.
+    pub fn point(&self, v: Node) -> Point {
+        self.spec.point_of(v as usize)
+    }
+}
