@@ -639,7 +639,8 @@ fn cmd_check(args: &CheckArgs) -> i32 {
 
 /// Collects `*.scen` files under `path`, sorted (hidden folders skipped);
 /// files whose name starts with `_` are include-only fragments, skipped
-/// unless `fragments`.
+/// unless `fragments`. MovingAI scenario files (`.scen` too, but opening
+/// with `version`: a team's agents, SPEC 2.10) are data, never scenarios.
 pub(crate) fn collect_scen(path: &Path, fragments: bool, out: &mut Vec<PathBuf>) {
     if path.is_dir() {
         let Ok(entries) = std::fs::read_dir(path) else {
@@ -661,6 +662,7 @@ pub(crate) fn collect_scen(path: &Path, fragments: bool, out: &mut Vec<PathBuf>)
                     || !e
                         .file_name()
                         .is_some_and(|n| n.to_string_lossy().starts_with('_')))
+                && !is_movingai_scenario(&e)
             {
                 out.push(e);
             }
@@ -668,6 +670,19 @@ pub(crate) fn collect_scen(path: &Path, fragments: bool, out: &mut Vec<PathBuf>)
     } else {
         out.push(path.to_path_buf());
     }
+}
+
+/// Whether `path` is a MovingAI scenario file: its first word is
+/// `version` (no scenario of ours starts so).
+fn is_movingai_scenario(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 64];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .unwrap_or(0);
+    let text = String::from_utf8_lossy(&head[..n]);
+    let mut words = text.split_whitespace();
+    words.next() == Some("version") && words.next().is_some_and(|w| w.parse::<u32>().is_ok())
 }
 
 /// The diagnostic codes a test file declares it must get, one per

@@ -15,6 +15,7 @@ use crate::contract::{Task, ValidatorReferee};
 use crate::drive::{self, DriveOutcome};
 use crate::geometry::car::{CarPath, swept_poses, validate_car_path};
 use crate::geometry::path::{path_length, path_turn, smoothness};
+use crate::geometry::team;
 use crate::geometry::timed::{Timed, moving_clearance, validate_trajectory};
 use crate::geometry::validator::{self, DEFAULT_TOLERANCE, ValidationError};
 use crate::geometry::{Config, RobotShape, angle_diff};
@@ -282,6 +283,17 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     let began = Instant::now();
     let outcome = plan.settings.plan(&task);
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
+    if plan.planner.plans_teams() {
+        return judge_team(
+            scenario,
+            index,
+            plan,
+            &task,
+            outcome,
+            time_ms,
+            lent.validator(),
+        );
+    }
     judge(
         scenario,
         index,
@@ -409,6 +421,86 @@ fn judge(
         metrics,
         validation,
         drive,
+    }
+}
+
+/// The runner's half of a team plan (SPEC 2.10): the agents' paths judged
+/// by the referee under grid semantics on its own lattice, and the team
+/// metrics (the lower bound by breadth-first search on that lattice).
+fn judge_team(
+    scenario: &Scenario,
+    index: usize,
+    plan: &Plan,
+    task: &Task<'_>,
+    outcome: PlanOutcome,
+    time_ms: f64,
+    referee: &validator::Validator<'_>,
+) -> PlanRun {
+    use MetricValue::{Bool, Num};
+    let robot = &scenario.robots[plan.robot].shape;
+    let cell = match plan.params.values.get("cell").map(|p| &p.value) {
+        Some(ParamValue::Num(c)) => *c,
+        _ => 1.0,
+    };
+    let agents = task.agents;
+    let ends: Vec<_> = agents.iter().map(|a| (a.start, a.goal)).collect();
+    let names: Vec<&str> = agents.iter().map(|a| a.name.as_str()).collect();
+    let grid = team::TeamGrid::new(&scenario.world, robot, cell, referee);
+    let mut metrics = outcome.extra.clone();
+    let found = outcome.agents.is_some();
+    let validation = match (&outcome.agents, &grid) {
+        (None, _) => None,
+        (Some(_), None) => Some(ValidationError {
+            segment: 0,
+            at: task.start,
+            obstacle: None,
+            reason: format!("the team's lattice (cell {cell}) is too large for the referee"),
+        }),
+        (Some(paths), Some(grid)) => team::validate_team(grid, &ends, paths)
+            .err()
+            .map(|e| e.into_validation(&names)),
+    };
+    let costs: Option<Vec<usize>> = outcome
+        .agents
+        .as_ref()
+        .map(|paths| paths.iter().map(|p| team::agent_cost(p)).collect());
+    let lower_bound = grid.as_ref().map_or(f64::NAN, |g| {
+        let mut sum = 0.0;
+        for &(s, goal) in &ends {
+            let d = match (g.node(s), g.node(goal)) {
+                (Some(s), Some(goal)) => g.distances_to(goal)[s],
+                _ => u32::MAX,
+            };
+            sum += if d == u32::MAX {
+                f64::INFINITY
+            } else {
+                f64::from(d)
+            };
+        }
+        sum
+    });
+    metrics.insert("found".into(), Bool(found));
+    metrics.insert("gave_up".into(), Bool(outcome.gave_up));
+    metrics.insert("agents".into(), Num(agents.len() as f64));
+    let (soc, makespan) = match &costs {
+        Some(c) => (
+            c.iter().sum::<usize>() as f64,
+            c.iter().copied().max().unwrap_or(0) as f64,
+        ),
+        None => (f64::INFINITY, f64::INFINITY),
+    };
+    metrics.insert("sum_of_costs".into(), Num(soc));
+    metrics.insert("makespan".into(), Num(makespan));
+    metrics.insert("soc_lower_bound".into(), Num(lower_bound));
+    metrics.insert("expanded".into(), Num(outcome.expanded as f64));
+    metrics.insert("time_ms".into(), Num((time_ms * 1000.0).round() / 1000.0));
+    metrics.insert("collision_free".into(), Bool(found && validation.is_none()));
+    PlanRun {
+        plan: index,
+        outcome,
+        metrics,
+        validation,
+        drive: None,
     }
 }
 

@@ -2,6 +2,8 @@
 //! hybrid A*'s search and the raw path are drawn along the steering
 //! curves, not as chords; the recording has the body on timeline `step`.
 
+mod common;
+
 use std::path::PathBuf;
 
 use scen::contract::layers::Drawing;
@@ -69,21 +71,9 @@ fn a_cars_trees_and_search_are_drawn_along_its_curves() {
 #[test]
 fn the_recording_of_cars_has_curved_trees_the_search_and_the_body() {
     use std::process::Command;
-    let rerun = std::env::var_os("SCEN_RERUN")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| repo().join("target/rerun-venv/bin/rerun"));
-    if !rerun.exists() {
-        assert_ne!(
-            std::env::var("CI").as_deref(),
-            Ok("true"),
-            "CI must have the rerun binary"
-        );
-        eprintln!(
-            "skipped: {} is missing (pip install rerun-sdk==0.36.3)",
-            rerun.display()
-        );
+    let Some(rerun) = common::rerun_binary() else {
         return;
-    }
+    };
     let dir = std::env::temp_dir().join(format!("scen-cars-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let rrd = dir.join("cars.rrd");

@@ -25,6 +25,7 @@ use std::time::Duration;
 use common::planner_cases::{block_world, required, robot};
 use common::{Finished, TempDir, run_or_kill, scen_bin};
 use scen::contract::Planner;
+use scen::contract::schema::RobotKind;
 use scen::planners::registry::PLANNERS;
 
 /// The address space the memory tests allow the binary.
@@ -230,7 +231,7 @@ fn every_planner_counts_its_set_up_against_its_time_limit() {
     let mut problems = Vec::new();
     let dir = TempDir::new("limits-setup");
     for planner in PLANNERS.iter().filter(|p| p.limits.contains(&"time")) {
-        for &kind in planner.robots {
+        for &kind in planner.robots.iter().filter(|&&k| k != RobotKind::Team) {
             let label = format!("{} / {kind:?}", planner.kind);
             let goal = if planner.needs_goal {
                 "goal (60.5, 60.5)"

@@ -189,7 +189,8 @@ fn the_server_answers_every_request_exactly() {
     assert_eq!(
         c.labels(&main, 12, 0),
         [
-            "scenario", "include", "world", "robot", "plan", "expect", "bench", "param", "require"
+            "scenario", "include", "world", "robot", "team", "plan", "expect", "bench", "param",
+            "require"
         ]
     );
     let kinds: Vec<&str> = PLANNERS.iter().map(|p| p.kind).collect();

@@ -41,25 +41,7 @@ const FILES: [&str; 6] = [
 /// The benchmark folder, or `None` (after saying why) when it is missing
 /// outside CI.
 fn data_dir() -> Option<PathBuf> {
-    let dir = PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/movingai"
-    ));
-    let missing: Vec<&str> = FILES
-        .into_iter()
-        .filter(|f| !dir.join(f).is_file())
-        .collect();
-    if missing.is_empty() {
-        return Some(dir);
-    }
-    let message = format!(
-        "MovingAI benchmark files missing in `{}`: {}",
-        dir.display(),
-        missing.join(", ")
-    );
-    assert!(std::env::var("CI").as_deref() != Ok("true"), "{message}");
-    eprintln!("skipping the MovingAI agreement test: {message}");
-    None
+    common::shared_data("movingai", &FILES)
 }
 
 /// One row of a MovingAI `.scen` file. (x, y) = (column, row), row 0 on top.

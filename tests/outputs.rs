@@ -77,23 +77,6 @@ fn two_runs_of_every_scenario_give_identical_json() {
     }
 }
 
-#[cfg(feature = "viewer")]
-/// The `rerun` binary of rerun-sdk==0.36.3: `SCEN_RERUN`, else PATH.
-fn rerun_binary() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("SCEN_RERUN") {
-        return Some(PathBuf::from(p));
-    }
-    let venv = repo().join("target/rerun-venv/bin/rerun");
-    if venv.exists() {
-        return Some(venv);
-    }
-    std::env::var_os("PATH").and_then(|paths| {
-        std::env::split_paths(&paths)
-            .map(|d| d.join("rerun"))
-            .find(|p| p.exists())
-    })
-}
-
 /// A verified recording of a scenario: `scen run FILE --save` into a temp
 /// folder, checked with `rerun rrd verify`. `None` (skip) only outside CI
 /// when there is no `rerun` binary.
@@ -106,17 +89,7 @@ struct Recording {
 
 #[cfg(feature = "viewer")]
 fn verified_recording(scenario: &str) -> Option<Recording> {
-    let Some(rerun) = rerun_binary() else {
-        assert_ne!(
-            std::env::var("CI").as_deref(),
-            Ok("true"),
-            "CI must have the rerun binary (scripts/test.sh installs rerun-sdk==0.36.3)"
-        );
-        eprintln!(
-            "skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)"
-        );
-        return None;
-    };
+    let rerun = common::rerun_binary()?;
     let dir = TempDir::new("rrd");
     let rrd = dir.path().join("out.rrd");
     let out = run_with_timeout(

@@ -51,7 +51,7 @@ function vimClass(group, linked) {
     scenMetric: 'metric',
     scenOperator: 'operator', scenLogical: 'operator', scenEquals: 'operator',
     scenFunction: 'function', scenCalcFunction: 'function', scenChoice: 'function',
-    scenCalcOperator: 'operator', scenCalcUnit: 'number',
+    scenCalcOperator: 'operator', scenCalcUnit: 'number', scenArrow: 'operator',
   };
   return map[group] || 'plain';
 }

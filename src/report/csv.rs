@@ -4,7 +4,8 @@
 //!
 //! Columns: `plan`, `what` (`path`; `trajectory` for the motion executed by
 //! a run that stopped short; `drive` for the simulated robot driving the
-//! path), `index` (0-based along that line), `t` (seconds: a time-aware
+//! path; `agent NAME` for each agent of a team plan, one row per step, `t`
+//! the step), `index` (0-based along that line), `t` (seconds: a time-aware
 //! plan's trajectory on its `path` rows, and `drive` rows; empty otherwise), `x`, `y`, `theta` (radians), `length` (the cumulative
 //! (x, y) arc length from the line's first row). Numbers are written exactly
 //! (shortest round-trip form), so a program reading the file gets the very
@@ -59,6 +60,24 @@ pub fn paths_csv(report: &RunReport) -> Option<String> {
     for run in &report.plans {
         let plan = report.plan(run);
         let name = quoted(&plan.name);
+        // A team's agents (SPEC 2.10): one line each, a row per step.
+        let team = report
+            .scenario
+            .robots
+            .get(plan.robot)
+            .and_then(|r| r.team.as_ref());
+        if let (Some(team), Some(paths)) = (team, &run.outcome.agents) {
+            for (agent, path) in team.iter().zip(paths) {
+                rows += lines(
+                    &mut s,
+                    &name,
+                    &quoted(&format!("agent {}", agent.name)),
+                    path.iter()
+                        .enumerate()
+                        .map(|(k, p)| (Some(k as f64), Config::new(p.x, p.y, 0.0))),
+                );
+            }
+        }
         if let Some(path) = &run.outcome.path {
             // A trajectory's times (SPEC 2.9) go with its poses.
             let times = run

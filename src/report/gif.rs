@@ -68,7 +68,7 @@ static SPEED: Tuning = Tuning {
 };
 
 /// How long the run moves: until the last moving obstacle settles and the
-/// last trajectory or drive ends; `None` when nothing moves.
+/// last trajectory, drive or team ends; `None` when nothing moves.
 pub fn duration(report: &RunReport) -> Option<f64> {
     let scenario = &report.scenario;
     let mut end: Option<f64> = None;
@@ -82,6 +82,10 @@ pub fn duration(report: &RunReport) -> Option<f64> {
         }
         if let Some(drive) = &run.drive {
             take(drive.samples.last().map_or(0.0, |s| s.0));
+        }
+        // A team moves a step a second (SPEC 2.10).
+        if let Some(paths) = &run.outcome.agents {
+            take(super::svg::team_end(paths));
         }
     }
     end

@@ -85,6 +85,27 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     obj.insert("kind".into(), plan.kind().into());
     obj.insert("robot".into(), robot.map(|r| r.name.clone()).into());
     obj.insert("metrics".into(), metrics_json(&run.metrics));
+    // A team's plan (SPEC 2.10): each agent's path, one point per step,
+    // instead of one robot's path (`null` when none was found).
+    if let Some(team) = robot.and_then(|r| r.team.as_ref()) {
+        let agents = match &run.outcome.agents {
+            Some(paths) => Value::Array(
+                team.iter()
+                    .zip(paths)
+                    .map(|(a, path)| {
+                        let points: Vec<Value> = path
+                            .iter()
+                            .map(|p| serde_json::json!([float_json(p.x), float_json(p.y)]))
+                            .collect();
+                        serde_json::json!({"name": a.name, "path": points})
+                    })
+                    .collect(),
+            ),
+            None => Value::Null,
+        };
+        obj.insert("agents".into(), agents);
+        return Value::Object(obj);
+    }
     obj.insert("path".into(), path);
     // A car robot's path as segments (SPEC §5), what the validator checks.
     if robot.is_some_and(|r| r.steering.is_some()) {
@@ -227,6 +248,7 @@ mod tests {
             shape,
             steering: None,
             speed: None,
+            team: None,
             span: Span::default(),
         }
     }

@@ -22,7 +22,8 @@ use crate::geometry::{Aabb, Config, Point, RobotShape, Shape};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
 use crate::viz::{
-    FAIL_RED, OBSTACLE_GREY, blocked_boxes, plan_colour, role_colour, weight_boxes, weight_colour,
+    FAIL_RED, OBSTACLE_GREY, agent_colour, blocked_boxes, plan_colour, role_colour, weight_boxes,
+    weight_colour,
 };
 
 /// Pixels along the longer side of the drawn world.
@@ -133,6 +134,17 @@ fn run_picture(report: &RunReport, at: Option<f64>) -> String {
         svg,
         "<rect id=\"bounds\" {b} fill=\"none\" stroke=\"{INK}\" stroke-width=\"1\"/>"
     );
+    // A team's agents, each in its own colour (SPEC 2.10), under the
+    // other plans' paths.
+    let (teams, runs): (Vec<_>, Vec<_>) = runs.iter().partition(|(plan, _)| {
+        scenario
+            .robots
+            .get(plan.robot)
+            .is_some_and(|r| r.team.is_some())
+    });
+    for &(plan, run) in &teams {
+        draw_team(&mut svg, &view, scenario, plan, run, at);
+    }
     // Every plan's motions and paths over every plan's layers, then the
     // bodies and markers over every path.
     for &(_, run) in &runs {
@@ -1032,6 +1044,104 @@ fn draw_robot_at(
     svg.push_str("</g>\n");
 }
 
+/// When a team's last agent arrives, in seconds: one step a second.
+pub(crate) fn team_end(paths: &[Vec<Point>]) -> f64 {
+    paths
+        .iter()
+        .map(|p| p.len().saturating_sub(1))
+        .max()
+        .unwrap_or(0) as f64
+}
+
+/// Where an agent is at `t` seconds, a step a second: between its points,
+/// at its last point after its path ends.
+fn agent_at(path: &[Point], t: f64) -> Option<Point> {
+    let last = path.len().checked_sub(1)?;
+    let t = t.max(0.0);
+    let k = (t.floor() as usize).min(last);
+    if k == last {
+        return Some(path[last]);
+    }
+    let f = t - k as f64;
+    Some(path[k] + (path[k + 1] - path[k]) * f)
+}
+
+/// A team plan (SPEC 2.10): each agent's path in its own colour, its start
+/// (a dot) and goal (a diamond); in a frame, each agent where it is at `at`.
+fn draw_team(
+    svg: &mut String,
+    view: &View,
+    scenario: &Scenario,
+    plan: &Plan,
+    run: &PlanRun,
+    at: Option<f64>,
+) {
+    let Some(team) = scenario
+        .robots
+        .get(plan.robot)
+        .and_then(|r| r.team.as_ref())
+    else {
+        return;
+    };
+    let _ = writeln!(svg, "<g class=\"team\" id=\"plan-{}\">", escape(&plan.name));
+    let paths = run.outcome.agents.as_deref();
+    // Thinner lines for a crowd; a small team's paths drawn a few pixels
+    // apart, so that two agents passing along one corridor both show, and
+    // named at their starts.
+    let small = team.len() <= 20;
+    let width = if small { 2.0 } else { 1.2 };
+    for (k, agent) in team.iter().enumerate() {
+        let colour = hex(agent_colour(k));
+        let shift = if small {
+            (k % 5) as f64 * 4.0 - 8.0
+        } else {
+            0.0
+        };
+        if let Some(path) = paths.and_then(|p| p.get(k)).filter(|p| p.len() > 1) {
+            let points = path
+                .iter()
+                .map(|&p| format!("{},{}", num(view.x(p.x) + shift), num(view.y(p.y) + shift)))
+                .collect::<Vec<_>>()
+                .join(" ");
+            let _ = writeln!(
+                svg,
+                "<polyline class=\"agent\" points=\"{points}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"{width}\" \
+                 stroke-opacity=\"0.85\" stroke-linejoin=\"round\" stroke-linecap=\"round\"/>"
+            );
+        }
+        if at.is_none() {
+            let (sx, sy) = (view.x(agent.start.x) + shift, view.y(agent.start.y) + shift);
+            start_marker(svg, sx, sy, &colour);
+            goal_marker(
+                svg,
+                view.x(agent.goal.x) + shift,
+                view.y(agent.goal.y) + shift,
+                &colour,
+            );
+            if small {
+                let _ = writeln!(
+                    svg,
+                    "<text class=\"agent-name\" x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{colour}\" \
+                     stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\">{}</text>",
+                    num(sx + 6.0),
+                    num(sy - 6.0),
+                    num(FONT - 1.0),
+                    escape(&agent.name)
+                );
+            }
+        }
+    }
+    if let (Some(t), Some(paths)) = (at, paths) {
+        for (k, path) in paths.iter().enumerate() {
+            if let Some(p) = agent_at(path, t) {
+                let colour = hex(agent_colour(k));
+                start_marker(svg, view.x(p.x), view.y(p.y), &colour);
+            }
+        }
+    }
+    svg.push_str("</g>\n");
+}
+
 /// The start: a dot.
 fn start_marker(svg: &mut String, x: f64, y: f64, colour: &str) {
     let _ = writeln!(
@@ -1174,13 +1284,31 @@ impl Legend {
         let plans = runs
             .iter()
             .map(|&(plan, run)| {
-                let status = match &run.outcome.path {
-                    Some(_) => match run.metrics.get("length") {
-                        Some(length) => format!("found, length {}", short(length.as_f64())),
-                        None => "found".to_string(),
+                let team = scenario
+                    .robots
+                    .get(plan.robot)
+                    .and_then(|r| r.team.as_ref());
+                let status = match (&run.outcome.path, &run.outcome.agents, team) {
+                    // A team (SPEC 2.10): its agents, each in its colour.
+                    (_, Some(_), Some(team)) => format!(
+                        "{} agents, one colour each, sum of costs {}",
+                        team.len(),
+                        run.metrics
+                            .get("sum_of_costs")
+                            .map_or("—".into(), |v| short(v.as_f64()))
+                    ),
+                    (_, None, Some(team)) if run.outcome.gave_up => {
+                        format!("{} agents, not found (gave up)", team.len())
+                    }
+                    (_, None, Some(team)) => format!("{} agents, not found", team.len()),
+                    (path, _, None) => match path {
+                        Some(_) => match run.metrics.get("length") {
+                            Some(length) => format!("found, length {}", short(length.as_f64())),
+                            None => "found".to_string(),
+                        },
+                        None if run.outcome.gave_up => "not found (gave up)".to_string(),
+                        None => "not found".to_string(),
                     },
-                    None if run.outcome.gave_up => "not found (gave up)".to_string(),
-                    None => "not found".to_string(),
                 };
                 (
                     Swatch::Path(plan_colour(run.plan), run.plan),
@@ -1633,6 +1761,7 @@ mod tests {
             shape,
             steering: None,
             speed: None,
+            team: None,
             span: Span::default(),
         };
         let scenario = Scenario {

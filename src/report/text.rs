@@ -85,9 +85,14 @@ pub fn render(report: &RunReport, verbose: bool) -> String {
             };
             format!("not found{why}{motion}")
         };
+        let what = if robot.team.is_some() {
+            "team"
+        } else {
+            "robot"
+        };
         let _ = writeln!(
             s,
-            "\nplan {} ({}, robot {}): {}",
+            "\nplan {} ({}, {what} {}): {}",
             plan.name,
             plan.kind(),
             robot.name,

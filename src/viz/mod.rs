@@ -125,6 +125,27 @@ const PALETTE: [[u8; 3]; 9] = [
     [214, 39, 40],   // red
 ];
 
+/// The colour of agent `k` of a team: hues a golden angle apart, so that
+/// neighbours in the list differ however many agents there are.
+pub fn agent_colour(k: usize) -> [u8; 3] {
+    let hue = (k as f64 * 137.507_764_050_037_85).rem_euclid(360.0) / 60.0;
+    // HSL with saturation 0.7 and lightness 0.45.
+    let (s, l) = (0.7, 0.45);
+    let c = (1.0 - (2.0 * l - 1.0_f64).abs()) * s;
+    let x = c * (1.0 - (hue.rem_euclid(2.0) - 1.0).abs());
+    let (r, g, b) = match hue as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = l - c / 2.0;
+    let byte = |v: f64| ((v + m) * 255.0).round().clamp(0.0, 255.0) as u8;
+    [byte(r), byte(g), byte(b)]
+}
+
 /// The colour of the plan with declaration index `plan` (an index into
 /// `Scenario::plans`, so a plan keeps its colour when `--plan` runs only
 /// some of them). The palette repeats after nine plans.

@@ -18,6 +18,8 @@
 //! | `world/moving/NAME` | LineStrips2D: a moving obstacle's outline where it is (cleared when it vanishes) | `time` (s) |
 //! | `world/moving/NAME/route` | LineStrips2D: its route through its waypoints | static |
 //! | `plans/NAME/trajectory/robot` | LineStrips2D: a time-aware plan's robot where its trajectory has it | `time` (s) |
+//! | `plans/NAME/agents/AGENT/path` | LineStrips2D: a team agent's path, in the agent's colour | static |
+//! | `plans/NAME/agents/AGENT` | Points2D: where the agent is at each step (at most 50 000 positions in all, evenly spread steps) | `step` |
 //! | `checks` | TextLog: `PASS`/`FAIL line N: expr  (values)` | `check` = index |
 //!
 //! Colours: obstacles grey, each plan its [`plan_colour`], failed checks red.
@@ -280,6 +282,15 @@ fn log_plan(
         log_drive(rec, name, drive, &robot.shape, mark, colour)?;
     }
 
+    if let (Some(team), Some(paths)) = (
+        scenario
+            .robots
+            .get(plan.robot)
+            .and_then(|r| r.team.as_ref()),
+        &run.outcome.agents,
+    ) {
+        return log_team(rec, name, team, paths);
+    }
     let trajectory = &run.outcome.trajectory;
     if trajectory.len() > 1 {
         let xy: Vec<Point> = trajectory.iter().map(Config::xy).collect();
@@ -345,6 +356,52 @@ fn log_plan(
                 .with_radii([Radius::new_ui_points(1.5)])
                 .with_draw_order(40.0),
         )?;
+    }
+    rec.reset_time();
+    Ok(())
+}
+
+/// The most agent positions a team plan sends on timeline `step`.
+pub(crate) const TEAM_POSITIONS: usize = 50_000;
+
+/// A team plan (SPEC 2.10): each agent's path, static, and the agent at
+/// each step (every `stride`-th step and the last when the team would send
+/// more than [`TEAM_POSITIONS`] positions).
+fn log_team(
+    rec: &RecordingStream,
+    name: &str,
+    team: &[crate::contract::Agent],
+    paths: &[Vec<Point>],
+) -> RecordingStreamResult<()> {
+    let steps = paths.iter().map(Vec::len).max().unwrap_or(0);
+    let stride = (team.len() * steps).div_ceil(TEAM_POSITIONS).max(1);
+    for (k, (agent, path)) in team.iter().zip(paths).enumerate() {
+        let colour = rgb(super::agent_colour(k));
+        let at = entity(&["plans", name, "agents", &agent.name]);
+        rec.log_static(
+            entity(&["plans", name, "agents", &agent.name, "path"]),
+            &LineStrips2D::new([strip(path)])
+                .with_colors([colour])
+                .with_radii([Radius::new_ui_points(1.5)])
+                .with_draw_order(30.0),
+        )?;
+        let last = steps.saturating_sub(1);
+        let shown = (0..steps)
+            .step_by(stride)
+            .chain((!last.is_multiple_of(stride)).then_some(last));
+        for step in shown {
+            let Some(&p) = path.get(step.min(path.len().saturating_sub(1))) else {
+                continue;
+            };
+            rec.set_time_sequence("step", step as i64);
+            rec.log(
+                at.clone(),
+                &Points2D::new([[p.x as f32, p.y as f32]])
+                    .with_colors([colour])
+                    .with_radii([Radius::new_ui_points(5.0)])
+                    .with_draw_order(40.0),
+            )?;
+        }
     }
     rec.reset_time();
     Ok(())
@@ -732,6 +789,7 @@ mod tests {
                     shape: RobotShape::Polygon(rod),
                     steering: None,
                     speed: None,
+                    team: None,
                     span: Span::default(),
                 },
                 Robot {
@@ -739,6 +797,7 @@ mod tests {
                     shape: RobotShape::Point,
                     steering: None,
                     speed: None,
+                    team: None,
                     span: Span::default(),
                 },
             ],

@@ -22,6 +22,56 @@ pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The `rerun` binary of rerun-sdk==0.36.3 (`SCEN_RERUN`, else the one
+/// scripts/test.sh installs, else PATH); `None` after saying so when there
+/// is none, which on CI (`CI=true`) is a failure.
+pub fn rerun_binary() -> Option<PathBuf> {
+    let found = std::env::var_os("SCEN_RERUN")
+        .map(PathBuf::from)
+        .or_else(|| Some(repo().join("target/rerun-venv/bin/rerun")).filter(|p| p.exists()))
+        .or_else(|| {
+            std::env::var_os("PATH").and_then(|paths| {
+                std::env::split_paths(&paths)
+                    .map(|d| d.join("rerun"))
+                    .find(|p| p.exists())
+            })
+        });
+    if found.is_none() {
+        assert_ne!(
+            std::env::var("CI").as_deref(),
+            Ok("true"),
+            "CI must have the rerun binary (scripts/test.sh installs rerun-sdk==0.36.3)"
+        );
+        eprintln!(
+            "skipped: no `rerun` binary (pip install rerun-sdk==0.36.3, or run scripts/test.sh)"
+        );
+    }
+    found
+}
+
+/// The public test data folder `../shared/data/SUB` when it holds every
+/// one of `files`; `None` after saying what is missing, which on CI
+/// (`CI=true`) is a failure.
+pub fn shared_data(sub: &str, files: &[&str]) -> Option<PathBuf> {
+    let dir = repo().join("../shared/data").join(sub);
+    let missing: Vec<&str> = files
+        .iter()
+        .copied()
+        .filter(|f| !dir.join(f).is_file())
+        .collect();
+    if missing.is_empty() {
+        return Some(dir);
+    }
+    let message = format!(
+        "test data missing in `{}`: {}",
+        dir.display(),
+        missing.join(", ")
+    );
+    assert!(std::env::var("CI").as_deref() != Ok("true"), "{message}");
+    eprintln!("skipped: {message}");
+    None
+}
+
 /// A fresh temporary folder, removed on drop.
 pub struct TempDir(PathBuf);
 

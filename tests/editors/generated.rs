@@ -467,7 +467,7 @@ fn textmate_grammar(committed: &str) -> Result<String, String> {
     let robot = json!({
         "comment": GENERATED,
         "match": format!(
-            "(?<![\\w.])(robot)\\b(?:\\s+([A-Za-z_][A-Za-z0-9_]*))?(?:\\s+({})\\b)?",
+            "(?<![\\w.])(robot|team)\\b(?:\\s+([A-Za-z_][A-Za-z0-9_]*))?(?:\\s+({})\\b)?",
             l.robot_kinds.join("|")
         ),
         "captures": {
@@ -561,8 +561,13 @@ fn plan_body(p: &Planner) -> Vec<String> {
         n += 1;
         n
     };
-    let mut body = vec![format!("plan ${{1:p}} {} ${{2:r}} {{", p.kind)];
-    body.push(format!("\tstart (${{{}:1}}, ${{{}:1}})", next(), next()));
+    // A team's agents carry their starts and goals (SPEC 2.10).
+    let team = p.plans_teams();
+    let robot = if team { "T" } else { "r" };
+    let mut body = vec![format!("plan ${{1:p}} {} ${{2:{robot}}} {{", p.kind)];
+    if !team {
+        body.push(format!("\tstart (${{{}:1}}, ${{{}:1}})", next(), next()));
+    }
     if p.needs_goal {
         body.push(format!("\tgoal  (${{{}:9}}, ${{{}:9}})", next(), next()));
     }

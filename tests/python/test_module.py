@@ -176,8 +176,17 @@ def test_run_is_scen_run_json_to_the_bit(path):
     assert without_timings(got) == without_timings(expected)
     for name, plan in expected["plans"].items():
         r = report[name]
-        assert r.found == (plan["path"] is not None)
-        if plan["path"] is not None:
+        if "agents" in plan:
+            # A team plan (SPEC 2.10): each agent's path, no robot path.
+            assert r.path is None
+            assert r.found == (plan["agents"] is not None)
+            for agent in plan["agents"] or []:
+                expected_path = np.array(agent["path"], dtype=np.float64)
+                assert np.array_equal(r.agents[agent["name"]], expected_path)
+        else:
+            assert r.agents is None
+            assert r.found == (plan["path"] is not None)
+        if plan.get("path") is not None:
             assert np.array_equal(r.path, np.array(plan["path"], dtype=np.float64))
         if "trajectory" in plan:
             assert np.array_equal(r.trajectory, np.array(plan["trajectory"], dtype=np.float64))

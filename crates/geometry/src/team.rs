@@ -51,7 +51,7 @@ impl TeamGrid {
             }
         };
         let (nxf, nyf) = (count(b.max.x - b.min.x), count(b.max.y - b.min.y));
-        if !(nxf * nyf <= MAX_TEAM_CELLS as f64) {
+        if nxf * nyf > MAX_TEAM_CELLS as f64 || (nxf * nyf).is_nan() {
             return None;
         }
         let (nx, ny) = (nxf as usize, nyf as usize);
@@ -66,7 +66,9 @@ impl TeamGrid {
         };
         for n in 0..nx * ny {
             let c = grid.config(n);
-            let ok = referee.validate_path(robot, &[c], DEFAULT_TOLERANCE).is_ok();
+            let ok = referee
+                .validate_path(robot, &[c], DEFAULT_TOLERANCE)
+                .is_ok();
             grid.free.push(ok);
         }
         for n in 0..nx * ny {
@@ -74,7 +76,10 @@ impl TeamGrid {
                 continue;
             }
             let (i, j) = (n % nx, n / nx);
-            for (d, next) in [(0, (i + 1 < nx).then(|| n + 1)), (1, (j + 1 < ny).then(|| n + nx))] {
+            for (d, next) in [
+                (0, (i + 1 < nx).then(|| n + 1)),
+                (1, (j + 1 < ny).then(|| n + nx)),
+            ] {
                 if let Some(m) = next.filter(|&m| grid.free[m]) {
                     grid.moves[n][d] = referee
                         .validate_path(robot, &[grid.config(n), grid.config(m)], DEFAULT_TOLERANCE)
@@ -209,10 +214,7 @@ impl TeamError {
 /// time (0 for a path that never leaves it).
 pub fn agent_cost(path: &[Point]) -> usize {
     match path.last() {
-        Some(goal) => path
-            .iter()
-            .rposition(|p| p != goal)
-            .map_or(0, |k| k + 1),
+        Some(goal) => path.iter().rposition(|p| p != goal).map_or(0, |k| k + 1),
         None => 0,
     }
 }
@@ -253,25 +255,55 @@ pub fn validate_team(
             return err(0, a, None, start, "an empty path".into());
         };
         if first != start {
-            return err(0, a, None, first, format!("starts at ({}, {}), not at its start", first.x, first.y));
+            return err(
+                0,
+                a,
+                None,
+                first,
+                format!("starts at ({}, {}), not at its start", first.x, first.y),
+            );
         }
         let last = *path.last().unwrap_or(&first);
         if last != goal {
-            return err(path.len() - 1, a, None, last, format!("ends at ({}, {}), not at its goal", last.x, last.y));
+            return err(
+                path.len() - 1,
+                a,
+                None,
+                last,
+                format!("ends at ({}, {}), not at its goal", last.x, last.y),
+            );
         }
         let mut seq = Vec::with_capacity(path.len());
         for (k, &p) in path.iter().enumerate() {
             let Some(n) = grid.node(p) else {
-                return err(k, a, None, p, format!("({}, {}) is not a point of the lattice", p.x, p.y));
+                return err(
+                    k,
+                    a,
+                    None,
+                    p,
+                    format!("({}, {}) is not a point of the lattice", p.x, p.y),
+                );
             };
             if !grid.is_free(n) {
-                return err(k, a, None, p, format!("({}, {}) is not free for the agent", p.x, p.y));
+                return err(
+                    k,
+                    a,
+                    None,
+                    p,
+                    format!("({}, {}) is not free for the agent", p.x, p.y),
+                );
             }
             if let Some(&prev) = seq.last()
                 && prev != n
                 && !grid.can_move(prev, n)
             {
-                return err(k, a, None, p, "a step that is neither a wait nor a free move to a 4-neighbour".into());
+                return err(
+                    k,
+                    a,
+                    None,
+                    p,
+                    "a step that is neither a wait nor a free move to a 4-neighbour".into(),
+                );
             }
             seq.push(n);
         }
@@ -290,7 +322,17 @@ pub fn validate_team(
         for a in 0..nodes.len() {
             let n = at(a, t);
             if let Some(&b) = here.get(&n) {
-                return err(t, b, Some(a), grid.point(n), format!("both at ({}, {}) at step {t}", grid.point(n).x, grid.point(n).y));
+                return err(
+                    t,
+                    b,
+                    Some(a),
+                    grid.point(n),
+                    format!(
+                        "both at ({}, {}) at step {t}",
+                        grid.point(n).x,
+                        grid.point(n).y
+                    ),
+                );
             }
             here.insert(n, a);
         }
@@ -307,7 +349,13 @@ pub fn validate_team(
                 && at(b, t) == from
             {
                 let p = grid.point(from);
-                return err(t, a.min(b), Some(a.max(b)), p, format!("swap places between steps {} and {t}", t - 1));
+                return err(
+                    t,
+                    a.min(b),
+                    Some(a.max(b)),
+                    p,
+                    format!("swap places between steps {} and {t}", t - 1),
+                );
             }
         }
     }

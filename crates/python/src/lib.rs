@@ -864,6 +864,11 @@ struct PlanResult {
     /// otherwise.
     #[pyo3(get)]
     segments: Py<PyAny>,
+    /// A team plan's agents (SPEC 2.10): each agent's name → its path,
+    /// (N, 2) x, y, one row per step; None for one robot, or when no
+    /// solution was found.
+    #[pyo3(get)]
+    agents: Py<PyAny>,
     /// Where the path first failed the validator: `segment`, `at`
     /// (x, y, θ), `obstacle` (None for the bounds), `reason`; None when
     /// it passed.
@@ -891,7 +896,8 @@ impl PlanResult {
             .unwrap_or(0);
         let validation = report.plans.get(run).and_then(|r| r.validation.as_ref());
         let metrics = json_to_py(py, plan.get("metrics").unwrap_or(&Value::Null))?;
-        let found = plan.get("path").is_some_and(|p| !p.is_null());
+        let team = plan.get("agents").filter(|a| !a.is_null());
+        let found = plan.get("path").is_some_and(|p| !p.is_null()) || team.is_some();
         let matrix = |key: &str| -> Py<PyAny> {
             plan.get(key)
                 .and_then(|v| json_matrix(py, v))
@@ -906,6 +912,21 @@ impl PlanResult {
                     list.append((turn, length))?;
                 }
                 list.into_any().unbind()
+            }
+            _ => py.None(),
+        };
+        let agents = match team {
+            Some(Value::Array(items)) => {
+                let d = PyDict::new(py);
+                for a in items {
+                    let name = a.get("name").and_then(Value::as_str).unwrap_or("");
+                    let path = a
+                        .get("path")
+                        .and_then(|v| json_matrix(py, v))
+                        .map_or_else(|| py.None(), Bound::unbind);
+                    d.set_item(name, path)?;
+                }
+                d.into_any().unbind()
             }
             _ => py.None(),
         };
@@ -933,6 +954,7 @@ impl PlanResult {
             path: matrix("path"),
             trajectory: matrix("trajectory"),
             segments,
+            agents,
             collision,
             report: report.clone(),
             run,

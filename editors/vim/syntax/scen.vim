@@ -74,7 +74,7 @@ syn cluster scenExprNumbers contains=scenExprBadNumber,scenExprNumber,scenExprAn
 " ----------------------------------------------------------- statements
 " A statement keyword followed by `.` is a plan name (`plan.found`).
 syn match   scenStatement /\<\%(scenario\|include\|world\)\>\%(\s*\.\)\@!/
-syn match   scenStatement /\<robot\>\%(\s*\.\)\@!/ nextgroup=scenName skipwhite
+syn match   scenStatement /\<\%(robot\|team\)\>\%(\s*\.\)\@!/ nextgroup=scenName skipwhite
 syn match   scenStatement /\<plan\>\%(\s*\.\)\@!/ nextgroup=scenPlanName skipwhite
 syn match   scenStatement /\<bench\>\%(\s*\.\)\@!/ nextgroup=scenBenchWord,scenBenchName,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 
@@ -83,21 +83,24 @@ syn match   scenName contained /\h\w*/ nextgroup=scenRobotShape skipwhite
 " BEGIN GENERATED robot-kinds (scripts/regenerate.sh; do not edit)
 syn keyword scenRobotShape contained point disk rect polygon
 " END GENERATED robot-kinds
-" The clauses after a robot's shape: `steer MODEL RADIUS`, `speed V`.
-syn keyword scenRobotClause steer speed
+" The clauses after a robot's shape: `steer MODEL RADIUS`, `speed V`; a
+" team's `from "FILE.scen" agents N` and the `->` of its agents.
+syn keyword scenRobotClause steer speed from agents
+" The arrow of a team's agent, `NAME (x, y) -> (x, y)`, in its block.
+syn match   scenArrow contained /->/
 " plan NAME KIND ROBOT
 syn match   scenPlanName contained /\h\w*/ nextgroup=scenPlanner,scenBadPlanner skipwhite
 syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
 " BEGIN GENERATED planners (scripts/regenerate.sh; do not edit)
 syn keyword scenPlanner contained astar online roadmap potential coverage rrt nextgroup=scenRobotRef skipwhite
 syn keyword scenPlanner contained rrt_connect rrt_star prm prm_star steer hybrid_astar nextgroup=scenRobotRef skipwhite
-syn keyword scenPlanner contained bug sipp nextgroup=scenRobotRef skipwhite
+syn keyword scenPlanner contained bug sipp cbs nextgroup=scenRobotRef skipwhite
 " END GENERATED planners
 syn match   scenRobotRef contained /\h\w*/
 " bench NAME { ... }: the block (after comments, other words, on later lines
 " too) is a bench's, up to the next statement. The name, on the line of
 " `bench`, is defined last: it wins over a word.
-syn match   scenBenchWord contained /\%(\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!\)\@!\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
+syn match   scenBenchWord contained /\%(\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!\)\@!\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 syn match   scenBenchName contained /\%(\<bench\s\+\)\@<=\h\w*/ nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 syn match   scenBenchComment contained /#.*$/ contains=scenTodo,@Spell nextgroup=scenBenchWord,scenBenchBlock,scenBenchComment skipwhite skipnl skipempty
 
@@ -108,7 +111,7 @@ syn match   scenObstacleName contained /\%(\%(cell\|origin\)\s*[-.0-9(\["]\)\@!\
 " `scatter NAME N disk R | rect W H` up to `in`, which (with `gap`) is a
 " world keyword: after `disk` or `rect` come sizes, not a name.
 syn region  scenScatter contained matchgroup=scenWorldKeyword start=/\<scatter\>/ end=/\ze\<in\>/ end=/\ze}/
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenCalcOperator,scenComment,@scenNumbers,scenCalcFunction,scenCalcUnit,scenScatterShape,scenScatterName
 syn keyword scenScatterShape contained disk rect
 syn match   scenScatterName contained /\%(\<scatter\s\+\)\@<=\h\w*/
@@ -116,12 +119,12 @@ syn match   scenScatterName contained /\%(\<scatter\s\+\)\@<=\h\w*/
 " ------------------------------------------------- world and plan blocks
 " A statement keyword at the start of a line ends an unclosed block.
 syn region  scenBlock matchgroup=scenBrace start=/{/ end=/}/ fold
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
-      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord,scenCalcOperator,scenCalcFunction,scenCalcUnit,scenScatter
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenShape,scenWorldKeyword,scenParamKey,scenLimitKind,scenWord,scenCalcOperator,scenCalcFunction,scenCalcUnit,scenScatter,scenArrow
 " A bench's block: a plan's parameters (the varied keys, `limit`), and
 " `plans [NAME, ...]`, `vary KEY [VALUE, ...]`, `runs N`.
 syn region  scenBenchBlock contained matchgroup=scenBrace start=/{/ end=/}/ fold
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenBlock,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamKey,scenLimitKind,scenWord,scenBenchKey,scenCalcOperator,scenCalcFunction,scenCalcUnit
 " BEGIN GENERATED bench-keys (scripts/regenerate.sh; do not edit)
 syn keyword scenBenchKey contained vary runs worlds
@@ -129,7 +132,7 @@ syn keyword scenBenchKey contained vary runs worlds
 syn keyword scenBenchKey contained plans nextgroup=scenPlanList skipwhite skipnl skipempty
 " The names in `plans [...]` are plans, not words.
 syn region  scenPlanList contained matchgroup=scenPunct start=/\[/ end=/\]/
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenPlanList,scenComment,scenString,scenUnterminated,@scenNumbers
 syn keyword scenWorldKeyword contained bounds origin in gap at then stay vanish
 syn keyword scenWorldKeyword contained moving nextgroup=scenObstacleName skipwhite
@@ -156,11 +159,11 @@ syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " --------------------------------------------------------------- expect
 " An expression runs until the next statement (not a metric: `p.plan`).
 syn region  scenExpect matchgroup=scenStatement start=/\<expect\>\%(\s*\.\)\@!/
-      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=@scenExpression
 " `require CONDITION` (over params): an expression like expect's.
 syn region  scenRequire matchgroup=scenStatement start=/\<require\>\%(\s*\.\)\@!/
-      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=@scenExpression
 syn cluster scenExpression contains=scenStray,scenParamRef,scenBadFunction,scenParen,scenComment,scenPlanRef,scenOperator,scenLogical,scenBoolean,scenFunction,@scenExprNumbers
 " A bare word is a param (`gap_w >= 1`); a call is an aggregate
@@ -191,7 +194,8 @@ syn match   scenMetric contained /\.\@1<=\%(graph_edges\|minima\|escapes\|covera
 syn match   scenMetric contained /\.\@1<=\%(revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
 syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\)\>/
 syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|analytic_tries\|hits\|intervals\)\>/
-syn match   scenMetric contained /\.\@1<=\%(drive_time\|drive_max_deviation\|drive_collision_free\)\>/
+syn match   scenMetric contained /\.\@1<=\%(high_level\|low_level\|drive_time\|drive_max_deviation\)\>/
+syn match   scenMetric contained /\.\@1<=\%(drive_collision_free\)\>/
 " END GENERATED metrics
 syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " BENCH.PLAN[...]: the plan's name starts the selection, so that its `[` is
@@ -199,11 +203,11 @@ syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor
 " keyword of the same name could claim it (`[max = 1]`: an unknown key,
 " coloured as a key).
 syn region  scenSelection contained matchgroup=scenSelectedPlan start=/\h\w*\[\@=/ matchgroup=scenPunct end=/\]/
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList,scenSelectOpen,scenSelectPair,scenSelectKey,scenEquals,scenCalcOperator,scenCalcFunction,scenCalcUnit
       \ nextgroup=scenLastAccessor
 syn region  scenValueList contained matchgroup=scenPunct start=/\[/ end=/\]/
-      \ end=/^\ze\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/^\ze\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenOtherWord,scenComment,scenString,scenUnterminated,@scenNumbers,scenWord,scenLimitKind,scenValueList,scenCalcOperator,scenCalcFunction,scenCalcUnit
 syn match   scenSelectOpen contained /\w\@1<=\[/
 syn match   scenSelectPair contained /\%(\w\@1<=\[\|,\)\_s*\h\w*\ze\s*=/ contains=scenPunct,scenSelectKey
@@ -218,7 +222,7 @@ syn match   scenBoolean contained /\<\%(true\|false\)\>\.\@!/
 " `param NAME = uniform(a, b) | normal(m, s) | int(a, b) | choice [...] | EXPR`:
 " the value runs until the next statement.
 syn region  scenParam matchgroup=scenStatement start=/\<param\>\%(\s*\.\)\@!/
-      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
+      \ end=/\ze\.\@1<!\<\%(scenario\|include\|world\|robot\|team\|plan\|expect\|bench\|param\|require\)\>\%(\s*\.\)\@!/
       \ contains=scenStray,scenPunct,scenComment,scenString,scenUnterminated,@scenNumbers,scenParamRef,scenBadFunction,scenCalcFunction,scenChoice,scenCalcOperator,scenCalcUnit,scenEquals,scenParamName
 syn match   scenParamName contained /\%(\<param\s\+\)\@<=\h\w*/
 syn match   scenChoice contained /\<choice\>/
@@ -261,6 +265,7 @@ hi def link scenScatterName   Function
 hi def link scenParamName     Function
 hi def link scenChoice        Function
 hi def link scenCalcOperator  Operator
+hi def link scenArrow         Operator
 hi def link scenCalcUnit      Special
 hi def link scenPlanner       Structure
 hi def link scenBadPlanner    Error

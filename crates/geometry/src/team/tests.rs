@@ -19,7 +19,10 @@ fn corridor() -> TeamGrid {
 }
 
 fn open(n: usize) -> TeamGrid {
-    let world = world_in(Aabb::from_corners(p(0.0, 0.0), p(n as f64, n as f64)), vec![]);
+    let world = world_in(
+        Aabb::from_corners(p(0.0, 0.0), p(n as f64, n as f64)),
+        vec![],
+    );
     TeamGrid::new(&world, &RobotShape::Point, 1.0, &Validator::new(&world)).unwrap()
 }
 
@@ -49,20 +52,56 @@ fn a_swap_through_the_bay_passes_and_costs_are_last_arrivals() {
     let g = corridor();
     let ends = [(p(0.5, 1.5), p(4.5, 1.5)), (p(4.5, 1.5), p(0.5, 1.5))];
     // Agent 0 steps into the bay while agent 1 passes below it.
-    let a = pts(&[(0.5, 1.5), (1.5, 1.5), (2.5, 1.5), (2.5, 2.5), (2.5, 2.5), (2.5, 1.5), (3.5, 1.5), (4.5, 1.5)]);
-    let b = pts(&[(4.5, 1.5), (3.5, 1.5), (3.5, 1.5), (3.5, 1.5), (2.5, 1.5), (1.5, 1.5), (0.5, 1.5)]);
-    assert_eq!(validate_team(&g, &ends, &[a.clone(), b.clone()]), Ok(vec![7, 6]));
+    let a = pts(&[
+        (0.5, 1.5),
+        (1.5, 1.5),
+        (2.5, 1.5),
+        (2.5, 2.5),
+        (2.5, 2.5),
+        (2.5, 1.5),
+        (3.5, 1.5),
+        (4.5, 1.5),
+    ]);
+    let b = pts(&[
+        (4.5, 1.5),
+        (3.5, 1.5),
+        (3.5, 1.5),
+        (3.5, 1.5),
+        (2.5, 1.5),
+        (1.5, 1.5),
+        (0.5, 1.5),
+    ]);
+    assert_eq!(
+        validate_team(&g, &ends, &[a.clone(), b.clone()]),
+        Ok(vec![7, 6])
+    );
     // Without the bay they meet.
     let a2 = pts(&[(0.5, 1.5), (1.5, 1.5), (2.5, 1.5), (3.5, 1.5), (4.5, 1.5)]);
     let e = validate_team(&g, &ends, &[a2, b.clone()]).unwrap_err();
     assert_eq!(e.other, Some(1));
     // A swap in one step is an edge conflict.
     let ends2 = [(p(1.5, 1.5), p(2.5, 1.5)), (p(2.5, 1.5), p(1.5, 1.5))];
-    let e = validate_team(&g, &ends2, &[pts(&[(1.5, 1.5), (2.5, 1.5)]), pts(&[(2.5, 1.5), (1.5, 1.5)])]).unwrap_err();
+    let e = validate_team(
+        &g,
+        &ends2,
+        &[
+            pts(&[(1.5, 1.5), (2.5, 1.5)]),
+            pts(&[(2.5, 1.5), (1.5, 1.5)]),
+        ],
+    )
+    .unwrap_err();
     assert!(e.reason.contains("swap"), "{}", e.reason);
     // An agent parked at its goal blocks those who pass later.
     let ends3 = [(p(2.5, 1.5), p(2.5, 1.5)), (p(1.5, 1.5), p(3.5, 1.5))];
-    let e = validate_team(&g, &ends3, &[pts(&[(2.5, 1.5)]), pts(&[(1.5, 1.5), (2.5, 1.5), (3.5, 1.5)])]).unwrap_err();
+    let e = validate_team(
+        &g,
+        &ends3,
+        &[
+            pts(&[(2.5, 1.5)]),
+            pts(&[(1.5, 1.5), (2.5, 1.5), (3.5, 1.5)]),
+        ],
+    )
+    .unwrap_err();
     assert_eq!((e.step, e.agent, e.other), (1, 0, Some(1)));
 }
 
@@ -71,18 +110,24 @@ fn paths_that_break_the_rules_alone_are_refused() {
     let g = corridor();
     let ends = [(p(0.5, 1.5), p(2.5, 1.5))];
     let bad = [
-        pts(&[(0.5, 1.5), (2.5, 1.5)]),              // a jump
+        pts(&[(0.5, 1.5), (2.5, 1.5)]),             // a jump
         pts(&[(0.5, 1.5), (0.5, 2.5), (1.5, 1.5)]), // onto a wall
         pts(&[(0.5, 1.5), (1.0, 1.5), (2.5, 1.5)]), // off the lattice
-        pts(&[(1.5, 1.5), (2.5, 1.5)]),              // not from its start
-        pts(&[(0.5, 1.5), (1.5, 1.5)]),              // not to its goal
+        pts(&[(1.5, 1.5), (2.5, 1.5)]),             // not from its start
+        pts(&[(0.5, 1.5), (1.5, 1.5)]),             // not to its goal
         pts(&[(0.5, 1.5), (1.5, 2.5), (2.5, 1.5)]), // diagonal, through walls
         vec![],
     ];
     for path in bad {
-        assert!(validate_team(&g, &ends, &[path.clone()]).is_err(), "{path:?}");
+        assert!(
+            validate_team(&g, &ends, std::slice::from_ref(&path)).is_err(),
+            "{path:?}"
+        );
     }
-    assert_eq!(agent_cost(&pts(&[(0.5, 1.5), (1.5, 1.5), (2.5, 1.5), (2.5, 1.5)])), 2);
+    assert_eq!(
+        agent_cost(&pts(&[(0.5, 1.5), (1.5, 1.5), (2.5, 1.5), (2.5, 1.5)])),
+        2
+    );
     assert_eq!(agent_cost(&pts(&[(2.5, 1.5), (1.5, 1.5), (2.5, 1.5)])), 2);
     assert_eq!(agent_cost(&pts(&[(2.5, 1.5)])), 0);
 }

@@ -26,8 +26,8 @@ use crate::contract::schema::ValueSpec;
 use crate::diagnostics::{Diag, Span};
 use crate::scenario::grouping::{ParamKeys, group_bench, group_params};
 use crate::syntax::ast::{
-    self, Expr, ExprKind, ObstacleShape, ParamSource, ParamToken, ScatterShape, Stmt, Value,
-    ValueKind, WorldItem,
+    self, Expr, ExprKind, ObstacleShape, ParamSource, ParamToken, ScatterShape, Stmt, TeamBody,
+    Value, ValueKind, WorldItem,
 };
 use crate::syntax::{Lexer, TokenKind, UNIT_WORDS};
 
@@ -283,7 +283,12 @@ impl Writer<'_> {
                 });
             }
             Stmt::Robot(robot) => {
-                self.tok(out, robot.span.start, "robot");
+                let keyword = if robot.team.is_some() {
+                    "team"
+                } else {
+                    "robot"
+                };
+                self.tok(out, robot.span.start, keyword);
                 self.space();
                 self.leaf(out, robot.name.span);
                 self.space();
@@ -316,6 +321,37 @@ impl Writer<'_> {
                 }
                 if !speed_first {
                     print_speed(self, out);
+                }
+                match robot.team.as_deref() {
+                    Some(TeamBody::Agents { agents, block }) => {
+                        self.space();
+                        self.block(out, block.start, block.end - 1, |w, inner| {
+                            for (k, a) in agents.iter().enumerate() {
+                                w.line(k);
+                                w.leaf(inner, a.name.span);
+                                w.values(inner, &[&a.start]);
+                                w.space();
+                                w.tok(inner, a.arrow.start, "->");
+                                w.values(inner, &[&a.goal]);
+                            }
+                            !agents.is_empty()
+                        });
+                    }
+                    Some(TeamBody::From {
+                        from,
+                        file,
+                        agents,
+                        count,
+                    }) => {
+                        self.space();
+                        self.leaf(out, *from);
+                        self.space();
+                        self.leaf(out, file.span);
+                        self.space();
+                        self.leaf(out, *agents);
+                        self.values(out, &[count]);
+                    }
+                    None => {}
                 }
             }
             Stmt::Plan(plan) => {

@@ -20,6 +20,7 @@ mod expect;
 mod moving;
 mod plans;
 mod robots;
+mod team;
 mod values;
 mod world;
 
@@ -65,7 +66,7 @@ pub(crate) fn analyze(
         Some(w) => a.moving(&statements, w, &obstacle_spans),
         None => (Vec::new(), Vec::new()),
     };
-    let robots = a.robots(&statements);
+    let robots = a.robots(&statements, world.as_ref());
     let world_ok = !a.diags.iter().any(Diag::is_error);
     a.needs_time(&statements, &moving);
     let plans = a.plans(&statements, world.as_ref().filter(|_| world_ok), &robots);

@@ -336,6 +336,18 @@ impl Reader<'_> {
             }
             match stmt {
                 ast::Stmt::Include { path, span } => self.include(id, path, *span, stack),
+                ast::Stmt::Robot(ast::RobotDecl {
+                    team: Some(team), ..
+                }) if matches!(**team, ast::TeamBody::From { .. }) => {
+                    // A team's MovingAI scenario is read like a map.
+                    if let ast::TeamBody::From { file, .. } = &**team {
+                        self.map(id, file);
+                    }
+                    self.parsed.statements.push(SourcedStmt {
+                        stmt: stmt.clone(),
+                        in_main_file,
+                    });
+                }
                 ast::Stmt::World(w) => {
                     for item in &w.items {
                         if let ast::WorldItem::Obstacle(ast::ObstacleDecl {

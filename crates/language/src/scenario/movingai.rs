@@ -98,3 +98,83 @@ pub fn parse_movingai(text: &str) -> Result<(usize, usize, Vec<u8>), (usize, Str
 fn n_lines(text: &str) -> usize {
     text.lines().count().max(1)
 }
+
+/// One row of a MovingAI scenario file (`.scen`): the map it is for and
+/// an agent's start and goal cells (x the column, y the row from the top).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScenRow {
+    /// The row's bytes in the file (its line, without the line end).
+    pub at: std::ops::Range<usize>,
+    pub map: String,
+    pub width: usize,
+    pub height: usize,
+    pub start: (usize, usize),
+    pub goal: (usize, usize),
+}
+
+/// The first `n` rows of a MovingAI `.scen` file (`version 1` or a bare
+/// first row; tab- or blank-separated columns: bucket, map, width, height,
+/// start x, start y, goal x, goal y, optimal length; CRLF accepted). `Err`:
+/// the byte range of the line at fault and a message.
+pub fn parse_scen(text: &str, n: usize) -> Result<Vec<ScenRow>, (std::ops::Range<usize>, String)> {
+    let mut rows = Vec::new();
+    let mut offset = 0;
+    for (k, raw) in text.split_inclusive('\n').enumerate() {
+        let start = offset;
+        offset += raw.len();
+        if rows.len() == n {
+            break;
+        }
+        let line = raw.trim_end_matches('\n').trim_end_matches('\r');
+        let at = start..start + line.len();
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if words.is_empty() || (k == 0 && words[0] == "version") {
+            continue;
+        }
+        if words.len() != 9 {
+            return Err((
+                at,
+                format!(
+                    "a scenario row has 9 columns (bucket, map, width, height, start x, start y, goal x, goal y, optimal length), this one {}",
+                    words.len()
+                ),
+            ));
+        }
+        let num = |i: usize, what: &str| {
+            words[i]
+                .parse::<usize>()
+                .map_err(|_| (at.clone(), format!("the {what} is not a whole number")))
+        };
+        rows.push(ScenRow {
+            at: at.clone(),
+            map: words[1].to_string(),
+            width: num(2, "map width")?,
+            height: num(3, "map height")?,
+            start: (num(4, "start x")?, num(5, "start y")?),
+            goal: (num(6, "goal x")?, num(7, "goal y")?),
+        });
+    }
+    Ok(rows)
+}
+
+#[cfg(test)]
+mod scen_tests {
+    use super::*;
+
+    #[test]
+    fn rows_are_read_with_their_place() {
+        let text = "version 1\r\n3\tr.map\t32\t32\t11\t6\t7\t18\t13.6\r\n7 maps/r.map 32 32 29 9 1 16 30.9\n";
+        let rows = parse_scen(text, 5).unwrap();
+        assert_eq!(rows.len(), 2);
+        assert_eq!((rows[0].start, rows[0].goal), ((11, 6), (7, 18)));
+        assert_eq!(
+            &text[rows[1].at.clone()],
+            "7 maps/r.map 32 32 29 9 1 16 30.9"
+        );
+        assert_eq!(parse_scen(text, 1).unwrap().len(), 1);
+        let (at, msg) = parse_scen("version 1\n1 m 3 3 0 0 x 1 2\n", 5).unwrap_err();
+        assert_eq!(at, 10..27);
+        assert!(msg.contains("goal x"), "{msg}");
+        assert!(parse_scen("version 1\n1 m 3 3\n", 5).is_err());
+    }
+}

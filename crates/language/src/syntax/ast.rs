@@ -123,6 +123,16 @@ impl Stmt {
                 if let Some((_, v)) = &r.speed {
                     f(v, false);
                 }
+                match r.team.as_deref() {
+                    Some(TeamBody::Agents { agents, .. }) => {
+                        for a in agents {
+                            f(&a.start, false);
+                            f(&a.goal, false);
+                        }
+                    }
+                    Some(TeamBody::From { count, .. }) => f(count, false),
+                    None => {}
+                }
             }
             Stmt::Plan(PlanDecl { body, .. }) | Stmt::Bench(BenchDecl { body, .. }) => {
                 ParamToken::flatten(body, &mut |t| {
@@ -315,6 +325,32 @@ pub struct RobotDecl {
     /// `speed V` after the shape (SPEC 2.9): the `speed` keyword's span and
     /// the value.
     pub speed: Option<(Span, Value)>,
+    /// For `team NAME ...` (SPEC 2.10): its agents; `None` for a robot.
+    pub team: Option<Box<TeamBody>>,
+    pub span: Span,
+}
+
+/// A team's agents: listed in a block, or read from a MovingAI scenario.
+#[derive(Clone, Debug)]
+pub enum TeamBody {
+    /// `{ NAME (x, y) -> (x, y) ... }`, with the block's span.
+    Agents { agents: Vec<TeamAgent>, block: Span },
+    /// `from "FILE.scen" agents N`: the keywords' spans, the file, the count.
+    From {
+        from: Span,
+        file: Spanned<String>,
+        agents: Span,
+        count: Value,
+    },
+}
+
+/// `NAME (x, y) -> (x, y)` in a team's block.
+#[derive(Clone, Debug)]
+pub struct TeamAgent {
+    pub name: Ident,
+    pub start: Value,
+    pub arrow: Span,
+    pub goal: Value,
     pub span: Span,
 }
 

@@ -5,6 +5,7 @@
 //! not: malformed or out-of-range numbers, unknown units and escapes, a
 //! repeated grid option, a unit written apart from its number.
 
+use crate::syntax::ast::{TeamAgent, TeamBody};
 use pest::iterators::Pair;
 
 use super::ast::{
@@ -112,7 +113,7 @@ impl<'t, 'd> Builder<'t, 'd> {
                 Stmt::Include { path, span }
             }
             Rule::world => Stmt::World(self.world(pair)),
-            Rule::robot => Stmt::Robot(self.robot(pair)),
+            Rule::robot | Rule::team => Stmt::Robot(self.robot(pair)),
             Rule::plan => Stmt::Plan(self.plan(pair)),
             Rule::bench => {
                 let mut inner = children(pair).skip(1);
@@ -334,7 +335,49 @@ impl<'t, 'd> Builder<'t, 'd> {
             span: shape_span,
         };
         let (mut steer, mut speed): (Option<SteerClause>, Option<(Span, Value)>) = (None, None);
+        let mut team = None;
         for clause in inner {
+            match clause.as_rule() {
+                Rule::team_from => {
+                    let mut parts = children(clause);
+                    let from = self.span(&parts.next().expect("grammar guarantees `from`"));
+                    let file = self.string(&parts.next().expect("grammar guarantees a file"));
+                    let agents = self.span(&parts.next().expect("grammar guarantees `agents`"));
+                    let count = self.value(parts.next().expect("grammar guarantees a count"));
+                    team = Some(Box::new(TeamBody::From {
+                        from,
+                        file,
+                        agents,
+                        count,
+                    }));
+                    continue;
+                }
+                Rule::team_agents => {
+                    let block = self.span(&clause);
+                    let mut agents = Vec::new();
+                    for part in children(clause) {
+                        if part.as_rule() != Rule::team_agent {
+                            continue;
+                        }
+                        let span = self.span(&part);
+                        let mut v = children(part);
+                        let name = self.ident(&v.next().expect("grammar guarantees a name"));
+                        let start = self.value(v.next().expect("grammar guarantees a start"));
+                        let arrow = self.span(&v.next().expect("grammar guarantees `->`"));
+                        let goal = self.value(v.next().expect("grammar guarantees a goal"));
+                        agents.push(TeamAgent {
+                            name,
+                            start,
+                            arrow,
+                            goal,
+                            span,
+                        });
+                    }
+                    team = Some(Box::new(TeamBody::Agents { agents, block }));
+                    continue;
+                }
+                _ => {}
+            }
             let span = self.span(&clause);
             let rule = clause.as_rule();
             let mut parts = children(clause);
@@ -374,6 +417,7 @@ impl<'t, 'd> Builder<'t, 'd> {
             shape,
             steer,
             speed,
+            team,
             span,
         }
     }

@@ -13,9 +13,12 @@ use crate::diagnostics::{Diag, FileId, Span};
 const MAX_NESTING: usize = 64;
 
 /// The keywords that start a statement, as the grammar names them.
-pub const STATEMENT_KEYWORDS: [&str; 9] = [
-    "scenario", "include", "world", "robot", "plan", "expect", "bench", "param", "require",
+pub const STATEMENT_KEYWORDS: [&str; 10] = [
+    "scenario", "include", "world", "robot", "team", "plan", "expect", "bench", "param", "require",
 ];
+
+/// The words of a `team` statement after its shape (SPEC 2.10).
+pub const TEAM_KEYWORDS: [&str; 2] = ["from", "agents"];
 
 /// The keywords that start an item of a `world` block.
 pub const WORLD_ITEM_KEYWORDS: [&str; 8] = [
@@ -142,6 +145,7 @@ fn chunk_rule(keyword: &str) -> Rule {
         "include" => Rule::include_chunk,
         "world" => Rule::world_chunk,
         "robot" => Rule::robot_chunk,
+        "team" => Rule::team_chunk,
         "plan" => Rule::plan_chunk,
         "bench" => Rule::bench_chunk,
         "param" => Rule::param_chunk,
@@ -213,7 +217,7 @@ pub(super) fn split_statements(text: &str, file: FileId) -> Scan {
                     depth = 0;
                     names_to_skip = match this {
                         "plan" => 3,
-                        "robot" | "bench" => 1,
+                        "robot" | "team" | "bench" => 1,
                         _ => 0,
                     };
                     current = Some(Chunk::new(token_start, i, Some(chunk_rule(this))));
@@ -561,6 +565,7 @@ mod tests {
             &ROBOT_SHAPE_KEYWORDS,
             &ROBOT_CLAUSE_KEYWORDS,
             &MOVING_KEYWORDS,
+            &TEAM_KEYWORDS,
             &GRID_OPTION_KEYWORDS,
             &FAMILY_KEYWORDS,
         ]

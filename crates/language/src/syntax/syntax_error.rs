@@ -172,6 +172,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | Rule::include_chunk
         | Rule::world_chunk
         | Rule::robot_chunk
+        | Rule::team_chunk
         | Rule::plan_chunk
         | Rule::expect_chunk
         | Rule::bench_chunk
@@ -238,6 +239,13 @@ fn describe(rule: Rule) -> Option<&'static str> {
         Rule::kw_steer | Rule::steer_clause => "`steer`",
         Rule::kw_speed | Rule::speed_clause => "`speed`",
         Rule::kw_moving | Rule::moving => "`moving`",
+        Rule::kw_team | Rule::team => "`team`",
+        Rule::kw_from | Rule::team_from => "`from`",
+        Rule::kw_agents => "`agents`",
+        Rule::team_agents | Rule::team_open => "`{` or `from`",
+        Rule::team_close => "`}`",
+        Rule::team_agent => "an agent `NAME (x, y) -> (x, y)`",
+        Rule::arrow => "`->`",
         Rule::moving_open => "`{`",
         Rule::moving_close => "`}`",
         Rule::kw_at | Rule::moving_at => "`at`",

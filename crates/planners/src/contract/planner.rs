@@ -83,11 +83,7 @@ impl Planner {
             &[]
         };
         let time: &'static [MetricSpec] = if self.time { TIME_METRICS } else { &[] };
-        common
-            .iter()
-            .chain(car)
-            .chain(time)
-            .chain(own.iter())
+        common.iter().chain(car).chain(time).chain(own.iter())
     }
 
     /// Whether it plans for teams (SPEC 2.10): then it plans for nothing

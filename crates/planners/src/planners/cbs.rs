@@ -402,12 +402,12 @@ fn search(
     }
     // The root: every agent's own shortest path.
     let mut paths: Vec<Arc<Vec<Node>>> = Vec::with_capacity(n);
-    for a in 0..n {
+    for (a, dist) in dists.iter().enumerate() {
         let avoid = Avoid {
             paths: &paths,
             agent: usize::MAX,
         };
-        match low_level(&graph, &dists[a], graph.starts[a], graph.goals[a], &[], &avoid, budget) {
+        match low_level(&graph, dist, graph.starts[a], graph.goals[a], &[], &avoid, budget) {
             Low::Path(p) => paths.push(Arc::new(p)),
             Low::None => unreachable!("a reachable goal has a path without constraints"),
             Low::Stopped => return stopped(out),

@@ -99,14 +99,18 @@ impl Graph {
     pub fn build(task: &Task<'_>, spec: LatticeSpec, deadline: &Deadline) -> Result<Self, String> {
         let index = ObstacleIndex::new(task.world);
         let Some(mut lat) = GridLattice::build_until(spec, &index, 0.0, deadline) else {
-            return Err(crate::planners::deadline::setup_note("classifying the lattice"));
+            return Err(crate::planners::deadline::setup_note(
+                "classifying the lattice",
+            ));
         };
         let n = spec.layer_len();
         let mut adj = vec![[NONE; 4]; n];
         let mut free = vec![false; n];
         for (v, slot) in adj.iter_mut().enumerate() {
             if v % crate::planners::deadline::SETUP_CHECK_EVERY == 0 && deadline.passed() {
-                return Err(crate::planners::deadline::setup_note("connecting the lattice"));
+                return Err(crate::planners::deadline::setup_note(
+                    "connecting the lattice",
+                ));
             }
             if !lat.free.get(v) {
                 continue;
@@ -148,7 +152,10 @@ impl Graph {
 
     /// The neighbours of `v`.
     pub fn neighbours(&self, v: Node) -> impl Iterator<Item = Node> + '_ {
-        self.adj[v as usize].iter().copied().take_while(|&m| m != NONE)
+        self.adj[v as usize]
+            .iter()
+            .copied()
+            .take_while(|&m| m != NONE)
     }
 
     /// Steps from every node to `goal` ([`u32::MAX`]: never).

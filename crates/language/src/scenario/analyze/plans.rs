@@ -144,17 +144,28 @@ impl Analyzer {
         planner: &'static Planner,
         robot_index: usize,
         robots: &[Robot],
-        params: Params,
+        mut params: Params,
         world: &World,
         robot_ok: bool,
     ) -> Option<Plan> {
         let robot = &robots[robot_index];
         let before = self.diags.len();
-        self.check_pose(world, robot, params.start, params.start_span, "start");
-        let start_ok = self.diags.len() == before;
-        if let (Some(g), Some(gs)) = (params.goal, params.goal_span) {
-            self.check_pose(world, robot, g, gs, "goal");
+        match &robot.team {
+            // The agents' starts and goals were checked with the team.
+            Some(agents) => {
+                if let Some(a) = agents.first() {
+                    params.start = crate::geometry::Config::new(a.start.x, a.start.y, 0.0);
+                }
+            }
+            None if planner.plans_teams() => {}
+            None => {
+                self.check_pose(world, robot, params.start, params.start_span, "start");
+                if let (Some(g), Some(gs)) = (params.goal, params.goal_span) {
+                    self.check_pose(world, robot, g, gs, "goal");
+                }
+            }
         }
+        let start_ok = self.diags.len() == before;
         // The planner's check may assume a robot it plans for.
         if !robot_ok {
             return None;
@@ -269,6 +280,42 @@ impl Analyzer {
         } = list;
         let start = values.remove("start");
         let goal = values.remove("goal");
+        let seed = values
+            .remove("seed")
+            .and_then(|p| match p.value {
+                ParamValue::Num(x) => Some(x as u64),
+                _ => None,
+            })
+            .unwrap_or(0);
+        if planner.plans_teams() {
+            // A team's agents carry their starts and goals (SPEC 2.10).
+            let mut ok = ok;
+            for given in [&start, &goal].into_iter().flatten() {
+                self.error(
+                    Diag::error(
+                        "scen::analyze::team_start",
+                        format!("plan `{}` is a team's: its agents have their own starts and goals", p.name.value),
+                    )
+                    .at(given.span, "not for a team plan")
+                    .help("give each agent its start and goal in the team: `a1 (1.5, 1.5) -> (8.5, 4.5)`"),
+                );
+                ok = false;
+            }
+            if !ok {
+                return (None, given);
+            }
+            let params = Params {
+                // The first agent's start, set when the team is known.
+                start: crate::geometry::Config::new(0.0, 0.0, 0.0),
+                start_span: plan_head,
+                goal: None,
+                goal_span: None,
+                limits,
+                seed,
+                values,
+            };
+            return (Some(params), given);
+        }
         if start.is_none() && !list_gave_start {
             self.error(
                 Diag::error(
@@ -305,17 +352,13 @@ impl Analyzer {
             }) => Some(*c),
             _ => None,
         };
-        let seed = values.remove("seed").and_then(|p| match p.value {
-            ParamValue::Num(x) => Some(x as u64),
-            _ => None,
-        });
         let params = Params {
             start: start_c,
             start_span: start.span,
             goal: goal_c,
             goal_span: goal.as_ref().map(|g| g.span),
             limits,
-            seed: seed.unwrap_or(0),
+            seed,
             values,
         };
         (Some(params), given)

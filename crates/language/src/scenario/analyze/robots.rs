@@ -15,7 +15,22 @@ use crate::scenario::statements::SourcedStmt;
 use super::*;
 
 impl Analyzer {
-    pub(super) fn robots(&mut self, statements: &[SourcedStmt]) -> Vec<Robot> {
+    pub(super) fn robots(
+        &mut self,
+        statements: &[SourcedStmt],
+        world: Option<&crate::geometry::World>,
+    ) -> Vec<Robot> {
+        // The map file of the world's grid, for a team's MovingAI rows.
+        let grid_file = statements.iter().find_map(|s| match &s.stmt {
+            ast::Stmt::World(w) => w.items.iter().find_map(|item| match item {
+                ast::WorldItem::Obstacle(ast::ObstacleDecl {
+                    shape: ast::ObstacleShape::Grid(g),
+                    ..
+                }) => g.file.as_ref().map(|f| f.value.clone()),
+                _ => None,
+            }),
+            _ => None,
+        });
         let mut robots: Vec<Robot> = Vec::new();
         let mut seen: HashMap<String, Span> = HashMap::new();
         for s in statements {
@@ -26,7 +41,7 @@ impl Analyzer {
                 self.error(
                     Diag::error(
                         "scen::analyze::duplicate_name",
-                        format!("robot `{}` is declared twice", r.name.value),
+                        format!("robot or team `{}` is declared twice", r.name.value),
                     )
                     .at(r.name.span, "second declaration")
                     .with_related(*first, "first declaration")
@@ -47,15 +62,25 @@ impl Analyzer {
                     .map(Some)
                     .ok_or(()),
             };
-            if shape.is_none() || steering.is_err() || speed.is_err() {
+            let team = match (r.team.as_deref(), &shape) {
+                (None, _) => Ok(None),
+                (Some(body), Some(shape)) => self
+                    .team(r, body, shape, world, grid_file.as_deref())
+                    .map(|agents| Some(agents.into()))
+                    .ok_or(()),
+                (Some(_), None) => Err(()),
+            };
+            if shape.is_none() || steering.is_err() || speed.is_err() || team.is_err() {
                 self.invalid_robots.push(r.name.value.clone());
             }
-            if let (Some(shape), Ok(steering), Ok(speed)) = (shape, steering, speed) {
+            if let (Some(shape), Ok(steering), Ok(speed), Ok(team)) = (shape, steering, speed, team)
+            {
                 robots.push(Robot {
                     name: r.name.value.clone(),
                     shape,
                     steering,
                     speed,
+                    team,
                     span: r.span,
                 });
             }

@@ -256,6 +256,16 @@ impl Family {
                     if let Some((_, v)) = &mut r.speed {
                         ctx.value(v);
                     }
+                    match r.team.as_deref_mut() {
+                        Some(crate::syntax::ast::TeamBody::Agents { agents, .. }) => {
+                            for a in agents {
+                                ctx.value(&mut a.start);
+                                ctx.value(&mut a.goal);
+                            }
+                        }
+                        Some(crate::syntax::ast::TeamBody::From { count, .. }) => ctx.value(count),
+                        None => {}
+                    }
                     Stmt::Robot(r)
                 }
                 Stmt::Plan(p) => {

@@ -38,7 +38,7 @@ fn random_case(seed: u64, n: usize) -> Case {
     let rows: Vec<String> = (0..h)
         .map(|_| {
             (0..w)
-                .map(|_| if rng.next_u64() % 5 == 0 { '#' } else { '.' })
+                .map(|_| if rng.next_u64().is_multiple_of(5) { '#' } else { '.' })
                 .collect()
         })
         .collect();
