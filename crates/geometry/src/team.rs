@@ -254,7 +254,9 @@ pub fn validate_team(
         let Some(&first) = path.first() else {
             return err(0, a, None, start, "an empty path".into());
         };
-        if first != start {
+        // An agent stands on the lattice point within 1e-9 of a cell of its
+        // start and of its goal (the test every point of a path passes).
+        if grid.node(first).is_none() || grid.node(first) != grid.node(start) {
             return err(
                 0,
                 a,
@@ -264,7 +266,7 @@ pub fn validate_team(
             );
         }
         let last = *path.last().unwrap_or(&first);
-        if last != goal {
+        if grid.node(last).is_none() || grid.node(last) != grid.node(goal) {
             return err(
                 path.len() - 1,
                 a,

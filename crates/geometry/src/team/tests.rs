@@ -130,6 +130,11 @@ fn paths_that_break_the_rules_alone_are_refused() {
     );
     assert_eq!(agent_cost(&pts(&[(2.5, 1.5), (1.5, 1.5), (2.5, 1.5)])), 2);
     assert_eq!(agent_cost(&pts(&[(2.5, 1.5)])), 0);
+    // Within 1e-9 of a cell, a point is the lattice point (a start the
+    // fuzzer moved by 1e-9 with the bounds).
+    let near = [(p(0.5 + 4e-10, 1.5), p(2.5, 1.5 - 4e-10))];
+    let path = pts(&[(0.5, 1.5), (1.5, 1.5), (2.5, 1.5)]);
+    assert!(validate_team(&g, &near, std::slice::from_ref(&path)).is_ok());
 }
 
 /// An independent statement of grid semantics: every pair of agents at
