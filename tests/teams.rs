@@ -141,6 +141,17 @@ fn every_team_planner_honours_a_time_limit_spent_at_once() {
 }
 
 #[test]
+fn lacam_says_when_no_solution_exists() {
+    // No bay: the two can never pass, and `lacam` proves it.
+    let text = "world { bounds (0, 0) (5, 1) grid G cell 1 { \".....\" } }\nteam T point {\n  a (0.5, 0.5) -> (4.5, 0.5)\n  b (4.5, 0.5) -> (0.5, 0.5)\n}\nplan p lacam T { }\n";
+    let report = run(text);
+    assert!(!flag(&report, "found"));
+    assert!(!flag(&report, "gave_up"));
+    assert!(flag(&report, "exhausted"));
+    assert!(report.plans[0].outcome.notes[0].contains("no solution"));
+}
+
+#[test]
 fn cbs_stops_at_its_limit_where_no_solution_exists() {
     // No bay: the two can never pass. CBS cannot prove it; it gives up.
     let text = "world { bounds (0, 0) (5, 1) grid G cell 1 { \".....\" } }\nteam T point {\n  a (0.5, 0.5) -> (4.5, 0.5)\n  b (4.5, 0.5) -> (0.5, 0.5)\n}\nplan p cbs T { limit expansions 20000 }\n";
@@ -163,8 +174,11 @@ fn the_movingai_lower_bound_is_the_published_one() {
     let text = r#"world { bounds (0, 0) (32, 32) grid G "random-32-32-10.map" cell 1 }
 team T50 point from "random-32-32-10-random-1.scen" agents 50
 team T30 point from "random-32-32-10-random-1.scen" agents 30
+team T400 point from "random-32-32-10-random-1.scen" agents 400
 plan bound cbs T50 { limit expansions 1 }
 plan thirty cbs T30 { limit time 60s }
+plan fifty lacam T50 { limit time 60s }
+plan many lacam T400 { limit time 60s }
 "#;
     let file = dir.path().join("r.scen");
     std::fs::write(&file, text).expect("write the scenario");
@@ -185,6 +199,14 @@ plan thirty cbs T30 { limit time 60s }
     assert_eq!(metric(1, "found"), 1.0);
     assert_eq!(metric(1, "collision_free"), 1.0);
     assert!(metric(1, "sum_of_costs") >= metric(1, "soc_lower_bound"));
+    // `lacam`: 50 and 400 agents, each solution judged by the referee.
+    for plan in [2, 3] {
+        assert_eq!(metric(plan, "found"), 1.0, "plan {plan}");
+        assert_eq!(metric(plan, "collision_free"), 1.0, "plan {plan}");
+        assert!(metric(plan, "sum_of_costs") >= metric(plan, "soc_lower_bound"));
+        assert!(metric(plan, "sum_of_costs") >= metric(plan, "sum_of_loss"));
+    }
+    assert_eq!(metric(3, "agents"), 400.0);
 }
 
 #[test]

@@ -180,3 +180,95 @@ impl Graph {
         self.spec.point_of(v as usize)
     }
 }
+
+/// Random small teams for the grid MAPF planners' tests.
+#[cfg(test)]
+pub(crate) mod cases {
+    use std::collections::HashSet;
+
+    use crate::contract::{Agent, Limits, Task};
+    use crate::diagnostics::Span;
+    use crate::geometry::fixtures::{grid, world_in};
+    use crate::geometry::rng::SplitMix64;
+    use crate::geometry::{Aabb, Config, Point, RobotShape, World};
+
+    /// A map of `min` to `min + spread − 1` cells a side, each cell a wall
+    /// with chance 1/`wall_one_in`, and `n` agents (fewer when the map has
+    /// fewer free cells) on distinct free starts and distinct free goals.
+    pub fn random_team(
+        seed: u64,
+        n: usize,
+        min: usize,
+        spread: u64,
+        wall_one_in: u64,
+    ) -> (World, Vec<Agent>) {
+        let mut rng = SplitMix64::new(seed);
+        let w = min + (rng.next_u64() % spread) as usize;
+        let h = min + (rng.next_u64() % spread) as usize;
+        let rows: Vec<String> = (0..h)
+            .map(|_| {
+                (0..w)
+                    .map(|_| {
+                        if rng.next_u64().is_multiple_of(wall_one_in) {
+                            '#'
+                        } else {
+                            '.'
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+        let p = Point::new;
+        let world = world_in(
+            Aabb::from_corners(p(0.0, 0.0), p(w as f64, h as f64)),
+            vec![grid(1.0, p(0.0, 0.0), &refs)],
+        );
+        // Free cells as world points (row 0 of the map is the top).
+        let free: Vec<Point> = (0..h)
+            .flat_map(|r| (0..w).map(move |c| (r, c)))
+            .filter(|&(r, c)| rows[r].as_bytes()[c] == b'.')
+            .map(|(r, c)| p(c as f64 + 0.5, (h - 1 - r) as f64 + 0.5))
+            .collect();
+        let mut pick = |taken: &mut HashSet<usize>| loop {
+            let k = rng.next_u64() as usize % free.len();
+            if taken.insert(k) {
+                return free[k];
+            }
+        };
+        let (mut starts, mut goals) = (HashSet::new(), HashSet::new());
+        let agents = (0..n.min(free.len()))
+            .map(|i| Agent {
+                name: format!("a{i}"),
+                start: pick(&mut starts),
+                goal: pick(&mut goals),
+                span: Span::default(),
+            })
+            .collect();
+        (world, agents)
+    }
+
+    /// The task of a point team in `world`.
+    pub fn team_task<'a>(
+        world: &'a World,
+        agents: &'a [Agent],
+        limits: Limits,
+        seed: u64,
+    ) -> Task<'a> {
+        let first = agents[0].start;
+        Task {
+            world,
+            robot: &RobotShape::Point,
+            start: Config::new(first.x, first.y, 0.0),
+            goal: None,
+            limits,
+            seed,
+            steering: None,
+            draw: false,
+            referee: None,
+            moving: &[],
+            speed: None,
+            agents,
+        }
+    }
+}

@@ -78,6 +78,7 @@ planners! {
     #[path = "bug.rs"] bug::PLANNER,
     #[path = "sipp.rs"] sipp::PLANNER,
     #[path = "cbs.rs"] cbs::PLANNER,
+    #[path = "lacam.rs"] lacam::PLANNER,
 }
 
 /// The planner of a kind.

@@ -6,16 +6,16 @@
 //! of costs, and the referee (`scen_geometry::team`) accepts it.
 
 use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap, HashSet};
+use std::collections::{BinaryHeap, HashMap};
 
 use super::*;
+use crate::planners::mapf::cases::{random_team, team_task};
 use crate::contract::{Agent, Limits};
 use crate::diagnostics::Span;
 use crate::geometry::fixtures::{grid, world_in};
-use crate::geometry::rng::SplitMix64;
 use crate::geometry::team::{TeamGrid, validate_team};
 use crate::geometry::validator::Validator;
-use crate::geometry::{Aabb, Config, Point, RobotShape, World};
+use crate::geometry::{Aabb, Point, RobotShape, World};
 use crate::planners::lattice::Sample;
 
 struct Case {
@@ -29,66 +29,16 @@ fn p(x: f64, y: f64) -> Point {
     Point::new(x, y)
 }
 
-/// A `w` × `h` map (4–5 cells a side), about a fifth of it walls, and `n`
-/// agents on distinct free starts and distinct free goals.
+/// A 4–5 cells a side map, about a fifth of it walls, and `n` agents.
 fn random_case(seed: u64, n: usize) -> Case {
-    let mut rng = SplitMix64::new(seed);
-    let w = 4 + (rng.next_u64() % 2) as usize;
-    let h = 4 + (rng.next_u64() % 2) as usize;
-    let rows: Vec<String> = (0..h)
-        .map(|_| {
-            (0..w)
-                .map(|_| if rng.next_u64().is_multiple_of(5) { '#' } else { '.' })
-                .collect()
-        })
-        .collect();
-    let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
-    let world = world_in(
-        Aabb::from_corners(p(0.0, 0.0), p(w as f64, h as f64)),
-        vec![grid(1.0, p(0.0, 0.0), &refs)],
-    );
-    // Free cells as world points (row 0 of the map is the top).
-    let free: Vec<Point> = (0..h)
-        .flat_map(|r| (0..w).map(move |c| (r, c)))
-        .filter(|&(r, c)| rows[r].as_bytes()[c] == b'.')
-        .map(|(r, c)| p(c as f64 + 0.5, (h - 1 - r) as f64 + 0.5))
-        .collect();
-    let mut pick = |taken: &mut HashSet<usize>| loop {
-        let k = rng.next_u64() as usize % free.len();
-        if taken.insert(k) {
-            return free[k];
-        }
-    };
-    let (mut starts, mut goals) = (HashSet::new(), HashSet::new());
-    let agents = (0..n.min(free.len()))
-        .map(|i| Agent {
-            name: format!("a{i}"),
-            start: pick(&mut starts),
-            goal: pick(&mut goals),
-            span: Span::default(),
-        })
-        .collect();
+    let (world, agents) = random_team(seed, n, 4, 2, 5);
+    let (w, h) = (world.bounds.width() as usize, world.bounds.height() as usize);
     Case { world, w, h, agents }
 }
 
 fn run(case: &Case, limits: Limits) -> PlanOutcome {
     let spec = LatticeSpec::new(&case.world, 1.0, Sample::Center, 1.0);
-    let first = case.agents[0].start;
-    let task = Task {
-        world: &case.world,
-        robot: &RobotShape::Point,
-        start: Config::new(first.x, first.y, 0.0),
-        goal: None,
-        limits,
-        seed: 0,
-        steering: None,
-        draw: false,
-        referee: None,
-        moving: &[],
-        speed: None,
-        agents: &case.agents,
-    };
-    plan(&task, &Cbs { lattice: spec })
+    plan(&team_task(&case.world, &case.agents, limits, 0), &Cbs { lattice: spec })
 }
 
 /// The joint optimum's sum of costs, or `None` when the team has no
