@@ -332,3 +332,37 @@ fn a_goal_taken_for_good_or_sealed_off_is_not_found_without_giving_up() {
         out.notes
     );
 }
+
+/// The fuzzer's case: a goal 5.5e-9 off its lattice point, joined by a
+/// move of 5.5e-9 units at t = 17 s. Its duration, rounded, read as a
+/// robot faster than its speed; the times are now nudged up by ulps.
+#[test]
+fn a_last_move_of_nanometres_is_no_faster_than_the_robot() {
+    let mut case = random_case(0);
+    case.world = world_in(
+        Aabb::from_corners(Point::new(0.0, 0.0), Point::new(20.0, 20.0)),
+        vec![],
+    );
+    case.robot = RobotShape::Disk(0.4);
+    case.speed = 1.0;
+    case.start = Config::new(2.5, 5.5, 0.0);
+    case.goal = Config::new(17.5, 5.500_000_005_500_000_5, 0.0);
+    case.moving = vec![MovingObstacle {
+        name: "door".into(),
+        shape: MovingShape::Pieces(vec![vec![
+            Point::new(-1.0, -1.0),
+            Point::new(1.0, -1.0),
+            Point::new(1.0, 1.0),
+            Point::new(-1.0, 1.0),
+        ]]),
+        route: vec![Waypoint {
+            t: 10.0,
+            at: Point::new(10.0, 5.0),
+        }],
+        after: After::Stay,
+    }];
+    let out = run_sipp(&case, 4);
+    let trajectory = out.timed().expect("a trajectory");
+    validate_trajectory(&case.world, &case.moving, &case.robot, case.speed, &trajectory)
+        .expect("valid in space-time");
+}
