@@ -445,9 +445,60 @@ fn judge_team(
     let agents = task.agents;
     let ends: Vec<_> = agents.iter().map(|a| (a.start, a.goal)).collect();
     let names: Vec<&str> = agents.iter().map(|a| a.name.as_str()).collect();
-    let grid = team::TeamGrid::new(&scenario.world, robot, cell, referee);
     let mut metrics = outcome.extra.clone();
     let found = outcome.agents.is_some();
+    // A continuous team (SPEC 2.10, `prioritized`): trajectories judged in
+    // space-time, each agent among the others; costs are arrivals, the
+    // lower bound each agent's straight line at full speed.
+    if plan.planner.time {
+        let speed = task.speed.unwrap_or(DEFAULT_SPEED);
+        let paths = outcome.agents.as_deref().unwrap_or(&[]);
+        let times = outcome.agent_times.as_deref().unwrap_or(&[]);
+        let validation = found
+            .then(|| {
+                team::validate_continuous_team(
+                    &scenario.world,
+                    &scenario.moving,
+                    robot,
+                    speed,
+                    &names,
+                    &ends,
+                    paths,
+                    times,
+                )
+                .err()
+                .map(|e| e.into_validation(&names))
+            })
+            .flatten();
+        let arrivals: Vec<f64> = match found {
+            true => times
+                .iter()
+                .map(|t| t.last().copied().unwrap_or(0.0))
+                .collect(),
+            false => vec![f64::INFINITY],
+        };
+        let lower: f64 = ends.iter().map(|(s, g)| (g - s).norm() / speed).sum();
+        metrics.insert("found".into(), Bool(found));
+        metrics.insert("gave_up".into(), Bool(outcome.gave_up));
+        metrics.insert("agents".into(), Num(agents.len() as f64));
+        metrics.insert("sum_of_costs".into(), Num(arrivals.iter().sum()));
+        metrics.insert(
+            "makespan".into(),
+            Num(arrivals.iter().copied().fold(0.0, f64::max)),
+        );
+        metrics.insert("soc_lower_bound".into(), Num(lower));
+        metrics.insert("expanded".into(), Num(outcome.expanded as f64));
+        metrics.insert("time_ms".into(), Num((time_ms * 1000.0).round() / 1000.0));
+        metrics.insert("collision_free".into(), Bool(found && validation.is_none()));
+        return PlanRun {
+            plan: index,
+            outcome,
+            metrics,
+            validation,
+            drive: None,
+        };
+    }
+    let grid = team::TeamGrid::new(&scenario.world, robot, cell, referee);
     let validation = match (&outcome.agents, &grid) {
         (None, _) => None,
         (Some(_), None) => Some(ValidationError {

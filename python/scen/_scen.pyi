@@ -118,7 +118,7 @@ class PlanResult:
     """(N, 4) x, y, theta, t for a time-aware plan."""
     segments: Optional[List[Tuple[str, float]]]
     agents: Optional[Dict[str, npt.NDArray[np.float64]]]
-    """A team plan's agents: name -> (N, 2) x, y, one row per step."""
+    """A team plan's agents: name -> (N, 2) x, y, one row per step; (N, 4) x, y, theta, t for `prioritized`."""
     collision: Optional[Dict[str, Any]]
     """segment, at (x, y, theta), obstacle, reason; None when valid."""
     def to_svg(self) -> str:

@@ -67,14 +67,21 @@ pub fn paths_csv(report: &RunReport) -> Option<String> {
             .get(plan.robot)
             .and_then(|r| r.team.as_ref());
         if let (Some(team), Some(paths)) = (team, &run.outcome.agents) {
-            for (agent, path) in team.iter().zip(paths) {
+            let times = run.outcome.agent_times.as_deref();
+            for (k, (agent, path)) in team.iter().zip(paths).enumerate() {
+                // The step, or a continuous team's time.
+                let t = |i: usize| {
+                    times
+                        .and_then(|t| t.get(k)?.get(i).copied())
+                        .unwrap_or(i as f64)
+                };
                 rows += lines(
                     &mut s,
                     &name,
                     &quoted(&format!("agent {}", agent.name)),
                     path.iter()
                         .enumerate()
-                        .map(|(k, p)| (Some(k as f64), Config::new(p.x, p.y, 0.0))),
+                        .map(|(i, p)| (Some(t(i)), Config::new(p.x, p.y, 0.0))),
                 );
             }
         }

@@ -83,9 +83,12 @@ pub fn duration(report: &RunReport) -> Option<f64> {
         if let Some(drive) = &run.drive {
             take(drive.samples.last().map_or(0.0, |s| s.0));
         }
-        // A team moves a step a second (SPEC 2.10).
+        // A team under grid semantics moves a step a second (SPEC 2.10).
         if let Some(paths) = &run.outcome.agents {
-            take(super::svg::team_end(paths));
+            take(super::svg::team_end(
+                paths,
+                run.outcome.agent_times.as_deref(),
+            ));
         }
     }
     end

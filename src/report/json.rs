@@ -88,16 +88,37 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     // A team's plan (SPEC 2.10): each agent's path, one point per step,
     // instead of one robot's path (`null` when none was found).
     if let Some(team) = robot.and_then(|r| r.team.as_ref()) {
+        // Under grid semantics a point per step; a continuous team's
+        // agents (`prioritized`) have trajectories `[x, y, θ, t]`.
+        let times = run.outcome.agent_times.as_deref();
         let agents = match &run.outcome.agents {
             Some(paths) => Value::Array(
                 team.iter()
                     .zip(paths)
-                    .map(|(a, path)| {
-                        let points: Vec<Value> = path
-                            .iter()
-                            .map(|p| serde_json::json!([float_json(p.x), float_json(p.y)]))
-                            .collect();
-                        serde_json::json!({"name": a.name, "path": points})
+                    .enumerate()
+                    .map(|(k, (a, path))| match times.and_then(|t| t.get(k)) {
+                        Some(t) => {
+                            let points: Vec<Value> = path
+                                .iter()
+                                .zip(t)
+                                .map(|(p, &t)| {
+                                    serde_json::json!([
+                                        float_json(p.x),
+                                        float_json(p.y),
+                                        0.0,
+                                        float_json(t)
+                                    ])
+                                })
+                                .collect();
+                            serde_json::json!({"name": a.name, "trajectory": points})
+                        }
+                        None => {
+                            let points: Vec<Value> = path
+                                .iter()
+                                .map(|p| serde_json::json!([float_json(p.x), float_json(p.y)]))
+                                .collect();
+                            serde_json::json!({"name": a.name, "path": points})
+                        }
                     })
                     .collect(),
             ),

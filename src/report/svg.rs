@@ -1044,25 +1044,48 @@ fn draw_robot_at(
     svg.push_str("</g>\n");
 }
 
-/// When a team's last agent arrives, in seconds: one step a second.
-pub(crate) fn team_end(paths: &[Vec<Point>]) -> f64 {
-    paths
-        .iter()
-        .map(|p| p.len().saturating_sub(1))
-        .max()
-        .unwrap_or(0) as f64
+/// When a team's last agent arrives, in seconds: a continuous team's last
+/// time, else a step a second.
+pub(crate) fn team_end(paths: &[Vec<Point>], times: Option<&[Vec<f64>]>) -> f64 {
+    match times {
+        Some(times) => times
+            .iter()
+            .filter_map(|t| t.last().copied())
+            .fold(0.0, f64::max),
+        None => paths
+            .iter()
+            .map(|p| p.len().saturating_sub(1))
+            .max()
+            .unwrap_or(0) as f64,
+    }
 }
 
-/// Where an agent is at `t` seconds, a step a second: between its points,
-/// at its last point after its path ends.
-fn agent_at(path: &[Point], t: f64) -> Option<Point> {
+/// Where an agent is at `t` seconds (a step a second without `times`):
+/// between its points, at its last point after its path ends.
+fn agent_at(path: &[Point], times: Option<&[f64]>, t: f64) -> Option<Point> {
     let last = path.len().checked_sub(1)?;
     let t = t.max(0.0);
-    let k = (t.floor() as usize).min(last);
+    let (k, f) = match times.filter(|ts| ts.len() == path.len()) {
+        Some(ts) => {
+            let k = ts.partition_point(|&s| s <= t).saturating_sub(1).min(last);
+            let span = ts.get(k + 1).map_or(0.0, |&next| next - ts[k]);
+            (
+                k,
+                if span > 0.0 {
+                    ((t - ts[k]) / span).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                },
+            )
+        }
+        None => {
+            let k = (t.floor() as usize).min(last);
+            (k, t - k as f64)
+        }
+    };
     if k == last {
         return Some(path[last]);
     }
-    let f = t - k as f64;
     Some(path[k] + (path[k + 1] - path[k]) * f)
 }
 
@@ -1132,8 +1155,9 @@ fn draw_team(
         }
     }
     if let (Some(t), Some(paths)) = (at, paths) {
+        let times = run.outcome.agent_times.as_deref();
         for (k, path) in paths.iter().enumerate() {
-            if let Some(p) = agent_at(path, t) {
+            if let Some(p) = agent_at(path, times.and_then(|ts| ts.get(k)).map(Vec::as_slice), t) {
                 let colour = hex(agent_colour(k));
                 start_marker(svg, view.x(p.x), view.y(p.y), &colour);
             }

@@ -289,7 +289,7 @@ fn log_plan(
             .and_then(|r| r.team.as_ref()),
         &run.outcome.agents,
     ) {
-        return log_team(rec, name, team, paths);
+        return log_team(rec, name, team, paths, run.outcome.agent_times.as_deref());
     }
     let trajectory = &run.outcome.trajectory;
     if trajectory.len() > 1 {
@@ -366,12 +366,14 @@ pub(crate) const TEAM_POSITIONS: usize = 50_000;
 
 /// A team plan (SPEC 2.10): each agent's path, static, and the agent at
 /// each step (every `stride`-th step and the last when the team would send
-/// more than [`TEAM_POSITIONS`] positions).
+/// more than [`TEAM_POSITIONS`] positions); a continuous team's agents at
+/// their points' times on timeline `time`.
 fn log_team(
     rec: &RecordingStream,
     name: &str,
     team: &[crate::contract::Agent],
     paths: &[Vec<Point>],
+    times: Option<&[Vec<f64>]>,
 ) -> RecordingStreamResult<()> {
     let steps = paths.iter().map(Vec::len).max().unwrap_or(0);
     let stride = (team.len() * steps).div_ceil(TEAM_POSITIONS).max(1);
@@ -390,10 +392,15 @@ fn log_team(
             .step_by(stride)
             .chain((!last.is_multiple_of(stride)).then_some(last));
         for step in shown {
-            let Some(&p) = path.get(step.min(path.len().saturating_sub(1))) else {
+            let k_at = step.min(path.len().saturating_sub(1));
+            let Some(&p) = path.get(k_at) else {
                 continue;
             };
-            rec.set_time_sequence("step", step as i64);
+            match times.and_then(|t| t.get(k)) {
+                Some(t) if step < path.len() => rec.set_duration_secs("time", t[k_at]),
+                Some(_) => continue,
+                None => rec.set_time_sequence("step", step as i64),
+            }
             rec.log(
                 at.clone(),
                 &Points2D::new([[p.x as f32, p.y as f32]])

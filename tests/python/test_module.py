@@ -181,7 +181,8 @@ def test_run_is_scen_run_json_to_the_bit(path):
             assert r.path is None
             assert r.found == (plan["agents"] is not None)
             for agent in plan["agents"] or []:
-                expected_path = np.array(agent["path"], dtype=np.float64)
+                rows = agent["path"] if "path" in agent else agent["trajectory"]
+                expected_path = np.array(rows, dtype=np.float64)
                 assert np.array_equal(r.agents[agent["name"]], expected_path)
         else:
             assert r.agents is None

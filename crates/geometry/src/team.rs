@@ -11,6 +11,7 @@
 
 use std::collections::{HashMap, VecDeque};
 
+use crate::timed::{After, MovingObstacle, MovingShape, Timed, Waypoint, validate_trajectory};
 use crate::validator::{DEFAULT_TOLERANCE, ValidationError, Validator};
 use crate::{Config, Point, RobotShape, World};
 
@@ -362,6 +363,118 @@ pub fn validate_team(
         }
     }
     Ok(paths.iter().map(|p| agent_cost(p)).collect())
+}
+
+/// Agent `name` moving along `points` at `times`, then staying there for
+/// good, as a moving obstacle of `radius` (continuous teams, SPEC 2.10):
+/// what each agent is to the others, for the planner and the referee.
+pub fn agent_obstacle(name: &str, radius: f64, points: &[Point], times: &[f64]) -> MovingObstacle {
+    let mut route: Vec<Waypoint> = Vec::with_capacity(points.len());
+    for (&at, &t) in points.iter().zip(times) {
+        match route.last_mut() {
+            // Times strictly increase on a route; at a repeated time the
+            // later point holds.
+            Some(last) if t <= last.t => last.at = at,
+            _ => route.push(Waypoint { t, at }),
+        }
+    }
+    MovingObstacle {
+        name: format!("agent {name}"),
+        shape: MovingShape::Disk(radius),
+        route,
+        after: After::Stay,
+    }
+}
+
+/// Judges a team's trajectories in continuous time (SPEC 2.10): each
+/// agent's trajectory (`points` with `times`) from its start to its goal
+/// (within 1e-9), valid in space-time against the world, its moving
+/// obstacles and every other agent as a moving obstacle (a disk of
+/// `radius` on its trajectory, parked at its goal after it). `Ok` gives
+/// each agent's arrival.
+#[allow(clippy::too_many_arguments)]
+pub fn validate_continuous_team(
+    world: &World,
+    moving: &[MovingObstacle],
+    robot: &RobotShape,
+    speed: f64,
+    names: &[&str],
+    ends: &[(Point, Point)],
+    points: &[Vec<Point>],
+    times: &[Vec<f64>],
+) -> Result<Vec<f64>, TeamError> {
+    let err = |agent: usize, at: Point, reason: String| {
+        Err(TeamError {
+            step: 0,
+            agent,
+            other: None,
+            at,
+            reason,
+        })
+    };
+    if points.len() != ends.len() || times.len() != ends.len() {
+        return err(
+            0,
+            Point::origin(),
+            format!("{} trajectories for {} agents", points.len(), ends.len()),
+        );
+    }
+    let radius = robot.radius();
+    let others: Vec<MovingObstacle> = (0..ends.len())
+        .map(|j| {
+            agent_obstacle(
+                names.get(j).copied().unwrap_or("?"),
+                radius,
+                &points[j],
+                &times[j],
+            )
+        })
+        .collect();
+    let mut arrivals = Vec::with_capacity(ends.len());
+    for (i, &(start, goal)) in ends.iter().enumerate() {
+        let (p, t) = (&points[i], &times[i]);
+        let (Some(&first), Some(&last)) = (p.first(), p.last()) else {
+            return err(i, start, "an empty trajectory".into());
+        };
+        if p.len() != t.len() {
+            return err(i, first, "a trajectory needs one time per point".into());
+        }
+        if (first - start).norm() > 1e-9 || (last - goal).norm() > 1e-9 {
+            return err(i, first, "a trajectory from its start to its goal".into());
+        }
+        let mut among: Vec<MovingObstacle> = moving.to_vec();
+        among.extend(
+            others
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, o)| o.clone()),
+        );
+        let trajectory: Vec<Timed> = p
+            .iter()
+            .zip(t)
+            .map(|(q, &t)| Timed {
+                pose: Config::new(q.x, q.y, 0.0),
+                t,
+            })
+            .collect();
+        if let Err(e) = validate_trajectory(world, &among, robot, speed, &trajectory) {
+            let other = e
+                .obstacle
+                .as_deref()
+                .and_then(|o| o.strip_prefix("agent "))
+                .and_then(|o| names.iter().position(|n| *n == o));
+            return Err(TeamError {
+                step: e.segment,
+                agent: i,
+                other,
+                at: e.at.xy(),
+                reason: e.reason,
+            });
+        }
+        arrivals.push(*t.last().unwrap_or(&0.0));
+    }
+    Ok(arrivals)
 }
 
 #[cfg(test)]

@@ -922,6 +922,7 @@ impl PlanResult {
                     let name = a.get("name").and_then(Value::as_str).unwrap_or("");
                     let path = a
                         .get("path")
+                        .or_else(|| a.get("trajectory"))
                         .and_then(|v| json_matrix(py, v))
                         .map_or_else(|| py.None(), Bound::unbind);
                     d.set_item(name, path)?;

@@ -94,7 +94,7 @@ syn match   scenBadPlanner contained /\h\w*/ nextgroup=scenRobotRef skipwhite
 " BEGIN GENERATED planners (scripts/regenerate.sh; do not edit)
 syn keyword scenPlanner contained astar online roadmap potential coverage rrt nextgroup=scenRobotRef skipwhite
 syn keyword scenPlanner contained rrt_connect rrt_star prm prm_star steer hybrid_astar nextgroup=scenRobotRef skipwhite
-syn keyword scenPlanner contained bug sipp cbs lacam nextgroup=scenRobotRef skipwhite
+syn keyword scenPlanner contained bug sipp cbs lacam prioritized nextgroup=scenRobotRef skipwhite
 " END GENERATED planners
 syn match   scenRobotRef contained /\h\w*/
 " bench NAME { ... }: the block (after comments, other words, on later lines
@@ -141,8 +141,8 @@ syn keyword scenWorldKeyword contained moving nextgroup=scenObstacleName skipwhi
 syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic
 syn keyword scenParamKey contained rotate strategy sense arc_segments attract repulse influence step tolerance escape
 syn keyword scenParamKey contained jump on tool weights range goal_bias sampler stop simplify rewire informed neighbors
-syn keyword scenParamKey contained reverse_cost switch_cost analytic variant follow refine dt max_speed max_turn_rate
-syn keyword scenParamKey contained gain turn_gain reach align lookahead speed max_curvature
+syn keyword scenParamKey contained reverse_cost switch_cost analytic variant follow refine order dt max_speed
+syn keyword scenParamKey contained max_turn_rate gain turn_gain reach align lookahead speed max_curvature
 " A key that is a word value too is two matches, not keywords (a keyword would
 " win everywhere): the word's, defined later, wins after the keys it follows.
 syn match   scenParamKey contained /\<limit\>/
@@ -151,7 +151,7 @@ syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
 syn keyword scenWord contained unicycle pure_pursuit center corner auto euclid l1 lattice metric zero yes no backtrack
 syn keyword scenWord contained shortcut replan dstar_lite none random_walk sum gaussian bridge first smooth bug1 bug2
-syn keyword scenWord contained tangent left right inf
+syn keyword scenWord contained tangent left right inf given shortest_first random
 syn match   scenWord contained /\<\%(max\|uniform\)\>(\@!/
 syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " END GENERATED parameters
@@ -194,7 +194,7 @@ syn match   scenMetric contained /\.\@1<=\%(graph_edges\|minima\|escapes\|covera
 syn match   scenMetric contained /\.\@1<=\%(revisits\|returns_to_start\|uncovered\|tree_edges\|tree_weight\)\>/
 syn match   scenMetric contained /\.\@1<=\%(iterations\|graph_states\|collision_checks\|first_iteration\|first_cost\)\>/
 syn match   scenMetric contained /\.\@1<=\%(raw_length\|raw_nodes\|simplify_ms\|analytic_tries\|hits\|intervals\)\>/
-syn match   scenMetric contained /\.\@1<=\%(high_level\|low_level\|sum_of_loss\|exhausted\|configurations\)\>/
+syn match   scenMetric contained /\.\@1<=\%(high_level\|low_level\|sum_of_loss\|exhausted\|configurations\|planned\)\>/
 syn match   scenMetric contained /\.\@1<=\%(drive_time\|drive_max_deviation\|drive_collision_free\)\>/
 " END GENERATED metrics
 syn match   scenMidRef contained /\h\w*\ze\.\h/ nextgroup=scenLastAccessor

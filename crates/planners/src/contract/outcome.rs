@@ -64,6 +64,10 @@ pub struct PlanOutcome {
     /// A team planner's paths (SPEC 2.10), one per agent in the team's
     /// order, one lattice point per step; `None` when it found none.
     pub agents: Option<Vec<Vec<crate::geometry::Point>>>,
+    /// A continuous team planner's times (SPEC 2.10: `prioritized`): for
+    /// each agent, the time of each point of its path; `None` under grid
+    /// semantics (a point per step).
+    pub agent_times: Option<Vec<Vec<f64>>>,
 }
 
 /// The measures of a motion too long to return in full (SPEC 3.4: a

@@ -82,7 +82,11 @@ impl Planner {
         } else {
             &[]
         };
-        let time: &'static [MetricSpec] = if self.time { TIME_METRICS } else { &[] };
+        let time: &'static [MetricSpec] = if self.time && !self.plans_teams() {
+            TIME_METRICS
+        } else {
+            &[]
+        };
         common.iter().chain(car).chain(time).chain(own.iter())
     }
 

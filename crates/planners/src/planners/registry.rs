@@ -79,6 +79,7 @@ planners! {
     #[path = "sipp.rs"] sipp::PLANNER,
     #[path = "cbs.rs"] cbs::PLANNER,
     #[path = "lacam.rs"] lacam::PLANNER,
+    #[path = "prioritized.rs"] prioritized::PLANNER,
 }
 
 /// The planner of a kind.

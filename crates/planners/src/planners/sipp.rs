@@ -43,15 +43,7 @@ pub static PLANNER: Planner = Planner {
     kind: "sipp",
     summary: "safe-interval path planning among moving obstacles: the earliest arrival on the lattice",
     robots: &[RobotKind::Point, RobotKind::Disk],
-    params: &[
-        LATTICE_PARAMS[0],
-        ParamSpec::new(
-            "connect",
-            ValueSpec::IntChoice(&[4, 8]),
-            num(8.0, "8"),
-            "lattice neighbours: 4 or 8",
-        ),
-    ],
+    params: &[LATTICE_PARAMS[0], CONNECT],
     metrics: &[
         MetricSpec::num("cells", "lattice points"),
         MetricSpec::num("free_cells", "lattice points where the robot is free of the static obstacles"),
@@ -68,6 +60,15 @@ pub static PLANNER: Planner = Planner {
     time: true,
     check,
 };
+
+/// `connect`: the lattice's neighbours (also `prioritized`'s, which plans
+/// each agent with `sipp`).
+pub const CONNECT: ParamSpec = ParamSpec::new(
+    "connect",
+    ValueSpec::IntChoice(&[4, 8]),
+    num(8.0, "8"),
+    "lattice neighbours: 4 or 8",
+);
 
 /// A `sipp` plan's settings.
 #[derive(Clone, Debug)]
@@ -247,6 +248,13 @@ pub fn plan(task: &Task<'_>, settings: &Sipp) -> PlanOutcome {
         let mut path = Vec::with_capacity(points.len());
         let mut times = Vec::with_capacity(points.len());
         for (p, t) in points {
+            // A wait of no time (leaving a point the instant it is
+            // reached) is no point of the trajectory: its times increase.
+            if path.last().is_some_and(|q: &Config| q.xy() == p)
+                && times.last().is_some_and(|&s: &f64| s >= t)
+            {
+                continue;
+            }
             path.push(Config::new(p.x, p.y, start.theta));
             times.push(t);
         }
@@ -262,14 +270,15 @@ pub fn plan(task: &Task<'_>, settings: &Sipp) -> PlanOutcome {
 }
 
 /// Times nudged up by a few units in the last place where rounding made a
-/// move's duration shorter than its length at full `speed`: a move of
+/// move's duration shorter than its length at full `speed`, or a wait's
+/// end no later than its start (after its move was nudged): a move of
 /// 5e-9 units at t = 17 s lasts 17.000000005 − 17 in floating point, up
 /// to 1e-6 short of 5e-9 s relatively, which the validator reads as a
 /// speeding robot.
 fn no_faster_than(path: &[Config], times: &mut [f64], speed: f64) {
     for k in 1..times.len().min(path.len()) {
         let length = (path[k].xy() - path[k - 1].xy()).norm();
-        while (times[k] - times[k - 1]) * speed < length {
+        while times[k] <= times[k - 1] || (times[k] - times[k - 1]) * speed < length {
             times[k] = times[k].next_up();
         }
     }
