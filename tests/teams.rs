@@ -276,6 +276,8 @@ fn a_team_is_drawn_listed_and_animated() {
     assert_eq!(strokes.len(), 2, "one colour per agent: {strokes:?}");
     assert!(svg.contains(">west</text>") && svg.contains(">east</text>"));
     assert!(svg.contains("2 agents, one colour each, sum of costs 11"));
+    // CBS's resolved conflicts, keyed in the legend.
+    assert!(svg.contains("conflicts resolved"));
     let csv = std::fs::read_to_string(dir.path().join("t.csv")).expect("the CSV");
     // 7 positions of `west` (cost 6) and 6 of `east` (cost 5), steps as t.
     assert_eq!(

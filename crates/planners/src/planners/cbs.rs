@@ -17,6 +17,9 @@
 //! can stop it: the rest of the path is its shortest way to the goal, so
 //! the search space is finite and an agent with no way is known at once.
 //!
+//! With pictures on, the places of the conflicts the tree resolved are a
+//! layer `conflicts` (an edge conflict at the middle of its edge).
+//!
 //! CBS does not know when a team has no solution (two agents swapping in a
 //! corridor without a bay): it searches until a limit, or until its tree
 //! outgrows [`MAX_STORED`]; `lacam` says when none exists.
@@ -26,6 +29,7 @@ use std::cmp::{Ordering, Reverse};
 use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::sync::Arc;
 
+use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
 use crate::contract::schema::{MetricSpec, RobotKind};
 use crate::contract::{MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Task};
 use crate::planners::deadline::Deadline;
@@ -75,6 +79,9 @@ impl Settings for Cbs {
 /// all (about 2 GiB): a team CBS cannot solve within it is given up with a
 /// note, not searched until the memory runs out.
 pub const MAX_STORED: usize = 1 << 28;
+
+/// The most resolved conflicts drawn (each place once).
+const MAX_DRAWN_CONFLICTS: usize = 10_000;
 
 /// A constraint on one agent: not on `to` at step `t` (a vertex
 /// constraint, `from` = [`VERTEX`]), or not moving `from` → `to` into step
@@ -354,7 +361,15 @@ pub fn plan(task: &Task<'_>, settings: &Cbs) -> PlanOutcome {
         low_level: 0,
         stored: 0,
     };
-    let found = search(task, settings, &mut budget, &mut out);
+    let mut resolved = Vec::new();
+    let found = search(task, settings, &mut budget, &mut out, &mut resolved);
+    if task.draw && !resolved.is_empty() {
+        out.layers.push(Layer::new(
+            "conflicts",
+            Drawing::Points(resolved),
+            Style::new(Colour::Red, 4.0, 45.0).svg(Svg::fill(0.8).key("conflicts resolved")),
+        ));
+    }
     out.expanded = budget.expanded;
     out.extra.insert(
         "low_level".into(),
@@ -380,7 +395,10 @@ fn search(
     settings: &Cbs,
     budget: &mut Budget<'_>,
     out: &mut PlanOutcome,
+    resolved: &mut Vec<crate::geometry::Point>,
 ) -> Option<(Graph, Vec<Arc<Vec<Node>>>)> {
+    // Where the resolved conflicts were, once each (for the pictures).
+    let mut seen = std::collections::HashSet::new();
     let graph = match Graph::build(task, settings.lattice, budget.deadline) {
         Ok(g) => g,
         Err(note) => {
@@ -434,6 +452,17 @@ fn search(
             let paths = std::mem::take(&mut tree[id].paths);
             return Some((graph, paths));
         };
+        if task.draw && resolved.len() < MAX_DRAWN_CONFLICTS {
+            let (u, v) = match conflict {
+                Conflict::Vertex { v, .. } => (v, v),
+                Conflict::Edge { u, v, .. } => (u.min(v), u.max(v)),
+            };
+            if seen.insert((u, v)) {
+                resolved.push(crate::geometry::Point::from(
+                    (graph.point(u).coords + graph.point(v).coords) / 2.0,
+                ));
+            }
+        }
         let split = match conflict {
             Conflict::Vertex { a, b, v, t } => [
                 Constraint { agent: a, from: VERTEX, to: v, t },
