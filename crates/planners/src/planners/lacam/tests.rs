@@ -23,12 +23,19 @@ fn random_case(seed: u64, n: usize) -> (World, Vec<Agent>) {
 }
 
 fn run(world: &World, agents: &[Agent], refine: bool, seed: u64) -> PlanOutcome {
+    // Odd seeds keep the best of ten PIBT runs per successor.
+    let pibt_runs = if seed % 2 == 1 { 10 } else { 1 };
     let limits = Limits {
         expansions: Some(2_000_000),
         ..Limits::default()
     };
     let lattice = LatticeSpec::new(world, 1.0, Sample::Center, 1.0);
-    plan(&team_task(world, agents, limits, seed), &Lacam { lattice, refine })
+    let settings = Lacam {
+        lattice,
+        refine,
+        pibt_runs,
+    };
+    plan(&team_task(world, agents, limits, seed), &settings)
 }
 
 /// The least sum of loss over the joint configurations (Dijkstra), or
