@@ -198,6 +198,7 @@ plan bound cbs T50 { limit expansions 1 }
 plan thirty cbs T30 { limit time 60s }
 plan fifty lacam T50 { limit time 60s }
 plan many lacam T400 { limit time 60s }
+plan optimal cbs T50 { limit time 60s }
 "#;
     let file = dir.path().join("r.scen");
     std::fs::write(&file, text).expect("write the scenario");
@@ -226,6 +227,11 @@ plan many lacam T400 { limit time 60s }
         assert!(metric(plan, "sum_of_costs") >= metric(plan, "sum_of_loss"));
     }
     assert_eq!(metric(3, "agents"), 400.0);
+    // CBS's optimum for the 50 rows: 1118, the sum of costs LaCAM3's
+    // LaCAM* converges to on the same instance (../shared/peers/lacam3.md).
+    assert_eq!(metric(4, "found"), 1.0);
+    assert_eq!(metric(4, "collision_free"), 1.0);
+    assert_eq!(metric(4, "sum_of_costs"), 1118.0);
 }
 
 #[test]

@@ -104,8 +104,8 @@ struct CtNode {
     conflicts: usize,
 }
 
-/// The first conflict of a set of paths.
-#[derive(Debug)]
+/// A conflict between two agents' paths.
+#[derive(Clone, Copy, Debug)]
 enum Conflict {
     Vertex { a: u32, b: u32, v: Node, t: u32 },
     Edge { a: u32, b: u32, u: Node, v: Node, t: u32 },
@@ -115,11 +115,11 @@ fn at(path: &[Node], t: usize) -> Node {
     path[t.min(path.len() - 1)]
 }
 
-/// The earliest conflict, and how many pairs conflict at all (the tree's
-/// tie-break).
-fn conflicts(paths: &[Arc<Vec<Node>>]) -> (Option<Conflict>, usize) {
+/// The earliest `keep` conflicts, in time order, and how many pairs
+/// conflict at all (the tree's tie-break).
+fn conflicts(paths: &[Arc<Vec<Node>>], keep: usize) -> (Vec<Conflict>, usize) {
     let horizon = paths.iter().map(|p| p.len()).max().unwrap_or(0);
-    let mut first = None;
+    let mut first = Vec::new();
     let mut count = 0;
     let mut here: HashMap<Node, u32> = HashMap::with_capacity(paths.len());
     let mut before: HashMap<Node, u32> = HashMap::with_capacity(paths.len());
@@ -130,12 +130,14 @@ fn conflicts(paths: &[Arc<Vec<Node>>]) -> (Option<Conflict>, usize) {
             let v = at(p, t);
             if let Some(&b) = here.get(&v) {
                 count += 1;
-                first.get_or_insert(Conflict::Vertex {
-                    a: b,
-                    b: a as u32,
-                    v,
-                    t: t as u32,
-                });
+                if first.len() < keep {
+                    first.push(Conflict::Vertex {
+                        a: b,
+                        b: a as u32,
+                        v,
+                        t: t as u32,
+                    });
+                }
             } else {
                 here.insert(v, a as u32);
             }
@@ -153,17 +155,111 @@ fn conflicts(paths: &[Arc<Vec<Node>>]) -> (Option<Conflict>, usize) {
                 && at(&paths[b as usize], t) == u
             {
                 count += 1;
-                first.get_or_insert(Conflict::Edge {
-                    a: a as u32,
-                    b,
-                    u,
-                    v,
-                    t: t as u32,
-                });
+                if first.len() < keep {
+                    first.push(Conflict::Edge {
+                        a: a as u32,
+                        b,
+                        u,
+                        v,
+                        t: t as u32,
+                    });
+                }
             }
         }
     }
     (first, count)
+}
+
+/// The most conflicts of a node classified before one is chosen.
+const CLASSIFIED: usize = 32;
+
+/// The conflict to split on (Boyarski et al. 2015, "ICBS"): a cardinal one
+/// (both children cost more: every shortest path of each agent under its
+/// constraints is where the conflict is), else a semi-cardinal one, else
+/// the earliest. Splitting on a cardinal conflict raises the tree's lower
+/// bound at once, which keeps the tree small.
+fn choose(graph: &Graph, dists: &[Vec<u32>], node: &CtNode, found: &[Conflict]) -> Option<Conflict> {
+    let first = *found.first()?;
+    if found.len() == 1 {
+        return Some(first);
+    }
+    let mut mdds: HashMap<u32, Vec<Vec<Node>>> = HashMap::new();
+    let mut mdd_of = |agent: u32| -> Vec<Vec<Node>> {
+        mdds.entry(agent)
+            .or_insert_with(|| {
+                let mine: Vec<Constraint> = node
+                    .constraints
+                    .iter()
+                    .copied()
+                    .filter(|c| c.agent == agent)
+                    .collect();
+                let path = &node.paths[agent as usize];
+                mdd(graph, &dists[agent as usize], path[0], *path.last().unwrap_or(&path[0]), path.len() - 1, &mine)
+            })
+            .clone()
+    };
+    // Whether every shortest path of `agent` is at `u` then `v` at `t`
+    // (`u` = `v` for a vertex).
+    let narrow = |levels: &[Vec<Node>], u: Node, v: Node, t: u32| {
+        let level = |k: usize| -> &[Node] { levels.get(k).or(levels.last()).map_or(&[], Vec::as_slice) };
+        let t = t as usize;
+        level(t) == [v] && (u == v || (t > 0 && level(t - 1) == [u]))
+    };
+    let mut semi = None;
+    for &c in found {
+        let (a, b, ua, va, ub, vb, t) = match c {
+            Conflict::Vertex { a, b, v, t } => (a, b, v, v, v, v, t),
+            Conflict::Edge { a, b, u, v, t } => (a, b, u, v, v, u, t),
+        };
+        let ca = narrow(&mdd_of(a), ua, va, t);
+        let cb = narrow(&mdd_of(b), ub, vb, t);
+        if ca && cb {
+            return Some(c);
+        }
+        if (ca || cb) && semi.is_none() {
+            semi = Some(c);
+        }
+    }
+    Some(semi.unwrap_or(first))
+}
+
+/// The multi-valued decision diagram of an agent's shortest paths of
+/// `cost` steps under its constraints: for each step, the nodes some such
+/// path is at (Sharon et al. 2013), sorted.
+fn mdd(graph: &Graph, dist: &[u32], start: Node, goal: Node, cost: usize, mine: &[Constraint]) -> Vec<Vec<Node>> {
+    let vertex = |v: Node, t: usize| mine.iter().any(|c| c.from == VERTEX && c.to == v && c.t as usize == t);
+    let edge = |u: Node, v: Node, t: usize| mine.iter().any(|c| c.from == u && c.to == v && c.t as usize == t);
+    let mut layers: Vec<Vec<Node>> = vec![vec![start]];
+    for t in 1..=cost {
+        let mut next: Vec<Node> = Vec::new();
+        for &v in &layers[t - 1] {
+            for w in graph.neighbours(v).chain(std::iter::once(v)) {
+                if (dist[w as usize] as usize) <= cost - t && !vertex(w, t) && (w == v || !edge(v, w, t)) {
+                    next.push(w);
+                }
+            }
+        }
+        next.sort_unstable();
+        next.dedup();
+        layers.push(next);
+    }
+    // Backwards from the goal at `cost`: the nodes that lead there.
+    let mut keep: Vec<Vec<Node>> = vec![Vec::new(); cost + 1];
+    keep[cost] = layers[cost].iter().copied().filter(|&v| v == goal).collect();
+    for t in (0..cost).rev() {
+        let after = std::mem::take(&mut keep[t + 1]);
+        keep[t] = layers[t]
+            .iter()
+            .copied()
+            .filter(|&v| {
+                after.iter().any(|&w| {
+                    w == v || (graph.neighbours(v).any(|x| x == w) && !edge(v, w, t + 1))
+                })
+            })
+            .collect();
+        keep[t + 1] = after;
+    }
+    keep
 }
 
 /// The sum of costs: each path's length minus one (paths end at their last
@@ -431,7 +527,7 @@ fn search(
             Low::Stopped => return stopped(out),
         }
     }
-    let (_, count) = conflicts(&paths);
+    let (_, count) = conflicts(&paths, 0);
     let mut tree = vec![CtNode {
         constraints: Arc::new(Vec::new()),
         cost: cost_of(&paths),
@@ -447,8 +543,8 @@ fn search(
         high += 1;
         out.extra
             .insert("high_level".into(), MetricValue::Num(high as f64));
-        let (conflict, _) = conflicts(&tree[id].paths);
-        let Some(conflict) = conflict else {
+        let (found, _) = conflicts(&tree[id].paths, CLASSIFIED);
+        let Some(conflict) = choose(&graph, &dists, &tree[id], &found) else {
             let paths = std::mem::take(&mut tree[id].paths);
             return Some((graph, paths));
         };
@@ -502,7 +598,7 @@ fn search(
             budget.stored += constraints.len() + path.len();
             let mut paths = tree[id].paths.clone();
             paths[agent] = Arc::new(path);
-            let (_, count) = conflicts(&paths);
+            let (_, count) = conflicts(&paths, 0);
             let node = CtNode {
                 cost: cost_of(&paths),
                 constraints: Arc::new(constraints),
