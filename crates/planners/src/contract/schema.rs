@@ -595,7 +595,7 @@ pub const TEAM_METRICS: &[MetricSpec] = &[
     ),
     MetricSpec::num(
         "soc_lower_bound",
-        "the sum of each agent's own shortest cost, by breadth-first search on the referee's lattice (+∞ when some agent cannot reach its goal)",
+        "the sum of each agent's own shortest cost, by breadth-first search on the referee's lattice (+∞ when some agent cannot reach its goal; no value beyond 2^30 cells × agents); a continuous team's: straight lines at full speed",
     ),
     MetricSpec::num(
         "expanded",

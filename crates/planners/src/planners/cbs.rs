@@ -504,6 +504,11 @@ fn search(
         }
     };
     let n = task.agents.len();
+    if let Some(note) = crate::planners::mapf::too_many_distances(&graph, n) {
+        out.gave_up = true;
+        out.notes.push(note);
+        return None;
+    }
     let dists: Vec<Vec<u32>> = graph.goals.iter().map(|&g| graph.distances_to(g)).collect();
     for (a, agent) in task.agents.iter().enumerate() {
         if dists[a][graph.starts[a] as usize] == u32::MAX {

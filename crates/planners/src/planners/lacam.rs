@@ -444,6 +444,11 @@ fn search(
 ) {
     let n = task.agents.len();
     let cells = graph.adj.len();
+    if let Some(note) = crate::planners::mapf::too_many_distances(graph, n) {
+        out.gave_up = true;
+        out.notes.push(note);
+        return;
+    }
     let mut s = Search {
         graph,
         dist: Distances::new(graph),

@@ -83,6 +83,23 @@ fn nearest(spec: &LatticeSpec, p: Point) -> usize {
     )
 }
 
+/// The most distances (4 bytes each) a team's tables of distances to the
+/// goals may hold: 4 GiB.
+pub const MAX_DISTANCES: usize = 1 << 30;
+
+/// A note when `agents` tables of distances over `graph` would pass
+/// [`MAX_DISTANCES`]: such a team is given up before its tables exhaust
+/// the memory.
+pub fn too_many_distances(graph: &Graph, agents: usize) -> Option<String> {
+    let cells = graph.adj.len();
+    (cells.saturating_mul(agents) > MAX_DISTANCES).then(|| {
+        format!(
+            "{agents} agents on {cells} lattice points would need {:.1} GiB of distance tables (at most 4 GiB): use fewer agents or a coarser `cell`",
+            (cells as f64) * (agents as f64) * 4.0 / f64::from(1u32 << 30)
+        )
+    })
+}
+
 /// The team's graph: each free node's 4-neighbours it may move to.
 pub struct Graph {
     pub spec: LatticeSpec,
@@ -270,5 +287,32 @@ pub(crate) mod cases {
             speed: None,
             agents,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contract::Limits;
+    use crate::planners::deadline::Deadline;
+    use crate::planners::lattice::{LatticeSpec, Sample};
+
+    /// A team whose distance tables would pass 4 GiB is refused up front:
+    /// as many agents as the budget holds on a lattice pass, one more not.
+    #[test]
+    fn distance_tables_have_a_budget() {
+        let (world, agents) = cases::random_team(1, 2, 4, 1, 1000);
+        let task = cases::team_task(&world, &agents, Limits::default(), 0);
+        let graph = Graph::build(
+            &task,
+            LatticeSpec::new(&world, 1.0, Sample::Center, 1.0),
+            &Deadline::never(),
+        )
+        .expect("a graph");
+        assert!(too_many_distances(&graph, 2).is_none());
+        assert!(too_many_distances(&graph, MAX_DISTANCES / graph.adj.len()).is_none());
+        let note =
+            too_many_distances(&graph, MAX_DISTANCES / graph.adj.len() + 1).expect("refused");
+        assert!(note.contains("distance tables"), "{note}");
     }
 }
