@@ -283,18 +283,13 @@ pub(crate) fn run_task(scenario: &Scenario, index: usize, plan: &Plan, task: &Ta
     let began = Instant::now();
     let outcome = plan.settings.plan(&task);
     let time_ms = began.elapsed().as_secs_f64() * 1e3;
-    if plan.planner.plans_teams() {
-        return judge_team(
-            scenario,
-            index,
-            plan,
-            &task,
-            outcome,
-            time_ms,
-            lent.validator(),
-        );
-    }
-    judge(
+    // A team's paths are judged as a team's (SPEC 2.10).
+    let judged = if plan.planner.plans_teams() {
+        judge_team
+    } else {
+        judge
+    };
+    judged(
         scenario,
         index,
         plan,

@@ -70,31 +70,9 @@ fn a_cars_trees_and_search_are_drawn_along_its_curves() {
 #[cfg(feature = "viewer")]
 #[test]
 fn the_recording_of_cars_has_curved_trees_the_search_and_the_body() {
-    use std::process::Command;
-    let Some(rerun) = common::rerun_binary() else {
+    let Some(text) = common::recording_printout("scenarios/car_sampling.scen") else {
         return;
     };
-    let dir = std::env::temp_dir().join(format!("scen-cars-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let rrd = dir.join("cars.rrd");
-    let run = Command::new(env!("CARGO_BIN_EXE_scen"))
-        .args(["run", "scenarios/car_sampling.scen", "--save"])
-        .arg(&rrd)
-        .current_dir(repo())
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let print = Command::new(&rerun)
-        .args(["rrd", "print"])
-        .arg(&rrd)
-        .output()
-        .unwrap();
-    assert!(print.status.success());
-    let text = String::from_utf8_lossy(&print.stdout);
     for entity in [
         "/plans/hybrid/search",
         "/plans/hybrid/robot",
@@ -108,5 +86,4 @@ fn the_recording_of_cars_has_curved_trees_the_search_and_the_body() {
             "`rerun rrd print` does not list {entity}"
         );
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -306,30 +306,9 @@ fn a_team_is_drawn_listed_and_animated() {
 #[cfg(feature = "viewer")]
 #[test]
 fn the_recording_of_a_team_has_an_entity_per_agent() {
-    use std::process::Command;
-    let Some(rerun) = common::rerun_binary() else {
+    let Some(text) = common::recording_printout("scenarios/teams_corridor_swap.scen") else {
         return;
     };
-    let dir = TempDir::new("teams-rrd");
-    let rrd = dir.path().join("t.rrd");
-    let run = Command::new(env!("CARGO_BIN_EXE_scen"))
-        .args(["run", "scenarios/teams_corridor_swap.scen", "--save"])
-        .arg(&rrd)
-        .current_dir(common::repo())
-        .output()
-        .expect("run scen");
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let print = Command::new(&rerun)
-        .args(["rrd", "print"])
-        .arg(&rrd)
-        .output()
-        .expect("rerun");
-    assert!(print.status.success());
-    let text = String::from_utf8_lossy(&print.stdout);
     for (entity, rows) in [
         ("/plans/swap/agents/west", 7),
         // Held at its goal after its last move, to the team's last step.

@@ -49,6 +49,33 @@ pub fn rerun_binary() -> Option<PathBuf> {
     found
 }
 
+/// What `rerun rrd print` lists for the recording of `scen run SCENARIO
+/// --save` (SCENARIO relative to the repository); `None` without the
+/// `rerun` binary (see [`rerun_binary`]).
+pub fn recording_printout(scenario: &str) -> Option<String> {
+    let rerun = rerun_binary()?;
+    let dir = TempDir::new("recording");
+    let rrd = dir.path().join("run.rrd");
+    let run = Command::new(scen_bin())
+        .args(["run", scenario, "--save"])
+        .arg(&rrd)
+        .current_dir(repo())
+        .output()
+        .expect("run scen");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let print = Command::new(&rerun)
+        .args(["rrd", "print"])
+        .arg(&rrd)
+        .output()
+        .expect("run rerun");
+    assert!(print.status.success());
+    Some(String::from_utf8_lossy(&print.stdout).into_owned())
+}
+
 /// The public test data folder `../shared/data/SUB` when it holds every
 /// one of `files`; `None` after saying what is missing, which on CI
 /// (`CI=true`) is a failure.

@@ -107,12 +107,7 @@ impl TeamGrid {
 
     /// The lattice point at `p`, when `p` is one (within 1e-9 of a cell).
     pub fn node(&self, p: Point) -> Option<usize> {
-        let fi = (p.x - self.first.x) / self.cell;
-        let fj = (p.y - self.first.y) / self.cell;
-        let (i, j) = (fi.round(), fj.round());
-        let on = (fi - i).abs() <= 1e-9 && (fj - j).abs() <= 1e-9;
-        (on && i >= 0.0 && j >= 0.0 && (i as usize) < self.nx && (j as usize) < self.ny)
-            .then(|| j as usize * self.nx + i as usize)
+        lattice_index(self.first, self.cell, self.nx, self.ny, p)
     }
 
     pub fn len(&self) -> usize {
@@ -176,6 +171,18 @@ impl TeamGrid {
         }
         dist
     }
+}
+
+/// The index (row by row from `first`) of the point of the `nx` × `ny`
+/// lattice at spacing `cell` that `p` is, within 1e-9 of a cell; `None` off
+/// the lattice. The planners place agents on their lattice by the same rule.
+pub fn lattice_index(first: Point, cell: f64, nx: usize, ny: usize, p: Point) -> Option<usize> {
+    let fi = (p.x - first.x) / cell;
+    let fj = (p.y - first.y) / cell;
+    let (i, j) = (fi.round(), fj.round());
+    let on = (fi - i).abs() <= 1e-9 && (fj - j).abs() <= 1e-9;
+    (on && i >= 0.0 && j >= 0.0 && (i as usize) < nx && (j as usize) < ny)
+        .then(|| j as usize * nx + i as usize)
 }
 
 /// Why a team's paths fail grid semantics: the step, the agent (and the

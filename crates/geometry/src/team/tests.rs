@@ -251,14 +251,16 @@ fn continuous_agents_are_moving_obstacles_of_each_other() {
     let world = world_in(Aabb::from_corners(p(0.0, 0.0), p(10.0, 10.0)), vec![]);
     let disk = RobotShape::Disk(0.3);
     let names = ["a", "b"];
+    let judge = |ends: &[(Point, Point)], points: &[Vec<Point>], times: &[Vec<f64>]| {
+        validate_continuous_team(&world, &[], &disk, 1.0, &names, ends, points, times)
+    };
     let ends = [(p(1.0, 5.0), p(9.0, 5.0)), (p(5.0, 1.0), p(5.0, 9.0))];
     let points = vec![
         pts(&[(1.0, 5.0), (9.0, 5.0)]),
         pts(&[(5.0, 1.0), (5.0, 9.0)]),
     ];
     let at_once = vec![vec![0.0, 8.0], vec![0.0, 8.0]];
-    let e = validate_continuous_team(&world, &[], &disk, 1.0, &names, &ends, &points, &at_once)
-        .unwrap_err();
+    let e = judge(&ends, &points, &at_once).unwrap_err();
     assert_eq!((e.agent, e.other), (0, Some(1)), "{e:?}");
     // b waits 2 s first: a has passed.
     let staggered_points = vec![
@@ -266,44 +268,14 @@ fn continuous_agents_are_moving_obstacles_of_each_other() {
         pts(&[(5.0, 1.0), (5.0, 1.0), (5.0, 9.0)]),
     ];
     let staggered = vec![vec![0.0, 8.0], vec![0.0, 2.0, 10.0]];
-    let arrivals = validate_continuous_team(
-        &world,
-        &[],
-        &disk,
-        1.0,
-        &names,
-        &ends,
-        &staggered_points,
-        &staggered,
-    )
-    .unwrap();
+    let arrivals = judge(&ends, &staggered_points, &staggered).unwrap();
     assert_eq!(arrivals, vec![8.0, 10.0]);
     // b parks at (5, 5), on a's way, before a gets there.
     let ends = [(p(1.0, 5.0), p(9.0, 5.0)), (p(5.0, 1.0), p(5.0, 5.0))];
     let parked = vec![points[0].clone(), pts(&[(5.0, 1.0), (5.0, 5.0)])];
-    let e = validate_continuous_team(
-        &world,
-        &[],
-        &disk,
-        1.0,
-        &names,
-        &ends,
-        &parked,
-        &[vec![0.0, 8.0], vec![0.0, 4.0]],
-    )
-    .unwrap_err();
+    let e = judge(&ends, &parked, &[vec![0.0, 8.0], vec![0.0, 4.0]]).unwrap_err();
     assert_eq!(e.other, Some(1), "{e:?}");
     // Faster than the team's speed.
-    let e = validate_continuous_team(
-        &world,
-        &[],
-        &disk,
-        1.0,
-        &names,
-        &ends,
-        &parked,
-        &[vec![0.0, 4.0], vec![0.0, 4.0]],
-    )
-    .unwrap_err();
+    let e = judge(&ends, &parked, &[vec![0.0, 4.0], vec![0.0, 4.0]]).unwrap_err();
     assert!(e.reason.contains("faster"), "{e:?}");
 }

@@ -67,12 +67,8 @@ pub fn check_mapf_lattice(args: &mut PlanArgs<'_>) -> Option<LatticeSpec> {
 
 /// The lattice point at `p`, when `p` is one (within 1e-9 of a cell).
 pub fn node_at(spec: &LatticeSpec, p: Point) -> Option<usize> {
-    let fi = (p.x - spec.x0) / spec.cell;
-    let fj = (p.y - spec.y0) / spec.cell;
-    let (i, j) = (fi.round(), fj.round());
-    let on = (fi - i).abs() <= 1e-9 && (fj - j).abs() <= 1e-9;
-    (on && i >= 0.0 && j >= 0.0 && (i as usize) < spec.nx && (j as usize) < spec.ny)
-        .then(|| spec.index(i as usize, j as usize))
+    let first = Point::new(spec.x0, spec.y0);
+    crate::geometry::team::lattice_index(first, spec.cell, spec.nx, spec.ny, p)
 }
 
 fn nearest(spec: &LatticeSpec, p: Point) -> usize {
@@ -263,6 +259,49 @@ pub(crate) mod cases {
             })
             .collect();
         (world, agents)
+    }
+
+    /// Every conflict-free joint step of a team at `pos` on the referee's
+    /// grid `g`, the agents of `moving` each waiting or moving to a free
+    /// 4-neighbour, the others staying: no two agents on one point, no two
+    /// swapping (for the joint-space searches the planners are tested
+    /// against).
+    pub fn joint_steps(
+        g: &crate::geometry::team::TeamGrid,
+        pos: &[usize],
+        moving: &[usize],
+    ) -> Vec<Vec<usize>> {
+        let options: Vec<Vec<usize>> = moving
+            .iter()
+            .map(|&a| {
+                std::iter::once(pos[a])
+                    .chain(g.moves_from(pos[a]))
+                    .collect()
+            })
+            .collect();
+        let n = pos.len();
+        let mut steps = Vec::new();
+        let mut choice = vec![0usize; moving.len()];
+        'joint: loop {
+            let mut next = pos.to_vec();
+            for (k, &a) in moving.iter().enumerate() {
+                next[a] = options[k][choice[k]];
+            }
+            let ok = (0..n).all(|a| {
+                (a + 1..n).all(|b| next[a] != next[b] && !(next[a] == pos[b] && next[b] == pos[a]))
+            });
+            if ok {
+                steps.push(next);
+            }
+            for k in 0..moving.len() {
+                choice[k] += 1;
+                if choice[k] < options[k].len() {
+                    continue 'joint;
+                }
+                choice[k] = 0;
+            }
+            return steps;
+        }
     }
 
     /// The task of a point team in `world`.

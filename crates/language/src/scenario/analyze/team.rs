@@ -140,14 +140,7 @@ impl Analyzer {
             return None;
         }
         let n = n as usize;
-        let id = match self.maps.remove(&file.span) {
-            Some(Ok(id)) => id,
-            Some(Err(d)) => {
-                self.error(d);
-                return None;
-            }
-            None => return None,
-        };
+        let id = self.loaded_file(file)?;
         let Some(grid) = world.obstacles.iter().find_map(|o| match &o.shape {
             Shape::Grid(g) => Some(g.clone()),
             _ => None,

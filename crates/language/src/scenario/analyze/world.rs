@@ -345,19 +345,26 @@ impl Analyzer {
         ok.then_some((width, rows.len(), cells))
     }
 
-    /// The grid of a map file, which the loader read (SPEC 2.2: the files a
-    /// scenario reads are read by the loader, inside the root).
-    pub(super) fn movingai_map(&mut self, f: &Spanned<String>) -> Option<(usize, usize, Vec<u8>)> {
-        let id = match self.maps.remove(&f.span) {
-            Some(Ok(id)) => id,
+    /// The file named at `f` (a map, a team's MovingAI scenario), which the
+    /// loader read (SPEC 2.2: the files a scenario reads are read by the
+    /// loader, inside the root): its id, or `None` after reporting why it
+    /// could not be read.
+    pub(super) fn loaded_file(&mut self, f: &Spanned<String>) -> Option<FileId> {
+        match self.maps.remove(&f.span) {
+            Some(Ok(id)) => Some(id),
             Some(Err(d)) => {
                 self.error(d);
-                return None;
+                None
             }
-            // The loader reads every grid's file; a grid it did not see
-            // (none in practice) has nothing to analyse.
-            None => return None,
-        };
+            // The loader reads every such file; one it did not see (none in
+            // practice) has nothing to analyse.
+            None => None,
+        }
+    }
+
+    /// The grid of a map file, which the loader read.
+    pub(super) fn movingai_map(&mut self, f: &Spanned<String>) -> Option<(usize, usize, Vec<u8>)> {
+        let id = self.loaded_file(f)?;
         let text = self.sources.get(id)?.text.clone();
         match parse_movingai(&text) {
             Ok(g) => Some(g),

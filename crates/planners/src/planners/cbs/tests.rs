@@ -9,7 +9,7 @@ use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
 
 use super::*;
-use crate::planners::mapf::cases::{random_team, team_task};
+use crate::planners::mapf::cases::{joint_steps, random_team, team_task};
 use crate::contract::{Agent, Limits};
 use crate::diagnostics::Span;
 use crate::geometry::fixtures::{grid, world_in};
@@ -79,32 +79,8 @@ fn joint_optimum(case: &Case) -> Option<u64> {
         }
         // Every joint step of the agents not stopped.
         let moving: Vec<usize> = (0..n).filter(|&a| done & (1 << a) == 0).collect();
-        let options: Vec<Vec<usize>> = moving
-            .iter()
-            .map(|&a| std::iter::once(pos[a]).chain(g.moves_from(pos[a])).collect())
-            .collect();
-        let mut choice = vec![0usize; moving.len()];
-        'joint: loop {
-            let mut next = pos.clone();
-            for (k, &a) in moving.iter().enumerate() {
-                next[a] = options[k][choice[k]];
-            }
-            let ok = (0..n).all(|a| {
-                (a + 1..n).all(|b| {
-                    next[a] != next[b] && !(next[a] == pos[b] && next[b] == pos[a] && pos[a] != pos[b])
-                })
-            });
-            if ok {
-                push((next, done), d + moving.len() as u64);
-            }
-            for k in 0..moving.len() {
-                choice[k] += 1;
-                if choice[k] < options[k].len() {
-                    continue 'joint;
-                }
-                choice[k] = 0;
-            }
-            break;
+        for next in joint_steps(&g, &pos, &moving) {
+            push((next, done), d + moving.len() as u64);
         }
     }
     None

@@ -10,7 +10,7 @@ use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
 
 use super::*;
-use crate::planners::mapf::cases::{random_team, team_task};
+use crate::planners::mapf::cases::{joint_steps, random_team, team_task};
 use crate::contract::{Agent, Limits};
 use crate::geometry::team::{TeamGrid, validate_team};
 use crate::geometry::validator::Validator;
@@ -54,35 +54,15 @@ fn joint_least_loss(world: &World, agents: &[Agent]) -> Option<u64> {
         if pos == goals {
             return Some(d);
         }
-        let options: Vec<Vec<usize>> = pos
-            .iter()
-            .map(|&v| std::iter::once(v).chain(g.moves_from(v)).collect())
-            .collect();
-        let mut choice = vec![0usize; n];
-        'joint: loop {
-            let next: Vec<usize> = (0..n).map(|a| options[a][choice[a]]).collect();
-            let ok = (0..n).all(|a| {
-                (a + 1..n).all(|b| {
-                    next[a] != next[b] && !(next[a] == pos[b] && next[b] == pos[a])
-                })
-            });
-            if ok {
-                let cost = d + (0..n)
-                    .filter(|&a| pos[a] != goals[a] || next[a] != goals[a])
-                    .count() as u64;
-                if best.get(&next).is_none_or(|&b| cost < b) {
-                    best.insert(next.clone(), cost);
-                    heap.push(Reverse((cost, next)));
-                }
+        let everyone: Vec<usize> = (0..n).collect();
+        for next in joint_steps(&g, &pos, &everyone) {
+            let cost = d + (0..n)
+                .filter(|&a| pos[a] != goals[a] || next[a] != goals[a])
+                .count() as u64;
+            if best.get(&next).is_none_or(|&b| cost < b) {
+                best.insert(next.clone(), cost);
+                heap.push(Reverse((cost, next)));
             }
-            for k in 0..n {
-                choice[k] += 1;
-                if choice[k] < options[k].len() {
-                    continue 'joint;
-                }
-                choice[k] = 0;
-            }
-            break;
         }
     }
     None
