@@ -34,7 +34,7 @@ export PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}"
 
 cargo test --release --workspace --exclude scen-python --no-fail-fast "$@"
 
-# The wheel: maturin builds the module (crates/python: the library without
+# The wheel: maturin builds the module (crates/python: on scen-runner, without
 # the viewer, so no Rerun SDK is built again) and packages the `scen` that
 # cargo test just built; installed into a fresh venv, the `scen` pip puts on
 # PATH must run a scenario, and pytest runs tests/python/ on `import scen`.

@@ -12,12 +12,11 @@ use crate::run::{RunReport, run_scenario_drawing};
 use crate::scenario::loader::LoadFailure;
 use crate::viz::{self, ViewerTarget};
 
-pub(crate) mod bench;
+mod bench;
 mod clobber;
 mod falsify;
 mod fmt;
 mod outputs;
-mod parts;
 mod validate;
 mod watch;
 

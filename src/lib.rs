@@ -23,16 +23,16 @@
 //!
 //! The lower crates of the workspace are re-exported whole: `scen-geometry`
 //! ([`geometry`], [`rng`]), `scen-planners` ([`contract`], [`planners`],
-//! [`diagnostics`]) and `scen-language` ([`syntax`], [`scenario`],
-//! [`format`]); the command line, the language server, file reading, the
-//! viewer sink and the driving simulator are private to the crate.
+//! [`diagnostics`]), `scen-language` ([`syntax`], [`scenario`],
+//! [`format`]) and `scen-runner` ([`run`], [`bench`], [`report`]); the
+//! command line, the language server, falsification and the viewer sink
+//! are private to the crate.
 
-pub mod bench;
 use scen_language::checks;
+pub use scen_runner::bench;
 mod cli;
 pub use scen_planners::contract;
 pub use scen_planners::diagnostics;
-mod drive;
 mod falsify;
 pub use scen_geometry as geometry;
 use scen_language::files;
@@ -41,31 +41,20 @@ mod import;
 mod lsp;
 #[cfg(test)]
 mod planner_tests;
+pub use scen_geometry::rng;
+pub use scen_language::scenario;
+pub use scen_language::syntax;
 pub use scen_planners::planners;
 pub use scen_planners::word_enum;
-pub mod report;
-pub use scen_geometry::rng;
-pub mod run;
-pub use scen_language::scenario;
-mod stats;
-pub use scen_language::syntax;
+use scen_runner::parts;
+pub use scen_runner::report;
+pub use scen_runner::run;
 mod viz;
 
 pub use diagnostics::{Diag, SourceMap, Span};
 pub use run::{RunReport, run_scenario, run_scenario_drawing};
+pub use scen_runner::merge_bench_parts;
 pub use scenario::{Scenario, load};
-
-/// `scen bench merge PART.jsonl...` as a library call: the report of the
-/// whole bench from the parts of its shards (`bench::prepare` with a
-/// shard, then `report::bench::part_text`), checked as the command checks
-/// them (every part once, from one split of one unchanged scenario, every
-/// run the scenario gives); the error is the command's message.
-pub fn merge_bench_parts(
-    paths: &[std::path::PathBuf],
-    root: Option<&std::path::Path>,
-) -> Result<RunReport, String> {
-    cli::bench::merge(paths, root, &[])
-}
 
 /// The `scen` command line: reads the arguments, runs the command, and
 /// returns the exit code (0 all checks passed, 1 a check failed, 2 bad

@@ -1,24 +1,19 @@
 //! `scen bench FILE...` and `scen bench merge PART.jsonl...` (SPEC §4).
 
-use std::collections::HashMap;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
-use serde_json::Value;
-
 use super::clobber::{Input, outputs_are_not_inputs, scenario_inputs};
-use super::parts;
 use super::{
     BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, outln, outputs_writable, print_failure,
-    print_report, render_diags,
+    print_report,
 };
 use crate::bench::{self, RunId, Shard, TABLE_METRICS};
-use crate::contract::MetricValue;
-use crate::contract::schema::{self, MetricType};
 use crate::report;
 use crate::run::BenchRun;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
+use scen_runner::merge::{known_metrics, merge};
 
 pub(super) fn cmd_bench(args: &BenchArgs) -> i32 {
     if !args.outputs.usable() || !outputs_writable(&[("--out", args.out.as_ref())]) {
@@ -116,38 +111,6 @@ impl BenchArgs {
         all.push(("--out", self.out.clone()));
         all
     }
-}
-
-/// The metrics `--metrics` names are metrics of a plan that the benches
-/// (`names`; none: all) run; a misspelt one gets the closest as a
-/// suggestion.
-fn known_metrics(scenario: &Scenario, names: &[String], metrics: &[String]) -> Result<(), String> {
-    let mut known: Vec<&str> = Vec::new();
-    for bench in scenario
-        .benches
-        .iter()
-        .filter(|b| names.is_empty() || names.contains(&b.name))
-    {
-        for config in bench.plans.iter().flat_map(|p| &p.configs) {
-            let drives = config.params.get("drive").is_some();
-            let drive_metrics = schema::DRIVE_METRICS.iter().filter(|_| drives);
-            for m in config.planner.all_metrics().chain(drive_metrics) {
-                if !known.contains(&m.name) {
-                    known.push(m.name);
-                }
-            }
-        }
-    }
-    let Some(unknown) = metrics.iter().find(|m| !known.contains(&m.as_str())) else {
-        return Ok(());
-    };
-    known.sort_unstable();
-    let suggestion = schema::did_you_mean(unknown, known.iter().copied())
-        .map_or(String::new(), |m| format!("did you mean `{m}`? "));
-    Err(format!(
-        "`--metrics {unknown}`: no plan of the benches has a metric `{unknown}`; {suggestion}the metrics: {}",
-        schema::backticked(&known)
-    ))
 }
 
 /// Runs `ids`, with a progress bar and an estimate of the time left on a
@@ -251,48 +214,6 @@ fn write_part(
     }
 }
 
-/// One part, read.
-struct Part {
-    header: parts::Header,
-    benches: Vec<String>,
-    /// `--runs N` and `--worlds N`, when the parts were made with them.
-    runs_override: Option<u64>,
-    worlds_override: Option<u64>,
-    runs: Vec<Value>,
-}
-
-/// The largest part `merge` reads (a part of a million runs is ~300 MB).
-const MAX_PART_BYTES: u64 = 1 << 30;
-
-fn read_part(path: &Path) -> Result<Part, String> {
-    let command = "scen bench";
-    let parts::Lines {
-        header,
-        common,
-        rest: runs,
-    } = parts::read_lines(path, MAX_PART_BYTES, command, "scen_part")?;
-    let not_a_part = || parts::not_a_part(path, command);
-    let field = |k: &str| header.get(k).cloned().ok_or_else(not_a_part);
-    Ok(Part {
-        header: common,
-        benches: field("benches")?
-            .as_array()
-            .ok_or_else(not_a_part)?
-            .iter()
-            .filter_map(|b| b.as_str().map(str::to_string))
-            .collect(),
-        runs_override: match header.get("runs") {
-            None => None,
-            Some(v) => Some(v.as_u64().filter(|&n| n >= 1).ok_or_else(not_a_part)?),
-        },
-        worlds_override: match header.get("worlds") {
-            None => None,
-            Some(v) => Some(v.as_u64().filter(|&n| n >= 1).ok_or_else(not_a_part)?),
-        },
-        runs,
-    })
-}
-
 /// `scen bench merge PART.jsonl...`: the report of the whole bench, as the
 /// unsharded `scen bench` prints it. Refuses parts that are missing,
 /// given twice, or made from another scenario or split, and runs that the
@@ -319,175 +240,4 @@ fn cmd_merge(args: &BenchArgs, paths: &[PathBuf]) -> i32 {
             EXIT_BAD_INPUT
         }
     }
-}
-
-impl parts::Part for Part {
-    const COMMAND: &'static str = "scen bench";
-    fn read(path: &Path) -> Result<Self, String> {
-        read_part(path)
-    }
-    fn header(&self) -> &parts::Header {
-        &self.header
-    }
-    fn origin(&self) -> String {
-        let runs = self
-            .runs_override
-            .map_or("as written".to_string(), |n| format!("--runs {n}"));
-        let runs = match self.worlds_override {
-            Some(w) => format!("{runs}, --worlds {w}"),
-            None => runs,
-        };
-        let h = &self.header;
-        format!(
-            "{} (hash {}), shards of {}, benches {:?}, runs {runs}",
-            h.file, h.hash, h.n, self.benches
-        )
-    }
-}
-
-pub(crate) fn merge(
-    paths: &[PathBuf],
-    root: Option<&Path>,
-    metrics: &[String],
-) -> Result<RunReport, String> {
-    let parts: Vec<Part> = parts::read_parts(paths)?;
-    let first = &parts[0];
-    let head = &first.header;
-    let mut scenario = super::load(Path::new(&head.file), root).map_err(|f| {
-        format!(
-            "cannot load `{}`, the scenario the parts were made from:\n{}",
-            head.file,
-            render_diags(&f.diags, &f.sources)
-        )
-    })?;
-    parts::unchanged(first, &scenario.sources.content_hash())?;
-    bench::known_benches(&scenario, &first.benches)?;
-    known_metrics(&scenario, &first.benches, metrics)?;
-    if let Some(n) = first.runs_override {
-        scenario.override_runs(n);
-    }
-    if let Some(n) = first.worlds_override {
-        scenario.override_worlds(n)?;
-    }
-    let ids = bench::run_ids(&scenario, &first.benches);
-    if head.n > ids.len() as u64 {
-        return Err(format!(
-            "the parts say {} shards, but the benches have only {} run(s): a split into more parts than runs is not one `scen bench --shard` makes",
-            head.n,
-            ids.len()
-        ));
-    }
-    parts::whole(&parts)?;
-    let at: HashMap<RunKey, usize> = ids
-        .iter()
-        .enumerate()
-        .map(|(i, id)| ((id.bench, id.plan, id.config, id.world, id.run), i))
-        .collect();
-    let mut runs: Vec<Option<BenchRun>> = vec![None; ids.len()];
-    for p in &parts {
-        let h = &p.header;
-        for v in &p.runs {
-            let (id_at, run) = decode_run(&scenario, &at, v)
-                .map_err(|why| format!("`{}` holds a run that {why}: {v}", h.path.display()))?;
-            if !(Shard { k: h.k, n: h.n }).takes(ids[id_at].index) {
-                return Err(format!(
-                    "`{}` (part {}/{}) holds a run of another part: {v}",
-                    h.path.display(),
-                    h.k,
-                    h.n
-                ));
-            }
-            if runs[id_at].is_some() {
-                return Err(format!("`{}` repeats a run: {v}", h.path.display()));
-            }
-            runs[id_at] = Some(run);
-        }
-    }
-    let absent = runs.iter().filter(|r| r.is_none()).count();
-    if absent > 0 {
-        return Err(format!("the parts lack {absent} of the {} runs", ids.len()));
-    }
-    Ok(bench::report(
-        scenario,
-        runs.into_iter().flatten().collect(),
-    ))
-}
-
-/// A part's run, checked against what the scenario gives for its place
-/// (its seed, its configuration, the metrics of its planner, its checksum)
-/// and placed among the runs; or what is wrong with it.
-/// A run's place: bench, plan, configuration, world and run.
-type RunKey = (usize, usize, usize, u64, u64);
-
-fn decode_run(
-    scenario: &Scenario,
-    at: &HashMap<RunKey, usize>,
-    v: &Value,
-) -> Result<(usize, BenchRun), &'static str> {
-    let o = v.as_object().ok_or("is not a JSON object")?;
-    let text = |k: &str| o.get(k).and_then(Value::as_str);
-    let number = |k: &str| o.get(k).and_then(Value::as_u64);
-    let (Some(bench_name), Some(plan_name), Some(config), Some(run), Some(seed)) = (
-        text("bench"),
-        text("plan"),
-        number("config_index"),
-        number("run"),
-        number("seed"),
-    ) else {
-        return Err("lacks its bench, plan, configuration, run or seed");
-    };
-    if text("check") != Some(report::bench::run_checksum(o).as_str()) {
-        return Err("was edited or damaged (its checksum does not match)");
-    }
-    let b = scenario
-        .benches
-        .iter()
-        .position(|x| x.name == bench_name)
-        .ok_or("names a bench this scenario does not have")?;
-    let bench = &scenario.benches[b];
-    let p = bench
-        .plans
-        .iter()
-        .position(|x| scenario.plans[x.plan].name == plan_name)
-        .ok_or("names a plan this bench does not run")?;
-    let config = usize::try_from(config).map_err(|_| "has no such configuration")?;
-    // Written only by a bench with `worlds`.
-    let world = match o.get("world") {
-        None => 0,
-        Some(w) => w
-            .as_u64()
-            .ok_or("has a world that is not a sample number")?,
-    };
-    let id_at = *at
-        .get(&(b, p, config, world, run))
-        .ok_or("has a configuration or run number this bench does not have")?;
-    let plan = &bench.plans[p].configs[config];
-    if seed != plan.params.seed.wrapping_add(run) {
-        return Err("has another seed than the scenario gives its run");
-    }
-    if o.get("config") != Some(&report::bench::config_json(bench, config)) {
-        return Err("has another configuration than the scenario gives its index");
-    }
-    let metrics = report::bench::read_metrics(o.get("metrics").ok_or("has no metrics")?)
-        .ok_or("has a metric that is not a number or a boolean")?;
-    for spec in plan.planner.all_metrics() {
-        match (spec.ty, metrics.get(spec.name)) {
-            (MetricType::Bool, Some(MetricValue::Bool(_)))
-            | (MetricType::Num, Some(MetricValue::Num(_))) => {}
-            (_, None) => return Err("lacks a metric of its planner"),
-            _ => return Err("has a metric of the wrong type"),
-        }
-    }
-    Ok((
-        id_at,
-        BenchRun {
-            bench: b,
-            plan: p,
-            config,
-            world,
-            run,
-            seed,
-            metrics,
-        },
-    ))
 }

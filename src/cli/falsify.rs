@@ -7,11 +7,11 @@ use clap::Args;
 use serde_json::{Value, json};
 
 use super::clobber::{Input, outputs_are_not_inputs, scenario_inputs};
-use super::parts;
 use super::{EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, outln, outputs_writable, print_failure};
 use crate::bench::Shard;
 use crate::contract::schema::Word;
 use crate::falsify::{self, Failure, Falsified, Options, Search};
+use crate::parts;
 use crate::scenario::loader::{LoadFailure, parse_scenario};
 
 #[derive(Args, Debug)]

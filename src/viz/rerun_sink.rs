@@ -42,10 +42,10 @@ use super::{
 };
 use crate::contract::MetricValue;
 use crate::contract::layers::{Drawing, Layer};
-use crate::drive::DriveOutcome;
 use crate::geometry::{Config, Point, RobotShape, Shape};
 use crate::run::{PlanRun, RunReport};
 use crate::scenario::{Plan, Scenario};
+use scen_runner::drive::DriveOutcome;
 
 /// The most poses of a driven robot sent on timeline `time`.
 pub(crate) const DRIVE_POSES: usize = 2_000;
@@ -890,8 +890,8 @@ mod tests {
     #[test]
     fn saves_every_kind_of_layer() {
         use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg, Timeline};
-        use crate::drive::DriveOutcome;
         use crate::geometry::Vector;
+        use scen_runner::drive::DriveOutcome;
         let mut r = report();
         let p = |x: f64, y: f64| Point::new(x, y);
         let style = Style::new(Colour::Plan, 1.0, 20.0).svg(Svg::line(1.0));

@@ -1,5 +1,7 @@
-//! `scen._scen`: the Python module (SPEC §7), on the `scen` library without
-//! the viewer, never through the command line.
+//! `scen._scen`: the Python module (SPEC §7), on the crates below the
+//! command line (`scen-runner` and the language, planners and geometry
+//! under it: no clap, no language server, no Rerun SDK), never through the
+//! command line.
 //!
 //! - [`load`] / [`loads`]: a scenario from a file or from text; bad input
 //!   raises `ScenError`, carrying the located diagnostics.
@@ -29,10 +31,10 @@ use pyo3::types::{PyDict, PyList};
 use pyo3::{IntoPyObjectExt, Py};
 use serde_json::Value;
 
-use scen::diagnostics::{Diag, SourceMap, render_diags};
-use scen::geometry::Config;
-use scen::scenario::SampleChoice;
-use scen::scenario::loader::{LoadFailure, load_sample};
+use scen_runner::diagnostics::{Diag, SourceMap, render_diags};
+use scen_runner::geometry::Config;
+use scen_runner::scenario::SampleChoice;
+use scen_runner::scenario::loader::{LoadFailure, load_sample};
 
 create_exception!(
     _scen,
@@ -174,7 +176,7 @@ fn loads(
 fn in_memory(files: Vec<(&Path, Arc<str>)>) -> impl Fn(&Path) -> Option<Arc<str>> + use<> {
     let files: Vec<(PathBuf, Arc<str>)> = files
         .into_iter()
-        .map(|(path, text)| (scen::scenario::loader::canonical(path), text))
+        .map(|(path, text)| (scen_runner::scenario::loader::canonical(path), text))
         .collect();
     move |p| files.iter().find(|(c, _)| c == p).map(|(_, t)| t.clone())
 }
@@ -354,11 +356,11 @@ fn plan(
                     f.text = Arc::from("");
                 }
             }
-            scen::run_scenario_drawing(scenario, &[], false)
+            scen_runner::run_scenario_drawing(scenario, &[], false)
         })
     });
     let report = Arc::new(outcome.map_err(|f| failure(py, f))?);
-    let doc = scen::report::json::to_json(&report);
+    let doc = scen_runner::report::json::to_json(&report);
     let plan = doc
         .get("plans")
         .and_then(|p| p.get("p"))
@@ -377,7 +379,7 @@ fn plan(
 #[pyfunction]
 #[pyo3(signature = (paths, *, root = None))]
 fn bench_merge(py: Python<'_>, paths: Vec<PathBuf>, root: Option<PathBuf>) -> PyResult<Report> {
-    let merged = py.detach(|| scen::merge_bench_parts(&paths, root.as_deref()));
+    let merged = py.detach(|| scen_runner::merge_bench_parts(&paths, root.as_deref()));
     match merged {
         Ok(report) => Report::new(py, report),
         Err(e) => Err(plain_error(
@@ -391,8 +393,8 @@ fn bench_merge(py: Python<'_>, paths: Vec<PathBuf>, root: Option<PathBuf>) -> Py
 
 /// The picture `scen run --svg` draws of `scenario` with the runs of
 /// `plans` (none: the world, its robots' starts and goals).
-fn picture(scenario: &scen::Scenario, plans: Vec<scen::run::PlanRun>) -> String {
-    scen::report::svg::to_svg(&scen::RunReport {
+fn picture(scenario: &scen_runner::Scenario, plans: Vec<scen_runner::run::PlanRun>) -> String {
+    scen_runner::report::svg::to_svg(&scen_runner::RunReport {
         scenario: scenario.clone(),
         plans,
         bench_runs: Vec::new(),
@@ -404,11 +406,11 @@ fn picture(scenario: &scen::Scenario, plans: Vec<scen::run::PlanRun>) -> String 
 /// A loaded scenario: its world, robots, plans and checks.
 #[pyclass(frozen, module = "scen")]
 struct Scenario {
-    inner: scen::Scenario,
+    inner: scen_runner::Scenario,
 }
 
 impl Scenario {
-    fn new(inner: scen::Scenario) -> Self {
+    fn new(inner: scen_runner::Scenario) -> Self {
         Scenario { inner }
     }
 
@@ -419,8 +421,8 @@ impl Scenario {
         only: &[String],
         runs: Option<u64>,
         worlds: Option<u64>,
-        shard: Option<scen::bench::Shard>,
-    ) -> PyResult<scen::bench::Prepared> {
+        shard: Option<scen_runner::bench::Shard>,
+    ) -> PyResult<scen_runner::bench::Prepared> {
         if self.inner.benches.is_empty() {
             return Err(plain_error(
                 py,
@@ -438,15 +440,16 @@ impl Scenario {
             ));
         }
         let scenario = self.inner.clone();
-        let prepared = py.detach(|| scen::bench::prepare(scenario, only, runs, worlds, shard));
+        let prepared =
+            py.detach(|| scen_runner::bench::prepare(scenario, only, runs, worlds, shard));
         prepared.map_err(|e| match e {
-            scen::bench::Unready::Message(m) => plain_error(
+            scen_runner::bench::Unready::Message(m) => plain_error(
                 py,
                 "scen::python::bad_bench",
                 m,
                 "see the benches of `Scenario.benches`",
             ),
-            scen::bench::Unready::Load(f) => failure(py, f),
+            scen_runner::bench::Unready::Load(f) => failure(py, f),
         })
     }
 
@@ -552,7 +555,7 @@ impl Scenario {
                 plan.params.seed = seed;
             }
         }
-        let report = py.detach(|| scen::run_scenario_drawing(scenario, &only, draw));
+        let report = py.detach(|| scen_runner::run_scenario_drawing(scenario, &only, draw));
         Report::new(py, report)
     }
 
@@ -617,7 +620,8 @@ impl Scenario {
             ));
         }
         let scenario = self.inner.clone();
-        let report = py.detach(|| scen::run::validate_user_path(scenario, index, poses, times));
+        let report =
+            py.detach(|| scen_runner::run::validate_user_path(scenario, index, poses, times));
         Report::new(py, report)
     }
 
@@ -638,9 +642,13 @@ impl Scenario {
         let only = benches.unwrap_or_default();
         let prepared = self.prepare(py, &only, runs, worlds, None)?;
         let report = py.detach(|| {
-            let ran =
-                scen::bench::run_all(&prepared.scenario, &prepared.worlds, &prepared.ids, &|| {});
-            scen::bench::report(prepared.scenario, ran)
+            let ran = scen_runner::bench::run_all(
+                &prepared.scenario,
+                &prepared.worlds,
+                &prepared.ids,
+                &|| {},
+            );
+            scen_runner::bench::report(prepared.scenario, ran)
         });
         Report::new(py, report)
     }
@@ -659,7 +667,7 @@ impl Scenario {
         runs: Option<u64>,
         worlds: Option<u64>,
     ) -> PyResult<String> {
-        let shard = scen::bench::Shard::parse(&format!("{k}/{n}")).map_err(|e| {
+        let shard = scen_runner::bench::Shard::parse(&format!("{k}/{n}")).map_err(|e| {
             plain_error(
                 py,
                 "scen::python::bad_bench",
@@ -670,9 +678,20 @@ impl Scenario {
         let only = benches.unwrap_or_default();
         let prepared = self.prepare(py, &only, runs, worlds, Some(shard))?;
         Ok(py.detach(|| {
-            let ran =
-                scen::bench::run_all(&prepared.scenario, &prepared.worlds, &prepared.ids, &|| {});
-            scen::report::bench::part_text(&prepared.scenario, shard, &only, runs, worlds, &ran)
+            let ran = scen_runner::bench::run_all(
+                &prepared.scenario,
+                &prepared.worlds,
+                &prepared.ids,
+                &|| {},
+            );
+            scen_runner::report::bench::part_text(
+                &prepared.scenario,
+                shard,
+                &only,
+                runs,
+                worlds,
+                &ran,
+            )
         }))
     }
 
@@ -698,7 +717,7 @@ impl Scenario {
 /// check's verdict.
 #[pyclass(frozen, module = "scen")]
 struct Report {
-    inner: Arc<scen::RunReport>,
+    inner: Arc<scen_runner::RunReport>,
     /// `scen run --json`'s document, as its text.
     json: String,
     plans: Py<PyDict>,
@@ -709,11 +728,11 @@ struct Report {
 }
 
 impl Report {
-    fn new(py: Python<'_>, report: scen::RunReport) -> PyResult<Report> {
-        let doc = scen::report::json::to_json(&report);
+    fn new(py: Python<'_>, report: scen_runner::RunReport) -> PyResult<Report> {
+        let doc = scen_runner::report::json::to_json(&report);
         // A bench's report is `scen bench --json`'s document.
         let bench_doc =
-            (!report.bench_runs.is_empty()).then(|| scen::report::bench::to_json(&report));
+            (!report.bench_runs.is_empty()).then(|| scen_runner::report::bench::to_json(&report));
         let json = serde_json::to_string(bench_doc.as_ref().unwrap_or(&doc)).unwrap_or_default();
         let bench_runs = PyList::empty(py);
         if let Some(Value::Array(benches)) = bench_doc.as_ref().and_then(|d| d.get("benches")) {
@@ -784,9 +803,9 @@ impl Report {
     fn bench_table(&self, metrics: Option<Vec<String>>) -> String {
         let names: Vec<&str> = match &metrics {
             Some(m) => m.iter().map(String::as_str).collect(),
-            None => scen::bench::TABLE_METRICS.to_vec(),
+            None => scen_runner::bench::TABLE_METRICS.to_vec(),
         };
-        scen::report::bench::render(&self.inner, &names)
+        scen_runner::report::bench::render(&self.inner, &names)
     }
 
     /// How many checks passed.
@@ -809,7 +828,7 @@ impl Report {
 
     /// The run drawn as `scen run --svg` draws it.
     fn to_svg(&self, py: Python<'_>) -> String {
-        py.detach(|| scen::report::svg::to_svg(&self.inner))
+        py.detach(|| scen_runner::report::svg::to_svg(&self.inner))
     }
 
     fn _repr_svg_(&self, py: Python<'_>) -> String {
@@ -876,7 +895,7 @@ struct PlanResult {
     collision: Py<PyAny>,
     /// The run it is part of, and its index among the run's plans: for
     /// its picture.
-    report: Arc<scen::RunReport>,
+    report: Arc<scen_runner::RunReport>,
     run: usize,
 }
 
@@ -885,7 +904,7 @@ impl PlanResult {
     /// JSON document.
     fn new(
         py: Python<'_>,
-        report: &Arc<scen::RunReport>,
+        report: &Arc<scen_runner::RunReport>,
         name: &str,
         plan: &Value,
     ) -> PyResult<PlanResult> {

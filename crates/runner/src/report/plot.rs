@@ -17,11 +17,11 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::bench::TABLE_METRICS;
 use crate::checks::{format_num, quantile};
+use crate::palette::plan_colour;
 use crate::run::BenchRun;
 use crate::run::RunReport;
 use crate::scenario::Scenario;
 use crate::syntax::ast::ValueKind;
-use crate::viz::plan_colour;
 
 /// Pixels of one panel (taller when its box labels are turned).
 const PANEL: (u32, u32) = (620, 300);

@@ -8,7 +8,7 @@
 //! The world (the bounds, grown by a margin and the largest robot's radius)
 //! is scaled so its longer side is [`PLOT_SIZE`] pixels, with y flipped so
 //! the world's y axis points up. Colours are those of the Rerun sink
-//! ([`crate::viz::plan_colour`]). Layers go under every path, a layer of
+//! ([`crate::palette::plan_colour`]). Layers go under every path, a layer of
 //! thousands of edges (a PRM's roadmap) faded by its size, so paths stay
 //! visible; each path has a light halo over what it crosses.
 
@@ -19,12 +19,12 @@ use std::path::Path;
 use super::sink::{Command, Product, Sink, needs_extension, the_file, write_file};
 use crate::contract::layers::{Colour, Drawing, Layer, Rounded, Svg};
 use crate::geometry::{Aabb, Config, Point, RobotShape, Shape};
-use crate::run::{PlanRun, RunReport};
-use crate::scenario::{Plan, Scenario};
-use crate::viz::{
+use crate::palette::{
     FAIL_RED, OBSTACLE_GREY, agent_colour, blocked_boxes, plan_colour, role_colour, weight_boxes,
     weight_colour,
 };
+use crate::run::{PlanRun, RunReport};
+use crate::scenario::{Plan, Scenario};
 
 /// Pixels along the longer side of the drawn world.
 const PLOT_SIZE: f64 = 800.0;

@@ -9,14 +9,14 @@ use serde_json::Value;
 
 /// The lines of a part: its header line (whose `tag` field is 1), its
 /// common fields, and the rest.
-pub(super) struct Lines {
+pub struct Lines {
     pub header: Value,
     pub common: Header,
     pub rest: Vec<Value>,
 }
 
 /// The error for a file that is not a part `command` writes.
-pub(super) fn not_a_part(path: &Path, command: &str) -> String {
+pub fn not_a_part(path: &Path, command: &str) -> String {
     format!(
         "`{}` is not a part written by `{command} --shard K/N --out PART.jsonl`",
         path.display()
@@ -25,12 +25,7 @@ pub(super) fn not_a_part(path: &Path, command: &str) -> String {
 
 /// Reads a part of at most `max_bytes`: JSON Lines whose first line is a
 /// header with `"TAG": 1`.
-pub(super) fn read_lines(
-    path: &Path,
-    max_bytes: u64,
-    command: &str,
-    tag: &str,
-) -> Result<Lines, String> {
+pub fn read_lines(path: &Path, max_bytes: u64, command: &str, tag: &str) -> Result<Lines, String> {
     let bytes = crate::files::read_regular_file(path, max_bytes)
         .map_err(|e| format!("cannot read `{}`: {e}", path.display()))?;
     let bad = || not_a_part(path, command);
@@ -118,7 +113,7 @@ fn check_whole<'a>(parts: impl IntoIterator<Item = (u64, &'a Path)>, n: u64) -> 
 /// scenario it was made from (its path as given and its content hash) and
 /// its shard; with the path the part was read from.
 #[derive(Debug)]
-pub(super) struct Header {
+pub struct Header {
     pub path: std::path::PathBuf,
     pub file: String,
     pub hash: String,
@@ -141,7 +136,7 @@ impl Header {
 
 /// A part of a sharded command, read: what the merge of either command
 /// needs to know of it.
-pub(super) trait Part: Sized {
+pub trait Part: Sized {
     /// The command that writes it: `scen bench` or `scen falsify`.
     const COMMAND: &'static str;
     /// Reads the part at `path`.
@@ -155,7 +150,7 @@ pub(super) trait Part: Sized {
 
 /// The first step of `merge`, the same for both commands: the parts read
 /// and shown to come from one split of one scenario.
-pub(super) fn read_parts<P: Part>(paths: &[std::path::PathBuf]) -> Result<Vec<P>, String> {
+pub fn read_parts<P: Part>(paths: &[std::path::PathBuf]) -> Result<Vec<P>, String> {
     if paths.is_empty() {
         return Err(format!(
             "`{0} merge` needs the parts: `{0} merge part-*.jsonl`",
@@ -183,7 +178,7 @@ pub(super) fn read_parts<P: Part>(paths: &[std::path::PathBuf]) -> Result<Vec<P>
 
 /// Whether the parts are each K of 1 … N once (after the command's own
 /// checks that N is a split it makes).
-pub(super) fn whole<P: Part>(parts: &[P]) -> Result<(), String> {
+pub fn whole<P: Part>(parts: &[P]) -> Result<(), String> {
     check_whole(
         parts
             .iter()
@@ -194,7 +189,7 @@ pub(super) fn whole<P: Part>(parts: &[P]) -> Result<(), String> {
 
 /// Whether the scenario the parts were made from is unchanged: its content
 /// hash `now` is the one the parts recorded.
-pub(super) fn unchanged<P: Part>(first: &P, now: &str) -> Result<(), String> {
+pub fn unchanged<P: Part>(first: &P, now: &str) -> Result<(), String> {
     let h = first.header();
     if now != h.hash {
         return Err(format!(

@@ -247,7 +247,7 @@ fn config_json(c: Config, rotates: bool) -> Value {
     Value::Array(xs)
 }
 
-pub(crate) fn float_json(x: f64) -> Value {
+pub fn float_json(x: f64) -> Value {
     Number::from_f64(x).map_or(Value::Null, Value::Number)
 }
 
