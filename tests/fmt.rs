@@ -81,7 +81,7 @@ fn scen_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for e in entries {
         if e.is_dir() {
             scen_files(&e, out);
-        } else if e.extension().is_some_and(|x| x == "scen") {
+        } else if e.extension().is_some_and(|x| x == "scen") && !common::is_movingai_rows(&e) {
             out.push(e);
         }
     }

@@ -235,6 +235,92 @@ plan optimal cbs T50 { limit time 60s }
 }
 
 #[test]
+fn agents_n_plans_the_first_n_agents_as_a_team_of_n_would() {
+    // Three agents; a plan of the first two must be the plan of a team
+    // declared with those two, for every team planner, in every output.
+    let agents = "  a (0.5, 0.5) -> (4.5, 0.5)\n  b (4.5, 0.5) -> (0.5, 0.5)\n";
+    let third = "  c (2.5, 1.5) -> (2.5, 0.5)\n";
+    let world = r###"world {
+  bounds (0, 0) (5, 2)
+  grid hall cell 1 {
+    "##.##"
+    "....."
+  }
+}
+"###;
+    for planner in grid_team_planners() {
+        let kind = planner.kind;
+        let first_two = run(&format!(
+            "{world}team T point {{\n{agents}{third}}}\nplan p {kind} T {{ agents 2 limit time 10s }}\n"
+        ));
+        let two = run(&format!(
+            "{world}team T point {{\n{agents}}}\nplan p {kind} T {{ limit time 10s }}\n"
+        ));
+        for metric in ["agents", "sum_of_costs", "makespan", "soc_lower_bound"] {
+            assert_eq!(
+                num(&first_two, metric),
+                num(&two, metric),
+                "{kind}: {metric}"
+            );
+        }
+        assert_eq!(num(&first_two, "agents"), 2.0, "{kind}");
+        assert!(flag(&first_two, "collision_free"), "{kind}");
+        let doc = to_json(&first_two);
+        let listed = doc["plans"]["p"]["agents"].as_array().expect("agents");
+        assert_eq!(
+            listed.len(),
+            2,
+            "{kind}: only the planned agents are written"
+        );
+        assert_eq!(
+            listed,
+            to_json(&two)["plans"]["p"]["agents"].as_array().unwrap()
+        );
+    }
+}
+
+#[test]
+fn a_bench_varies_the_number_of_agents() {
+    let report = {
+        let dir = TempDir::new("teams-bench");
+        let file = dir.path().join("t.scen");
+        std::fs::write(
+            &file,
+            r#"world { bounds (0, 0) (6, 6) }
+team T point {
+  a (0.5, 0.5) -> (5.5, 5.5)
+  b (5.5, 5.5) -> (0.5, 0.5)
+  c (0.5, 5.5) -> (5.5, 0.5)
+  d (5.5, 0.5) -> (0.5, 5.5)
+}
+plan p cbs T { limit time 10s }
+bench counts { vary agents [1, 2, 4, all] }
+"#,
+        )
+        .expect("write the scenario");
+        let scenario = scen::load(&file).unwrap_or_else(|f| panic!("{:?}", f.diags));
+        let prepared = scen::bench::prepare(scenario, &[], None, None, None)
+            .unwrap_or_else(|_| panic!("the bench prepares"));
+        let runs =
+            scen::bench::run_all(&prepared.scenario, &prepared.worlds, &prepared.ids, &|| {});
+        scen::bench::report(prepared.scenario, runs)
+    };
+    let agents: Vec<f64> = report
+        .bench_runs
+        .iter()
+        .map(|r| match r.metrics.get("agents") {
+            Some(MetricValue::Num(n)) => *n,
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(agents, [1.0, 2.0, 4.0, 4.0]);
+    assert_eq!(
+        scen::bench::default_metrics(&report.scenario),
+        scen::bench::TEAM_TABLE_METRICS
+    );
+}
+
+#[test]
 fn scen_test_leaves_movingai_scenario_files_alone() {
     Test::new()
         .file(

@@ -8,7 +8,7 @@ use super::{
     BenchArgs, EXIT_BAD_INPUT, EXIT_CHECK_FAILED, EXIT_OK, outln, outputs_writable, print_failure,
     print_report,
 };
-use crate::bench::{self, RunId, Shard, TABLE_METRICS};
+use crate::bench::{self, RunId, Shard};
 use crate::report;
 use crate::run::BenchRun;
 use crate::run::RunReport;
@@ -148,7 +148,7 @@ fn run_with_progress(
 fn outputs(report: &RunReport, args: &BenchArgs) -> i32 {
     let mut code = EXIT_OK;
     let metrics: Vec<&str> = if args.metrics.is_empty() {
-        TABLE_METRICS.to_vec()
+        bench::default_metrics(&report.scenario).to_vec()
     } else {
         args.metrics.iter().map(String::as_str).collect()
     };

@@ -282,13 +282,7 @@ fn log_plan(
         log_drive(rec, name, drive, &robot.shape, mark, colour)?;
     }
 
-    if let (Some(team), Some(paths)) = (
-        scenario
-            .robots
-            .get(plan.robot)
-            .and_then(|r| r.team.as_ref()),
-        &run.outcome.agents,
-    ) {
+    if let (Some(team), Some(paths)) = (plan.team(scenario), &run.outcome.agents) {
         return log_team(rec, name, team, paths, run.outcome.agent_times.as_deref());
     }
     let trajectory = &run.outcome.trajectory;

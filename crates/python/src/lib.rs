@@ -803,7 +803,7 @@ impl Report {
     fn bench_table(&self, metrics: Option<Vec<String>>) -> String {
         let names: Vec<&str> = match &metrics {
             Some(m) => m.iter().map(String::as_str).collect(),
-            None => scen_runner::bench::TABLE_METRICS.to_vec(),
+            None => scen_runner::bench::default_metrics(&self.inner.scenario).to_vec(),
         };
         scen_runner::report::bench::render(&self.inner, &names)
     }

@@ -399,6 +399,33 @@ pub const TABLE_METRICS: &[&str] = &[
     "smoothness",
 ];
 
+/// The metrics a table shows by default when every plan of the benches
+/// plans a team (SPEC 2.10): a team has no one path to measure, so its
+/// columns are its sums of costs, makespan and their lower bound.
+pub const TEAM_TABLE_METRICS: &[&str] = &[
+    "time_ms",
+    "sum_of_costs",
+    "makespan",
+    "soc_lower_bound",
+    "expanded",
+];
+
+/// The default columns of `scenario`'s bench tables: [`TABLE_METRICS`],
+/// or [`TEAM_TABLE_METRICS`] when every plan its benches run is a team's.
+pub fn default_metrics(scenario: &Scenario) -> &'static [&'static str] {
+    let mut plans = scenario
+        .benches
+        .iter()
+        .flat_map(|b| &b.plans)
+        .map(|p| &scenario.plans[p.plan])
+        .peekable();
+    if plans.peek().is_some() && plans.all(|p| p.planner.plans_teams()) {
+        TEAM_TABLE_METRICS
+    } else {
+        TABLE_METRICS
+    }
+}
+
 /// The statistics of one row of a table: a plan in one configuration.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Row {

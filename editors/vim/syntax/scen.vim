@@ -141,8 +141,8 @@ syn keyword scenWorldKeyword contained moving nextgroup=scenObstacleName skipwhi
 syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic
 syn keyword scenParamKey contained rotate strategy sense arc_segments attract repulse influence step tolerance escape
 syn keyword scenParamKey contained jump on tool weights range goal_bias sampler stop simplify rewire informed neighbors
-syn keyword scenParamKey contained reverse_cost switch_cost analytic variant follow refine pibt_runs order dt max_speed
-syn keyword scenParamKey contained max_turn_rate gain turn_gain reach align lookahead speed max_curvature
+syn keyword scenParamKey contained reverse_cost switch_cost analytic variant follow agents refine pibt_runs order dt
+syn keyword scenParamKey contained max_speed max_turn_rate gain turn_gain reach align lookahead speed max_curvature
 " A key that is a word value too is two matches, not keywords (a keyword would
 " win everywhere): the word's, defined later, wins after the keys it follows.
 syn match   scenParamKey contained /\<limit\>/
@@ -151,7 +151,7 @@ syn keyword scenLimitKind contained expansions steps time cells iterations
 " Word values.
 syn keyword scenWord contained unicycle pure_pursuit center corner auto euclid l1 lattice metric zero yes no backtrack
 syn keyword scenWord contained shortcut replan dstar_lite none random_walk sum gaussian bridge first smooth bug1 bug2
-syn keyword scenWord contained tangent left right inf given shortest_first random
+syn keyword scenWord contained tangent left right inf all given shortest_first random
 syn match   scenWord contained /\<\%(max\|uniform\)\>(\@!/
 syn match   scenWord contained /\%(\<stop\s\+\)\@<=limit\>/
 " END GENERATED parameters

@@ -13,7 +13,7 @@ mod statements;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use crate::contract::{Limits, Params, Planner, Robot, Settings, Task};
+use crate::contract::{Agent, Limits, ParamValue, Params, Planner, Robot, Settings, Task};
 use crate::diagnostics::{SourceMap, Span};
 use crate::geometry::World;
 use crate::syntax::ast::Expr;
@@ -187,8 +187,18 @@ impl Plan {
             referee: None,
             moving: &scenario.moving,
             speed: scenario.robots[self.robot].speed,
-            agents: scenario.robots[self.robot].team.as_deref().unwrap_or(&[]),
+            agents: self.team(scenario).unwrap_or(&[]),
         }
+    }
+
+    /// The agents this plan plans when its robot is a team: the team's
+    /// first N with `agents N`, else all of them (`None`: not a team).
+    pub fn team<'s>(&self, scenario: &'s Scenario) -> Option<&'s [Agent]> {
+        let team = scenario.robots[self.robot].team.as_deref()?;
+        Some(match self.params.get("agents") {
+            Some(ParamValue::Num(n)) => &team[..(*n as usize).min(team.len())],
+            _ => team,
+        })
     }
 }
 

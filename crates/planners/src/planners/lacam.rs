@@ -48,6 +48,7 @@ pub static PLANNER: Planner = Planner {
     robots: &[RobotKind::Team],
     params: &[
         MAPF_PARAMS[0],
+        MAPF_PARAMS[1],
         ParamSpec::word(
             "refine",
             <Refine as Word>::WORDS,

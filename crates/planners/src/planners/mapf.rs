@@ -5,7 +5,7 @@
 
 use std::collections::VecDeque;
 
-use crate::contract::schema::ParamSpec;
+use crate::contract::schema::{DefaultValue, ParamSpec, ValueSpec};
 use crate::contract::{PlanArgs, Task};
 use crate::diagnostics::Diag;
 use crate::geometry::Point;
@@ -20,8 +20,41 @@ pub type Node = u32;
 /// No node (a missing neighbour).
 pub const NONE: Node = Node::MAX;
 
-/// The parameters every grid MAPF planner takes: `cell`.
-pub const MAPF_PARAMS: [ParamSpec; 1] = [LATTICE_PARAMS[0]];
+/// `agents N`: the team's first N agents are planned (its first N rows of
+/// a MovingAI `.scen` file), so that a bench may `vary agents [...]` for a
+/// success rate by agent count; every team planner takes it.
+pub const AGENTS: ParamSpec = ParamSpec::new(
+    "agents",
+    ValueSpec::IntOrWord(&["all"]),
+    DefaultValue::Word("all"),
+    "plan the team's first N agents; `all`: every agent",
+);
+
+/// The parameters every grid MAPF planner takes: `cell`, `agents`.
+pub const MAPF_PARAMS: [ParamSpec; 2] = [LATTICE_PARAMS[0], AGENTS];
+
+/// The agents `agents N` plans, checked: at most the team's size (an error
+/// at the value otherwise).
+pub fn check_agents(args: &mut PlanArgs<'_>) -> Option<usize> {
+    let size = args.robot.team.as_ref().map_or(0, |t| t.len());
+    let Some(n) = args.opt_num("agents") else {
+        return Some(size);
+    };
+    if n > size as f64 {
+        let (plan, team) = (args.plan, args.robot.name.clone());
+        let span = args.span("agents");
+        args.error(
+            Diag::error(
+                "scen::analyze::too_many_agents",
+                format!("plan `{plan}`: `agents {n}`, but team `{team}` has {size} agent(s)"),
+            )
+            .at(span, "more agents than the team has")
+            .help(format!("plan at most {size} agents, or `agents all`")),
+        );
+        return None;
+    }
+    Some(n as usize)
+}
 
 /// A grid MAPF plan's lattice, checked: the cap, a point team, agents on
 /// lattice points (each error at its agent's row).
@@ -40,8 +73,9 @@ pub fn check_mapf_lattice(args: &mut PlanArgs<'_>) -> Option<LatticeSpec> {
         );
         return None;
     }
+    let count = check_agents(args)?;
     let agents = robot.team.clone().unwrap_or_else(|| Vec::new().into());
-    for a in agents.iter() {
+    for a in agents.iter().take(count) {
         for (what, p) in [("start", a.start), ("goal", a.goal)] {
             if node_at(&spec, p).is_none() {
                 let near = spec.point_of(nearest(&spec, p));

@@ -16,6 +16,7 @@ use crate::geometry::timed::MovingObstacle;
 use crate::geometry::{Config, RobotShape};
 use crate::planners::deadline::Deadline;
 use crate::planners::lattice::{LATTICE_PARAMS, Sample, check_lattice_of};
+use crate::planners::mapf;
 use crate::planners::registry::sipp::{self, Sipp};
 
 crate::word_enum! {
@@ -37,6 +38,7 @@ pub static PLANNER: Planner = Planner {
     robots: &[RobotKind::Team],
     params: &[
         LATTICE_PARAMS[0],
+        mapf::AGENTS,
         sipp::CONNECT,
         ParamSpec::word(
             "order",
@@ -79,6 +81,7 @@ fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
         );
         return None;
     }
+    mapf::check_agents(args)?;
     let lattice = check_lattice_of(args, Sample::Center, 1.0)?;
     Some(Box::new(Prioritized {
         sipp: Sipp { lattice, connect },

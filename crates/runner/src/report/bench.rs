@@ -17,7 +17,7 @@ use crate::syntax::ast::{self, ValueKind};
 use super::json::{check_json, float_json, metrics_json};
 
 /// The table of every bench, then the checks and the summary line.
-/// `metrics` are the columns (default [`TABLE_METRICS`]).
+/// `metrics` are the columns (by default [`crate::bench::default_metrics`]).
 pub fn render(report: &RunReport, metrics: &[&str]) -> String {
     let sc = &report.scenario;
     let mut s = String::new();

@@ -61,11 +61,7 @@ pub fn paths_csv(report: &RunReport) -> Option<String> {
         let plan = report.plan(run);
         let name = quoted(&plan.name);
         // A team's agents (SPEC 2.10): one line each, a row per step.
-        let team = report
-            .scenario
-            .robots
-            .get(plan.robot)
-            .and_then(|r| r.team.as_ref());
+        let team = plan.team(&report.scenario);
         if let (Some(team), Some(paths)) = (team, &run.outcome.agents) {
             let times = run.outcome.agent_times.as_deref();
             for (k, (agent, path)) in team.iter().zip(paths).enumerate() {

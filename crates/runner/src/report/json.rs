@@ -87,7 +87,7 @@ fn plan_json(scenario: &Scenario, plan: &Plan, run: &PlanRun) -> Value {
     obj.insert("metrics".into(), metrics_json(&run.metrics));
     // A team's plan (SPEC 2.10): each agent's path, one point per step,
     // instead of one robot's path (`null` when none was found).
-    if let Some(team) = robot.and_then(|r| r.team.as_ref()) {
+    if let Some(team) = plan.team(scenario) {
         // Under grid semantics a point per step; a continuous team's
         // agents (`prioritized`) have trajectories `[x, y, θ, t]`.
         let times = run.outcome.agent_times.as_deref();

@@ -15,7 +15,6 @@
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::bench::TABLE_METRICS;
 use crate::checks::{format_num, quantile};
 use crate::palette::plan_colour;
 use crate::run::BenchRun;
@@ -42,7 +41,7 @@ const PX: f64 = 1.0 / 1.24;
 /// The SVG document, or why plotters could not draw it.
 pub fn to_svg(report: &RunReport, metrics: &[&str]) -> Result<String, String> {
     let metrics: Vec<&str> = if metrics.is_empty() {
-        TABLE_METRICS.to_vec()
+        crate::bench::default_metrics(&report.scenario).to_vec()
     } else {
         metrics.to_vec()
     };

@@ -1099,11 +1099,7 @@ fn draw_team(
     run: &PlanRun,
     at: Option<f64>,
 ) {
-    let Some(team) = scenario
-        .robots
-        .get(plan.robot)
-        .and_then(|r| r.team.as_ref())
-    else {
+    let Some(team) = plan.team(scenario) else {
         return;
     };
     let _ = writeln!(svg, "<g class=\"team\" id=\"plan-{}\">", escape(&plan.name));
@@ -1308,10 +1304,7 @@ impl Legend {
         let plans = runs
             .iter()
             .map(|&(plan, run)| {
-                let team = scenario
-                    .robots
-                    .get(plan.robot)
-                    .and_then(|r| r.team.as_ref());
+                let team = plan.team(scenario);
                 let status = match (&run.outcome.path, &run.outcome.agents, team) {
                     // A team (SPEC 2.10): its agents, each in its colour.
                     (_, Some(_), Some(team)) => format!(
