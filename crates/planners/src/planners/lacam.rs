@@ -33,6 +33,27 @@ use crate::planners::deadline::Deadline;
 use crate::planners::lattice::LatticeSpec;
 use crate::planners::mapf::{Graph, MAPF_PARAMS, Node, check_mapf_lattice};
 
+#[path = "lacam/scatter.rs"]
+mod scatter;
+
+use scatter::Scatter;
+
+crate::word_enum! {
+    /// `swap`: PIBT as published, or with LaCAM*'s swap.
+    pub enum UseSwap {
+        No = "no",
+        Yes = "yes",
+    }
+}
+
+crate::word_enum! {
+    /// `scatter`: PIBT alone, or guided by space-utilisation paths.
+    pub enum UseScatter {
+        No = "no",
+        Yes = "yes",
+    }
+}
+
 crate::word_enum! {
     /// `refine`: stop at the first solution, or refine it (LaCAM*).
     pub enum Refine {
@@ -66,6 +87,18 @@ pub static PLANNER: Planner = Planner {
             num(1.0, "1"),
             "PIBT runs per successor configuration, the one of least loss plus distance kept (LaCAM3 uses 10)",
         ),
+        ParamSpec::word(
+            "swap",
+            <UseSwap as Word>::WORDS,
+            "no",
+            "PIBT swaps two agents that must pass each other in a corridor, where plain PIBT would push one back and forth (LaCAM*'s PIBT)",
+        ),
+        ParamSpec::word(
+            "scatter",
+            <UseScatter as Word>::WORDS,
+            "no",
+            "first give each agent a path that meets the others' least (at most 10 steps over its shortest), which PIBT then prefers (LaCAM3's SUO): lower sums of costs, more time",
+        ),
     ],
     metrics: &[
         MetricSpec::num(
@@ -93,16 +126,24 @@ pub struct Lacam {
     pub refine: bool,
     /// PIBT runs per successor, the best kept.
     pub pibt_runs: u32,
+    /// Space-utilisation paths guide PIBT.
+    pub scatter: bool,
+    /// PIBT's swap.
+    pub swap: bool,
 }
 
 fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
     let refine = args.word::<Refine>("refine") == Refine::Yes;
     let lattice = check_mapf_lattice(args)?;
     let pibt_runs = args.num("pibt_runs") as u32;
+    let scatter = args.word::<UseScatter>("scatter") == UseScatter::Yes;
+    let swap = args.word::<UseSwap>("swap") == UseSwap::Yes;
     Some(Box::new(Lacam {
         lattice,
         refine,
         pibt_runs,
+        scatter,
+        swap,
     }))
 }
 
@@ -174,6 +215,10 @@ struct Pibt {
     occupied_next: Vec<u32>,
     tie: Vec<f32>,
     rng: SplitMix64,
+    /// Each agent's preferred next point, when on its scatter path.
+    scatter: Option<Scatter>,
+    /// PIBT's swap (`swap yes`).
+    swap: bool,
 }
 
 impl Pibt {
@@ -228,7 +273,9 @@ impl Pibt {
     }
 
     /// Agent `i` to its best free neighbour (or where it is), agents in the
-    /// way pushed by priority inheritance.
+    /// way pushed by priority inheritance. With `swap`, an agent that must
+    /// pass another in a corridor pulls it along instead (LaCAM*'s PIBT
+    /// swap, as LaCAM3 writes it).
     fn push(
         &mut self,
         graph: &Graph,
@@ -245,19 +292,37 @@ impl Pibt {
             k += 1;
         }
         cand[k] = here;
-        let cand = &mut cand[..=k];
-        for &u in cand.iter() {
+        let len = k + 1;
+        for &u in &cand[..len] {
             self.tie[u as usize] = self.rng.next_f64() as f32;
         }
-        let keys: Vec<f32> = cand
-            .iter()
-            .map(|&u| dist.get(graph, i, u) as f32 + self.tie[u as usize])
-            .collect();
+        // The agent's next point on its scatter path first.
+        let preferred = self.scatter.as_ref().and_then(|s| s.next(i, here));
+        let mut keys = [0f32; 5];
+        for (key, &u) in keys.iter_mut().zip(&cand[..len]) {
+            *key = if Some(u) == preferred {
+                -1.0
+            } else {
+                dist.get(graph, i, u) as f32 + self.tie[u as usize]
+            };
+        }
         let mut idx: [usize; 5] = [0, 1, 2, 3, 4];
-        let idx = &mut idx[..cand.len()];
+        let idx = &mut idx[..len];
         idx.sort_by(|&a, &b| keys[a].total_cmp(&keys[b]));
-        for &c in idx.iter() {
-            let u = cand[c];
+        let mut order = [here; 5];
+        for (o, &c) in order.iter_mut().zip(idx.iter()) {
+            *o = cand[c];
+        }
+        let order = &mut order[..len];
+        let swap_with = if self.swap {
+            self.swap_partner(graph, dist, i, order[0], from, to)
+        } else {
+            None
+        };
+        if swap_with.is_some() {
+            order.reverse();
+        }
+        for (k, &u) in order.iter().enumerate() {
             if self.occupied_next[u as usize] != NO {
                 continue;
             }
@@ -274,10 +339,122 @@ impl Pibt {
             {
                 continue;
             }
+            // The swap: the partner is pulled into the point left.
+            if k == 0
+                && let Some(j) = swap_with
+                && to[j] == crate::planners::mapf::NONE
+                && self.occupied_next[here as usize] == NO
+            {
+                self.occupied_next[here as usize] = j as u32;
+                to[j] = here;
+            }
             return true;
         }
         self.occupied_next[here as usize] = i as u32;
         to[i] = here;
+        false
+    }
+
+    /// The agent `i` should swap with before moving toward `best`, when a
+    /// swap is needed (the other agent is in its way in a corridor with no
+    /// room to step aside) and possible (a branch ahead to swap in).
+    fn swap_partner(
+        &self,
+        graph: &Graph,
+        dist: &mut Distances,
+        i: usize,
+        best: Node,
+        from: &[Node],
+        to: &[Node],
+    ) -> Option<usize> {
+        let j = self.occupied_now[best as usize];
+        if j != NO
+            && j as usize != i
+            && to[j as usize] == crate::planners::mapf::NONE
+            && self.swap_required(graph, dist, i, j as usize, from[i], from[j as usize])
+            && self.swap_possible(graph, from[j as usize], from[i])
+        {
+            return Some(j as usize);
+        }
+        // Clearing the way, as push-and-swap does.
+        if best != from[i] {
+            for u in graph.neighbours(from[i]) {
+                let k = self.occupied_now[u as usize];
+                if k != NO
+                    && best != from[k as usize]
+                    && self.swap_required(graph, dist, k as usize, i, from[i], best)
+                    && self.swap_possible(graph, best, from[i])
+                {
+                    return Some(k as usize);
+                }
+            }
+        }
+        None
+    }
+
+    /// The neighbours of `v` other than `pusher`'s point and dead ends where
+    /// an agent rests at its goal: how many, and one of them.
+    fn ways_on(&self, graph: &Graph, v: Node, pusher: Node) -> (usize, Node) {
+        let mut n = 0;
+        let mut other = crate::planners::mapf::NONE;
+        for u in graph.neighbours(v) {
+            let a = self.occupied_now[u as usize];
+            let resting = graph.neighbours(u).count() == 1
+                && a != NO
+                && graph.goals[a as usize] == u;
+            if u != pusher && !resting {
+                n += 1;
+                other = u;
+            }
+        }
+        (n, other)
+    }
+
+    /// Whether `pusher` (at `v_pusher`) and `puller` (at `v_puller`) must
+    /// swap: the corridor ahead has no branch before the pusher's way and
+    /// the puller's part.
+    fn swap_required(
+        &self,
+        graph: &Graph,
+        dist: &mut Distances,
+        pusher: usize,
+        puller: usize,
+        v_pusher: Node,
+        v_puller: Node,
+    ) -> bool {
+        let (mut v_pusher, mut v_puller) = (v_pusher, v_puller);
+        while dist.get(graph, pusher, v_puller) < dist.get(graph, pusher, v_pusher) {
+            let (n, other) = self.ways_on(graph, v_puller, v_pusher);
+            if n >= 2 {
+                return false;
+            }
+            if n == 0 {
+                break;
+            }
+            v_pusher = v_puller;
+            v_puller = other;
+        }
+        dist.get(graph, puller, v_pusher) < dist.get(graph, puller, v_puller)
+            && (dist.get(graph, pusher, v_pusher) == 0
+                || dist.get(graph, pusher, v_puller) < dist.get(graph, pusher, v_pusher))
+    }
+
+    /// Whether a branch along the corridor from `v_puller` (away from
+    /// `v_pusher`) leaves room to swap.
+    fn swap_possible(&self, graph: &Graph, v_pusher: Node, v_puller: Node) -> bool {
+        let origin = v_pusher;
+        let (mut v_pusher, mut v_puller) = (v_pusher, v_puller);
+        while v_puller != origin {
+            let (n, other) = self.ways_on(graph, v_puller, v_pusher);
+            if n >= 2 {
+                return true;
+            }
+            if n == 0 {
+                return false;
+            }
+            v_pusher = v_puller;
+            v_puller = other;
+        }
         false
     }
 }
@@ -458,6 +635,8 @@ fn search(
             occupied_next: vec![NO; cells],
             tie: vec![0.0; cells],
             rng: SplitMix64::new(task.seed ^ 0x5eed_1aca),
+            scatter: None,
+            swap: settings.swap,
         },
         nodes: Vec::new(),
         explored: HashMap::new(),
@@ -472,6 +651,9 @@ fn search(
             out.extra.insert("exhausted".into(), MetricValue::Bool(true));
             return;
         }
+    }
+    if settings.scatter {
+        s.pibt.scatter = Some(Scatter::build(graph, &mut s.dist, task.seed, deadline));
     }
     let max_expansions = task.limits.expansions.unwrap_or(u64::MAX);
     let root = s.add(graph.starts.clone(), NO);

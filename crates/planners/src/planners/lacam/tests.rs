@@ -23,8 +23,12 @@ fn random_case(seed: u64, n: usize) -> (World, Vec<Agent>) {
 }
 
 fn run(world: &World, agents: &[Agent], refine: bool, seed: u64) -> PlanOutcome {
-    // Odd seeds keep the best of ten PIBT runs per successor.
+    // Odd seeds keep the best of ten PIBT runs per successor; half the
+    // seeds guide PIBT by scatter paths, half swap (none of it may cost
+    // completeness).
     let pibt_runs = if seed % 2 == 1 { 10 } else { 1 };
+    let scatter = seed % 4 >= 2;
+    let swap = seed % 8 >= 4;
     let limits = Limits {
         expansions: Some(2_000_000),
         ..Limits::default()
@@ -34,6 +38,8 @@ fn run(world: &World, agents: &[Agent], refine: bool, seed: u64) -> PlanOutcome 
         lattice,
         refine,
         pibt_runs,
+        scatter,
+        swap,
     };
     plan(&team_task(world, agents, limits, seed), &settings)
 }
