@@ -2,6 +2,8 @@
 //! (SPEC 3.0, issue 40). No planner's code names the validator's checks:
 //! what a planner may ask of it goes through the referee the runner lends
 //! (`contract::referee`), and only tests (which judge) call it directly.
+//! Their checkers come from the task (`Task::motion_checker`,
+//! `Task::car_checker`), built from the robot's body, never by hand.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -63,6 +65,31 @@ fn no_planner_calls_the_validator() {
     assert!(
         found.is_empty(),
         "planners must use their motion checkers (geometry::motion, proximity, car::CarChecker) or the referee the task lends:\n{}",
+        found.join("\n")
+    );
+}
+
+/// How a planner would build a checker itself instead of taking the task's.
+const OWN_CHECKERS: [&str; 2] = ["MotionChecker::new", "CarChecker::new"];
+
+#[test]
+fn planners_take_their_checkers_from_the_task() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/planners");
+    let mut files = Vec::new();
+    rust_files(&root, &mut files);
+    let found: Vec<String> = files
+        .iter()
+        .flat_map(|f| {
+            let code = planner_code(f);
+            OWN_CHECKERS
+                .iter()
+                .filter(move |c| code.contains(*c))
+                .map(move |c| format!("{} calls `{c}`", f.display()))
+        })
+        .collect();
+    assert!(
+        found.is_empty(),
+        "planners take their checkers from the task (task.motion_checker(), task.car_checker()):\n{}",
         found.join("\n")
     );
 }

@@ -140,6 +140,20 @@ pub struct Task<'a> {
 }
 
 impl Task<'_> {
+    /// The robot's motion checker in the task's world: how planners decide
+    /// whether a configuration or a straight motion is free. It is the
+    /// planners' own, built from the robot's body; the validator, which
+    /// judges their answers, stays with the runner (SPEC 3.0).
+    pub fn motion_checker(&self) -> crate::geometry::motion::MotionChecker {
+        crate::geometry::motion::MotionChecker::new(self.world, self.robot)
+    }
+
+    /// A car's checker of steering curves in the task's world (SPEC 2.4),
+    /// on the motion checker and the distance query.
+    pub fn car_checker(&self) -> crate::geometry::car::CarChecker {
+        crate::geometry::car::CarChecker::new(self.world, self.robot)
+    }
+
     /// Whether the start is the goal (SPEC 3: then every planner finds the
     /// path of that one configuration at once): the same (x, y), and for a
     /// robot that rotates the same θ (modulo a turn), exactly, as the

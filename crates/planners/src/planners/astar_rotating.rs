@@ -44,7 +44,7 @@ use crate::contract::{MetricValue, PlanOutcome};
 use crate::geometry::angle_diff;
 use crate::geometry::cspace::{CLayer, ObstaclePieces, layer_angle};
 use crate::geometry::motion::{MotionChecker, segment_depth};
-use crate::geometry::{Aabb, Config, ConvexPolygon, Point, RobotShape, TOUCH_EPS};
+use crate::geometry::{Aabb, Config, ConvexPolygon, Point, TOUCH_EPS};
 use rayon::prelude::*;
 
 /// The most C-obstacle outlines drawn over all layers; beyond it (e.g.
@@ -222,7 +222,6 @@ fn run(
     let deadline = Deadline::start(&task.limits);
     let world = task.world;
     let mut profile = Profile::default();
-    let shape = RobotShape::Polygon(robot.clone());
     let rotating = settings.rotating;
     let spec = settings.lattice;
     let start = task.start;
@@ -339,7 +338,7 @@ fn run(
                 .collect()
         })
         .collect();
-    let motion = MotionChecker::new(world, &shape);
+    let motion = task.motion_checker();
     let mut lat = Lattice {
         spec,
         thetas,
@@ -555,7 +554,7 @@ impl Graph for RotGraph<'_> {
 mod tests {
     use super::*;
     use crate::geometry::validator::{DEFAULT_TOLERANCE, validate_path};
-    use crate::geometry::{Obstacle, Shape, World};
+    use crate::geometry::{Obstacle, RobotShape, Shape, World};
     use proptest::prelude::*;
 
     #[test]

@@ -212,7 +212,7 @@ impl<'a> Search<'a> {
             task,
             steering,
             goal,
-            checker: CarChecker::new(task.world, task.robot),
+            checker: task.car_checker(),
             deadline,
             holonomic,
             ids: HashMap::new(),

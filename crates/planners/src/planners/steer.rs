@@ -10,7 +10,7 @@ use std::any::Any;
 use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
 use crate::contract::schema::RobotKind;
 use crate::contract::{PlanArgs, PlanOutcome, Planner, Settings, Task};
-use crate::geometry::car::{CarChecker, CarPath, DRAW_STEP};
+use crate::geometry::car::{CarPath, DRAW_STEP};
 use crate::planners::deadline::Deadline;
 
 pub static PLANNER: Planner = Planner {
@@ -68,7 +68,7 @@ impl Settings for SteerSettings {
             };
         }
         let car = CarPath::from_steer(task.start, steering, &curve);
-        let checker = CarChecker::new(task.world, task.robot);
+        let checker = task.car_checker();
         let free = checker.path_free(&car) && car.ends_on(goal);
         let mut out = PlanOutcome {
             expanded: 1,

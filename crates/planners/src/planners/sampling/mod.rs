@@ -545,7 +545,7 @@ impl<'a> Run<'a> {
             settings,
             task,
             space,
-            checker: MotionChecker::new(task.world, task.robot),
+            checker: task.motion_checker(),
             rng: SplitMix64::new(task.seed),
             start: task.start,
             goal,
@@ -553,9 +553,7 @@ impl<'a> Run<'a> {
             checks: 0,
             deadline,
             sigma: SIGMA * bounds.width().hypot(bounds.height()),
-            car: task
-                .steering
-                .map(|_| CarChecker::new(task.world, task.robot)),
+            car: task.steering.map(|_| task.car_checker()),
         }
     }
 
