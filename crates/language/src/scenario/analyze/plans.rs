@@ -159,9 +159,10 @@ impl Analyzer {
             }
             None if planner.plans_teams() => {}
             None => {
-                self.check_pose(world, robot, params.start, params.start_span, "start");
+                let who = format!("robot `{}`", robot.name);
+                self.check_pose(world, robot, &who, params.start, params.start_span, "start");
                 if let (Some(g), Some(gs)) = (params.goal, params.goal_span) {
-                    self.check_pose(world, robot, g, gs, "goal");
+                    self.check_pose(world, robot, &who, g, gs, "goal");
                 }
             }
         }
@@ -939,10 +940,13 @@ impl Analyzer {
         self.error(d);
     }
 
+    /// `who` names the body at `c` in the label ("robot `r`", "agent
+    /// `a1`").
     pub(super) fn check_pose(
         &mut self,
         world: &World,
         robot: &Robot,
+        who: &str,
         c: Config,
         span: Span,
         which: &str,
@@ -973,10 +977,7 @@ impl Analyzer {
                 )
                 .at(
                     span,
-                    format!(
-                        "robot `{}` overlaps `{}` here",
-                        robot.name, world.obstacles[i].name
-                    ),
+                    format!("{who} overlaps `{}` here", world.obstacles[i].name),
                 )
                 .help(format!(
                     "move the {which} so that the robot's body is clear of every obstacle"

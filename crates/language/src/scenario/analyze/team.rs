@@ -46,7 +46,9 @@ impl Analyzer {
         for a in &agents {
             for (which, p) in [("start", a.start), ("goal", a.goal)] {
                 let what = format!("{which} of agent `{}`", a.name);
-                self.check_pose(world, &probe, Config::new(p.x, p.y, 0.0), a.span, &what);
+                let who = format!("agent `{}`", a.name);
+                let at = Config::new(p.x, p.y, 0.0);
+                self.check_pose(world, &probe, &who, at, a.span, &what);
             }
         }
         for (which, pick) in [("start", 0), ("goal", 1)] {
