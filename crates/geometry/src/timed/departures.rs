@@ -163,6 +163,22 @@ impl<'a> RoundMover<'a> {
     /// obstacle (overlap it, or come within the margin). Departing at an
     /// end of an interval is safe.
     pub fn blocked_departures(&self, p: Point, q: Point, tau: f64) -> Intervals {
+        self.blocked_departures_within(p, q, tau, f64::NEG_INFINITY, f64::INFINITY)
+    }
+
+    /// [`RoundMover::blocked_departures`] where they matter for departures
+    /// in `[lo, hi]`: every blocked interval that meets `[lo, hi]` is
+    /// there, whole; intervals wholly outside may be left out (the pieces
+    /// of routes that end before `lo`, or begin after the move would end
+    /// leaving at `hi`, are not looked at).
+    pub fn blocked_departures_within(
+        &self,
+        p: Point,
+        q: Point,
+        tau: f64,
+        lo: f64,
+        hi: f64,
+    ) -> Intervals {
         let Some(buckets) = &self.buckets else {
             return Vec::new();
         };
@@ -185,7 +201,8 @@ impl<'a> RoundMover<'a> {
         let mut out = Vec::new();
         for &i in &candidates {
             let piece = &self.pieces[i as usize];
-            if !self.near(piece, p, q) {
+            // A piece meets departures in (a − τ, b) at most.
+            if piece.b < lo || piece.a - tau > hi || !self.near(piece, p, q) {
                 continue;
             }
             self.blocked_by(piece, p, q, tau, &mut out);
@@ -863,6 +880,49 @@ mod tests {
                 assert!(valid(b) && valid(a), "ends of {blocked:?} are safe");
                 assert!(!valid(a + 1e-6) && !valid(b - 1e-6), "{blocked:?}");
                 assert!(!valid((a + b) / 2.0));
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(500))]
+        /// A window leaves out only what cannot matter: from any departure
+        /// in `[lo, hi]`, the first free one at most `hi` is the same as
+        /// with every blocked interval (three carts zigzagging through a
+        /// move, a point or a disk robot, random moves and windows).
+        #[test]
+        fn a_window_changes_no_departure_within_it(
+            waypoints in proptest::collection::vec((0.0..10.0f64, 0.0..10.0f64), 3..12),
+            from in (0.0..10.0f64, 0.0..10.0f64),
+            to in (0.0..10.0f64, 0.0..10.0f64),
+            radius in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.1..0.8f64],
+            lo in 0.0..30.0f64,
+            width in 0.0..20.0f64,
+        ) {
+            let square = vec![p(-0.5, -0.5), p(0.5, -0.5), p(0.5, 0.5), p(-0.5, 0.5)];
+            let route = |shift: f64| -> Vec<(f64, f64, f64)> {
+                waypoints
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &(x, y))| (k as f64 * 3.0 + shift, x, y))
+                    .collect()
+            };
+            let carts = [
+                cart(MovingShape::Disk(0.6), &route(0.0), After::Stay),
+                cart(MovingShape::Pieces(vec![square.clone()]), &route(1.5), After::Vanish),
+                cart(MovingShape::Pieces(vec![square]), &route(4.0), After::Stay),
+            ];
+            let mover = RoundMover::new(&carts, radius);
+            let (a, b) = (p(from.0, from.1), p(to.0, to.1));
+            let tau = (b - a).norm();
+            let hi = lo + width;
+            let all = mover.blocked_departures(a, b, tau);
+            let some = mover.blocked_departures_within(a, b, tau, lo, hi);
+            for k in 0..=20 {
+                let t = lo + width * k as f64 / 20.0;
+                let full = first_free(&all, t).filter(|&x| x <= hi);
+                let windowed = first_free(&some, t).filter(|&x| x <= hi);
+                proptest::prop_assert_eq!(full, windowed, "from {}", t);
             }
         }
     }

@@ -375,7 +375,9 @@ fn search(
         for &m in &neighbours {
             let to = graph.point(m);
             let tau = (to - from).norm() / speed;
-            let blocked = mover.blocked_departures(from, to, tau);
+            // Departures from this interval only: leaving at `arrival`
+            // at the earliest and by its end.
+            let blocked = mover.blocked_departures_within(from, to, tau, arrival, here.1);
             let there = intervals_of(&mut safe, mover, graph, m);
             for (j, &(j_start, j_end)) in there.iter().enumerate() {
                 if j_start > here.1 + tau {
