@@ -13,7 +13,7 @@
 # Both run on one thread: LaCAM3 plain (--no-star --no-multi-thread: its
 # first solution, with scatter, swap and ten PIBT runs), and vanilla LaCAM
 # (--no-all); scen's `lacam` as it comes (vanilla LaCAM) and with LaCAM3's
-# techniques (`scatter yes swap yes pibt_runs 10`).
+# techniques (`spread yes swap yes pibt_runs 10`).
 # Usage: scripts/bench_mapf.sh
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -37,7 +37,7 @@ run() { # map width height scen agents
     echo "team T point from \"$scen\" agents $n"
     for seed in 1 2 3 4 5; do
       echo "plan plain$seed lacam T { seed $seed limit time 60s }"
-      echo "plan suo$seed lacam T { scatter yes swap yes pibt_runs 10 seed $seed limit time 60s }"
+      echo "plan suo$seed lacam T { spread yes swap yes pibt_runs 10 seed $seed limit time 60s }"
     done
   } > "$work/b.scen"
   "$here/target/release/scen" run "$work/b.scen" --json > "$work/scen.json"
@@ -56,7 +56,7 @@ def line(name, runs):
     med = lambda xs: statistics.median(xs) if xs else float("nan")
     print(f"{name:40} solved={len(solved)}/{len(runs)} soc={med(socs):.0f} [{socs[0] if socs else '-'}, {socs[-1] if socs else '-'}] "
           f"soc_lb={runs[0]['lb']} makespan={med([r['makespan'] for r in solved]):.0f} ms={med([r['ms'] for r in runs]):.0f}")
-for prefix, name in (("plain", "scen lacam"), ("suo", "scen lacam scatter swap pibt_runs 10")):
+for prefix, name in (("plain", "scen lacam"), ("suo", "scen lacam spread swap pibt_runs 10")):
     runs = []
     for k, v in plans.items():
         if k.rstrip("0123456789") == prefix:

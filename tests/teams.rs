@@ -199,7 +199,7 @@ plan thirty cbs T30 { limit time 60s }
 plan fifty lacam T50 { limit time 60s }
 plan many lacam T400 { limit time 60s }
 plan optimal cbs T50 { limit time 60s }
-plan spread lacam T50 { scatter yes swap yes pibt_runs 10 limit time 60s }
+plan spread lacam T50 { spread yes swap yes pibt_runs 10 limit time 60s }
 "#;
     let file = dir.path().join("r.scen");
     std::fs::write(&file, text).expect("write the scenario");

@@ -48,13 +48,19 @@ function tokenize(grammar, text) {
 
 const ROOT = path.join(__dirname, '..', '..');
 
-/** Every `*.scen` under `dir`, sorted. */
+/** Whether `p` holds MovingAI's rows of a team (first word `version`):
+ * data that teams read, not a scenario. */
+function isMovingaiRows(p) {
+  return fs.readFileSync(p, 'utf8').trimStart().split(/\s+/, 1)[0] === 'version';
+}
+
+/** Every `*.scen` scenario under `dir` (MovingAI rows left out), sorted. */
 function scenFiles(dir) {
   const out = [];
   for (const entry of fs.readdirSync(dir, { withFileTypes: true })) {
     const p = path.join(dir, entry.name);
     if (entry.isDirectory()) out.push(...scenFiles(p));
-    else if (entry.name.endsWith('.scen')) out.push(p);
+    else if (entry.name.endsWith('.scen') && !isMovingaiRows(p)) out.push(p);
   }
   return out.sort();
 }

@@ -141,7 +141,7 @@ syn keyword scenWorldKeyword contained moving nextgroup=scenObstacleName skipwhi
 syn keyword scenParamKey contained start goal seed drive cell sample connect layers cost turn_cost weight heuristic
 syn keyword scenParamKey contained rotate strategy sense arc_segments attract repulse influence step tolerance escape
 syn keyword scenParamKey contained jump on tool weights range goal_bias sampler stop simplify rewire informed neighbors
-syn keyword scenParamKey contained reverse_cost switch_cost analytic variant follow agents refine pibt_runs swap scatter
+syn keyword scenParamKey contained reverse_cost switch_cost analytic variant follow agents refine pibt_runs swap spread
 syn keyword scenParamKey contained order dt max_speed max_turn_rate gain turn_gain reach align lookahead speed
 syn keyword scenParamKey contained max_curvature
 " A key that is a word value too is two matches, not keywords (a keyword would

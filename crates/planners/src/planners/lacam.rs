@@ -47,8 +47,8 @@ crate::word_enum! {
 }
 
 crate::word_enum! {
-    /// `scatter`: PIBT alone, or guided by space-utilisation paths.
-    pub enum UseScatter {
+    /// `spread`: PIBT alone, or guided by space-utilisation paths.
+    pub enum UseSpread {
         No = "no",
         Yes = "yes",
     }
@@ -94,8 +94,8 @@ pub static PLANNER: Planner = Planner {
             "PIBT swaps two agents that must pass each other in a corridor, where plain PIBT would push one back and forth (LaCAM*'s PIBT)",
         ),
         ParamSpec::word(
-            "scatter",
-            <UseScatter as Word>::WORDS,
+            "spread",
+            <UseSpread as Word>::WORDS,
             "no",
             "first give each agent a path that meets the others' least (at most 10 steps over its shortest), which PIBT then prefers (LaCAM3's SUO): lower sums of costs, more time",
         ),
@@ -126,7 +126,8 @@ pub struct Lacam {
     pub refine: bool,
     /// PIBT runs per successor, the best kept.
     pub pibt_runs: u32,
-    /// Space-utilisation paths guide PIBT.
+    /// Space-utilisation paths guide PIBT (`spread yes`; LaCAM3's
+    /// "scatter").
     pub scatter: bool,
     /// PIBT's swap.
     pub swap: bool,
@@ -136,7 +137,7 @@ fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
     let refine = args.word::<Refine>("refine") == Refine::Yes;
     let lattice = check_mapf_lattice(args)?;
     let pibt_runs = args.num("pibt_runs") as u32;
-    let scatter = args.word::<UseScatter>("scatter") == UseScatter::Yes;
+    let scatter = args.word::<UseSpread>("spread") == UseSpread::Yes;
     let swap = args.word::<UseSwap>("swap") == UseSwap::Yes;
     Some(Box::new(Lacam {
         lattice,
@@ -215,7 +216,8 @@ struct Pibt {
     occupied_next: Vec<u32>,
     tie: Vec<f32>,
     rng: SplitMix64,
-    /// Each agent's preferred next point, when on its scatter path.
+    /// Each agent's preferred next point, when on its scatter path
+    /// (`spread yes`).
     scatter: Option<Scatter>,
     /// PIBT's swap (`swap yes`).
     swap: bool,
