@@ -93,8 +93,9 @@ impl Scatter {
 
 /// Who is where when, along the paths so far.
 struct Table {
-    /// Per point, per step, the agents there.
-    body: Vec<Vec<Vec<u32>>>,
+    /// Per point, the (step, agent) of every visit, sorted: memory in
+    /// proportion to the paths' lengths, whatever the steps.
+    body: Vec<Vec<(u32, u32)>>,
     /// Per point, the steps at which agents whose paths end there arrive.
     last: Vec<Vec<u32>>,
     /// The collisions among the paths enrolled.
@@ -102,19 +103,29 @@ struct Table {
 }
 
 impl Table {
+    /// The agents at `v` at step `t`.
+    fn at(&self, v: Node, t: usize) -> &[(u32, u32)] {
+        let visits = &self.body[v as usize];
+        let t = t as u32;
+        let lo = visits.partition_point(|e| e.0 < t);
+        let hi = lo + visits[lo..].partition_point(|e| e.0 == t);
+        &visits[lo..hi]
+    }
+
+    /// The visits of `v` after step `t`.
+    fn after(&self, v: Node, t: usize) -> usize {
+        let visits = &self.body[v as usize];
+        visits.len() - visits.partition_point(|e| e.0 as usize <= t)
+    }
+
     /// The collisions of a move `from` → `to` leaving at step `t`.
     fn cost(&self, from: Node, to: Node, t: usize) -> u32 {
-        let (from, to) = (from as usize, to as usize);
-        let mut c = 0;
-        if let Some(there) = self.body[to].get(t + 1) {
-            c += there.len() as u32;
+        let mut c = self.at(to, t + 1).len() as u32;
+        let before = self.at(to, t);
+        for &(_, j) in self.at(from, t + 1) {
+            c += before.iter().filter(|e| e.1 == j).count() as u32;
         }
-        if let (Some(js), Some(ks)) = (self.body[from].get(t + 1), self.body[to].get(t)) {
-            for j in js {
-                c += ks.iter().filter(|&k| k == j).count() as u32;
-            }
-        }
-        c += self.last[to].iter().filter(|&&s| t as u32 + 1 > s).count() as u32;
+        c += self.last[to as usize].iter().filter(|&&s| t as u32 + 1 > s).count() as u32;
         c
     }
 
@@ -126,19 +137,13 @@ impl Table {
             if t > 0 {
                 self.count += i64::from(self.cost(path[t - 1], v, t - 1));
             }
-            let at = &mut self.body[v as usize];
-            if at.len() <= t {
-                at.resize(t + 1, Vec::new());
-            }
-            at[t].push(i);
+            let visits = &mut self.body[v as usize];
+            let k = visits.partition_point(|e| *e <= (t as u32, i));
+            visits.insert(k, (t as u32, i));
         }
         let arrival = path.len() - 1;
         self.last[end as usize].push(arrival as u32);
-        self.count += self.body[end as usize]
-            .iter()
-            .skip(arrival + 1)
-            .map(|a| a.len() as i64)
-            .sum::<i64>();
+        self.count += self.after(end, arrival) as i64;
     }
 
     fn clear(&mut self, i: u32, path: &[Node]) {
@@ -146,9 +151,9 @@ impl Table {
             return;
         };
         for (t, &v) in path.iter().enumerate() {
-            let at = &mut self.body[v as usize][t];
-            if let Some(k) = at.iter().position(|&a| a == i) {
-                at.swap_remove(k);
+            let visits = &mut self.body[v as usize];
+            if let Ok(k) = visits.binary_search(&(t as u32, i)) {
+                visits.remove(k);
             }
             if t > 0 {
                 self.count -= i64::from(self.cost(path[t - 1], v, t - 1));
@@ -159,11 +164,7 @@ impl Table {
         if let Some(k) = last.iter().position(|&s| s as usize == arrival) {
             last.swap_remove(k);
         }
-        self.count -= self.body[end as usize]
-            .iter()
-            .skip(arrival + 1)
-            .map(|a| a.len() as i64)
-            .sum::<i64>();
+        self.count -= self.after(end, arrival) as i64;
     }
 }
 
