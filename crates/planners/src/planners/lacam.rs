@@ -26,41 +26,18 @@
 use std::any::Any;
 use std::collections::{HashMap, VecDeque};
 
-use crate::contract::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, Word, num};
+use crate::contract::schema::{MetricSpec, ParamSpec, RobotKind, ValueSpec, Word, YesNo, num};
 use crate::contract::{MetricValue, PlanArgs, PlanOutcome, Planner, Settings, Task};
 use crate::geometry::rng::SplitMix64;
 use crate::planners::deadline::Deadline;
 use crate::planners::lattice::LatticeSpec;
-use crate::planners::mapf::{Graph, MAPF_PARAMS, Node, check_mapf_lattice};
+use crate::planners::mapf::{Graph, MAPF_PARAMS, NONE, Node, check_mapf_lattice};
 
 #[path = "lacam/scatter.rs"]
 mod scatter;
 
 use scatter::Scatter;
 
-crate::word_enum! {
-    /// `swap`: PIBT as published, or with LaCAM*'s swap.
-    pub enum UseSwap {
-        No = "no",
-        Yes = "yes",
-    }
-}
-
-crate::word_enum! {
-    /// `spread`: PIBT alone, or guided by space-utilisation paths.
-    pub enum UseSpread {
-        No = "no",
-        Yes = "yes",
-    }
-}
-
-crate::word_enum! {
-    /// `refine`: stop at the first solution, or refine it (LaCAM*).
-    pub enum Refine {
-        No = "no",
-        Yes = "yes",
-    }
-}
 
 /// `lacam` in the registry.
 pub static PLANNER: Planner = Planner {
@@ -72,7 +49,7 @@ pub static PLANNER: Planner = Planner {
         MAPF_PARAMS[1],
         ParamSpec::word(
             "refine",
-            <Refine as Word>::WORDS,
+            YesNo::WORDS,
             "no",
             "after the first solution, refine it until the search is exhausted or a limit is reached (LaCAM*: converges to the least sum of loss)",
         ),
@@ -89,13 +66,13 @@ pub static PLANNER: Planner = Planner {
         ),
         ParamSpec::word(
             "swap",
-            <UseSwap as Word>::WORDS,
+            YesNo::WORDS,
             "no",
             "PIBT swaps two agents that must pass each other in a corridor, where plain PIBT would push one back and forth (LaCAM*'s PIBT)",
         ),
         ParamSpec::word(
             "spread",
-            <UseSpread as Word>::WORDS,
+            YesNo::WORDS,
             "no",
             "first give each agent a path that meets the others' least (at most 10 steps over its shortest), which PIBT then prefers (LaCAM3's SUO): lower sums of costs, more time",
         ),
@@ -134,11 +111,11 @@ pub struct Lacam {
 }
 
 fn check(args: &mut PlanArgs<'_>) -> Option<Box<dyn Settings>> {
-    let refine = args.word::<Refine>("refine") == Refine::Yes;
+    let refine = args.word::<YesNo>("refine") == YesNo::Yes;
     let lattice = check_mapf_lattice(args)?;
     let pibt_runs = args.num("pibt_runs") as u32;
-    let scatter = args.word::<UseSpread>("spread") == UseSpread::Yes;
-    let swap = args.word::<UseSwap>("swap") == UseSwap::Yes;
+    let scatter = args.word::<YesNo>("spread") == YesNo::Yes;
+    let swap = args.word::<YesNo>("swap") == YesNo::Yes;
     Some(Box::new(Lacam {
         lattice,
         refine,
@@ -214,7 +191,6 @@ impl Distances {
 struct Pibt {
     occupied_now: Vec<u32>,
     occupied_next: Vec<u32>,
-    tie: Vec<f32>,
     rng: SplitMix64,
     /// Each agent's preferred next point, when on its scatter path
     /// (`spread yes`).
@@ -241,7 +217,7 @@ impl Pibt {
         }
         for i in 0..from.len() {
             let v = to[i];
-            if v == crate::planners::mapf::NONE {
+            if v == NONE {
                 continue;
             }
             if self.occupied_next[v as usize] != NO {
@@ -257,7 +233,7 @@ impl Pibt {
         }
         if ok {
             for &i in order {
-                if to[i as usize] == crate::planners::mapf::NONE
+                if to[i as usize] == NONE
                     && !self.push(graph, dist, i as usize, from, to)
                 {
                     ok = false;
@@ -267,7 +243,7 @@ impl Pibt {
         }
         for (i, &v) in from.iter().enumerate() {
             self.occupied_now[v as usize] = NO;
-            if to[i] != crate::planners::mapf::NONE {
+            if to[i] != NONE {
                 self.occupied_next[to[i] as usize] = NO;
             }
         }
@@ -287,44 +263,33 @@ impl Pibt {
         to: &mut [Node],
     ) -> bool {
         let here = from[i];
-        let mut cand = [here; 5];
-        let mut k = 0;
-        for u in graph.neighbours(here) {
-            cand[k] = u;
-            k += 1;
-        }
-        cand[k] = here;
-        let len = k + 1;
-        for &u in &cand[..len] {
-            self.tie[u as usize] = self.rng.next_f64() as f32;
-        }
-        // The agent's next point on its scatter path first.
+        // Each way (the neighbours, then staying) by its distance to the
+        // goal, a random tie-break, the agent's next point on its scatter
+        // path first.
         let preferred = self.scatter.as_ref().and_then(|s| s.next(i, here));
-        let mut keys = [0f32; 5];
-        for (key, &u) in keys.iter_mut().zip(&cand[..len]) {
-            *key = if Some(u) == preferred {
+        let mut ranked = [(0f32, here); 5];
+        let mut len = 0;
+        for u in graph.neighbours(here).chain([here]) {
+            let tie = self.rng.next_f64() as f32;
+            let key = if Some(u) == preferred {
                 -1.0
             } else {
-                dist.get(graph, i, u) as f32 + self.tie[u as usize]
+                dist.get(graph, i, u) as f32 + tie
             };
+            ranked[len] = (key, u);
+            len += 1;
         }
-        let mut idx: [usize; 5] = [0, 1, 2, 3, 4];
-        let idx = &mut idx[..len];
-        idx.sort_by(|&a, &b| keys[a].total_cmp(&keys[b]));
-        let mut order = [here; 5];
-        for (o, &c) in order.iter_mut().zip(idx.iter()) {
-            *o = cand[c];
-        }
-        let order = &mut order[..len];
+        let ranked = &mut ranked[..len];
+        ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
         let swap_with = if self.swap {
-            self.swap_partner(graph, dist, i, order[0], from, to)
+            self.swap_partner(graph, dist, i, ranked[0].1, from, to)
         } else {
             None
         };
         if swap_with.is_some() {
-            order.reverse();
+            ranked.reverse();
         }
-        for (k, &u) in order.iter().enumerate() {
+        for (k, &(_, u)) in ranked.iter().enumerate() {
             if self.occupied_next[u as usize] != NO {
                 continue;
             }
@@ -336,7 +301,7 @@ impl Pibt {
             to[i] = u;
             if ak != NO
                 && ak as usize != i
-                && to[ak as usize] == crate::planners::mapf::NONE
+                && to[ak as usize] == NONE
                 && !self.push(graph, dist, ak as usize, from, to)
             {
                 continue;
@@ -344,7 +309,7 @@ impl Pibt {
             // The swap: the partner is pulled into the point left.
             if k == 0
                 && let Some(j) = swap_with
-                && to[j] == crate::planners::mapf::NONE
+                && to[j] == NONE
                 && self.occupied_next[here as usize] == NO
             {
                 self.occupied_next[here as usize] = j as u32;
@@ -372,7 +337,7 @@ impl Pibt {
         let j = self.occupied_now[best as usize];
         if j != NO
             && j as usize != i
-            && to[j as usize] == crate::planners::mapf::NONE
+            && to[j as usize] == NONE
             && self.swap_required(graph, dist, i, j as usize, from[i], from[j as usize])
             && self.swap_possible(graph, from[j as usize], from[i])
         {
@@ -398,7 +363,7 @@ impl Pibt {
     /// an agent rests at its goal: how many, and one of them.
     fn ways_on(&self, graph: &Graph, v: Node, pusher: Node) -> (usize, Node) {
         let mut n = 0;
-        let mut other = crate::planners::mapf::NONE;
+        let mut other = NONE;
         for u in graph.neighbours(v) {
             let a = self.occupied_now[u as usize];
             let resting = graph.neighbours(u).count() == 1
@@ -635,7 +600,6 @@ fn search(
         pibt: Pibt {
             occupied_now: vec![NO; cells],
             occupied_next: vec![NO; cells],
-            tie: vec![0.0; cells],
             rng: SplitMix64::new(task.seed ^ 0x5eed_1aca),
             scatter: None,
             swap: settings.swap,
@@ -663,7 +627,7 @@ fn search(
     let mut goal: Option<u32> = None;
     let mut expanded = 0u64;
     let mut stopped = false;
-    let mut to = vec![crate::planners::mapf::NONE; n];
+    let mut to = vec![NONE; n];
     while let Some(&h) = open.last() {
         if expanded >= max_expansions
             || s.nodes.len().saturating_mul(n.max(1)) > MAX_STORED
@@ -720,7 +684,7 @@ fn search(
         // configuration generation).
         let mut best: Option<(u64, Vec<Node>)> = None;
         for _ in 0..settings.pibt_runs {
-            to.fill(crate::planners::mapf::NONE);
+            to.fill(NONE);
             for (&i, &v) in low.who.iter().zip(&low.at) {
                 to[i as usize] = v;
             }

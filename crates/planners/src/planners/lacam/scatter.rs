@@ -168,9 +168,9 @@ impl Table {
     }
 }
 
-/// An open entry of the single-agent search: collisions, f, the tie (the
-/// point's bits reversed), the point, g and the parent.
-type Entry = (u32, u32, Node, Node, u32, Node);
+/// An open entry of the single-agent search: collisions, f, the point
+/// (the later one first on ties, LaCAM3's order), g and the parent.
+type Entry = (u32, u32, Reverse<Node>, u32, Node);
 
 /// The single-agent search of a round, its arrays kept between agents.
 struct Astar {
@@ -186,12 +186,11 @@ impl Astar {
         let start = graph.starts[i];
         let goal = graph.goals[i];
         let bound = dist.get(graph, i, start).saturating_add(MARGIN);
-        // (collisions, f, tie), smallest first, the later point first on
-        // ties (LaCAM3's order); the point, g and the parent beside.
+        // Smallest first.
         let mut open: BinaryHeap<Reverse<Entry>> = BinaryHeap::new();
-        open.push(Reverse((0, dist.get(graph, i, start), !start, start, 0, NONE)));
+        open.push(Reverse((0, dist.get(graph, i, start), Reverse(start), 0, NONE)));
         let mut found = false;
-        while let Some(Reverse((c, _, _, v, g, parent))) = open.pop() {
+        while let Some(Reverse((c, _, Reverse(v), g, parent))) = open.pop() {
             if self.closed[v as usize] {
                 continue;
             }
@@ -206,7 +205,7 @@ impl Astar {
                 let d = dist.get(graph, i, u);
                 if u != start && !self.closed[u as usize] && d != u32::MAX && d + g < bound {
                     let cost = c + table.cost(v, u, g as usize);
-                    open.push(Reverse((cost, g + 1 + d, !u, u, g + 1, v)));
+                    open.push(Reverse((cost, g + 1 + d, Reverse(u), g + 1, v)));
                 }
             }
         }
