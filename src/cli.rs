@@ -661,7 +661,7 @@ pub(crate) fn collect_scen(path: &Path, fragments: bool, out: &mut Vec<PathBuf>)
                     || !e
                         .file_name()
                         .is_some_and(|n| n.to_string_lossy().starts_with('_')))
-                && !is_movingai_scenario(&e)
+                && !crate::scenario::movingai::is_scen_file(&e)
             {
                 out.push(e);
             }
@@ -669,19 +669,6 @@ pub(crate) fn collect_scen(path: &Path, fragments: bool, out: &mut Vec<PathBuf>)
     } else {
         out.push(path.to_path_buf());
     }
-}
-
-/// Whether `path` is a MovingAI scenario file: its first word is
-/// `version` (no scenario of ours starts so).
-fn is_movingai_scenario(path: &Path) -> bool {
-    use std::io::Read;
-    let mut head = [0u8; 64];
-    let n = std::fs::File::open(path)
-        .and_then(|mut f| f.read(&mut head))
-        .unwrap_or(0);
-    let text = String::from_utf8_lossy(&head[..n]);
-    let mut words = text.split_whitespace();
-    words.next() == Some("version") && words.next().is_some_and(|w| w.parse::<u32>().is_ok())
 }
 
 /// The diagnostic codes a test file declares it must get, one per

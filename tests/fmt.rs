@@ -81,7 +81,9 @@ fn scen_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for e in entries {
         if e.is_dir() {
             scen_files(&e, out);
-        } else if e.extension().is_some_and(|x| x == "scen") && !common::is_movingai_rows(&e) {
+        } else if e.extension().is_some_and(|x| x == "scen")
+            && !scen::scenario::movingai::is_scen_file(&e)
+        {
             out.push(e);
         }
     }

@@ -23,7 +23,7 @@ fn scenario_files() -> Vec<PathBuf> {
             if p.is_dir() {
                 walk(&p, out);
             } else if p.extension().is_some_and(|e| e == "scen")
-                && !common::is_movingai_rows(&p)
+                && !scen::scenario::movingai::is_scen_file(&p)
                 && !p
                     .file_name()
                     .is_some_and(|n| n.to_string_lossy().starts_with('_'))

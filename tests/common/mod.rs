@@ -295,11 +295,3 @@ pub fn run_or_kill(cmd: &mut Command, timeout: Duration) -> Finished {
         stderr: stderr.join().expect("stderr reader"),
     }
 }
-
-/// Whether `path` is a MovingAI scenario file (rows of a benchmark, first
-/// word `version`) rather than a scenario: the team scenarios read them
-/// from beside their maps, and `scen test` leaves them alone too.
-#[allow(dead_code)] // not every test file walks the scenarios
-pub fn is_movingai_rows(path: &std::path::Path) -> bool {
-    std::fs::read_to_string(path).is_ok_and(|t| t.split_whitespace().next() == Some("version"))
-}

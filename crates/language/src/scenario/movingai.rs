@@ -112,6 +112,21 @@ pub struct ScenRow {
     pub goal: (usize, usize),
 }
 
+/// Whether `path` is a MovingAI `.scen` file rather than a scenario: its
+/// first words are `version` and a number (no scenario starts so). The
+/// commands and the tests that walk a folder of scenarios leave such files
+/// alone; teams read them (`team T point from "F.scen" agents N`).
+pub fn is_scen_file(path: &std::path::Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 64];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .unwrap_or(0);
+    let text = String::from_utf8_lossy(&head[..n]);
+    let mut words = text.split_whitespace();
+    words.next() == Some("version") && words.next().is_some_and(|w| w.parse::<u32>().is_ok())
+}
+
 /// The first `n` rows of a MovingAI `.scen` file (`version 1` or a bare
 /// first row; tab- or blank-separated columns: bucket, map, width, height,
 /// start x, start y, goal x, goal y, optimal length; CRLF accepted). `Err`:
