@@ -25,9 +25,10 @@
 //! outgrows [`MAX_STORED`]; `lacam` says when none exists.
 
 use std::any::Any;
-use std::cmp::{Ordering, Reverse};
-use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::sync::Arc;
+
+use symmetry::Conflict;
+use tree::{Grower, Grown, Places, Team};
 
 use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
 use crate::contract::schema::{MetricSpec, RobotKind};
@@ -83,54 +84,76 @@ pub const MAX_STORED: usize = 1 << 28;
 /// The most resolved conflicts drawn (each place once).
 const MAX_DRAWN_CONFLICTS: usize = 10_000;
 
-/// A constraint on one agent: not on `to` at step `t` (a vertex
-/// constraint, `from` = [`VERTEX`]), or not moving `from` → `to` into step
-/// `t` (an edge constraint).
+/// A constraint of the tree on one agent.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 struct Constraint {
     agent: u32,
-    from: Node,
-    to: Node,
-    t: u32,
+    rule: Rule,
 }
 
-const VERTEX: Node = Node::MAX;
+/// What a [`Constraint`] forbids.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Rule {
+    /// The agent is not at `v` at step `t`.
+    Vertex { v: Node, t: u32 },
+    /// The agent does not move `u` → `v` into step `t`.
+    Edge { u: Node, v: Node, t: u32 },
+    /// The agent arrives at its goal for the last time after step `t`.
+    FinishAfter { t: u32 },
+    /// The agent rests at its goal `v` from step `t` at the latest, so no
+    /// other agent is at `v` at step `t` or later.
+    RestsFrom { v: Node, t: u32 },
+}
 
 /// A node of the constraint tree.
 struct CtNode {
     constraints: Arc<Vec<Constraint>>,
     paths: Vec<Arc<Vec<Node>>>,
     cost: u64,
-    conflicts: usize,
+    found: Found,
+    /// The heuristic: what the subtree adds at least to `cost` …
+    h: u64,
+    /// … once computed (until then, what its parent's f implies).
+    h_known: bool,
 }
 
-/// A conflict between two agents' paths.
-#[derive(Clone, Copy, Debug)]
-enum Conflict {
-    Vertex { a: u32, b: u32, v: Node, t: u32 },
-    Edge { a: u32, b: u32, u: Node, v: Node, t: u32 },
+/// The conflicts of a node's paths.
+#[derive(Default)]
+struct Found {
+    /// The earliest [`CLASSIFIED`], in time order.
+    first: Vec<Conflict>,
+    /// How many in all (the tree's tie-break).
+    count: usize,
+    /// Every pair of agents that conflict, once.
+    pairs: Vec<(u32, u32)>,
 }
 
 fn at(path: &[Node], t: usize) -> Node {
     path[t.min(path.len() - 1)]
 }
 
-/// The earliest `keep` conflicts, in time order, and how many pairs
-/// conflict at all (the tree's tie-break).
-fn conflicts(paths: &[Arc<Vec<Node>>], keep: usize) -> (Vec<Conflict>, usize) {
+/// The conflicts of `paths` on a graph of `nodes` points.
+fn conflicts(paths: &[Arc<Vec<Node>>], nodes: usize) -> Found {
     let horizon = paths.iter().map(|p| p.len()).max().unwrap_or(0);
     let mut first = Vec::new();
     let mut count = 0;
-    let mut here: HashMap<Node, u32> = HashMap::with_capacity(paths.len());
-    let mut before: HashMap<Node, u32> = HashMap::with_capacity(paths.len());
+    let mut pairs = Vec::new();
+    // Who is at each point at the step (the step + 1 in the high half, so
+    // a stale entry is never read as this step's).
+    let mut here = vec![0u64; nodes];
+    let mut before = vec![0u64; nodes];
+    let owner = |slots: &[u64], v: Node, t: usize| {
+        let s = slots[v as usize];
+        ((s >> 32) as usize == t + 1).then_some(s as u32)
+    };
     for t in 0..horizon {
         std::mem::swap(&mut here, &mut before);
-        here.clear();
         for (a, p) in paths.iter().enumerate() {
             let v = at(p, t);
-            if let Some(&b) = here.get(&v) {
+            if let Some(b) = owner(&here, v, t) {
                 count += 1;
-                if first.len() < keep {
+                pairs.push((b.min(a as u32), b.max(a as u32)));
+                if first.len() < CLASSIFIED {
                     first.push(Conflict::Vertex {
                         a: b,
                         b: a as u32,
@@ -139,7 +162,7 @@ fn conflicts(paths: &[Arc<Vec<Node>>], keep: usize) -> (Vec<Conflict>, usize) {
                     });
                 }
             } else {
-                here.insert(v, a as u32);
+                here[v as usize] = ((t as u64 + 1) << 32) | a as u64;
             }
         }
         if t == 0 {
@@ -150,12 +173,13 @@ fn conflicts(paths: &[Arc<Vec<Node>>], keep: usize) -> (Vec<Conflict>, usize) {
             if u == v {
                 continue;
             }
-            if let Some(&b) = before.get(&v)
+            if let Some(b) = owner(&before, v, t - 1)
                 && b as usize > a
                 && at(&paths[b as usize], t) == u
             {
                 count += 1;
-                if first.len() < keep {
+                pairs.push((a as u32, b));
+                if first.len() < CLASSIFIED {
                     first.push(Conflict::Edge {
                         a: a as u32,
                         b,
@@ -167,100 +191,13 @@ fn conflicts(paths: &[Arc<Vec<Node>>], keep: usize) -> (Vec<Conflict>, usize) {
             }
         }
     }
-    (first, count)
+    pairs.sort_unstable();
+    pairs.dedup();
+    Found { first, count, pairs }
 }
 
 /// The most conflicts of a node classified before one is chosen.
 const CLASSIFIED: usize = 32;
-
-/// The conflict to split on (Boyarski et al. 2015, "ICBS"): a cardinal one
-/// (both children cost more: every shortest path of each agent under its
-/// constraints is where the conflict is), else a semi-cardinal one, else
-/// the earliest. Splitting on a cardinal conflict raises the tree's lower
-/// bound at once, which keeps the tree small.
-fn choose(graph: &Graph, dists: &[Vec<u32>], node: &CtNode, found: &[Conflict]) -> Option<Conflict> {
-    let first = *found.first()?;
-    if found.len() == 1 {
-        return Some(first);
-    }
-    let mut mdds: HashMap<u32, Vec<Vec<Node>>> = HashMap::new();
-    let mut mdd_of = |agent: u32| -> Vec<Vec<Node>> {
-        mdds.entry(agent)
-            .or_insert_with(|| {
-                let mine: Vec<Constraint> = node
-                    .constraints
-                    .iter()
-                    .copied()
-                    .filter(|c| c.agent == agent)
-                    .collect();
-                let path = &node.paths[agent as usize];
-                mdd(graph, &dists[agent as usize], path[0], *path.last().unwrap_or(&path[0]), path.len() - 1, &mine)
-            })
-            .clone()
-    };
-    // Whether every shortest path of `agent` is at `u` then `v` at `t`
-    // (`u` = `v` for a vertex).
-    let narrow = |levels: &[Vec<Node>], u: Node, v: Node, t: u32| {
-        let level = |k: usize| -> &[Node] { levels.get(k).or(levels.last()).map_or(&[], Vec::as_slice) };
-        let t = t as usize;
-        level(t) == [v] && (u == v || (t > 0 && level(t - 1) == [u]))
-    };
-    let mut semi = None;
-    for &c in found {
-        let (a, b, ua, va, ub, vb, t) = match c {
-            Conflict::Vertex { a, b, v, t } => (a, b, v, v, v, v, t),
-            Conflict::Edge { a, b, u, v, t } => (a, b, u, v, v, u, t),
-        };
-        let ca = narrow(&mdd_of(a), ua, va, t);
-        let cb = narrow(&mdd_of(b), ub, vb, t);
-        if ca && cb {
-            return Some(c);
-        }
-        if (ca || cb) && semi.is_none() {
-            semi = Some(c);
-        }
-    }
-    Some(semi.unwrap_or(first))
-}
-
-/// The multi-valued decision diagram of an agent's shortest paths of
-/// `cost` steps under its constraints: for each step, the nodes some such
-/// path is at (Sharon et al. 2013), sorted.
-fn mdd(graph: &Graph, dist: &[u32], start: Node, goal: Node, cost: usize, mine: &[Constraint]) -> Vec<Vec<Node>> {
-    let vertex = |v: Node, t: usize| mine.iter().any(|c| c.from == VERTEX && c.to == v && c.t as usize == t);
-    let edge = |u: Node, v: Node, t: usize| mine.iter().any(|c| c.from == u && c.to == v && c.t as usize == t);
-    let mut layers: Vec<Vec<Node>> = vec![vec![start]];
-    for t in 1..=cost {
-        let mut next: Vec<Node> = Vec::new();
-        for &v in &layers[t - 1] {
-            for w in graph.neighbours(v).chain(std::iter::once(v)) {
-                if (dist[w as usize] as usize) <= cost - t && !vertex(w, t) && (w == v || !edge(v, w, t)) {
-                    next.push(w);
-                }
-            }
-        }
-        next.sort_unstable();
-        next.dedup();
-        layers.push(next);
-    }
-    // Backwards from the goal at `cost`: the nodes that lead there.
-    let mut keep: Vec<Vec<Node>> = vec![Vec::new(); cost + 1];
-    keep[cost] = layers[cost].iter().copied().filter(|&v| v == goal).collect();
-    for t in (0..cost).rev() {
-        let after = std::mem::take(&mut keep[t + 1]);
-        keep[t] = layers[t]
-            .iter()
-            .copied()
-            .filter(|&v| {
-                after.iter().any(|&w| {
-                    w == v || (graph.neighbours(v).any(|x| x == w) && !edge(v, w, t + 1))
-                })
-            })
-            .collect();
-        keep[t + 1] = after;
-    }
-    keep
-}
 
 /// The sum of costs: each path's length minus one (paths end at their last
 /// arrival).
@@ -285,169 +222,44 @@ impl Budget<'_> {
     }
 }
 
-/// The outcome of one agent's search.
-enum Low {
-    Path(Vec<Node>),
-    /// No path respects the constraints.
-    None,
-    /// A limit was reached.
-    Stopped,
+/// How many splits of each kind the tree made, and how many children it
+/// adopted in place of their parent (for the tests and the benchmarks).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Counts {
+    pub standard: u64,
+    pub rectangle: u64,
+    pub target: u64,
+    pub bypasses: u64,
 }
 
-/// An A* state of the low level.
-struct State {
-    v: Node,
-    t: u32,
-    parent: u32,
-}
-
-#[derive(PartialEq, Eq)]
-struct Open {
-    f: u32,
-    conflicts: u32,
-    t: u32,
-    id: u32,
-}
-
-impl Ord for Open {
-    fn cmp(&self, o: &Self) -> Ordering {
-        // Smallest f, then fewest conflicts, then deepest, then oldest.
-        o.f.cmp(&self.f)
-            .then(o.conflicts.cmp(&self.conflicts))
-            .then(self.t.cmp(&o.t))
-            .then(o.id.cmp(&self.id))
-    }
-}
-
-impl PartialOrd for Open {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-
-/// The other agents' paths, for counting the conflicts a step would make.
-struct Avoid<'a> {
-    paths: &'a [Arc<Vec<Node>>],
-    agent: usize,
-}
-
-impl Avoid<'_> {
-    fn count(&self, u: Node, v: Node, t: u32) -> u32 {
-        let t = t as usize;
-        let mut n = 0;
-        for (b, p) in self.paths.iter().enumerate() {
-            if b == self.agent {
-                continue;
+/// The agents a child must plan again: those whose paths break one of the
+/// constraints it adds.
+fn to_replan(added: &[Constraint], paths: &[Arc<Vec<Node>>]) -> Vec<usize> {
+    let mut agents: Vec<usize> = Vec::new();
+    for c in added {
+        match c.rule {
+            Rule::RestsFrom { v, t } => {
+                for (x, p) in paths.iter().enumerate() {
+                    if x != c.agent as usize && p.iter().skip(t as usize).any(|&w| w == v) {
+                        agents.push(x);
+                    }
+                }
             }
-            let w = at(p, t);
-            if w == v || (t > 0 && u != v && w == u && at(p, t - 1) == v) {
-                n += 1;
-            }
-        }
-        n
-    }
-}
-
-/// One agent's shortest path from `start` under its constraints, fewest
-/// conflicts with `avoid` among the shortest.
-fn low_level(
-    graph: &Graph,
-    dist: &[u32],
-    start: Node,
-    goal: Node,
-    mine: &[Constraint],
-    avoid: &Avoid<'_>,
-    budget: &mut Budget<'_>,
-) -> Low {
-    budget.low_level += 1;
-    if dist[start as usize] == u32::MAX {
-        return Low::None;
-    }
-    let blocked_vertex: HashSet<(Node, u32)> = mine
-        .iter()
-        .filter(|c| c.from == VERTEX)
-        .map(|c| (c.to, c.t))
-        .collect();
-    let blocked_edge: HashSet<(Node, Node, u32)> = mine
-        .iter()
-        .filter(|c| c.from != VERTEX)
-        .map(|c| (c.from, c.to, c.t))
-        .collect();
-    // After its last constraint nothing stops the agent; at its goal it may
-    // stop only after the last constraint on the goal.
-    let last = mine.iter().map(|c| c.t).max().unwrap_or(0);
-    let goal_last = mine
-        .iter()
-        .filter(|c| c.from == VERTEX && c.to == goal)
-        .map(|c| c.t)
-        .max();
-    let mut states = vec![State {
-        v: start,
-        t: 0,
-        parent: u32::MAX,
-    }];
-    let mut seen: HashSet<(Node, u32)> = HashSet::from([(start, 0)]);
-    let mut open = BinaryHeap::from([Open {
-        f: dist[start as usize],
-        conflicts: 0,
-        t: 0,
-        id: 0,
-    }]);
-    while let Some(Open { id, conflicts: c, .. }) = open.pop() {
-        if budget.exhausted() {
-            return Low::Stopped;
-        }
-        budget.expanded += 1;
-        let State { v, t, .. } = states[id as usize];
-        let done_waiting = goal_last.is_none_or(|g| t > g);
-        if t >= last || (v == goal && done_waiting) {
-            // Free from here: the shortest way to the goal.
-            let mut path = Vec::new();
-            let mut k = id;
-            while k != u32::MAX {
-                path.push(states[k as usize].v);
-                k = states[k as usize].parent;
-            }
-            path.reverse();
-            let mut w = v;
-            while w != goal {
-                w = graph
-                    .neighbours(w)
-                    .find(|&m| dist[m as usize] + 1 == dist[w as usize])
-                    .expect("a node with a finite distance has a neighbour one step nearer");
-                path.push(w);
-            }
-            return Low::Path(path);
-        }
-        let next = t + 1;
-        for w in graph.neighbours(v).chain(std::iter::once(v)) {
-            if dist[w as usize] == u32::MAX
-                || blocked_vertex.contains(&(w, next))
-                || (w != v && blocked_edge.contains(&(v, w, next)))
-                || !seen.insert((w, next))
-            {
-                continue;
-            }
-            let conflicts = c + avoid.count(v, w, next);
-            let nid = states.len() as u32;
-            states.push(State {
-                v: w,
-                t: next,
-                parent: id,
-            });
-            open.push(Open {
-                f: next + dist[w as usize],
-                conflicts,
-                t: next,
-                id: nid,
-            });
+            _ => agents.push(c.agent as usize),
         }
     }
-    Low::None
+    agents.sort_unstable();
+    agents.dedup();
+    agents
 }
 
 /// Runs a `cbs` plan.
 pub fn plan(task: &Task<'_>, settings: &Cbs) -> PlanOutcome {
+    plan_counted(task, settings, &mut Counts::default())
+}
+
+/// Runs a `cbs` plan and counts its splits into `counts`.
+pub fn plan_counted(task: &Task<'_>, settings: &Cbs, counts: &mut Counts) -> PlanOutcome {
     let deadline = Deadline::start(&task.limits);
     let mut out = PlanOutcome::default();
     let mut budget = Budget {
@@ -458,7 +270,7 @@ pub fn plan(task: &Task<'_>, settings: &Cbs) -> PlanOutcome {
         stored: 0,
     };
     let mut resolved = Vec::new();
-    let found = search(task, settings, &mut budget, &mut out, &mut resolved);
+    let found = search(task, settings, &mut budget, &mut out, &mut resolved, counts);
     if task.draw && !resolved.is_empty() {
         out.layers.push(Layer::new(
             "conflicts",
@@ -492,9 +304,8 @@ fn search(
     budget: &mut Budget<'_>,
     out: &mut PlanOutcome,
     resolved: &mut Vec<crate::geometry::Point>,
+    counts: &mut Counts,
 ) -> Option<(Graph, Vec<Arc<Vec<Node>>>)> {
-    // Where the resolved conflicts were, once each (for the pictures).
-    let mut seen = std::collections::HashSet::new();
     let graph = match Graph::build(task, settings.lattice, budget.deadline) {
         Ok(g) => g,
         Err(note) => {
@@ -519,106 +330,33 @@ fn search(
             return None;
         }
     }
-    // The root: every agent's own shortest path.
-    let mut paths: Vec<Arc<Vec<Node>>> = Vec::with_capacity(n);
-    for (a, dist) in dists.iter().enumerate() {
-        let avoid = Avoid {
-            paths: &paths,
-            agent: usize::MAX,
-        };
-        match low_level(&graph, dist, graph.starts[a], graph.goals[a], &[], &avoid, budget) {
-            Low::Path(p) => paths.push(Arc::new(p)),
-            Low::None => unreachable!("a reachable goal has a path without constraints"),
-            Low::Stopped => return stopped(out),
-        }
+    let team = Team {
+        graph: &graph,
+        starts: graph.starts.clone(),
+        goals: graph.goals.clone(),
+        dists: dists.iter().map(Vec::as_slice).collect(),
+    };
+    let mut places = Places::new();
+    let mut grower = Grower::new(budget, counts);
+    let grown = grower.grow(&team, Vec::new(), true, u64::MAX, Some(&mut places));
+    out.extra
+        .insert("high_level".into(), MetricValue::Num(grower.high as f64));
+    if task.draw {
+        let mut places: Vec<(Node, Node)> = places.into_iter().collect();
+        places.sort_unstable();
+        resolved.extend(places.into_iter().take(MAX_DRAWN_CONFLICTS).map(|(u, v)| {
+            crate::geometry::Point::from((graph.point(u).coords + graph.point(v).coords) / 2.0)
+        }));
     }
-    let (_, count) = conflicts(&paths, 0);
-    let mut tree = vec![CtNode {
-        constraints: Arc::new(Vec::new()),
-        cost: cost_of(&paths),
-        paths,
-        conflicts: count,
-    }];
-    let mut open = BinaryHeap::from([Reverse((tree[0].cost, tree[0].conflicts, 0usize))]);
-    let mut high = 0u64;
-    while let Some(Reverse((_, _, id))) = open.pop() {
-        if budget.exhausted() {
-            return stopped(out);
+    match grown {
+        Grown::Solved(paths) => Some((graph, paths)),
+        Grown::NoSolution => {
+            out.notes
+                .push("the constraint tree is exhausted: the team has no solution".into());
+            None
         }
-        high += 1;
-        out.extra
-            .insert("high_level".into(), MetricValue::Num(high as f64));
-        let (found, _) = conflicts(&tree[id].paths, CLASSIFIED);
-        let Some(conflict) = choose(&graph, &dists, &tree[id], &found) else {
-            let paths = std::mem::take(&mut tree[id].paths);
-            return Some((graph, paths));
-        };
-        if task.draw && resolved.len() < MAX_DRAWN_CONFLICTS {
-            let (u, v) = match conflict {
-                Conflict::Vertex { v, .. } => (v, v),
-                Conflict::Edge { u, v, .. } => (u.min(v), u.max(v)),
-            };
-            if seen.insert((u, v)) {
-                resolved.push(crate::geometry::Point::from(
-                    (graph.point(u).coords + graph.point(v).coords) / 2.0,
-                ));
-            }
-        }
-        let split = match conflict {
-            Conflict::Vertex { a, b, v, t } => [
-                Constraint { agent: a, from: VERTEX, to: v, t },
-                Constraint { agent: b, from: VERTEX, to: v, t },
-            ],
-            Conflict::Edge { a, b, u, v, t } => [
-                Constraint { agent: a, from: u, to: v, t },
-                Constraint { agent: b, from: v, to: u, t },
-            ],
-        };
-        for c in split {
-            let agent = c.agent as usize;
-            let mut constraints = (*tree[id].constraints).clone();
-            constraints.push(c);
-            let mine: Vec<Constraint> = constraints
-                .iter()
-                .copied()
-                .filter(|k| k.agent == c.agent)
-                .collect();
-            let avoid = Avoid {
-                paths: &tree[id].paths,
-                agent,
-            };
-            let path = match low_level(
-                &graph,
-                &dists[agent],
-                graph.starts[agent],
-                graph.goals[agent],
-                &mine,
-                &avoid,
-                budget,
-            ) {
-                Low::Path(p) => p,
-                Low::None => continue,
-                Low::Stopped => return stopped(out),
-            };
-            budget.stored += constraints.len() + path.len();
-            let mut paths = tree[id].paths.clone();
-            paths[agent] = Arc::new(path);
-            let (_, count) = conflicts(&paths, 0);
-            let node = CtNode {
-                cost: cost_of(&paths),
-                constraints: Arc::new(constraints),
-                paths,
-                conflicts: count,
-            };
-            open.push(Reverse((node.cost, node.conflicts, tree.len())));
-            tree.push(node);
-        }
-        // The expanded node's paths are no longer needed.
-        tree[id].paths = Vec::new();
+        Grown::Stopped { .. } => stopped(out),
     }
-    out.notes
-        .push("the constraint tree is exhausted: the team has no solution".into());
-    None
 }
 
 fn stopped<T>(out: &mut PlanOutcome) -> Option<T> {
@@ -630,6 +368,12 @@ fn stopped<T>(out: &mut PlanOutcome) -> Option<T> {
     None
 }
 
+#[path = "cbs/low.rs"]
+mod low;
+#[path = "cbs/symmetry.rs"]
+mod symmetry;
+#[path = "cbs/tree.rs"]
+mod tree;
 #[cfg(test)]
 #[path = "cbs/tests.rs"]
 mod tests;

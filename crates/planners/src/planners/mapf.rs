@@ -20,6 +20,42 @@ pub type Node = u32;
 /// No node (a missing neighbour).
 pub const NONE: Node = Node::MAX;
 
+/// A hasher for the team searches' small integer keys (points, steps):
+/// the multiply-rotate of rustc's FxHash, several times faster there than
+/// the standard SipHash, whose resistance to chosen keys these keys do not
+/// need.
+#[derive(Clone, Copy, Default)]
+pub struct FastHasher(u64);
+
+impl std::hash::Hasher for FastHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+
+    fn write_u32(&mut self, n: u32) {
+        self.write_u64(u64::from(n));
+    }
+
+    fn write_usize(&mut self, n: usize) {
+        self.write_u64(n as u64);
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0.rotate_left(5) ^ n).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// A hash map with [`FastHasher`].
+pub type FastMap<K, V> = std::collections::HashMap<K, V, std::hash::BuildHasherDefault<FastHasher>>;
+/// A hash set with [`FastHasher`].
+pub type FastSet<K> = std::collections::HashSet<K, std::hash::BuildHasherDefault<FastHasher>>;
+
 /// `agents N`: the team's first N agents are planned (its first N rows of
 /// a MovingAI `.scen` file), so that a bench may `vary agents [...]` for a
 /// success rate by agent count; every team planner takes it.

@@ -1,0 +1,293 @@
+//! How `cbs` splits a conflict: which one first, and with which
+//! constraints — the standard split, or the symmetry reasoning of Li,
+//! Harabor, Stuckey, Ma, Gange and Koenig ("Pairwise symmetry reasoning
+//! for multi-agent path finding search", AIJ 2021) for two conflicts plain
+//! CBS splits over and over without raising its bound:
+//!
+//! - **target**: an agent `a` already resting at its goal when `b` passes
+//!   there at `t`. Either `a` arrives there for the last time after `t`,
+//!   or it rests there from `t` at the latest and no other agent may be
+//!   there then or later — one split instead of one per later step;
+//! - **rectangle** (the "R" form, IJCAI 2019): two agents whose whole
+//!   paths are Manhattan-optimal and go the same way meet inside the
+//!   rectangle their routes span, where every pair of their shortest
+//!   paths meets somewhere. The split forbids each agent a *barrier*, a
+//!   segment of the rectangle's far side at the steps a Manhattan-optimal
+//!   path would cross it; any two paths that both cross their barriers
+//!   conflict (the paper's theorem), so every solution is kept by one
+//!   child, and one split replaces a split per cell of the rectangle.
+//!
+//! Conflicts are ranked as in ICBS (Boyarski et al. 2015) — cardinal (both
+//! children cost more), then semi-cardinal, then the rest — then target
+//! before rectangle before standard, then earliest.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use super::low::{Table, mdd};
+use super::tree::Team;
+use super::{Constraint, CtNode, Rule, at};
+use crate::planners::mapf::{Graph, Node};
+
+/// A conflict between two agents' paths.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Conflict {
+    Vertex { a: u32, b: u32, v: Node, t: u32 },
+    Edge { a: u32, b: u32, u: Node, v: Node, t: u32 },
+}
+
+/// What a split was, for the counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    Standard,
+    Rectangle,
+    Target,
+}
+
+/// A chosen conflict: the constraints each child adds, and where it was.
+pub(super) struct Split {
+    pub children: [Vec<Constraint>; 2],
+    pub kind: Kind,
+    /// 2: cardinal, 1: semi-cardinal, 0: neither.
+    pub cardinality: u8,
+    pub place: (Node, Node),
+}
+
+/// The conflict to split on among `found` (in time order), with its
+/// split; `None` when there is none.
+pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict]) -> Option<Split> {
+    let graph = team.graph;
+    let mut mdds = Mdds::new(graph, &team.dists, node);
+    if found.len() == 1 {
+        // Nothing to rank: still a target or rectangle split when it is one.
+        return Some(classify(graph, node, found[0], &mut mdds, false));
+    }
+    let mut best: Option<Split> = None;
+    for &c in found {
+        let split = classify(graph, node, c, &mut mdds, true);
+        let better = best
+            .as_ref()
+            .is_none_or(|b| (split.cardinality, split.kind as u8) > (b.cardinality, b.kind as u8));
+        if better {
+            let top = split.cardinality == 2 && split.kind == Kind::Target;
+            best = Some(split);
+            if top {
+                break;
+            }
+        }
+    }
+    best
+}
+
+/// Each agent's MDD at its current cost, built when first asked.
+struct Mdds<'a> {
+    graph: &'a Graph,
+    dists: &'a [&'a [u32]],
+    node: &'a CtNode,
+    built: HashMap<u32, Vec<Vec<Node>>>,
+}
+
+impl<'a> Mdds<'a> {
+    fn new(graph: &'a Graph, dists: &'a [&'a [u32]], node: &'a CtNode) -> Self {
+        Mdds {
+            graph,
+            dists,
+            node,
+            built: HashMap::new(),
+        }
+    }
+
+    /// Whether every shortest path of `agent` is at `u` at `t − 1` and at
+    /// `v` at `t` (`u` = `v` for a vertex).
+    fn narrow(&mut self, agent: u32, u: Node, v: Node, t: u32) -> bool {
+        let (graph, dists, node) = (self.graph, self.dists, self.node);
+        let levels = self.built.entry(agent).or_insert_with(|| {
+            let path = &node.paths[agent as usize];
+            let goal = *path.last().unwrap_or(&path[0]);
+            let table = Table::new(agent, goal, &node.constraints);
+            mdd(graph, dists[agent as usize], path[0], goal, path.len() - 1, &table)
+        });
+        let level = |k: usize| -> &[Node] { levels.get(k).or(levels.last()).map_or(&[], Vec::as_slice) };
+        let t = t as usize;
+        level(t) == [v] && (u == v || (t > 0 && level(t - 1) == [u]))
+    }
+}
+
+fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank: bool) -> Split {
+    let paths = &node.paths;
+    let rests = |a: u32, t: u32| t as usize + 1 >= paths[a as usize].len();
+    match c {
+        Conflict::Vertex { a, b, v, t } if rests(a, t) || rests(b, t) => {
+            let (a, b) = if rests(a, t) { (a, b) } else { (b, a) };
+            // `a` costs more in the first child always; `b` in the
+            // second when all its shortest paths are at `v` then.
+            let cardinality = 1 + u8::from(rank && mdds.narrow(b, v, v, t));
+            Split {
+                children: [
+                    vec![Constraint {
+                        agent: a,
+                        rule: Rule::FinishAfter { t },
+                    }],
+                    vec![Constraint {
+                        agent: a,
+                        rule: Rule::RestsFrom { v, t },
+                    }],
+                ],
+                kind: Kind::Target,
+                cardinality,
+                place: (v, v),
+            }
+        }
+        Conflict::Vertex { a, b, v, t } => {
+            let cardinality = if rank {
+                u8::from(mdds.narrow(a, v, v, t)) + u8::from(mdds.narrow(b, v, v, t))
+            } else {
+                0
+            };
+            if cardinality < 2
+                && let Some((barrier_a, barrier_b, cardinality)) = rectangle(graph, paths, a, b)
+            {
+                return Split {
+                    children: [barrier_a, barrier_b],
+                    kind: Kind::Rectangle,
+                    cardinality,
+                    place: (v, v),
+                };
+            }
+            Split {
+                children: [
+                    vec![Constraint {
+                        agent: a,
+                        rule: Rule::Vertex { v, t },
+                    }],
+                    vec![Constraint {
+                        agent: b,
+                        rule: Rule::Vertex { v, t },
+                    }],
+                ],
+                kind: Kind::Standard,
+                cardinality,
+                place: (v, v),
+            }
+        }
+        Conflict::Edge { a, b, u, v, t } => {
+            let cardinality = if rank {
+                u8::from(mdds.narrow(a, u, v, t)) + u8::from(mdds.narrow(b, v, u, t))
+            } else {
+                0
+            };
+            Split {
+                children: [
+                    vec![Constraint {
+                        agent: a,
+                        rule: Rule::Edge { u, v, t },
+                    }],
+                    vec![Constraint {
+                        agent: b,
+                        rule: Rule::Edge { u: v, v: u, t },
+                    }],
+                ],
+                kind: Kind::Standard,
+                cardinality,
+                place: (u.min(v), u.max(v)),
+            }
+        }
+    }
+}
+
+type Cell = (i64, i64);
+
+fn manhattan(p: Cell, q: Cell) -> i64 {
+    (p.0 - q.0).abs() + (p.1 - q.1).abs()
+}
+
+/// The rectangle split of two agents that conflict before either rests,
+/// when it is one: each agent's barrier as vertex constraints, and the
+/// split's cardinality. Both agents' current paths cross their barriers,
+/// so both children change a path.
+pub(super) fn rectangle(graph: &Graph, paths: &[Arc<Vec<Node>>], a: u32, b: u32) -> Option<(Vec<Constraint>, Vec<Constraint>, u8)> {
+    let (pa, pb) = (&paths[a as usize], &paths[b as usize]);
+    let cell = |v: Node| {
+        let (i, j) = graph.spec.coords(v as usize);
+        (i as i64, j as i64)
+    };
+    let (mut s1, mut g1, mut s2, mut g2) = (cell(pa[0]), cell(*pa.last()?), cell(pb[0]), cell(*pb.last()?));
+    // Both whole paths Manhattan-optimal.
+    if manhattan(s1, g1) != pa.len() as i64 - 1 || manhattan(s2, g2) != pb.len() as i64 - 1 {
+        return None;
+    }
+    // The formulas below want the starts apart along the first axis.
+    let transposed = s1.0 == s2.0;
+    if transposed {
+        for p in [&mut s1, &mut g1, &mut s2, &mut g2] {
+            *p = (p.1, p.0);
+        }
+    }
+    let not_rectangle = s1 == s2
+        || s1 == g1
+        || s2 == g2
+        || (s1.0 - g1.0) * (s2.0 - g2.0) < 0
+        || (s1.1 - g1.1) * (s2.1 - g2.1) < 0
+        || ((s2.0 - s1.0) * (s1.0 - g1.0) < 0 && (s2.1 - s1.1) * (s1.1 - g1.1) < 0)
+        || ((s1.0 - s2.0) * (s2.0 - g2.0) < 0 && (s1.1 - s2.1) * (s2.1 - g2.1) < 0)
+        || (s1.0 == g1.0 && s2.1 == g2.1)
+        || (s1.1 == g1.1 && s2.0 == g2.0);
+    if not_rectangle {
+        return None;
+    }
+    // The corner of the rectangle where the first agent leaves it.
+    let toward = |s: i64, g: i64, lo: i64, hi: i64| {
+        if s == g {
+            lo
+        } else if s < g {
+            lo.min(hi)
+        } else {
+            lo.max(hi)
+        }
+    };
+    let rg = (toward(s1.0, g1.0, g1.0, g2.0), toward(s1.1, g1.1, g1.1, g2.1));
+    let rg_t = manhattan(rg, s1);
+    let (r1, r2) = if (s1.0 - s2.0) * (s2.0 - rg.0) >= 0 {
+        ((rg.0, s1.1), (s2.0, rg.1))
+    } else {
+        ((s1.0, rg.1), (rg.0, s2.1))
+    };
+    let node = |p: Cell| -> Option<Node> {
+        let (i, j) = if transposed { (p.1, p.0) } else { p };
+        let (nx, ny) = (graph.spec.nx as i64, graph.spec.ny as i64);
+        (0..nx).contains(&i).then_some(())?;
+        (0..ny).contains(&j).then_some(())?;
+        Some(graph.spec.index(i as usize, j as usize) as Node)
+    };
+    // A barrier: the segment from `r` to `rg`, each cell at the step a
+    // Manhattan-optimal path from its start reaches it.
+    let barrier = |agent: u32, r: Cell| -> Vec<Constraint> {
+        let step = ((r.0 - rg.0).signum(), (r.1 - rg.1).signum());
+        let len = manhattan(r, rg).min(rg_t);
+        (0..=len)
+            .filter_map(|i| {
+                let v = node((rg.0 + i * step.0, rg.1 + i * step.1))?;
+                Some(Constraint {
+                    agent,
+                    rule: Rule::Vertex {
+                        v,
+                        t: (rg_t - i) as u32,
+                    },
+                })
+            })
+            .collect()
+    };
+    let (b1, b2) = (barrier(a, r1), barrier(b, r2));
+    let crosses = |path: &[Node], barrier: &[Constraint]| {
+        barrier.iter().any(|c| match c.rule {
+            Rule::Vertex { v, t } => at(path, t as usize) == v,
+            _ => false,
+        })
+    };
+    if !crosses(pa, &b1) || !crosses(pb, &b2) {
+        return None;
+    }
+    let cardinality =
+        u8::from((s1.0 - s2.0) * (g1.0 - g2.0) <= 0) + u8::from((s1.1 - s2.1) * (g1.1 - g2.1) <= 0);
+    Some((b1, b2, cardinality))
+}
