@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Issue 43 item 4: the success rate of scen's `cbs` by agent count, beside
-a Python CBS (pymapf's ConflictBasedSearch, PyPI pymapf==0.9.0), in one
-run, on the same instances, 60 s each.
+an optimal CBS variant of the literature (CBSH2-RTC, Jiaoyang-Li/CBSH2-RTC:
+CBS with prioritised conflicts, bypass, the WDG heuristic, generalised
+rectangle, corridor and target reasoning) and a Python CBS (pymapf's
+ConflictBasedSearch, PyPI pymapf==0.9.0), in one run, on the same
+instances, 60 s each.
 
 The instances follow the MovingAI benchmark's protocol: K scenario files of
 random rows per map (distinct starts, distinct goals, all in the map's
@@ -13,6 +16,12 @@ counts stop after the first count at which it solved none of the K files.
 Both solvers are optimal, so where both solve an instance their sums of
 costs must agree: the script checks it (and scen's every plan is judged by
 its referee). Prints a Markdown table for BENCHMARKS.md.
+
+All three are optimal, so where two solve an instance their sums of costs
+must agree: the script checks it.
+
+CBSH2-RTC is not built here: CBSH2RTC=PATH names its `cbs` binary
+(default target/peers/CBSH2-RTC/cbs; BENCHMARKS.md says how it was built).
 
 Usage: scripts/bench_cbs_success.py [--instances K] [--limit SECONDS]
        [--python PYTHON] (a Python with pymapf installed; default: builds
@@ -32,10 +41,12 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent.parent
 DATA = Path(os.environ.get("MOVINGAI", HERE.parent / "shared" / "data" / "movingai"))
 SCEN = Path(os.environ.get("SCEN", HERE / "target" / "release" / "scen"))
+CBSH2RTC = Path(os.environ.get("CBSH2RTC", HERE / "target" / "peers" / "CBSH2-RTC" / "cbs"))
 MAPS = [
-    ("empty-8-8", DATA / "mapf" / "empty-8-8.map", [4, 8, 12, 16, 20, 24]),
-    ("random-32-32-10", DATA / "random-32-32-10.map", [10, 20, 30, 40, 50, 60, 70]),
+    ("empty-8-8", DATA / "mapf" / "empty-8-8.map", [4, 8, 12, 16, 20, 24, 28, 32]),
+    ("random-32-32-10", DATA / "random-32-32-10.map", [10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120]),
 ]
+SOLVERS = ("scen", "cbsh2rtc", "pymapf")
 
 PYMAPF_RUN = r"""
 import json, sys, time
@@ -125,6 +136,19 @@ def run_scen(work, map_file, w, h, scen_file, n, limit):
     }
 
 
+def run_cbsh2rtc(work, map_file, scen_file, n, limit):
+    out = subprocess.run(
+        [str(CBSH2RTC), "-m", str(work / map_file.name), "-a", str(scen_file), "-k", str(n),
+         "-t", str(limit), "-o", str(work / "cbsh2rtc.csv"), "-s", "1"],
+        capture_output=True, text=True, timeout=limit * 3 + 60)
+    if out.returncode != 0:
+        raise SystemExit(f"CBSH2-RTC failed: {out.stderr}")
+    # The last line: "<variant> : <status>,<cost>,<seconds>,...".
+    status, cost, seconds = out.stdout.strip().split("\n")[-1].split(":")[-1].split(",")[:3]
+    found = status.strip() == "Optimal"
+    return {"found": found, "ms": float(seconds) * 1e3, "soc": int(cost) if found else None}
+
+
 def run_pymapf(python, blocked, starts, goals, limit):
     rows = [[1 if b else 0 for b in row] for row in blocked]
     payload = json.dumps([rows, starts, goals, limit])
@@ -153,6 +177,8 @@ def main():
     python = args.python or pymapf_python()
     if not SCEN.exists():
         raise SystemExit(f"{SCEN} is missing: build it with `cargo build --release`")
+    if not CBSH2RTC.exists():
+        raise SystemExit(f"{CBSH2RTC} is missing: build CBSH2-RTC there (BENCHMARKS.md) or set CBSH2RTC")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
@@ -166,27 +192,29 @@ def main():
                 f = work / f"{name}-random-{k + 1}.scen"
                 starts, goals = write_scen(f, map_path.name, w, h, blocked, region, max(counts), rng)
                 files.append((f, starts, goals))
-            alive = {"scen": True, "pymapf": True}
+            alive = {solver: True for solver in SOLVERS}
             for n in counts:
                 if not any(alive.values()):
                     break
-                result = {"scen": [], "pymapf": []}
+                result = {solver: [] for solver in SOLVERS}
                 for f, starts, goals in files:
-                    s = p = None
+                    got = {}
                     if alive["scen"]:
-                        s = run_scen(work, map_path, w, h, f, n, args.limit)
-                        assert not s["found"] or s["valid"], f"scen's referee refused {f.name} n={n}"
-                        result["scen"].append(s)
+                        got["scen"] = run_scen(work, map_path, w, h, f, n, args.limit)
+                        assert not got["scen"]["found"] or got["scen"]["valid"], f"scen's referee refused {f.name} n={n}"
+                    if alive["cbsh2rtc"]:
+                        got["cbsh2rtc"] = run_cbsh2rtc(work, map_path, f, n, args.limit)
                     if alive["pymapf"]:
                         cells = lambda cs: [[r, c] for r, c in cs[:n]]
-                        p = run_pymapf(python, blocked, cells(starts), cells(goals), args.limit)
-                        assert not p["found"] or p["valid"], f"pymapf's solution is invalid on {f.name} n={n}"
-                        result["pymapf"].append(p)
-                    if s and p and s["found"] and p["found"]:
-                        assert s["soc"] == p["soc"], f"{f.name} n={n}: scen {s['soc']} != pymapf {p['soc']}"
-                    print(f"{name} n={n} {f.name}: scen {s} pymapf {p}", file=sys.stderr, flush=True)
+                        got["pymapf"] = run_pymapf(python, blocked, cells(starts), cells(goals), args.limit)
+                        assert not got["pymapf"]["found"] or got["pymapf"]["valid"], f"pymapf's solution is invalid on {f.name} n={n}"
+                    costs = {s: r["soc"] for s, r in got.items() if r["found"]}
+                    assert len(set(costs.values())) <= 1, f"{f.name} n={n}: sums of costs differ: {costs}"
+                    for solver, r in got.items():
+                        result[solver].append(r)
+                    print(f"{name} n={n} {f.name}: {got}", file=sys.stderr, flush=True)
                 row = [name, n]
-                for solver in ("scen", "pymapf"):
+                for solver in SOLVERS:
                     rs = result[solver]
                     if not alive[solver]:
                         row += ["—", "—"]
@@ -198,8 +226,8 @@ def main():
                     if not solved:
                         alive[solver] = False
                 rows.append(row)
-    print("| map | agents | scen `cbs` solved | median ms | pymapf CBS solved | median ms |")
-    print("|---|---|---|---|---|---|")
+    print("| map | agents | scen `cbs` solved | median ms | CBSH2-RTC solved | median ms | pymapf CBS solved | median ms |")
+    print("|---|---|---|---|---|---|---|---|")
     for r in rows:
         print("| " + " | ".join(str(x) for x in r) + " |")
 

@@ -199,6 +199,9 @@ pub(super) fn low_level(
         return Low::None;
     }
     let free_after = table.from.is_empty();
+    // The agent rests at its goal at this step at the earliest: the
+    // heuristic is the more of that wait and the distance.
+    let finish_from = table.min_finish.max(table.goal_last.map_or(0, |g| g + 1));
     // The earliest step each state was reached at; past the horizon, one
     // state per point.
     let key = |v: Node, t: u32| (v, t.min(table.horizon + 1));
@@ -210,7 +213,7 @@ pub(super) fn low_level(
     let mut seen: FastMap<(Node, u32), u32> = FastMap::default();
     seen.insert(key(start, 0), 0);
     let mut open = BinaryHeap::from([Open {
-        f: dist[start as usize],
+        f: dist[start as usize].max(finish_from),
         conflicts: 0,
         t: 0,
         id: 0,
@@ -261,7 +264,7 @@ pub(super) fn low_level(
                 parent: id,
             });
             open.push(Open {
-                f: next + d,
+                f: next + d.max(finish_from.saturating_sub(next)),
                 conflicts,
                 t: next,
                 id: nid,

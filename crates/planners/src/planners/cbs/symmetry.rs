@@ -27,7 +27,7 @@ use std::sync::Arc;
 use super::low::{Table, mdd};
 use super::tree::Team;
 use super::{Constraint, CtNode, Rule, at};
-use crate::planners::mapf::{Graph, Node};
+use crate::planners::mapf::{FastMap, Graph, Node};
 
 /// A conflict between two agents' paths.
 #[derive(Clone, Copy, Debug)]
@@ -55,9 +55,9 @@ pub(super) struct Split {
 
 /// The conflict to split on among `found` (in time order), with its
 /// split; `None` when there is none.
-pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict]) -> Option<Split> {
+pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict], cache: &mut MddCache) -> Option<Split> {
     let graph = team.graph;
-    let mut mdds = Mdds::new(graph, &team.dists, node);
+    let mut mdds = Mdds::new(graph, &team.dists, node, cache);
     if found.len() == 1 {
         // Nothing to rank: still a target or rectangle split when it is one.
         return Some(classify(graph, node, found[0], &mut mdds, false));
@@ -79,21 +79,30 @@ pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict]) -> Opti
     best
 }
 
+/// The MDDs the tree has built, by agent, cost and the constraints that
+/// bind the agent (which determine the MDD).
+pub(super) type MddCache = FastMap<(u32, usize, Vec<Constraint>), Arc<Vec<Vec<Node>>>>;
+
+/// The most MDDs remembered before the memory is cleared.
+const REMEMBERED: usize = 1 << 14;
+
 /// Each agent's MDD at its current cost, built when first asked.
 struct Mdds<'a> {
     graph: &'a Graph,
     dists: &'a [&'a [u32]],
     node: &'a CtNode,
-    built: HashMap<u32, Vec<Vec<Node>>>,
+    built: HashMap<u32, Arc<Vec<Vec<Node>>>>,
+    cache: &'a mut MddCache,
 }
 
 impl<'a> Mdds<'a> {
-    fn new(graph: &'a Graph, dists: &'a [&'a [u32]], node: &'a CtNode) -> Self {
+    fn new(graph: &'a Graph, dists: &'a [&'a [u32]], node: &'a CtNode, cache: &'a mut MddCache) -> Self {
         Mdds {
             graph,
             dists,
             node,
             built: HashMap::new(),
+            cache,
         }
     }
 
@@ -101,11 +110,27 @@ impl<'a> Mdds<'a> {
     /// `v` at `t` (`u` = `v` for a vertex).
     fn narrow(&mut self, agent: u32, u: Node, v: Node, t: u32) -> bool {
         let (graph, dists, node) = (self.graph, self.dists, self.node);
+        let cache = &mut *self.cache;
         let levels = self.built.entry(agent).or_insert_with(|| {
             let path = &node.paths[agent as usize];
+            let binding: Vec<Constraint> = node
+                .constraints
+                .iter()
+                .copied()
+                .filter(|c| c.agent == agent || matches!(c.rule, Rule::RestsFrom { .. }))
+                .collect();
+            let key = (agent, path.len(), binding);
+            if let Some(known) = cache.get(&key) {
+                return known.clone();
+            }
             let goal = *path.last().unwrap_or(&path[0]);
-            let table = Table::new(agent, goal, &node.constraints);
-            mdd(graph, dists[agent as usize], path[0], goal, path.len() - 1, &table)
+            let table = Table::new(agent, goal, &key.2);
+            let built = Arc::new(mdd(graph, dists[agent as usize], path[0], goal, path.len() - 1, &table));
+            if cache.len() >= REMEMBERED {
+                cache.clear();
+            }
+            cache.insert(key, built.clone());
+            built
         });
         let level = |k: usize| -> &[Node] { levels.get(k).or(levels.last()).map_or(&[], Vec::as_slice) };
         let t = t as usize;

@@ -18,7 +18,7 @@ use std::collections::BinaryHeap;
 use std::sync::Arc;
 
 use super::low::{Avoid, Low, Table, low_level};
-use super::symmetry::{Kind, choose};
+use super::symmetry::{Kind, MddCache, choose};
 use super::{Budget, Constraint, Counts, CtNode, Rule, conflicts, cost_of, to_replan};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
@@ -47,8 +47,9 @@ const OUTSIDE: u32 = u32::MAX;
 /// tree's lower bound is the pair's extra.
 const PAIR_NODES: u64 = 64;
 
-/// The most pairs remembered before the memory is cleared.
-const REMEMBERED: usize = 1 << 20;
+/// The most pairs remembered before the memory is cleared (each key holds
+/// the pair's constraints: ~64 MB at most for trees 50 constraints deep).
+const REMEMBERED: usize = 1 << 16;
 
 /// The places of the conflicts the tree split on, once each (pictures).
 pub(super) type Places = std::collections::HashSet<(Node, Node)>;
@@ -59,6 +60,8 @@ pub(super) struct Grower<'a, 'b> {
     pub counts: &'a mut Counts,
     /// The extra cost of a pair (with their constraints) together.
     pairs: FastMap<(u32, u32, Vec<Constraint>), Option<u64>>,
+    /// The agents' MDDs.
+    mdds: MddCache,
     /// Nodes expanded in the team's tree.
     pub high: u64,
 }
@@ -69,6 +72,7 @@ impl<'a, 'b> Grower<'a, 'b> {
             budget,
             counts,
             pairs: FastMap::default(),
+            mdds: MddCache::default(),
             high: 0,
         }
     }
@@ -142,7 +146,7 @@ impl<'a, 'b> Grower<'a, 'b> {
                 if places.is_some() {
                     self.high += 1;
                 }
-                let Some(split) = choose(team, &tree[id], &tree[id].found.first) else {
+                let Some(split) = choose(team, &tree[id], &tree[id].found.first, &mut self.mdds) else {
                     return Grown::Solved(std::mem::take(&mut tree[id].paths));
                 };
                 match split.kind {
@@ -253,7 +257,11 @@ impl<'a, 'b> Grower<'a, 'b> {
             goals: vec![team.goals[i as usize], team.goals[j as usize]],
             dists: vec![team.dists[i as usize], team.dists[j as usize]],
         };
-        let extra = match self.grow(&pair, key.2.clone(), false, PAIR_NODES, None) {
+        // The pair's tree is dropped once grown: its storage is not the run's.
+        let stored = self.budget.stored;
+        let grown = self.grow(&pair, key.2.clone(), false, PAIR_NODES, None);
+        self.budget.stored = stored;
+        let extra = match grown {
             Grown::Solved(paths) => Some(cost_of(&paths).saturating_sub(apart)),
             Grown::NoSolution => None,
             // The run's limit, not the pair's: a bound, but not remembered.
