@@ -40,7 +40,7 @@ use crate::planners::mapf::{Graph, MAPF_PARAMS, Node, check_mapf_lattice};
 /// `cbs` in the registry.
 pub static PLANNER: Planner = Planner {
     kind: "cbs",
-    summary: "conflict-based search: a team's optimal sum of costs under grid MAPF",
+    summary: "conflict-based search with symmetry reasoning and the WDG heuristic: a team's optimal sum of costs under grid MAPF",
     robots: &[RobotKind::Team],
     params: &MAPF_PARAMS,
     metrics: &[

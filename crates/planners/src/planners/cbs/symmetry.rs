@@ -79,9 +79,14 @@ pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict], cache: 
     best
 }
 
-/// The MDDs the tree has built, by agent, cost and the constraints that
-/// bind the agent (which determine the MDD).
-pub(super) type MddCache = FastMap<(u32, usize, Vec<Constraint>), Arc<Vec<Vec<Node>>>>;
+/// The MDDs the trees have built, by the agent's start and goal, its cost
+/// and the constraints that bind it (its own as agent 0, the others'
+/// rests as [`OTHER`]): what determines the MDD, in the team's tree as in
+/// a pair's, whose agents are numbered apart.
+pub(super) type MddCache = FastMap<(Node, Node, usize, Vec<Constraint>), Arc<Vec<Vec<Node>>>>;
+
+/// Any agent but the one an MDD is for, in an [`MddCache`] key.
+const OTHER: u32 = u32::MAX;
 
 /// The most MDDs remembered before the memory is cleared.
 const REMEMBERED: usize = 1 << 14;
@@ -113,18 +118,21 @@ impl<'a> Mdds<'a> {
         let cache = &mut *self.cache;
         let levels = self.built.entry(agent).or_insert_with(|| {
             let path = &node.paths[agent as usize];
+            let goal = *path.last().unwrap_or(&path[0]);
             let binding: Vec<Constraint> = node
                 .constraints
                 .iter()
-                .copied()
                 .filter(|c| c.agent == agent || matches!(c.rule, Rule::RestsFrom { .. }))
+                .map(|c| Constraint {
+                    agent: if c.agent == agent { 0 } else { OTHER },
+                    rule: c.rule,
+                })
                 .collect();
-            let key = (agent, path.len(), binding);
+            let key = (path[0], goal, path.len(), binding);
             if let Some(known) = cache.get(&key) {
                 return known.clone();
             }
-            let goal = *path.last().unwrap_or(&path[0]);
-            let table = Table::new(agent, goal, &key.2);
+            let table = Table::new(0, goal, &key.3);
             let built = Arc::new(mdd(graph, dists[agent as usize], path[0], goal, path.len() - 1, &table));
             if cache.len() >= REMEMBERED {
                 cache.clear();
