@@ -53,6 +53,19 @@ pub(super) struct Split {
     pub place: (Node, Node),
 }
 
+impl Split {
+    /// A split whose children each add one constraint on one agent.
+    fn one_each(first: (u32, Rule), second: (u32, Rule), kind: Kind, cardinality: u8, place: (Node, Node)) -> Self {
+        let one = |(agent, rule): (u32, Rule)| vec![Constraint { agent, rule }];
+        Split {
+            children: [one(first), one(second)],
+            kind,
+            cardinality,
+            place,
+        }
+    }
+}
+
 /// The conflict to split on among `found` (in time order), with its
 /// split; `None` when there is none.
 pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict], cache: &mut MddCache) -> Option<Split> {
@@ -155,21 +168,8 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
             // `a` costs more in the first child always; `b` in the
             // second when all its shortest paths are at `v` then.
             let cardinality = 1 + u8::from(rank && mdds.narrow(b, v, v, t));
-            Split {
-                children: [
-                    vec![Constraint {
-                        agent: a,
-                        rule: Rule::FinishAfter { t },
-                    }],
-                    vec![Constraint {
-                        agent: a,
-                        rule: Rule::RestsFrom { v, t },
-                    }],
-                ],
-                kind: Kind::Target,
-                cardinality,
-                place: (v, v),
-            }
+            let finish_after = (a, Rule::FinishAfter { t });
+            Split::one_each(finish_after, (a, Rule::RestsFrom { v, t }), Kind::Target, cardinality, (v, v))
         }
         Conflict::Vertex { a, b, v, t } => {
             let cardinality = if rank {
@@ -187,21 +187,8 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
                     place: (v, v),
                 };
             }
-            Split {
-                children: [
-                    vec![Constraint {
-                        agent: a,
-                        rule: Rule::Vertex { v, t },
-                    }],
-                    vec![Constraint {
-                        agent: b,
-                        rule: Rule::Vertex { v, t },
-                    }],
-                ],
-                kind: Kind::Standard,
-                cardinality,
-                place: (v, v),
-            }
+            let vertex = Rule::Vertex { v, t };
+            Split::one_each((a, vertex), (b, vertex), Kind::Standard, cardinality, (v, v))
         }
         Conflict::Edge { a, b, u, v, t } => {
             let cardinality = if rank {
@@ -209,21 +196,8 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
             } else {
                 0
             };
-            Split {
-                children: [
-                    vec![Constraint {
-                        agent: a,
-                        rule: Rule::Edge { u, v, t },
-                    }],
-                    vec![Constraint {
-                        agent: b,
-                        rule: Rule::Edge { u: v, v: u, t },
-                    }],
-                ],
-                kind: Kind::Standard,
-                cardinality,
-                place: (u.min(v), u.max(v)),
-            }
+            let (there, back) = (Rule::Edge { u, v, t }, Rule::Edge { u: v, v: u, t });
+            Split::one_each((a, there), (b, back), Kind::Standard, cardinality, (u.min(v), u.max(v)))
         }
     }
 }
