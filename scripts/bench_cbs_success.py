@@ -23,7 +23,7 @@ must agree: the script checks it.
 CBSH2-RTC is not built here: CBSH2RTC=PATH names its `cbs` binary
 (default target/peers/CBSH2-RTC/cbs; BENCHMARKS.md says how it was built).
 
-Usage: scripts/bench_cbs_success.py [--instances K] [--limit SECONDS]
+Usage: scripts/bench_cbs_success.py [--instances K] [--limit SECONDS] [--map NAME]
        [--python PYTHON] (a Python with pymapf installed; default: builds
        target/peers/pymapf-venv); SCEN=PATH runs another scen binary
 """
@@ -173,6 +173,7 @@ def main():
     ap.add_argument("--instances", type=int, default=5)
     ap.add_argument("--limit", type=float, default=60.0)
     ap.add_argument("--python", default=None)
+    ap.add_argument("--map", action="append", help="run only this map (empty-8-8, random-32-32-10); repeatable")
     args = ap.parse_args()
     python = args.python or pymapf_python()
     if not SCEN.exists():
@@ -183,6 +184,8 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         for name, map_path, counts in MAPS:
+            if args.map and name not in args.map:
+                continue
             w, h, blocked = read_map(map_path)
             (work / map_path.name).write_bytes(map_path.read_bytes())
             region = largest_region(w, h, blocked)

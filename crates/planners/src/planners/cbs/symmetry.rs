@@ -129,34 +129,40 @@ impl<'a> Mdds<'a> {
     fn narrow(&mut self, agent: u32, u: Node, v: Node, t: u32) -> bool {
         let (graph, dists, node) = (self.graph, self.dists, self.node);
         let cache = &mut *self.cache;
-        let levels = self.built.entry(agent).or_insert_with(|| {
-            let path = &node.paths[agent as usize];
-            let goal = *path.last().unwrap_or(&path[0]);
-            let binding: Vec<Constraint> = node
-                .constraints
-                .iter()
-                .filter(|c| c.agent == agent || matches!(c.rule, Rule::RestsFrom { .. }))
-                .map(|c| Constraint {
-                    agent: if c.agent == agent { 0 } else { OTHER },
-                    rule: c.rule,
-                })
-                .collect();
-            let key = (path[0], goal, path.len(), binding);
-            if let Some(known) = cache.get(&key) {
-                return known.clone();
-            }
-            let table = Table::new(0, goal, &key.3);
-            let built = Arc::new(mdd(graph, dists[agent as usize], path[0], goal, path.len() - 1, &table));
-            if cache.len() >= REMEMBERED {
-                cache.clear();
-            }
-            cache.insert(key, built.clone());
-            built
-        });
+        let levels = self
+            .built
+            .entry(agent)
+            .or_insert_with(|| cached_mdd(graph, dists[agent as usize], node, agent, cache));
         let level = |k: usize| -> &[Node] { levels.get(k).or(levels.last()).map_or(&[], Vec::as_slice) };
         let t = t as usize;
         level(t) == [v] && (u == v || (t > 0 && level(t - 1) == [u]))
     }
+}
+
+/// `agent`'s MDD at its cost in `node`, from `cache` when it is there.
+pub(super) fn cached_mdd(graph: &Graph, dist: &[u32], node: &CtNode, agent: u32, cache: &mut MddCache) -> Arc<Vec<Vec<Node>>> {
+    let path = &node.paths[agent as usize];
+    let goal = *path.last().unwrap_or(&path[0]);
+    let binding: Vec<Constraint> = node
+        .constraints
+        .iter()
+        .filter(|c| c.agent == agent || matches!(c.rule, Rule::RestsFrom { .. }))
+        .map(|c| Constraint {
+            agent: if c.agent == agent { 0 } else { OTHER },
+            rule: c.rule,
+        })
+        .collect();
+    let key = (path[0], goal, path.len(), binding);
+    if let Some(known) = cache.get(&key) {
+        return known.clone();
+    }
+    let table = Table::new(0, goal, &key.3);
+    let built = Arc::new(mdd(graph, dist, path[0], goal, path.len() - 1, &table));
+    if cache.len() >= REMEMBERED {
+        cache.clear();
+    }
+    cache.insert(key, built.clone());
+    built
 }
 
 fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank: bool) -> Split {

@@ -337,3 +337,34 @@ fn any_two_paths_across_their_barriers_conflict() {
     assert!(splits >= 200, "{splits} rectangle splits");
     eprintln!("{splits} splits, {pairs} pairs of paths");
 }
+
+/// The pair test of the WDG heuristic: two agents crossing the centre of a
+/// 3 × 3 floor at one step always meet (dependent); when one of them may
+/// also wait a step first, they need not (independent); nor when their
+/// only paths swap places.
+#[test]
+fn joint_mdds_tell_dependent_pairs() {
+    let world = world_in(
+        Aabb::from_corners(p(0.0, 0.0), p(3.0, 3.0)),
+        vec![grid(1.0, p(0.0, 0.0), &["..."; 3])],
+    );
+    let one = vec![Agent { name: "a".into(), start: p(0.5, 0.5), goal: p(2.5, 2.5), span: Span::default() }];
+    let task = team_task(&world, &one, Limits::default(), 0);
+    let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
+    let graph = Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("an empty floor");
+    let n = |x: u32, y: u32| y * 3 + x;
+    // Left to right through the centre, bottom to top through it.
+    let across = vec![vec![n(0, 1)], vec![n(1, 1)], vec![n(2, 1)]];
+    let up = vec![vec![n(1, 0)], vec![n(1, 1)], vec![n(1, 2)]];
+    assert!(tree::dependent(&graph, &across, &up));
+    // Bottom to top with a step to spare: wait first, or step aside.
+    let up_later = vec![vec![n(1, 0)], vec![n(1, 0), n(1, 1)], vec![n(1, 1)], vec![n(1, 2)]];
+    assert!(!tree::dependent(&graph, &across, &up_later));
+    // Two agents swapping neighbouring cells in one step.
+    let right = vec![vec![n(0, 0)], vec![n(1, 0)]];
+    let left = vec![vec![n(1, 0)], vec![n(0, 0)]];
+    assert!(tree::dependent(&graph, &right, &left));
+    // An agent resting at its goal on the other's only way.
+    let rests = vec![vec![n(1, 1)]];
+    assert!(tree::dependent(&graph, &rests, &across));
+}

@@ -18,7 +18,7 @@ use std::collections::BinaryHeap;
 use std::sync::Arc;
 
 use super::low::{Avoid, Low, Table, low_level};
-use super::symmetry::{Kind, MddCache, choose};
+use super::symmetry::{Kind, MddCache, cached_mdd, choose};
 use super::{Budget, Constraint, Counts, CtNode, Rule, conflicts, cost_of, to_replan};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
@@ -44,8 +44,8 @@ pub(super) enum Grown {
 const OUTSIDE: u32 = u32::MAX;
 
 /// The most nodes a pair's tree may expand for the heuristic; past it, the
-/// tree's lower bound is the pair's extra.
-const PAIR_NODES: u64 = 64;
+/// tree's lower bound is the pair's extra (CBSH2-RTC stops at 10 too).
+const PAIR_NODES: u64 = 10;
 
 /// The most pairs remembered before the memory is cleared (each key holds
 /// the pair's constraints: ~64 MB at most for trees 50 constraints deep).
@@ -110,9 +110,9 @@ impl<'a, 'b> Grower<'a, 'b> {
             h: 0,
             h_known: !heuristic,
         }];
-        let mut open = BinaryHeap::from([Reverse((tree[0].cost, tree[0].found.count, 0usize))]);
+        let mut open = BinaryHeap::from([Reverse((tree[0].cost, tree[0].found.count, 0, Reverse(0usize)))]);
         let mut expanded = 0u64;
-        while let Some(Reverse((f, _, id))) = open.pop() {
+        while let Some(Reverse((f, _, _, Reverse(id)))) = open.pop() {
             if self.budget.exhausted() || expanded >= max_nodes {
                 return Grown::Stopped { bound: f };
             }
@@ -131,7 +131,7 @@ impl<'a, 'b> Grower<'a, 'b> {
                 }
                 let node = &tree[id];
                 if node.cost + node.h > f {
-                    open.push(Reverse((node.cost + node.h, node.found.count, id)));
+                    open.push(Reverse((node.cost + node.h, node.found.count, node.h, Reverse(id))));
                     continue;
                 }
             }
@@ -200,7 +200,7 @@ impl<'a, 'b> Grower<'a, 'b> {
                 break children;
             };
             for node in children {
-                open.push(Reverse((node.cost + node.h, node.found.count, tree.len())));
+                open.push(Reverse((node.cost + node.h, node.found.count, node.h, Reverse(tree.len()))));
                 tree.push(node);
             }
             // The expanded node's paths and conflicts are no longer needed.
@@ -251,6 +251,14 @@ impl<'a, 'b> Grower<'a, 'b> {
             return known;
         }
         let apart = (node.paths[i as usize].len() + node.paths[j as usize].len() - 2) as u64;
+        // Two shortest paths that do not conflict: the pair adds nothing.
+        let graph = team.graph;
+        let mdd_i = cached_mdd(graph, team.dists[i as usize], node, i, &mut self.mdds);
+        let mdd_j = cached_mdd(graph, team.dists[j as usize], node, j, &mut self.mdds);
+        if !dependent(graph, &mdd_i, &mdd_j) {
+            self.remember(key, Some(0));
+            return Some(0);
+        }
         let pair = Team {
             graph: team.graph,
             starts: vec![team.starts[i as usize], team.starts[j as usize]],
@@ -265,15 +273,56 @@ impl<'a, 'b> Grower<'a, 'b> {
             Grown::Solved(paths) => Some(cost_of(&paths).saturating_sub(apart)),
             Grown::NoSolution => None,
             // The run's limit, not the pair's: a bound, but not remembered.
-            Grown::Stopped { bound } if self.budget.exhausted() => return Some(bound.saturating_sub(apart)),
-            Grown::Stopped { bound } => Some(bound.saturating_sub(apart)),
+            // Dependent: at least one more.
+            Grown::Stopped { bound } if self.budget.exhausted() => return Some(bound.saturating_sub(apart).max(1)),
+            Grown::Stopped { bound } => Some(bound.saturating_sub(apart).max(1)),
         };
+        self.remember(key, extra);
+        extra
+    }
+
+    fn remember(&mut self, key: (u32, u32, Vec<Constraint>), extra: Option<u64>) {
         if self.pairs.len() >= REMEMBERED {
             self.pairs.clear();
         }
         self.pairs.insert(key, extra);
-        extra
     }
+}
+
+/// Whether two agents' MDDs hold no pair of paths without a conflict
+/// (their shortest paths all meet: Li et al.'s DG), by a search over their
+/// joint MDD, each resting at its goal after its last step. The MDDs'
+/// moves are taken as every move between adjacent levels, which may add a
+/// move an edge constraint forbids: then a pair may look independent that
+/// is not, and the heuristic is lower, never higher.
+pub(super) fn dependent(graph: &Graph, a: &[Vec<Node>], b: &[Vec<Node>]) -> bool {
+    let level = |m: &[Vec<Node>], t: usize| -> Vec<Node> { m.get(t).or(m.last()).cloned().unwrap_or_default() };
+    let last = a.len().max(b.len()).saturating_sub(1);
+    let adjacent = |u: Node, v: Node| u == v || graph.neighbours(u).any(|w| w == v);
+    let mut here: Vec<(Node, Node)> = vec![(level(a, 0)[0], level(b, 0)[0])];
+    if here[0].0 == here[0].1 {
+        return true;
+    }
+    for t in 1..=last {
+        let (next_a, next_b) = (level(a, t), level(b, t));
+        let mut next: Vec<(Node, Node)> = Vec::new();
+        for &(u, v) in &here {
+            for &x in next_a.iter().filter(|&&x| adjacent(u, x)) {
+                for &y in next_b.iter().filter(|&&y| adjacent(v, y)) {
+                    if x != y && !(x == v && y == u) {
+                        next.push((x, y));
+                    }
+                }
+            }
+        }
+        next.sort_unstable();
+        next.dedup();
+        if next.is_empty() {
+            return true;
+        }
+        here = next;
+    }
+    false
 }
 
 /// The least sum of values x over the agents with x_i + x_j ≥ w for every
