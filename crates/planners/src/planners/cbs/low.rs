@@ -150,22 +150,26 @@ impl Avoid {
             rests: FastMap::default(),
         };
         for (b, p) in paths.iter().enumerate() {
-            if b == agent {
-                continue;
+            if b != agent {
+                avoid.add(p);
             }
-            let last = p.len() - 1;
-            for (t, &v) in p[..last].iter().enumerate() {
-                *avoid.at.entry((v, t as u32)).or_insert(0) += 1;
-                if t > 0 && p[t - 1] != v {
-                    avoid.moves.insert((p[t - 1], v, t as u32));
-                }
-            }
-            if last > 0 && p[last - 1] != p[last] {
-                avoid.moves.insert((p[last - 1], p[last], last as u32));
-            }
-            avoid.rests.insert(p[last], last as u32);
         }
         avoid
+    }
+
+    /// Adds a path to the table.
+    pub(super) fn add(&mut self, p: &[Node]) {
+        let last = p.len() - 1;
+        for (t, &v) in p[..last].iter().enumerate() {
+            *self.at.entry((v, t as u32)).or_insert(0) += 1;
+            if t > 0 && p[t - 1] != v {
+                self.moves.insert((p[t - 1], v, t as u32));
+            }
+        }
+        if last > 0 && p[last - 1] != p[last] {
+            self.moves.insert((p[last - 1], p[last], last as u32));
+        }
+        self.rests.insert(p[last], last as u32);
     }
 
     fn count(&self, u: Node, v: Node, t: u32) -> u32 {

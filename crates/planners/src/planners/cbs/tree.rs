@@ -91,12 +91,16 @@ impl<'a, 'b> Grower<'a, 'b> {
         let graph = team.graph;
         let nodes = graph.adj.len();
         // The root: every agent's own shortest path under `base`.
+        // Each avoids the conflicts with those planned before it.
         let mut paths: Vec<Arc<Vec<Node>>> = Vec::with_capacity(team.starts.len());
+        let mut avoid = Avoid::new(&[], usize::MAX);
         for a in 0..team.starts.len() {
-            let avoid = Avoid::new(&paths, usize::MAX);
             let table = Table::new(a as u32, team.goals[a], &base);
             match low_level(graph, team.dists[a], team.starts[a], team.goals[a], &table, &avoid, self.budget) {
-                Low::Path(p) => paths.push(Arc::new(p)),
+                Low::Path(p) => {
+                    avoid.add(&p);
+                    paths.push(Arc::new(p));
+                }
                 Low::None => return Grown::NoSolution,
                 Low::Stopped => return Grown::Stopped { bound: 0 },
             }
