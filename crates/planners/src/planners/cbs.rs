@@ -28,7 +28,7 @@ use std::any::Any;
 use std::sync::Arc;
 
 use symmetry::Conflict;
-use tree::{Grower, Grown, Places, Team};
+use tree::{Grower, Grown, Places};
 
 use crate::contract::layers::{Colour, Drawing, Layer, Style, Svg};
 use crate::contract::schema::{MetricSpec, RobotKind};
@@ -103,6 +103,14 @@ enum Rule {
     /// The agent rests at its goal `v` from step `t` at the latest, so no
     /// other agent is at `v` at step `t` or later.
     RestsFrom { v: Node, t: u32 },
+}
+
+/// The agents a tree is grown for.
+struct Team<'a> {
+    pub graph: &'a Graph,
+    pub starts: Vec<Node>,
+    pub goals: Vec<Node>,
+    pub dists: Vec<&'a [u32]>,
 }
 
 /// A node of the constraint tree.

@@ -25,8 +25,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::low::{Table, mdd};
-use super::tree::Team;
-use super::{Constraint, CtNode, Rule, at};
+use super::{Constraint, CtNode, Rule, Team, at};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
 /// A conflict between two agents' paths.

@@ -19,16 +19,8 @@ use std::sync::Arc;
 
 use super::low::{Avoid, Low, Table, low_level};
 use super::symmetry::{Kind, MddCache, cached_mdd, choose};
-use super::{Budget, Constraint, Counts, CtNode, Rule, conflicts, cost_of, to_replan};
+use super::{Budget, Constraint, Counts, CtNode, Rule, Team, conflicts, cost_of, to_replan};
 use crate::planners::mapf::{FastMap, Graph, Node};
-
-/// The agents a tree is grown for.
-pub(super) struct Team<'a> {
-    pub graph: &'a Graph,
-    pub starts: Vec<Node>,
-    pub goals: Vec<Node>,
-    pub dists: Vec<&'a [u32]>,
-}
 
 /// How growing a tree ended.
 pub(super) enum Grown {
