@@ -2,20 +2,20 @@
 //! Sturtevant, AIJ 2015) for a team under grid MAPF semantics, optimal in
 //! the sum of costs.
 //!
-//! The high level searches a tree of constraint sets, cheapest sum of
-//! costs first: each node holds one shortest path per agent that respects
-//! the node's constraints. When the paths conflict (two agents on one
-//! point at a step, or swapping points in one step), the node splits in
-//! two — one agent or the other may not be there then — and only the
-//! constrained agent plans again. The first node without a conflict is an
-//! optimal solution.
+//! The high level searches a tree of constraint sets (`cbs/tree.rs`),
+//! least f = sum of costs + WDG heuristic first: each node holds one
+//! shortest path per agent that respects the node's constraints. When the
+//! paths conflict (two agents on one point at a step, or swapping points
+//! in one step), the node splits in two (`cbs/symmetry.rs`: the conflict
+//! ranked first, split the standard way or by target or rectangle
+//! reasoning) and the agents a child's constraints bind plan again. The
+//! first node without a conflict is an optimal solution.
 //!
-//! The low level is A* in (point, step) with each agent's exact distance
-//! to its goal as the heuristic, ties broken by fewer conflicts with the
-//! other agents' paths (the conflict-avoidance table), which keeps the
-//! tree small. Once a state is past the agent's last constraint, nothing
-//! can stop it: the rest of the path is its shortest way to the goal, so
-//! the search space is finite and an agent with no way is known at once.
+//! The low level (`cbs/low.rs`) is A* in (point, step) with each agent's
+//! exact distance to its goal (or the wait its constraints ask, if
+//! longer) as the heuristic, ties broken by fewer conflicts with the other
+//! agents' paths (the conflict-avoidance table), which keeps the tree
+//! small. It is finite, so an agent with no way is known at once.
 //!
 //! With pictures on, the places of the conflicts the tree resolved are a
 //! layer `conflicts` (an edge conflict at the middle of its edge).
@@ -103,6 +103,29 @@ enum Rule {
     /// The agent rests at its goal `v` from step `t` at the latest, so no
     /// other agent is at `v` at step `t` or later.
     RestsFrom { v: Node, t: u32 },
+}
+
+/// The agent number, in a constraint, of any agent but the ones a table,
+/// an MDD or a pair's tree is for (another agent resting at its goal binds
+/// them all).
+const OTHER: u32 = u32::MAX;
+
+/// The constraints of `constraints` that bind `agents` — their own,
+/// renumbered by their place in `agents`, and every agent's rest at its
+/// goal, the others' as [`OTHER`]'s — which, with their starts, goals and
+/// costs, determine their searches.
+fn binding(constraints: &[Constraint], agents: &[u32]) -> Vec<Constraint> {
+    constraints
+        .iter()
+        .filter_map(|c| {
+            let agent = match agents.iter().position(|&a| a == c.agent) {
+                Some(k) => k as u32,
+                None if matches!(c.rule, Rule::RestsFrom { .. }) => OTHER,
+                None => return None,
+            };
+            Some(Constraint { agent, rule: c.rule })
+        })
+        .collect()
 }
 
 /// The agents a tree is grown for.

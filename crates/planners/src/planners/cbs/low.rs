@@ -21,7 +21,8 @@ pub(super) struct Table {
     max_finish: u32,
     /// The latest step a vertex constraint keeps the agent off its goal.
     goal_last: Option<u32>,
-    /// From this step on, nothing but `from` constrains the agent.
+    /// From this step on, nothing but `from` and `max_finish` constrains
+    /// the agent.
     horizon: u32,
 }
 
@@ -188,7 +189,6 @@ impl Avoid {
 /// shortest path to the goal, and with them the states of later steps
 /// are one state per point, so the search is finite either way and an
 /// agent with no way is known.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn low_level(
     graph: &Graph,
     dist: &[u32],
@@ -280,11 +280,11 @@ pub(super) fn low_level(
 
 /// The multi-valued decision diagram of an agent's paths of `cost` steps
 /// that end at its goal under its table: for each step, the nodes some
-/// such path is at (Sharon et al. 2013), sorted. The high level reads it
-/// only to rank conflicts, never to prune.
+/// such path is at (Sharon et al. 2013). The high level reads it only to
+/// rank conflicts and to tell dependent pairs, never to prune.
 pub(super) fn mdd(graph: &Graph, dist: &[u32], start: Node, goal: Node, cost: usize, table: &Table) -> Vec<Vec<Node>> {
-    // `mark[v]` = k + 1: `v` is in the level being built (forwards) or in
-    // the level after (backwards) at pass k.
+    // `mark[v]` = t: `v` is in the level of step t, being built (forwards);
+    // = cost + 1 + t: `v` is kept at step t + 1 (backwards).
     let mut mark = vec![0u32; graph.adj.len()];
     let mut layers: Vec<Vec<Node>> = vec![vec![start]];
     for t in 1..=cost {

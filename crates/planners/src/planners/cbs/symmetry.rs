@@ -21,11 +21,10 @@
 //! children cost more), then semi-cardinal, then the rest — then target
 //! before rectangle before standard, then earliest.
 
-use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::low::{Table, mdd};
-use super::{Constraint, CtNode, Rule, Team, at};
+use super::{Constraint, CtNode, Rule, Team, at, binding};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
 /// A conflict between two agents' paths.
@@ -35,7 +34,8 @@ pub(super) enum Conflict {
     Edge { a: u32, b: u32, u: Node, v: Node, t: u32 },
 }
 
-/// What a split was, for the counts.
+/// What a split was, for the counts; in the order conflicts are preferred
+/// within a cardinality (the last first).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Kind {
     Standard,
@@ -92,13 +92,10 @@ pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict], cache: 
 }
 
 /// The MDDs the trees have built, by the agent's start and goal, its cost
-/// and the constraints that bind it (its own as agent 0, the others'
-/// rests as [`OTHER`]): what determines the MDD, in the team's tree as in
-/// a pair's, whose agents are numbered apart.
+/// and the constraints that bind it (as agent 0, [`binding`]): what
+/// determines the MDD, in the team's tree as in a pair's, whose agents are
+/// numbered apart.
 pub(super) type MddCache = FastMap<(Node, Node, usize, Vec<Constraint>), Arc<Vec<Vec<Node>>>>;
-
-/// Any agent but the one an MDD is for, in an [`MddCache`] key.
-const OTHER: u32 = u32::MAX;
 
 /// The most MDDs remembered before the memory is cleared.
 const REMEMBERED: usize = 1 << 14;
@@ -108,7 +105,7 @@ struct Mdds<'a> {
     graph: &'a Graph,
     dists: &'a [&'a [u32]],
     node: &'a CtNode,
-    built: HashMap<u32, Arc<Vec<Vec<Node>>>>,
+    built: FastMap<u32, Arc<Vec<Vec<Node>>>>,
     cache: &'a mut MddCache,
 }
 
@@ -118,7 +115,7 @@ impl<'a> Mdds<'a> {
             graph,
             dists,
             node,
-            built: HashMap::new(),
+            built: FastMap::default(),
             cache,
         }
     }
@@ -142,16 +139,7 @@ impl<'a> Mdds<'a> {
 pub(super) fn cached_mdd(graph: &Graph, dist: &[u32], node: &CtNode, agent: u32, cache: &mut MddCache) -> Arc<Vec<Vec<Node>>> {
     let path = &node.paths[agent as usize];
     let goal = *path.last().unwrap_or(&path[0]);
-    let binding: Vec<Constraint> = node
-        .constraints
-        .iter()
-        .filter(|c| c.agent == agent || matches!(c.rule, Rule::RestsFrom { .. }))
-        .map(|c| Constraint {
-            agent: if c.agent == agent { 0 } else { OTHER },
-            rule: c.rule,
-        })
-        .collect();
-    let key = (path[0], goal, path.len(), binding);
+    let key = (path[0], goal, path.len(), binding(&node.constraints, &[agent]));
     if let Some(known) = cache.get(&key) {
         return known.clone();
     }

@@ -257,7 +257,20 @@ fn an_agent_walled_off_is_known_at_once() {
     assert!(out.notes[0].contains("cannot reach"), "{:?}", out.notes);
 }
 
-/// Every path of `len` steps from `s` to `v` that moves Manhattan-optimally
+/// The MAPF graph of an empty `w` × `w` floor (point `(i, j)` is node
+/// `j·w + i`).
+fn empty_floor(w: usize) -> Graph {
+    let side = w as f64;
+    let rows = vec![".".repeat(w); w];
+    let refs: Vec<&str> = rows.iter().map(String::as_str).collect();
+    let world = world_in(Aabb::from_corners(p(0.0, 0.0), p(side, side)), vec![grid(1.0, p(0.0, 0.0), &refs)]);
+    let one = vec![Agent { name: "a".into(), start: p(0.5, 0.5), goal: p(side - 0.5, side - 0.5), span: Span::default() }];
+    let task = team_task(&world, &one, Limits::default(), 0);
+    let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
+    Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("an empty floor")
+}
+
+/// Every path from `s` to `v` that moves Manhattan-optimally
 /// (each step nearer), on a grid `w` wide.
 fn staircases(s: (i64, i64), v: (i64, i64), w: i64) -> Vec<Vec<Node>> {
     if s == v {
@@ -285,14 +298,7 @@ fn staircases(s: (i64, i64), v: (i64, i64), w: i64) -> Vec<Vec<Node>> {
 #[test]
 fn any_two_paths_across_their_barriers_conflict() {
     let w = 8i64;
-    let world = world_in(
-        Aabb::from_corners(p(0.0, 0.0), p(8.0, 8.0)),
-        vec![grid(1.0, p(0.0, 0.0), &["........"; 8])],
-    );
-    let one = vec![Agent { name: "a".into(), start: p(0.5, 0.5), goal: p(7.5, 7.5), span: Span::default() }];
-    let task = team_task(&world, &one, Limits::default(), 0);
-    let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
-    let graph = Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("an empty floor");
+    let graph = empty_floor(8);
     let xy = |v: Node| ((v as i64) % w, (v as i64) / w);
     let mut rng = crate::geometry::rng::SplitMix64::new(7);
     let (mut splits, mut pairs) = (0, 0u64);
@@ -344,14 +350,7 @@ fn any_two_paths_across_their_barriers_conflict() {
 /// only paths swap places.
 #[test]
 fn joint_mdds_tell_dependent_pairs() {
-    let world = world_in(
-        Aabb::from_corners(p(0.0, 0.0), p(3.0, 3.0)),
-        vec![grid(1.0, p(0.0, 0.0), &["..."; 3])],
-    );
-    let one = vec![Agent { name: "a".into(), start: p(0.5, 0.5), goal: p(2.5, 2.5), span: Span::default() }];
-    let task = team_task(&world, &one, Limits::default(), 0);
-    let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
-    let graph = Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("an empty floor");
+    let graph = empty_floor(3);
     let n = |x: u32, y: u32| y * 3 + x;
     // Left to right through the centre, bottom to top through it.
     let across = vec![vec![n(0, 1)], vec![n(1, 1)], vec![n(2, 1)]];

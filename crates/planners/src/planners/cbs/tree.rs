@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 use super::low::{Avoid, Low, Table, low_level};
 use super::symmetry::{Kind, MddCache, cached_mdd, choose};
-use super::{Budget, Constraint, Counts, CtNode, Rule, Team, conflicts, cost_of, to_replan};
+use super::{Budget, Constraint, Counts, CtNode, Team, binding, conflicts, cost_of, to_replan};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
 /// How growing a tree ended.
@@ -30,10 +30,6 @@ pub(super) enum Grown {
     /// A limit was reached; every solution costs at least `bound`.
     Stopped { bound: u64 },
 }
-
-/// The agent number of constraints from outside a pair's tree (another
-/// agent resting at its goal binds both of the pair).
-const OUTSIDE: u32 = u32::MAX;
 
 /// The most nodes a pair's tree may expand for the heuristic; past it, the
 /// tree's lower bound is the pair's extra (CBSH2-RTC stops at 10 too).
@@ -226,23 +222,7 @@ impl<'a, 'b> Grower<'a, 'b> {
     /// node's constraints (a lower bound when their tree stops at its
     /// limit); `None` when they have no solution together.
     fn pair_extra(&mut self, team: &Team<'_>, node: &CtNode, i: u32, j: u32) -> Option<u64> {
-        let base: Vec<Constraint> = node
-            .constraints
-            .iter()
-            .filter_map(|c| {
-                let agent = if c.agent == i {
-                    0
-                } else if c.agent == j {
-                    1
-                } else if matches!(c.rule, Rule::RestsFrom { .. }) {
-                    OUTSIDE
-                } else {
-                    return None;
-                };
-                Some(Constraint { agent, rule: c.rule })
-            })
-            .collect();
-        let key = (i, j, base);
+        let key = (i, j, binding(&node.constraints, &[i, j]));
         if let Some(&known) = self.pairs.get(&key) {
             return known;
         }
@@ -265,15 +245,17 @@ impl<'a, 'b> Grower<'a, 'b> {
         let stored = self.budget.stored;
         let grown = self.grow(&pair, key.2.clone(), false, PAIR_NODES, None);
         self.budget.stored = stored;
+        // Stopped by the run's limit, not the pair's: a bound, not remembered.
+        let run_stopped = matches!(grown, Grown::Stopped { .. }) && self.budget.exhausted();
         let extra = match grown {
             Grown::Solved(paths) => Some(cost_of(&paths).saturating_sub(apart)),
             Grown::NoSolution => None,
-            // The run's limit, not the pair's: a bound, but not remembered.
             // Dependent: at least one more.
-            Grown::Stopped { bound } if self.budget.exhausted() => return Some(bound.saturating_sub(apart).max(1)),
             Grown::Stopped { bound } => Some(bound.saturating_sub(apart).max(1)),
         };
-        self.remember(key, extra);
+        if !run_stopped {
+            self.remember(key, extra);
+        }
         extra
     }
 
@@ -292,13 +274,19 @@ impl<'a, 'b> Grower<'a, 'b> {
 /// move an edge constraint forbids: then a pair may look independent that
 /// is not, and the heuristic is lower, never higher.
 pub(super) fn dependent(graph: &Graph, a: &[Vec<Node>], b: &[Vec<Node>]) -> bool {
-    let level = |m: &[Vec<Node>], t: usize| -> Vec<Node> { m.get(t).or(m.last()).cloned().unwrap_or_default() };
+    fn level(m: &[Vec<Node>], t: usize) -> &[Node] {
+        m.get(t).or(m.last()).map_or(&[], Vec::as_slice)
+    }
     let last = a.len().max(b.len()).saturating_sub(1);
     let adjacent = |u: Node, v: Node| u == v || graph.neighbours(u).any(|w| w == v);
-    let mut here: Vec<(Node, Node)> = vec![(level(a, 0)[0], level(b, 0)[0])];
-    if here[0].0 == here[0].1 {
+    // An empty MDD says nothing: independent (the lower heuristic).
+    let (Some(&sa), Some(&sb)) = (level(a, 0).first(), level(b, 0).first()) else {
+        return false;
+    };
+    if sa == sb {
         return true;
     }
+    let mut here: Vec<(Node, Node)> = vec![(sa, sb)];
     for t in 1..=last {
         let (next_a, next_b) = (level(a, t), level(b, t));
         let mut next: Vec<(Node, Node)> = Vec::new();
