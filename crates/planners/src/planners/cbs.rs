@@ -261,6 +261,7 @@ impl Budget<'_> {
 pub struct Counts {
     pub standard: u64,
     pub rectangle: u64,
+    pub generalised: u64,
     pub target: u64,
     pub bypasses: u64,
 }
@@ -403,6 +404,8 @@ fn stopped<T>(out: &mut PlanOutcome) -> Option<T> {
 
 #[path = "cbs/low.rs"]
 mod low;
+#[path = "cbs/overlap.rs"]
+mod overlap;
 #[path = "cbs/symmetry.rs"]
 mod symmetry;
 #[path = "cbs/tree.rs"]

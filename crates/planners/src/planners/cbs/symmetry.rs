@@ -24,6 +24,7 @@
 use std::sync::Arc;
 
 use super::low::{Table, mdd};
+use super::overlap;
 use super::{Constraint, CtNode, Rule, Team, at, binding};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
@@ -39,8 +40,22 @@ pub(super) enum Conflict {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Kind {
     Standard,
+    /// The R form, from the agents' starts and goals.
     Rectangle,
+    /// The GR form, from the agents' MDDs ([`overlap`]).
+    Generalised,
     Target,
+}
+
+impl Kind {
+    /// The preference within a cardinality: the two rectangle forms alike.
+    fn preference(self) -> u8 {
+        match self {
+            Kind::Standard => 0,
+            Kind::Rectangle | Kind::Generalised => 1,
+            Kind::Target => 2,
+        }
+    }
 }
 
 /// A chosen conflict: the constraints each child adds, and where it was.
@@ -79,7 +94,7 @@ pub(super) fn choose(team: &Team<'_>, node: &CtNode, found: &[Conflict], cache: 
         let split = classify(graph, node, c, &mut mdds, true);
         let better = best
             .as_ref()
-            .is_none_or(|b| (split.cardinality, split.kind as u8) > (b.cardinality, b.kind as u8));
+            .is_none_or(|b| (split.cardinality, split.kind.preference()) > (b.cardinality, b.kind.preference()));
         if better {
             let top = split.cardinality == 2 && split.kind == Kind::Target;
             best = Some(split);
@@ -123,15 +138,22 @@ impl<'a> Mdds<'a> {
     /// Whether every shortest path of `agent` is at `u` at `t − 1` and at
     /// `v` at `t` (`u` = `v` for a vertex).
     fn narrow(&mut self, agent: u32, u: Node, v: Node, t: u32) -> bool {
-        let (graph, dists, node) = (self.graph, self.dists, self.node);
-        let cache = &mut *self.cache;
-        let levels = self
-            .built
-            .entry(agent)
-            .or_insert_with(|| cached_mdd(graph, dists[agent as usize], node, agent, cache));
+        let levels = self.levels(agent);
         let level = |k: usize| -> &[Node] { levels.get(k).or(levels.last()).map_or(&[], Vec::as_slice) };
         let t = t as usize;
         level(t) == [v] && (u == v || (t > 0 && level(t - 1) == [u]))
+    }
+}
+
+impl Mdds<'_> {
+    /// `agent`'s MDD, built when first asked.
+    fn levels(&mut self, agent: u32) -> Arc<Vec<Vec<Node>>> {
+        let (graph, dists, node) = (self.graph, self.dists, self.node);
+        let cache = &mut *self.cache;
+        self.built
+            .entry(agent)
+            .or_insert_with(|| cached_mdd(graph, dists[agent as usize], node, agent, cache))
+            .clone()
     }
 }
 
@@ -170,15 +192,21 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
             } else {
                 0
             };
-            if cardinality < 2
-                && let Some((barrier_a, barrier_b, cardinality)) = rectangle(graph, paths, a, b)
-            {
-                return Split {
-                    children: [barrier_a, barrier_b],
-                    kind: Kind::Rectangle,
-                    cardinality,
-                    place: (v, v),
-                };
+            if cardinality < 2 {
+                let (mdd_a, mdd_b) = (mdds.levels(a), mdds.levels(b));
+                let (pa, pb) = (&paths[a as usize], &paths[b as usize]);
+                let found = rectangle(graph, paths, a, b).map(|found| (found, Kind::Rectangle)).or_else(|| {
+                    overlap::generalised(graph, (a, pa, &mdd_a), (b, pb, &mdd_b), v, t)
+                        .map(|found| (found, Kind::Generalised))
+                });
+                if let Some(((barrier_a, barrier_b, cardinality), kind)) = found {
+                    return Split {
+                        children: [barrier_a, barrier_b],
+                        kind,
+                        cardinality,
+                        place: (v, v),
+                    };
+                }
             }
             let vertex = Rule::Vertex { v, t };
             Split::one_each((a, vertex), (b, vertex), Kind::Standard, cardinality, (v, v))
