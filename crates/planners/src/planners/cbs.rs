@@ -7,7 +7,7 @@
 //! shortest path per agent that respects the node's constraints. When the
 //! paths conflict (two agents on one point at a step, or swapping points
 //! in one step), the node splits in two (`cbs/symmetry.rs`: the conflict
-//! ranked first, split the standard way or by target or rectangle
+//! ranked first, split the standard way or by target, rectangle or corridor
 //! reasoning) and the agents a child's constraints bind plan again. The
 //! first node without a conflict is an optimal solution.
 //!
@@ -262,6 +262,7 @@ pub struct Counts {
     pub standard: u64,
     pub rectangle: u64,
     pub generalised: u64,
+    pub corridor: u64,
     pub target: u64,
     pub bypasses: u64,
 }
@@ -402,6 +403,8 @@ fn stopped<T>(out: &mut PlanOutcome) -> Option<T> {
     None
 }
 
+#[path = "cbs/corridor.rs"]
+mod corridor;
 #[path = "cbs/low.rs"]
 mod low;
 #[path = "cbs/overlap.rs"]

@@ -325,3 +325,58 @@ pub(super) fn mdd(graph: &Graph, dist: &[u32], start: Node, goal: Node, cost: us
     }
     keep
 }
+
+/// The earliest step at which an agent from `start` can be at `target`
+/// under its table, never using the edge `without` (either way) when one
+/// is given; `None` when it cannot before `upper`. A* in (point, step)
+/// with the Manhattan distance as its heuristic; past the table's horizon
+/// nothing changes with the step, so a point's later steps are one state
+/// that keeps its earliest step (reopened when an earlier one is found),
+/// and the search ends.
+pub(super) fn arrival(
+    graph: &Graph,
+    table: &Table,
+    start: Node,
+    target: Node,
+    without: Option<(Node, Node)>,
+    upper: u32,
+) -> Option<u32> {
+    let cell = |v: Node| {
+        let (i, j) = graph.spec.coords(v as usize);
+        (i as i64, j as i64)
+    };
+    let goal = cell(target);
+    let h = |v: Node| {
+        let c = cell(v);
+        ((c.0 - goal.0).abs() + (c.1 - goal.1).abs()) as u32
+    };
+    if !table.vertex_ok(start, 0) {
+        return None;
+    }
+    let blocked = |u: Node, v: Node| without.is_some_and(|(x, y)| (u, v) == (x, y) || (u, v) == (y, x));
+    let key = |v: Node, t: u32| (v, t.min(table.horizon + 1));
+    let mut earliest: FastMap<(Node, u32), u32> = FastMap::default();
+    let mut open: BinaryHeap<std::cmp::Reverse<(u32, u32, Node)>> = BinaryHeap::new();
+    open.push(std::cmp::Reverse((h(start), 0, start)));
+    earliest.insert(key(start, 0), 0);
+    while let Some(std::cmp::Reverse((_, t, v))) = open.pop() {
+        if v == target {
+            return Some(t);
+        }
+        if earliest.get(&key(v, t)).is_some_and(|&e| e < t) {
+            continue;
+        }
+        let next = t + 1;
+        for w in graph.neighbours(v).chain(std::iter::once(v)) {
+            if next + h(w) >= upper || blocked(v, w) || !table.vertex_ok(w, next) || !table.move_ok(v, w, next) {
+                continue;
+            }
+            let e = earliest.entry(key(w, next)).or_insert(u32::MAX);
+            if next < *e {
+                *e = next;
+                open.push(std::cmp::Reverse((next + h(w), next, w)));
+            }
+        }
+    }
+    None
+}

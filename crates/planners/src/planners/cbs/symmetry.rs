@@ -24,6 +24,7 @@
 use std::sync::Arc;
 
 use super::low::{Table, mdd};
+use super::corridor::{Crossing, pseudo_corridor};
 use super::overlap;
 use super::{Constraint, CtNode, Rule, Team, at, binding};
 use crate::planners::mapf::{FastMap, Graph, Node};
@@ -44,6 +45,8 @@ pub(super) enum Kind {
     Rectangle,
     /// The GR form, from the agents' MDDs ([`overlap`]).
     Generalised,
+    /// A head-on crossing of one edge ([`corridor`]).
+    Corridor,
     Target,
 }
 
@@ -52,7 +55,7 @@ impl Kind {
     fn preference(self) -> u8 {
         match self {
             Kind::Standard => 0,
-            Kind::Rectangle | Kind::Generalised => 1,
+            Kind::Rectangle | Kind::Generalised | Kind::Corridor => 1,
             Kind::Target => 2,
         }
     }
@@ -192,6 +195,31 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
             } else {
                 0
             };
+            // Head-on through `v`: `a` from `u` on to `w`, `b` from `w` on to `u`,
+            // each on its only way: a pseudo-corridor on the edge `v`–`w`.
+            let (pa, pb) = (&paths[a as usize], &paths[b as usize]);
+            let (t_, k) = (t as usize, t as usize + 1);
+            if t > 0 && k < pa.len() && k < pb.len() {
+                let (u, w) = (pa[t_ - 1], pa[k]);
+                let head_on = pb[t_ - 1] == w && pb[k] == u && u != v && w != v;
+                if head_on
+                    && mdds.narrow(a, u, v, t)
+                    && mdds.narrow(a, v, w, t + 1)
+                    && mdds.narrow(b, w, v, t)
+                    && mdds.narrow(b, v, u, t + 1)
+                {
+                    let into_w = Crossing { agent: a, from: v, into: w, step: t + 1 };
+                    let into_v = Crossing { agent: b, from: w, into: v, step: t };
+                    if let Some(children) = pseudo_corridor(graph, node, &into_w, &into_v) {
+                        return Split {
+                            children,
+                            kind: Kind::Corridor,
+                            cardinality,
+                            place: (v, v),
+                        };
+                    }
+                }
+            }
             if cardinality < 2 {
                 let (mdd_a, mdd_b) = (mdds.levels(a), mdds.levels(b));
                 let (pa, pb) = (&paths[a as usize], &paths[b as usize]);
@@ -212,11 +240,21 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
             Split::one_each((a, vertex), (b, vertex), Kind::Standard, cardinality, (v, v))
         }
         Conflict::Edge { a, b, u, v, t } => {
-            let cardinality = if rank {
-                u8::from(mdds.narrow(a, u, v, t)) + u8::from(mdds.narrow(b, v, u, t))
-            } else {
-                0
-            };
+            let (only_a, only_b) = (mdds.narrow(a, u, v, t), mdds.narrow(b, v, u, t));
+            let cardinality = if rank { u8::from(only_a) + u8::from(only_b) } else { 0 };
+            // Each on its only way across the edge: a pseudo-corridor.
+            if only_a && only_b {
+                let into_v = Crossing { agent: a, from: u, into: v, step: t };
+                let into_u = Crossing { agent: b, from: v, into: u, step: t };
+                if let Some(children) = pseudo_corridor(graph, node, &into_v, &into_u) {
+                    return Split {
+                        children,
+                        kind: Kind::Corridor,
+                        cardinality,
+                        place: (u.min(v), u.max(v)),
+                    };
+                }
+            }
             let (there, back) = (Rule::Edge { u, v, t }, Rule::Edge { u: v, v: u, t });
             Split::one_each((a, there), (b, back), Kind::Standard, cardinality, (u.min(v), u.max(v)))
         }

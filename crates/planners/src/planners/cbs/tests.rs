@@ -495,11 +495,11 @@ fn any_two_walks_across_generalised_barriers_meet() {
 }
 
 /// Pairs of agents on small maps with walls, where shortest paths bend
-/// round walls and rectangles come from MDDs: `cbs` with generalised
-/// rectangle splits keeps the joint optimum (where it finishes within its
-/// limit), and it makes such splits.
+/// round walls (rectangles come from MDDs) and agents meet head-on in
+/// narrow places (pseudo-corridors): `cbs` keeps the joint optimum where
+/// it finishes within its limit, and it makes both kinds of split.
 #[test]
-fn generalised_rectangles_keep_the_optimum() {
+fn symmetry_reasoning_keeps_the_optimum_on_walled_maps() {
     let (mut counts, mut stopped) = (Counts::default(), 0);
     let runs = 6000u64;
     for seed in 0..runs {
@@ -508,9 +508,125 @@ fn generalised_rectangles_keep_the_optimum() {
         agrees_with_the_joint_optimum(seed, &Case { world, w, h, agents }, &mut counts, Some(&mut stopped));
     }
     eprintln!("{counts:?}, {stopped} stopped by the limit");
+    assert!(counts.corridor >= 20, "too few pseudo-corridor splits to test them: {counts:?}");
     // Two agents that must pass each other in a long corridor take plain
     // CBS exponentially many splits (the corridor symmetry `cbs` does not
     // reason on): a few such maps stop at the limit, no more.
     assert!(stopped * 100 <= runs as usize, "{stopped} of {runs} runs stopped by the limit");
     assert!(counts.generalised >= 20, "too few generalised rectangle splits to test them: {counts:?}");
+}
+
+/// Whether some two walks (any moves and waits under each agent's table)
+/// from `starts` stay apart until agent 0 has been at `off[0].0` at a step
+/// up to `off[0].1` and agent 1 at `off[1].0` at a step up to `off[1].1`.
+fn both_broken_apart(graph: &Graph, tables: [&low::Table; 2], starts: [Node; 2], off: [(Node, u32); 2]) -> bool {
+    let last = off[0].1.max(off[1].1);
+    let broken = |k: usize, x: Node, t: u32| x == off[k].0 && t <= off[k].1;
+    if !tables[0].vertex_ok(starts[0], 0) || !tables[1].vertex_ok(starts[1], 0) {
+        return false;
+    }
+    let steps = |k: usize, x: Node, t: u32| -> Vec<Node> {
+        graph
+            .neighbours(x)
+            .chain(std::iter::once(x))
+            .filter(|&x2| tables[k].vertex_ok(x2, t + 1) && tables[k].move_ok(x, x2, t + 1))
+            .collect()
+    };
+    let mut here: std::collections::BTreeSet<(Node, Node, bool, bool)> =
+        [(starts[0], starts[1], broken(0, starts[0], 0), broken(1, starts[1], 0))].into();
+    for t in 0..=last {
+        if here.iter().any(|&(_, _, fa, fb)| fa && fb) {
+            return true;
+        }
+        let mut next = std::collections::BTreeSet::new();
+        for &(x, y, fa, fb) in &here {
+            for x2 in steps(0, x, t) {
+                for y2 in steps(1, y, t) {
+                    if x2 != y2 && !(x2 == y && y2 == x) {
+                        next.insert((x2, y2, fa || broken(0, x2, t + 1), fb || broken(1, y2, t + 1)));
+                    }
+                }
+            }
+        }
+        here = next;
+    }
+    false
+}
+
+/// Pseudo-corridor splits are sound: on thousands of small maps with
+/// walls, random constraints on two agents and a random edge they are to
+/// cross head-on, whenever a split is made, no two walks under the agents'
+/// constraints break both children's constraints without meeting (checked
+/// over all walks). The foil: the same split with both bounds two steps
+/// later, which walks often break apart.
+#[test]
+fn any_two_walks_through_a_pseudo_corridor_meet() {
+    let mut rng = crate::geometry::rng::SplitMix64::new(2020);
+    let (mut splits, mut foils_broken) = (0, 0);
+    for seed in 0..4000u64 {
+        let (world, agents) = random_team(seed, 2, 4, 3, 5);
+        if agents.len() < 2 {
+            continue;
+        }
+        let task = team_task(&world, &agents, Limits::default(), 0);
+        let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
+        let graph = Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("a small map");
+        let n = graph.adj.len() as u64;
+        let mut below = |k: u64| rng.next_u64() % k;
+        let free: Vec<Node> = (0..n as Node).filter(|&v| graph.free[v as usize]).collect();
+        let mut constraints = Vec::new();
+        for _ in 0..below(5) {
+            let v = free[below(free.len() as u64) as usize];
+            let rule = Rule::Vertex { v, t: 1 + below(8) as u32 };
+            constraints.push(Constraint { agent: below(2) as u32, rule });
+        }
+        let x = free[below(free.len() as u64) as usize];
+        let Some(y) = graph.neighbours(x).nth(below(4) as usize) else {
+            continue;
+        };
+        let paths = vec![
+            Arc::new(vec![graph.starts[0], graph.goals[0]]),
+            Arc::new(vec![graph.starts[1], graph.goals[1]]),
+        ];
+        let node = CtNode {
+            constraints: Arc::new(constraints),
+            paths,
+            cost: 0,
+            found: Found::default(),
+            h: 0,
+            h_known: false,
+        };
+        let (step_a, step_b) = (1 + below(6) as u32, 1 + below(6) as u32);
+        let a = corridor::Crossing { agent: 0, from: x, into: y, step: step_a };
+        let b = corridor::Crossing { agent: 1, from: y, into: x, step: step_b };
+        let Some([c1, c2]) = corridor::pseudo_corridor(&graph, &node, &a, &b) else {
+            continue;
+        };
+        splits += 1;
+        let last = |c: &[Constraint], agent: u32, v: Node| -> u32 {
+            let steps: Vec<u32> = c
+                .iter()
+                .map(|c| match c.rule {
+                    Rule::Vertex { v: at, t } if c.agent == agent && at == v => t,
+                    _ => panic!("a pseudo-corridor child keeps its agent off one point: {c:?}"),
+                })
+                .collect();
+            assert_eq!(steps, (0..steps.len() as u32).collect::<Vec<_>>(), "every step from 0");
+            steps.len() as u32 - 1
+        };
+        let (l_a, l_b) = (last(&c1, 0, y), last(&c2, 1, x));
+        assert!(l_a >= step_a && l_b >= step_b, "seed {seed}: the split keeps a current path");
+        let tables = [
+            &low::Table::new(0, graph.goals[0], &node.constraints),
+            &low::Table::new(1, graph.goals[1], &node.constraints),
+        ];
+        let starts = [graph.starts[0], graph.starts[1]];
+        assert!(
+            !both_broken_apart(&graph, tables, starts, [(y, l_a), (x, l_b)]),
+            "seed {seed}: walks break both children apart ({x} - {y}, up to {l_a} / {l_b})"
+        );
+        foils_broken += usize::from(both_broken_apart(&graph, tables, starts, [(y, l_a + 2), (x, l_b + 2)]));
+    }
+    eprintln!("{splits} pseudo-corridor splits, {foils_broken} foils broken apart");
+    assert!(splits >= 200 && foils_broken >= 50, "{splits} / {foils_broken}");
 }

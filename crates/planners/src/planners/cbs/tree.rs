@@ -145,6 +145,7 @@ impl<'a, 'b> Grower<'a, 'b> {
                     Kind::Standard => self.counts.standard += 1,
                     Kind::Rectangle => self.counts.rectangle += 1,
                     Kind::Generalised => self.counts.generalised += 1,
+                    Kind::Corridor => self.counts.corridor += 1,
                     Kind::Target => self.counts.target += 1,
                 }
                 if let Some(places) = places.as_deref_mut() {
