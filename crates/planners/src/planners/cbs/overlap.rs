@@ -169,6 +169,26 @@ enum Stage {
     FromSecond,
 }
 
+impl Stage {
+    /// The stage after the rim walk meets an entry of the first agent
+    /// (`first`) or of the second, before or after the latest cell
+    /// (`passed`), and whether that entry is now the agent's last; `None`
+    /// when the entries do not lie on two arcs.
+    fn met(self, first: bool, passed: bool) -> Option<(Stage, bool)> {
+        let (to_mine, from_mine, to_other) = if first {
+            (Stage::ToFirst, Stage::FromFirst, Stage::ToSecond)
+        } else {
+            (Stage::ToSecond, Stage::FromSecond, Stage::ToFirst)
+        };
+        match (self, passed) {
+            (s, false) if s == Stage::Initial || s == to_mine => Some((to_mine, true)),
+            (s, true) if s == Stage::Initial || s == to_other => Some((from_mine, true)),
+            (s, _) if s == from_mine => Some((s, false)),
+            _ => None,
+        }
+    }
+}
+
 /// The overlap area of a conflict and what its rim holds.
 struct Rim<'a> {
     graph: &'a Graph,
@@ -289,37 +309,19 @@ impl<'a> Rim<'a> {
                 return None;
             }
             passed_latest |= c == self.latest;
-            let mut fine = true;
             let next = self.next_on_rim(c, prev, |edge| {
-                if entries_a.remove(&edge) {
-                    match (stage, passed_latest) {
-                        (Stage::Initial, false) | (Stage::ToFirst, false) => {
-                            stage = Stage::ToFirst;
-                            r1 = edge;
+                for (first, entries) in [(true, &mut *entries_a), (false, &mut *entries_b)] {
+                    if entries.remove(&edge) {
+                        let Some((next, last)) = stage.met(first, passed_latest) else {
+                            return false;
+                        };
+                        stage = next;
+                        if last {
+                            *(if first { &mut r1 } else { &mut r2 }) = edge;
                         }
-                        (Stage::Initial, true) | (Stage::ToSecond, true) => {
-                            stage = Stage::FromFirst;
-                            r1 = edge;
-                        }
-                        (Stage::FromFirst, _) => {}
-                        _ => fine = false,
                     }
                 }
-                if fine && entries_b.remove(&edge) {
-                    match (stage, passed_latest) {
-                        (Stage::Initial, false) | (Stage::ToSecond, false) => {
-                            stage = Stage::ToSecond;
-                            r2 = edge;
-                        }
-                        (Stage::Initial, true) | (Stage::ToFirst, true) => {
-                            stage = Stage::FromSecond;
-                            r2 = edge;
-                        }
-                        (Stage::FromSecond, _) => {}
-                        _ => fine = false,
-                    }
-                }
-                fine
+                true
             });
             prev = c;
             c = next?;

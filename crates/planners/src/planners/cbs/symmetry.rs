@@ -15,11 +15,16 @@
 //!   segment of the rectangle's far side at the steps a Manhattan-optimal
 //!   path would cross it; any two paths that both cross their barriers
 //!   conflict (the paper's theorem), so every solution is kept by one
-//!   child, and one split replaces a split per cell of the rectangle.
+//!   child, and one split replaces a split per cell of the rectangle;
+//! - **generalised rectangle** (GR, [`overlap`]): the same from the
+//!   agents' MDDs when their paths bend round walls, each split checked
+//!   by a joint search over the two MDDs before it is used;
+//! - **pseudo-corridor** ([`super::corridor`]): two agents crossing one
+//!   edge head-on, each on its only way: which reaches its far end later.
 //!
 //! Conflicts are ranked as in ICBS (Boyarski et al. 2015) — cardinal (both
 //! children cost more), then semi-cardinal, then the rest — then target
-//! before rectangle before standard, then earliest.
+//! before rectangle or corridor before standard, then earliest.
 
 use std::sync::Arc;
 

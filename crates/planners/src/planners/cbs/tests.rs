@@ -373,6 +373,19 @@ fn joint_mdds_tell_dependent_pairs() {
     assert!(tree::dependent(&graph, &rests, &across));
 }
 
+/// The MAPF graph of a random map `min` to `min + 2` cells a side, each
+/// cell a wall with chance 1/`wall_one_in`, for two agents (`None` when
+/// it has room for fewer).
+fn walled_pair(seed: u64, min: usize, wall_one_in: u64) -> Option<Graph> {
+    let (world, agents) = random_team(seed, 2, min, 3, wall_one_in);
+    if agents.len() < 2 {
+        return None;
+    }
+    let task = team_task(&world, &agents, Limits::default(), 0);
+    let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
+    Some(Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("a small map"))
+}
+
 /// A random one of the paths an MDD holds.
 fn walk_along(graph: &Graph, mdd: &[Vec<Node>], rng: &mut crate::geometry::rng::SplitMix64) -> Vec<Node> {
     let mut path = vec![mdd[0][0]];
@@ -434,13 +447,9 @@ fn any_two_walks_across_generalised_barriers_meet() {
     let mut rng = crate::geometry::rng::SplitMix64::new(43);
     let (mut splits, mut not_manhattan, mut foils_crossed) = (0, 0, 0);
     for seed in 0..6000u64 {
-        let (world, agents) = random_team(seed, 2, 5, 3, 6);
-        if agents.len() < 2 {
+        let Some(graph) = walled_pair(seed, 5, 6) else {
             continue;
-        }
-        let task = team_task(&world, &agents, Limits::default(), 0);
-        let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
-        let graph = Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("a small map");
+        };
         let mut mdds = Vec::new();
         for k in 0..2 {
             let (s, g) = (graph.starts[k], graph.goals[k]);
@@ -564,13 +573,9 @@ fn any_two_walks_through_a_pseudo_corridor_meet() {
     let mut rng = crate::geometry::rng::SplitMix64::new(2020);
     let (mut splits, mut foils_broken) = (0, 0);
     for seed in 0..4000u64 {
-        let (world, agents) = random_team(seed, 2, 4, 3, 5);
-        if agents.len() < 2 {
+        let Some(graph) = walled_pair(seed, 4, 5) else {
             continue;
-        }
-        let task = team_task(&world, &agents, Limits::default(), 0);
-        let spec = LatticeSpec::new(&world, 1.0, Sample::Center, 1.0);
-        let graph = Graph::build(&task, spec, &Deadline::start(&task.limits)).expect("a small map");
+        };
         let n = graph.adj.len() as u64;
         let mut below = |k: u64| rng.next_u64() % k;
         let free: Vec<Node> = (0..n as Node).filter(|&v| graph.free[v as usize]).collect();
