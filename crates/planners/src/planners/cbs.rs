@@ -163,6 +163,43 @@ fn at(path: &[Node], t: usize) -> Node {
     path[t.min(path.len() - 1)]
 }
 
+/// A point's lattice cell.
+type Cell = (i64, i64);
+
+fn cell(graph: &Graph, v: Node) -> Cell {
+    let (i, j) = graph.spec.coords(v as usize);
+    (i as i64, j as i64)
+}
+
+fn manhattan(p: Cell, q: Cell) -> i64 {
+    (p.0 - q.0).abs() + (p.1 - q.1).abs()
+}
+
+/// Whether `u` and `v` are one move (or a wait) apart.
+fn adjacent(graph: &Graph, u: Node, v: Node) -> bool {
+    u == v || graph.neighbours(u).any(|w| w == v)
+}
+
+/// From the pairs of points `here` two agents are at, the pairs they can
+/// be at a step later, one in `next_a` and one in `next_b`, each a move
+/// or a wait away, without meeting (one point, or a swap along an edge);
+/// sorted, each once. The step of the joint searches over two MDDs.
+fn apart_next(graph: &Graph, here: &[(Node, Node)], next_a: &[Node], next_b: &[Node]) -> Vec<(Node, Node)> {
+    let mut next: Vec<(Node, Node)> = Vec::new();
+    for &(u, v) in here {
+        for &x in next_a.iter().filter(|&&x| adjacent(graph, u, x)) {
+            for &y in next_b.iter().filter(|&&y| adjacent(graph, v, y)) {
+                if x != y && !(x == v && y == u) {
+                    next.push((x, y));
+                }
+            }
+        }
+    }
+    next.sort_unstable();
+    next.dedup();
+    next
+}
+
 /// The conflicts of `paths` on a graph of `nodes` points.
 fn conflicts(paths: &[Arc<Vec<Node>>], nodes: usize) -> Found {
     let horizon = paths.iter().map(|p| p.len()).max().unwrap_or(0);

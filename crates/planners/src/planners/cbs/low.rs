@@ -6,7 +6,7 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::sync::Arc;
 
-use super::{Budget, Constraint, Rule};
+use super::{Budget, Constraint, Rule, cell, manhattan};
 use crate::planners::mapf::{FastMap, FastSet, Graph, Node};
 
 /// One agent's constraints, as its searches ask them.
@@ -341,15 +341,8 @@ pub(super) fn arrival(
     without: Option<(Node, Node)>,
     upper: u32,
 ) -> Option<u32> {
-    let cell = |v: Node| {
-        let (i, j) = graph.spec.coords(v as usize);
-        (i as i64, j as i64)
-    };
-    let goal = cell(target);
-    let h = |v: Node| {
-        let c = cell(v);
-        ((c.0 - goal.0).abs() + (c.1 - goal.1).abs()) as u32
-    };
+    let goal = cell(graph, target);
+    let h = |v: Node| manhattan(cell(graph, v), goal) as u32;
     if !table.vertex_ok(start, 0) {
         return None;
     }

@@ -24,7 +24,7 @@
 
 use std::collections::{BTreeSet, VecDeque};
 
-use super::{Constraint, Rule, at};
+use super::{Constraint, Rule, adjacent, apart_next, at, cell};
 use crate::planners::mapf::{FastMap, FastSet, Graph, Node};
 
 /// Where an MDD is at a cell: at one step, or at several.
@@ -64,16 +64,12 @@ const TURNS: [(i64, i64); 4] = [(0, 1), (-1, 0), (0, -1), (1, 0)];
 /// Standing at `from` and facing its neighbour `to`, the next neighbour
 /// turning left (counter-clockwise); `to` itself when it is the only one.
 fn turn_left(graph: &Graph, from: Node, to: Node) -> Option<Node> {
-    let cell = |v: Node| {
-        let (i, j) = graph.spec.coords(v as usize);
-        (i as i64, j as i64)
-    };
-    let (f, t) = (cell(from), cell(to));
+    let (f, t) = (cell(graph, from), cell(graph, to));
     let facing = TURNS.iter().position(|&d| d == (t.0 - f.0, t.1 - f.1))?;
     (1..=4).find_map(|k| {
         let d = TURNS[(facing + k) % 4];
         let there = (f.0 + d.0, f.1 + d.1);
-        graph.neighbours(from).find(|&w| cell(w) == there)
+        graph.neighbours(from).find(|&w| cell(graph, w) == there)
     })
 }
 
@@ -101,8 +97,8 @@ pub(super) fn generalised(
     if once(&visits_a, v) != Some(t) || once(&visits_b, v) != Some(t) {
         return None;
     }
-    let rim = Rim::find(graph, (&visits_a, mdd_a), (&visits_b, mdd_b), path_a[t as usize - 1], v)?;
-    let (mut entries_a, mut entries_b) = (rim.entries_a.clone(), rim.entries_b.clone());
+    let (rim, mut entries_a, mut entries_b) =
+        Rim::find(graph, (&visits_a, mdd_a), (&visits_b, mdd_b), path_a[t as usize - 1], v)?;
     let (stage, r1, r2) = rim.scan(&mut entries_a, &mut entries_b)?;
     if !rim.no_hole_shared(&mut entries_a, &entries_b) {
         return None;
@@ -189,7 +185,7 @@ impl Stage {
     }
 }
 
-/// The overlap area of a conflict and what its rim holds.
+/// The overlap area of a conflict.
 struct Rim<'a> {
     graph: &'a Graph,
     area: FastSet<Node>,
@@ -197,20 +193,20 @@ struct Rim<'a> {
     earliest: Edge,
     /// The area's latest cell.
     latest: Node,
-    entries_a: BTreeSet<Edge>,
-    entries_b: BTreeSet<Edge>,
     /// The most steps any walk around the rim may take.
     cap: usize,
 }
 
 impl<'a> Rim<'a> {
+    /// The overlap area around `v`, reached from `before`, with the edges
+    /// by which each agent's MDD enters it.
     fn find(
         graph: &'a Graph,
         (visits_a, mdd_a): (&FastMap<Node, Visit>, &[Vec<Node>]),
         (visits_b, mdd_b): (&FastMap<Node, Visit>, &[Vec<Node>]),
         before: Node,
         v: Node,
-    ) -> Option<Self> {
+    ) -> Option<(Self, BTreeSet<Edge>, BTreeSet<Edge>)> {
         let step = |c: Node| once(visits_a, c).expect("a cell of the overlap");
         let mut area: FastSet<Node> = FastSet::default();
         area.insert(v);
@@ -249,15 +245,14 @@ impl<'a> Rim<'a> {
             return None;
         }
         let cap = 8 * area.len() + 16;
-        Some(Rim {
+        let rim = Rim {
             graph,
             area,
             earliest,
             latest,
-            entries_a,
-            entries_b,
             cap,
-        })
+        };
+        Some((rim, entries_a, entries_b))
     }
 
     fn inside(&self, v: Node) -> bool {
@@ -397,11 +392,6 @@ impl<'a> Rim<'a> {
     }
 }
 
-/// Whether `u` and `v` are one move (or a wait) apart.
-fn adjacent(graph: &Graph, u: Node, v: Node) -> bool {
-    u == v || graph.neighbours(u).any(|w| w == v)
-}
-
 /// For each step up to the last of `across`, the MDD's cells at that step
 /// from which it can reach one of `across` (a cell at its step), those
 /// cells included.
@@ -456,22 +446,10 @@ pub(super) fn disjunctive(
     while !here.is_empty() {
         t += 1;
         let (next_a, next_b) = (lead_a.get(t).unwrap_or(&empty), lead_b.get(t).unwrap_or(&empty));
-        let mut next: Vec<(Node, Node)> = Vec::new();
-        for &(u, v) in &here {
-            for &x in next_a.iter().filter(|&&x| adjacent(graph, u, x)) {
-                for &y in next_b.iter().filter(|&&y| adjacent(graph, v, y)) {
-                    if x != y && !(x == v && y == u) {
-                        if reached(x, y, t as u32) {
-                            return false;
-                        }
-                        next.push((x, y));
-                    }
-                }
-            }
+        here = apart_next(graph, &here, next_a, next_b);
+        if here.iter().any(|&(x, y)| reached(x, y, t as u32)) {
+            return false;
         }
-        next.sort_unstable();
-        next.dedup();
-        here = next;
     }
     true
 }

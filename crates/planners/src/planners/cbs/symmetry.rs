@@ -31,7 +31,7 @@ use std::sync::Arc;
 use super::low::{Table, mdd};
 use super::corridor::{Crossing, pseudo_corridor};
 use super::overlap;
-use super::{Constraint, CtNode, Rule, Team, at, binding};
+use super::{Cell, Constraint, CtNode, Rule, Team, at, binding, cell, manhattan};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
 /// A conflict between two agents' paths.
@@ -151,9 +151,7 @@ impl<'a> Mdds<'a> {
         let t = t as usize;
         level(t) == [v] && (u == v || (t > 0 && level(t - 1) == [u]))
     }
-}
 
-impl Mdds<'_> {
     /// `agent`'s MDD, built when first asked.
     fn levels(&mut self, agent: u32) -> Arc<Vec<Vec<Node>>> {
         let (graph, dists, node) = (self.graph, self.dists, self.node);
@@ -226,9 +224,8 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
                 }
             }
             if cardinality < 2 {
-                let (mdd_a, mdd_b) = (mdds.levels(a), mdds.levels(b));
-                let (pa, pb) = (&paths[a as usize], &paths[b as usize]);
                 let found = rectangle(graph, paths, a, b).map(|found| (found, Kind::Rectangle)).or_else(|| {
+                    let (mdd_a, mdd_b) = (mdds.levels(a), mdds.levels(b));
                     overlap::generalised(graph, (a, pa, &mdd_a), (b, pb, &mdd_b), v, t)
                         .map(|found| (found, Kind::Generalised))
                 });
@@ -266,23 +263,18 @@ fn classify(graph: &Graph, node: &CtNode, c: Conflict, mdds: &mut Mdds<'_>, rank
     }
 }
 
-type Cell = (i64, i64);
-
-fn manhattan(p: Cell, q: Cell) -> i64 {
-    (p.0 - q.0).abs() + (p.1 - q.1).abs()
-}
-
 /// The rectangle split of two agents that conflict before either rests,
 /// when it is one: each agent's barrier as vertex constraints, and the
 /// split's cardinality. Both agents' current paths cross their barriers,
 /// so both children change a path.
 pub(super) fn rectangle(graph: &Graph, paths: &[Arc<Vec<Node>>], a: u32, b: u32) -> Option<(Vec<Constraint>, Vec<Constraint>, u8)> {
     let (pa, pb) = (&paths[a as usize], &paths[b as usize]);
-    let cell = |v: Node| {
-        let (i, j) = graph.spec.coords(v as usize);
-        (i as i64, j as i64)
-    };
-    let (mut s1, mut g1, mut s2, mut g2) = (cell(pa[0]), cell(*pa.last()?), cell(pb[0]), cell(*pb.last()?));
+    let (mut s1, mut g1, mut s2, mut g2) = (
+        cell(graph, pa[0]),
+        cell(graph, *pa.last()?),
+        cell(graph, pb[0]),
+        cell(graph, *pb.last()?),
+    );
     // Both whole paths Manhattan-optimal.
     if manhattan(s1, g1) != pa.len() as i64 - 1 || manhattan(s2, g2) != pb.len() as i64 - 1 {
         return None;

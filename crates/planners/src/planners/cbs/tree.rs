@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 use super::low::{Avoid, Low, Table, low_level};
 use super::symmetry::{Kind, MddCache, cached_mdd, choose};
-use super::{Budget, Constraint, Counts, CtNode, Team, binding, conflicts, cost_of, to_replan};
+use super::{Budget, Constraint, Counts, CtNode, Team, apart_next, binding, conflicts, cost_of, to_replan};
 use crate::planners::mapf::{FastMap, Graph, Node};
 
 /// How growing a tree ended.
@@ -280,7 +280,6 @@ pub(super) fn dependent(graph: &Graph, a: &[Vec<Node>], b: &[Vec<Node>]) -> bool
         m.get(t).or(m.last()).map_or(&[], Vec::as_slice)
     }
     let last = a.len().max(b.len()).saturating_sub(1);
-    let adjacent = |u: Node, v: Node| u == v || graph.neighbours(u).any(|w| w == v);
     // An empty MDD says nothing: independent (the lower heuristic).
     let (Some(&sa), Some(&sb)) = (level(a, 0).first(), level(b, 0).first()) else {
         return false;
@@ -290,19 +289,7 @@ pub(super) fn dependent(graph: &Graph, a: &[Vec<Node>], b: &[Vec<Node>]) -> bool
     }
     let mut here: Vec<(Node, Node)> = vec![(sa, sb)];
     for t in 1..=last {
-        let (next_a, next_b) = (level(a, t), level(b, t));
-        let mut next: Vec<(Node, Node)> = Vec::new();
-        for &(u, v) in &here {
-            for &x in next_a.iter().filter(|&&x| adjacent(u, x)) {
-                for &y in next_b.iter().filter(|&&y| adjacent(v, y)) {
-                    if x != y && !(x == v && y == u) {
-                        next.push((x, y));
-                    }
-                }
-            }
-        }
-        next.sort_unstable();
-        next.dedup();
+        let next = apart_next(graph, &here, level(a, t), level(b, t));
         if next.is_empty() {
             return true;
         }
